@@ -1,0 +1,81 @@
+# sphlab: make (build), make demo, make test, make asan, make clean.
+# `make demo` and `make test` first install any missing Debian packages.
+
+CC      ?= cc
+OPT     ?= -O2 -march=native
+CFLAGS  ?= $(OPT) -g
+WARN    := -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wvla-larger-than=4096 -D_POSIX_C_SOURCE=200809L
+OMP     := -fopenmp
+PKGS_CORE := inih
+PKGS_TEST := criterion
+CORE_CFLAGS := $(WARN) $(OMP) -Isrc/core $(shell pkg-config --cflags $(PKGS_CORE) 2>/dev/null)
+CORE_LIBS   := $(shell pkg-config --libs $(PKGS_CORE) 2>/dev/null || echo -linih) -lm
+
+BUILD   := build
+CORE    := sph_error sph_kernel sph_scene sph_sim
+PASSES  := external hash sort offsets neighbours density pressure pressure_force viscosity integrate walls
+APP     := main cmd_run cmd_check
+TESTS   := test_physics
+
+CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
+APP_OBJ  := $(APP:%=$(BUILD)/app/%.o)
+TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
+
+.PHONY: all demo test check-tests asan deps clean
+
+all: sphlab
+
+sphlab: $(BUILD)/libsphcore.a $(APP_OBJ)
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS)
+
+$(BUILD)/libsphcore.a: $(CORE_OBJ)
+	ar rcs $@ $^
+
+$(BUILD)/core/%.o: src/core/%.c src/core/*.h | $(BUILD)/core
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) -c -o $@ $<
+$(BUILD)/passes/%.o: src/passes/%.c src/core/*.h | $(BUILD)/passes
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) -c -o $@ $<
+$(BUILD)/app/%.o: src/app/%.c src/app/*.h src/core/*.h | $(BUILD)/app
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app -c -o $@ $<
+$(BUILD)/tests/%.o: tests/%.c tests/*.h src/core/*.h | $(BUILD)/tests
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) $(shell pkg-config --cflags $(PKGS_TEST) 2>/dev/null) -Itests -c -o $@ $<
+
+$(BUILD)/core $(BUILD)/passes $(BUILD)/app $(BUILD)/tests:
+	mkdir -p $@
+
+$(BUILD)/sphlab-tests: $(TEST_OBJ) $(BUILD)/libsphcore.a
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) \
+	    $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null || echo -lcriterion)
+
+# Installs what is missing (Debian packages); does nothing when all are there.
+deps:
+	@sh tests/install-deps.sh
+
+demo: deps
+	$(MAKE) sphlab
+	./sphlab run lessons/scenes/dam-break-2d.ini --stats $(BUILD)/demo-stats.csv --dump $(BUILD)/demo-particles.csv
+
+test: deps
+	$(MAKE) sphlab $(BUILD)/sphlab-tests
+	$(MAKE) check-tests
+
+# Runs the suite against the binaries already built (also used by `make asan`).
+check-tests:
+	SPHLAB=./sphlab $(BUILD)/sphlab-tests --jobs 2
+	sh tests/cli.sh ./sphlab
+
+asan: deps
+	$(MAKE) BUILD=build-asan OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
+	    sphlab-asan build-asan/sphlab-tests
+	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	    $(MAKE) BUILD=build-asan SPHLAB_BIN=./sphlab-asan check-tests-asan
+
+sphlab-asan: $(BUILD)/libsphcore.a $(APP_OBJ)
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS)
+
+check-tests-asan:
+	SPHLAB=./sphlab-asan $(BUILD)/sphlab-tests --jobs 2
+	sh tests/cli.sh ./sphlab-asan
+
+clean:
+	rm -rf build build-asan sphlab sphlab-asan

@@ -1,0 +1,42 @@
+/* Shared by the sphlab commands. */
+#ifndef SPH_APP_H
+#define SPH_APP_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "sph_sim.h"
+
+#define APP_MAX_SETS 64
+
+/* Options that several commands take. */
+typedef struct app_scene_opts {
+    const char *path;                 /* scene file */
+    const char *sets[APP_MAX_SETS];   /* --set section.key=value, in order */
+    int n_sets;
+} app_scene_opts;
+
+/* Loads the scene, applies the --set overrides, validates; prints the error
+ * and returns false on failure. */
+bool app_load_scene(const app_scene_opts *o, sph_scene_def *def);
+
+/* Parses a whole number / a number for option `opt`; prints the error and returns false on failure. */
+bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out);
+bool app_parse_double(const char *opt, const char *s, double lo, double hi, double *out);
+
+/* Output files are written to PATH.tmp and renamed on success, so a failed
+ * run never leaves a half-written file behind. */
+typedef struct app_out {
+    char path[1024], tmp[1040];
+    FILE *f;
+} app_out;
+bool app_out_open(app_out *o, const char *path);
+bool app_out_commit(app_out *o); /* closes and renames; false (and message) on a write error */
+void app_out_abort(app_out *o);  /* closes and removes the temporary */
+
+int cmd_run(int argc, char **argv);
+int cmd_check(int argc, char **argv);
+
+void app_print_pipeline(FILE *f, const sph_sim *sim);
+
+#endif

@@ -1,0 +1,213 @@
+/* sphlab run SCENE.ini: simulate, then print per-pass timings and a summary. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app.h"
+
+static void usage(FILE *f)
+{
+    fputs("usage: sphlab run SCENE.ini [options]\n"
+          "  --steps N           run N steps (default: the scene's duration or steps)\n"
+          "  --time T            run until T simulated seconds\n"
+          "  --set S.K=V         override scene key K of section S (repeatable)\n"
+          "  --stats FILE.csv    one row per step: step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed,\n"
+          "                      then the milliseconds of each pass in the pipeline\n"
+          "  --dump FILE.csv     final particles: id,x,y,z,vx,vy,vz,rho,p\n"
+          "  --threads N         worker threads (default: one per core)\n"
+          "  --quiet             no progress line, no tables\n"
+          "  --help              this text\n",
+          f);
+}
+
+static const char *opt_value(int argc, char **argv, int *i, const char *name)
+{
+    const char *a = argv[*i];
+    size_t n = strlen(name);
+    if (a[n] == '=') return a + n + 1;
+    if (*i + 1 < argc) return argv[++*i];
+    fprintf(stderr, "sphlab run: %s needs a value\n", name);
+    return NULL;
+}
+
+static bool is_opt(const char *a, const char *name)
+{
+    size_t n = strlen(name);
+    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
+}
+
+static void write_stats_header(FILE *f, const sph_sim *sim)
+{
+    fprintf(f, "step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed");
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (sim->in_pipeline[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
+    fprintf(f, "\n");
+}
+
+static void write_stats_row(FILE *f, const sph_sim *sim, double dt)
+{
+    sph_stats s;
+    sph_sim_stats(sim, &s);
+    fprintf(f, "%llu,%.9g,%.9g,%u,%.9g,%.9g,%.9g,%.9g,%.9g", (unsigned long long)sim->step, sim->t, dt, s.n, s.ekin,
+            s.rho_min, s.rho_mean, s.rho_max, s.max_speed);
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (sim->in_pipeline[p]) fprintf(f, ",%.6f", sim->timing[p].last_ms);
+    fprintf(f, "\n");
+}
+
+
+static void write_dump(FILE *f, const sph_sim *sim)
+{
+    const sph_particles *P = &sim->P;
+    /* rows in id order, whatever order the data are stored in */
+    uint32_t *order = malloc((size_t)(sim->n ? sim->n : 1) * sizeof *order);
+    if (!order) {
+        fprintf(stderr, "sphlab: out of memory for the dump\n");
+        return;
+    }
+    for (uint32_t i = 0; i < sim->n; i++) order[P->id[i]] = i;
+    fprintf(f, "id,x,y,z,vx,vy,vz,rho,p\n");
+    for (uint32_t k = 0; k < sim->n; k++) {
+        uint32_t i = order[k];
+        float x[3] = {0, 0, 0}, v[3] = {0, 0, 0};
+        for (int d = 0; d < sim->dim; d++) {
+            x[d] = P->pos[d][i];
+            v[d] = P->vel[d][i];
+        }
+        fprintf(f, "%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", P->id[i], x[0], x[1], x[2], v[0], v[1], v[2],
+                P->rho ? P->rho[i] : 0.0f, P->p ? P->p[i] : 0.0f);
+    }
+    free(order);
+}
+
+static void print_report(const sph_sim *sim, double wall_ms)
+{
+    double total = 0;
+    for (int p = 0; p < SPH_PASS_COUNT; p++) total += sim->timing[p].total_ms;
+    double steps = sim->step ? (double)sim->step : 1;
+    printf("%-16s %8s %12s %10s %7s\n", "pass", "calls", "total ms", "ms/step", "share");
+    for (int p = 0; p < SPH_PASS_COUNT; p++) {
+        if (!sim->in_pipeline[p]) continue;
+        const sph_pass_timing *t = &sim->timing[p];
+        printf("%-16s %8llu %12.2f %10.4f %6.1f%%\n", sph_passes[p]->name, (unsigned long long)t->calls, t->total_ms,
+               t->total_ms / steps, total > 0 ? 100.0 * t->total_ms / total : 0.0);
+    }
+    printf("%-16s %8s %12.2f %10.4f %6.1f%%\n", "all passes", "", total, total / steps, 100.0);
+    sph_stats s;
+    sph_sim_stats(sim, &s);
+    const char *e_unit = sim->dim == 2 ? "J/m" : "J";
+    const char *r_unit = sim->dim == 2 ? "kg/m^2" : "kg/m^3";
+    printf("\nparticles       %u (%dD), %d thread%s\n", s.n, sim->dim, sim->threads, sim->threads == 1 ? "" : "s");
+    printf("steps           %llu\n", (unsigned long long)sim->step);
+    printf("simulated time  %.6g s (last dt %.3g s)\n", sim->t, sim->dt);
+    printf("kinetic energy  %.6g %s\n", s.ekin, e_unit);
+    if (sim->P.rho)
+        printf("density         min %.6g  mean %.6g  max %.6g %s\n", s.rho_min, s.rho_mean, s.rho_max, r_unit);
+    else
+        printf("density         not computed (no effect needs it)\n");
+    printf("max speed       %.6g m/s\n", s.max_speed);
+    printf("wall time       %.3f s: %.1f steps/s, %.3g particle-steps/s\n", wall_ms / 1e3,
+           sim->step / (wall_ms / 1e3), (double)s.n * sim->step / (wall_ms / 1e3));
+}
+
+int cmd_run(int argc, char **argv)
+{
+    app_scene_opts o = {0};
+    long steps = -1, threads = 0;
+    double until = -1;
+    const char *stats_path = NULL, *dump_path = NULL;
+    bool quiet = false;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
+            quiet = true;
+        } else if (is_opt(a, "--steps")) {
+            if (!(v = opt_value(argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 0, 2000000000L, &steps))
+                return 2;
+        } else if (is_opt(a, "--time")) {
+            if (!(v = opt_value(argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
+                return 2;
+        } else if (is_opt(a, "--threads")) {
+            if (!(v = opt_value(argc, argv, &i, "--threads")) || !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
+                return 2;
+        } else if (is_opt(a, "--set")) {
+            if (!(v = opt_value(argc, argv, &i, "--set"))) return 2;
+            if (o.n_sets == APP_MAX_SETS) {
+                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
+                return 2;
+            }
+            o.sets[o.n_sets++] = v;
+        } else if (is_opt(a, "--stats")) {
+            if (!(stats_path = opt_value(argc, argv, &i, "--stats"))) return 2;
+        } else if (is_opt(a, "--dump")) {
+            if (!(dump_path = opt_value(argc, argv, &i, "--dump"))) return 2;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "sphlab run: unknown option '%s'\n", a);
+            usage(stderr);
+            return 2;
+        } else if (!o.path) {
+            o.path = a;
+        } else {
+            fprintf(stderr, "sphlab run: more than one scene file ('%s')\n", a);
+            return 2;
+        }
+    }
+    if (!o.path) {
+        usage(stderr);
+        return 2;
+    }
+    if (steps >= 0 && until >= 0) {
+        fprintf(stderr, "sphlab run: give --steps or --time, not both\n");
+        return 2;
+    }
+    sph_scene_def def;
+    if (!app_load_scene(&o, &def)) return 1;
+    if (steps < 0 && until < 0) {
+        if (def.duration > 0)
+            until = def.duration;
+        else
+            steps = def.steps;
+    }
+    /* Open the outputs before simulating: an unwritable path fails now, not after the run. */
+    app_out stats = {0}, dump = {0};
+    if (stats_path && !app_out_open(&stats, stats_path)) return 1;
+    if (dump_path && !app_out_open(&dump, dump_path)) {
+        app_out_abort(&stats);
+        return 1;
+    }
+    sph_sim *sim;
+    sph_error err;
+    if (sph_sim_create(&def, (int)threads, &sim, &err) != SPH_ERR_OK) {
+        fprintf(stderr, "sphlab: %s\n", err.msg);
+        app_out_abort(&stats);
+        app_out_abort(&dump);
+        return 1;
+    }
+    if (stats.f) write_stats_header(stats.f, sim);
+    bool progress = !quiet && isatty(STDERR_FILENO);
+    double t0 = sph_now_ms(), last_shown = t0;
+    for (;;) {
+        if (until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps) break;
+        sph_sim_step(sim);
+        if (stats.f) write_stats_row(stats.f, sim, sim->dt);
+        double now = sph_now_ms();
+        if (progress && now - last_shown > 200) {
+            last_shown = now;
+            double done = until >= 0 ? sim->t / until : (double)sim->step / (double)steps;
+            double eta = done > 0 ? (now - t0) / 1e3 * (1 - done) / done : 0;
+            fprintf(stderr, "\r  step %llu  t = %.4f s  %3.0f%%  %.0f steps/s  ETA %.0f s   ",
+                    (unsigned long long)sim->step, sim->t, 100 * done, sim->step / ((now - t0) / 1e3), eta);
+        }
+    }
+    double wall = sph_now_ms() - t0;
+    if (progress) fprintf(stderr, "\r%78s\r", "");
+    if (dump.f) write_dump(dump.f, sim);
+    bool ok = app_out_commit(&stats) & app_out_commit(&dump);
+    if (!quiet) print_report(sim, wall);
+    sph_sim_destroy(sim);
+    return ok ? 0 : 1;
+}

@@ -1,0 +1,142 @@
+/* sphlab: a teaching tool for SPH fluid simulation. */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "app.h"
+
+static void usage(FILE *f)
+{
+    fputs("usage: sphlab COMMAND [options]\n"
+          "\n"
+          "commands:\n"
+          "  run SCENE.ini     simulate a scene; print per-pass timings and a summary\n"
+          "  check SCENE.ini   validate a scene and print the pipeline it resolves to\n"
+          "  keys              list every scene key with its unit, range and default\n"
+          "\n"
+          "`sphlab COMMAND --help` describes a command's options.\n",
+          f);
+}
+
+static int cmd_keys(void)
+{
+    const char *last = "";
+    for (int i = 0; i < sph_scene_key_count; i++) {
+        const sph_key *k = &sph_scene_keys[i];
+        if (strcmp(k->section, last) != 0) {
+            printf("%s[%s%s]\n", i ? "\n" : "", k->section, strcmp(k->section, "fluid") == 0 ? " NAME" : "");
+            last = k->section;
+        }
+        printf("  %-18s default %-34s %s%s%s\n", k->name, *k->def ? k->def : "(empty)", k->unit && *k->unit ? "[" : "",
+               k->unit ? k->unit : "", k->unit && *k->unit ? "] " : "");
+        printf("  %-18s %s\n", "", k->help);
+    }
+    return 0;
+}
+
+bool app_load_scene(const app_scene_opts *o, sph_scene_def *def)
+{
+    sph_error err;
+    *def = sph_default_scene_def();
+    if (sph_scene_load(o->path, def, &err) == SPH_ERR_OK) {
+        for (int i = 0; i < o->n_sets; i++)
+            if (sph_scene_set(def, o->sets[i], &err) != SPH_ERR_OK) goto fail;
+        if (sph_scene_validate(def, &err) == SPH_ERR_OK) return true;
+    }
+fail:
+    fprintf(stderr, "sphlab: %s\n", err.msg);
+    return false;
+}
+
+bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = s ? strtol(s, &end, 10) : 0;
+    if (!s || end == s || *end || errno) {
+        fprintf(stderr, "sphlab: %s '%s': not a whole number\n", opt, s ? s : "");
+        return false;
+    }
+    if (v < lo || v > hi) {
+        fprintf(stderr, "sphlab: %s %ld: out of range (accepted: %ld to %ld)\n", opt, v, lo, hi);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+bool app_parse_double(const char *opt, const char *s, double lo, double hi, double *out)
+{
+    char *end;
+    double v = s ? strtod(s, &end) : 0;
+    if (!s || end == s || *end) {
+        fprintf(stderr, "sphlab: %s '%s': not a number\n", opt, s ? s : "");
+        return false;
+    }
+    if (!isfinite(v) || v < lo || v > hi) {
+        fprintf(stderr, "sphlab: %s %s: out of range (accepted: %g to %g)\n", opt, s, lo, hi);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+bool app_out_open(app_out *o, const char *path)
+{
+    memset(o, 0, sizeof *o);
+    if (strlen(path) >= sizeof o->path) {
+        fprintf(stderr, "sphlab: %s: path too long\n", path);
+        return false;
+    }
+    snprintf(o->path, sizeof o->path, "%s", path);
+    snprintf(o->tmp, sizeof o->tmp, "%s.tmp", path);
+    o->f = fopen(o->tmp, "w");
+    if (!o->f) {
+        fprintf(stderr, "sphlab: %s: cannot write: %s\n", path, strerror(errno));
+        return false;
+    }
+    return true;
+}
+
+bool app_out_commit(app_out *o)
+{
+    if (!o->f) return true;
+    bool bad = ferror(o->f) != 0;
+    bad |= fclose(o->f) != 0;
+    o->f = NULL;
+    if (bad || rename(o->tmp, o->path) != 0) {
+        fprintf(stderr, "sphlab: %s: write failed: %s\n", o->path, strerror(errno));
+        remove(o->tmp);
+        return false;
+    }
+    return true;
+}
+
+void app_out_abort(app_out *o)
+{
+    if (!o->f) return;
+    fclose(o->f);
+    o->f = NULL;
+    remove(o->tmp);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "run") == 0) return cmd_run(argc - 1, argv + 1);
+    if (strcmp(cmd, "check") == 0) return cmd_check(argc - 1, argv + 1);
+    if (strcmp(cmd, "keys") == 0) return cmd_keys();
+    fprintf(stderr, "sphlab: unknown command '%s'\n", cmd);
+    usage(stderr);
+    return 2;
+}

@@ -1,0 +1,171 @@
+/* Smoothing kernels W(r, h) with compact support radius h, normalised so that
+ * the integral of W over the plane (2D) or space (3D) is 1.
+ *
+ * Each kernel is written as W(r) = sigma_d * f(r) with the shape f shared by
+ * 2D and 3D and only the normalisation sigma_d depending on the dimension.
+ * The gradient is dW/dr along r_ij / |r_ij|; the Laplacian of a radial
+ * function in d dimensions is W'' + (d - 1) W' / r.
+ *
+ * The viscosity kernel is the exception: Mueller's function is built so that
+ * its 3D Laplacian is 45/(pi h^6)(h - r). Used in 2D, its Laplacian gains a
+ * + h/(2 r^3) term that explodes for close pairs (and a simulation with it).
+ * In 2D we use the kernel built the same way for the plane,
+ *   W = 40/(pi h^5) (h r^2/4 - r^3/9 + (h^3/6) ln(h/r) - 5h^3/36),
+ * whose 2D Laplacian is 40/(pi h^5)(h - r) (docs/kernels.md derives it). */
+#ifndef SPH_KERNEL_H
+#define SPH_KERNEL_H
+
+#include <math.h>
+
+#define SPH_KERNELS(X)                                                        \
+    X(POLY6, "poly6", "Mueller 2003, (h^2-r^2)^3: smooth, for density")       \
+    X(SPIKY, "spiky", "Mueller 2003, (h-r)^3: gradient does not vanish at 0") \
+    X(VISCOSITY, "viscosity", "Mueller 2003: Laplacian 45/(pi h^6)(h-r) in 3D; its 2D analogue 40/(pi h^5)(h-r)") \
+    X(CUBIC, "cubic", "cubic B-spline, Monaghan 1992")                        \
+    X(WENDLAND, "wendland", "Wendland C2, (1-q)^4 (1+4q)")
+
+typedef enum sph_kernel_kind {
+#define SPH_KERNEL_ENUM(id, name, about) SPH_KERNEL_##id,
+    SPH_KERNELS(SPH_KERNEL_ENUM)
+#undef SPH_KERNEL_ENUM
+    SPH_KERNEL_COUNT
+} sph_kernel_kind;
+
+extern const char *const sph_kernel_names[SPH_KERNEL_COUNT];
+extern const char *const sph_kernel_about[SPH_KERNEL_COUNT];
+
+/* A kernel bound to a dimension and a support radius, with its constants
+ * precomputed so the per-pair functions do no divisions by h. */
+typedef struct sph_kernel {
+    sph_kernel_kind kind;
+    int dim;       /* 2 or 3 */
+    float h;       /* [m] support radius: W = 0 for r >= h */
+    float h2;      /* [m^2] h * h */
+    float inv_h;   /* [1/m] */
+    float sigma;   /* [1/m^dim] normalisation of the shape */
+    float m2;      /* [m^2] second moment: integral of r^2 W dV */
+} sph_kernel;
+
+sph_kernel sph_kernel_make(sph_kernel_kind kind, int dim, float h);
+
+/* The per-pair functions are static inline so that a pass's loop, which
+ * calls them with a loop-invariant kind, gets them inlined and unswitched. */
+
+/* Value W(r) [1/m^dim]. The viscosity kernel is singular at r = 0 (its h/2r
+ * term); there it returns its value at r = 1e-3 h: it is meant for its Laplacian. */
+static inline float sph_kernel_w(const sph_kernel *k, float r);
+/* dW/dr [1/m^(dim+1)]: the gradient is dW/dr * (r_vec / r); 0 at r = 0. */
+static inline float sph_kernel_dw(const sph_kernel *k, float r);
+/* Laplacian W'' + (d-1) W'/r [1/m^(dim+2)]; at r = 0 its limit where one
+ * exists (poly6, cubic, Wendland), else its value at r = 1e-3 h. */
+static inline float sph_kernel_lap(const sph_kernel *k, float r);
+
+/* Looks a kernel up by name; returns -1 if there is none. */
+int sph_kernel_find(const char *name);
+
+#define SPH_KERNEL_R_MIN 1e-3f /* [h] where singular kernels are evaluated instead of 0 */
+
+static inline float sph_kernel_w(const sph_kernel *k, float r)
+{
+    if (r >= k->h) return 0.0f;
+    float s = k->sigma;
+    switch (k->kind) {
+    case SPH_KERNEL_POLY6: {
+        float d = k->h2 - r * r;
+        return s * d * d * d;
+    }
+    case SPH_KERNEL_SPIKY: {
+        float d = k->h - r;
+        return s * d * d * d;
+    }
+    case SPH_KERNEL_VISCOSITY: {
+        if (r < SPH_KERNEL_R_MIN * k->h) r = SPH_KERNEL_R_MIN * k->h;
+        float q = r * k->inv_h;
+        if (k->dim == 2) return s * (0.25f * q * q - q * q * q / 9.0f - logf(q) / 6.0f - 5.0f / 36.0f);
+        return s * (-0.5f * q * q * q + q * q + 0.5f / q - 1.0f);
+    }
+    case SPH_KERNEL_CUBIC: {
+        float q = r * k->inv_h;
+        if (q <= 0.5f) return s * (6.0f * (q * q * q - q * q) + 1.0f);
+        float d = 1.0f - q;
+        return s * 2.0f * d * d * d;
+    }
+    case SPH_KERNEL_WENDLAND: {
+        float q = r * k->inv_h, d = 1.0f - q;
+        return s * d * d * d * d * (1.0f + 4.0f * q);
+    }
+    default: return 0.0f;
+    }
+}
+
+static inline float sph_kernel_dw(const sph_kernel *k, float r)
+{
+    if (r >= k->h || r <= 0.0f) return 0.0f;
+    float s = k->sigma, ih = k->inv_h;
+    switch (k->kind) {
+    case SPH_KERNEL_POLY6: {
+        float d = k->h2 - r * r;
+        return -6.0f * s * r * d * d;
+    }
+    case SPH_KERNEL_SPIKY: {
+        float d = k->h - r;
+        return -3.0f * s * d * d;
+    }
+    case SPH_KERNEL_VISCOSITY: {
+        float q = r * ih;
+        if (k->dim == 2) return s * ih * (0.5f * q - q * q / 3.0f - 1.0f / (6.0f * q));
+        return s * ih * (-1.5f * q * q + 2.0f * q - 0.5f / (q * q));
+    }
+    case SPH_KERNEL_CUBIC: {
+        float q = r * ih;
+        if (q <= 0.5f) return s * ih * (18.0f * q * q - 12.0f * q);
+        float d = 1.0f - q;
+        return -6.0f * s * ih * d * d;
+    }
+    case SPH_KERNEL_WENDLAND: {
+        float q = r * ih, d = 1.0f - q;
+        return -20.0f * s * ih * q * d * d * d;
+    }
+    default: return 0.0f;
+    }
+}
+
+static inline float sph_kernel_lap(const sph_kernel *k, float r)
+{
+    if (r >= k->h) return 0.0f;
+    float s = k->sigma, ih = k->inv_h, ih2 = ih * ih, dm1 = (float)(k->dim - 1);
+    switch (k->kind) {
+    case SPH_KERNEL_POLY6: { /* W'' = -6s(h^2-r^2)(h^2-5r^2), W'/r = -6s(h^2-r^2)^2 */
+        float d = k->h2 - r * r;
+        return -6.0f * s * d * (k->h2 - 5.0f * r * r + dm1 * d);
+    }
+    case SPH_KERNEL_SPIKY: { /* W'' = 6s(h-r), W' = -3s(h-r)^2 */
+        if (r < SPH_KERNEL_R_MIN * k->h) r = SPH_KERNEL_R_MIN * k->h;
+        float d = k->h - r;
+        return 6.0f * s * d - dm1 * 3.0f * s * d * d / r;
+    }
+    case SPH_KERNEL_VISCOSITY: { /* 45/(pi h^6) (h - r) in 3D, 40/(pi h^5) (h - r) in 2D */
+        float q = r * ih;
+        if (k->dim == 2) return s * ih2 * (1.0f - q);
+        if (r < SPH_KERNEL_R_MIN * k->h) r = SPH_KERNEL_R_MIN * k->h;
+        q = r * ih;
+        float d2 = -3.0f * q + 2.0f + 1.0f / (q * q * q);
+        float d1_over_q = -1.5f * q + 2.0f - 0.5f / (q * q * q);
+        return s * ih2 * (d2 + dm1 * d1_over_q);
+    }
+    case SPH_KERNEL_CUBIC: {
+        float q = r * ih;
+        if (q <= 0.5f) return s * ih2 * ((36.0f * q - 12.0f) + dm1 * (18.0f * q - 12.0f));
+        float d = 1.0f - q;
+        float d1_over_q = q > 0.0f ? -6.0f * d * d / q : 0.0f;
+        return s * ih2 * (12.0f * d + dm1 * d1_over_q);
+    }
+    case SPH_KERNEL_WENDLAND: {
+        float q = r * ih, d = 1.0f - q;
+        return -20.0f * s * ih2 * d * d * ((1.0f - 4.0f * q) + dm1 * d);
+    }
+    default: return 0.0f;
+    }
+}
+
+#endif

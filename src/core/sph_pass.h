@@ -1,0 +1,62 @@
+/* The pipeline: every pass of a time step, in order, written once.
+ *
+ * The X-macro below is the only list of passes. The pass enum, the table of
+ * pass descriptors, the timing table, the CSV columns, `sphlab check` and the
+ * window's toggles all expand from it. To add a pass: add a line here, write
+ * src/passes/NAME.c defining `const sph_pass sph_pass_NAME`, and add it to
+ * the Makefile's PASSES (docs/architecture.md walks through it). */
+#ifndef SPH_PASS_H
+#define SPH_PASS_H
+
+#include <stdbool.h>
+
+#include "sph_scene.h"
+
+#define SPH_PASSES(X)      \
+    X(EXTERNAL, external)  \
+    X(HASH, hash)          \
+    X(SORT, sort)          \
+    X(OFFSETS, offsets)    \
+    X(NEIGHBOURS, neighbours) \
+    X(DENSITY, density)    \
+    X(PRESSURE, pressure)  \
+    X(PRESSURE_FORCE, pressure_force) \
+    X(VISCOSITY, viscosity) \
+    X(INTEGRATE, integrate) \
+    X(WALLS, walls)
+
+typedef enum sph_pass_id {
+#define SPH_PASS_ENUM(id, name) SPH_PASS_##id,
+    SPH_PASSES(SPH_PASS_ENUM)
+#undef SPH_PASS_ENUM
+    SPH_PASS_COUNT
+} sph_pass_id;
+
+typedef struct sph_sim sph_sim;
+
+/* What every pass provides. A pass reads the buffers it names in `reads` and
+ * writes only those in `writes`; none writes a buffer that it also reads for
+ * another particle in the same sweep, so thread order cannot change a result. */
+typedef struct sph_pass {
+    const char *name;    /* as in CSV columns and `--set`-like toggles */
+    const char *summary; /* one line for `sphlab check` and the HUD */
+    const char *reads;   /* buffers read, space-separated */
+    const char *writes;  /* buffers written */
+    /* NULL if the scene needs this pass, else why it is left out. */
+    const char *(*skip_reason)(const sph_scene_def *def);
+    /* The variant the scene selects, e.g. "bitonic" or "poly6 kernel". */
+    void (*describe)(const sph_scene_def *def, char *out, int n);
+    void (*run)(sph_sim *sim);
+} sph_pass;
+
+#define SPH_PASS_EXTERN(id, name) extern const sph_pass sph_pass_##name;
+SPH_PASSES(SPH_PASS_EXTERN)
+#undef SPH_PASS_EXTERN
+
+extern const sph_pass *const sph_passes[SPH_PASS_COUNT];
+
+/* Scene tests the passes share in their skip_reason. */
+bool sph_scene_needs_neighbours(const sph_scene_def *def);
+bool sph_scene_needs_density(const sph_scene_def *def);
+
+#endif

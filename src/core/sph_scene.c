@@ -1,0 +1,676 @@
+/* Scene files: defaults, the key table, the INI parser (libinih) and validation. */
+#include "sph_scene.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <float.h>
+#include <ini.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define NAMES(id, name) name,
+const char *const sph_eos_names[SPH_EOS_COUNT] = {SPH_EOS_CHOICES(NAMES)};
+const char *const sph_pressure_form_names[SPH_PFORM_COUNT] = {SPH_PFORM_CHOICES(NAMES)};
+const char *const sph_viscosity_form_names[SPH_VFORM_COUNT] = {SPH_VFORM_CHOICES(NAMES)};
+const char *const sph_search_names[SPH_SEARCH_COUNT] = {SPH_SEARCH_CHOICES(NAMES)};
+const char *const sph_sort_names[SPH_SORT_COUNT] = {SPH_SORT_CHOICES(NAMES)};
+const char *const sph_negative_pressure_names[SPH_NEGP_COUNT] = {SPH_NEGP_CHOICES(NAMES)};
+#undef NAMES
+#define EFFECT_NAME(id, name, about) name,
+const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
+#undef EFFECT_NAME
+#define EFFECT_ABOUT(id, name, about) about,
+const char *const sph_effect_about[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_ABOUT)};
+#undef EFFECT_ABOUT
+
+/* ---- the key table ------------------------------------------------------ */
+
+#define S(field) (int)offsetof(sph_scene_def, field)
+#define B(field) (int)offsetof(sph_block_def, field)
+#define CH(names) names, (int)(sizeof names / sizeof names[0])
+#define BIG 1e6
+
+const sph_key sph_scene_keys[] = {
+    {"scene", "name", SPH_KEY_STRING, S(name), 0, 0, 0, 0, NULL, 0, "", "", "title shown in tables and windows"},
+    {"scene", "dimension", SPH_KEY_INT, S(dim), 2, 3, 0, 0, NULL, 0, "", "2", "2 or 3"},
+    {"scene", "effects", SPH_KEY_EFFECTS, S(effects), 0, 0, 0, 0, CH(sph_effect_names), "",
+     "gravity pressure viscosity walls",
+     "the effects to simulate; passes needed only by others are left out"},
+    {"scene", "steps", SPH_KEY_INT, S(steps), 1, 1e9, 0, 0, NULL, 0, "", "1000",
+     "default run length in steps (--steps overrides)"},
+    {"scene", "duration", SPH_KEY_FLOAT, S(duration), 0, BIG, 0, 0, NULL, 0, "s", "0",
+     "default run length in simulated seconds; 0: use steps (--time overrides)"},
+    {"scene", "jitter", SPH_KEY_FLOAT, S(jitter), 0, 0.5, 0, 0, NULL, 0, "spacing", "0",
+     "random offset of each particle from its lattice node, as a fraction of the spacing"},
+    {"scene", "seed", SPH_KEY_UINT, S(seed), 0, 4294967295.0, 0, 0, NULL, 0, "", "1", "random seed of the jitter"},
+
+    {"domain", "min", SPH_KEY_VEC, S(domain_min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the box"},
+    {"domain", "max", SPH_KEY_VEC, S(domain_max), -BIG, BIG, 0, 0, NULL, 0, "m", "1 1 1", "upper corner of the box"},
+    {"domain", "wall_damping", SPH_KEY_FLOAT, S(wall_damping), 0, 1, 0, 0, NULL, 0, "", "0.5",
+     "share of the normal speed a particle keeps when it bounces off a wall"},
+
+    {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 0, BIG, 1, 0, NULL, 0, "kg/m^dim", "1000",
+     "rho0: density at which the pressure is zero"},
+    {"physics", "eos", SPH_KEY_CHOICE, S(eos), 0, 0, 0, 0, CH(sph_eos_names), "", "linear",
+     "equation of state: linear p = k (rho - rho0) as in the seeds, or tait p = (k rho0 / gamma) ((rho/rho0)^gamma - 1)"},
+    {"physics", "stiffness", SPH_KEY_FLOAT, S(stiffness), 0, 1e9, 1, 0, NULL, 0, "m^2/s^2", "1000",
+     "k; the speed of sound is sqrt(k), keep it about 10x the fastest flow"},
+    {"physics", "tait_gamma", SPH_KEY_FLOAT, S(tait_gamma), 1, 20, 0, 0, NULL, 0, "", "7", "exponent of the Tait equation"},
+    {"physics", "negative_pressure", SPH_KEY_CHOICE, S(negative_pressure), 0, 0, 0, 0,
+     CH(sph_negative_pressure_names), "", "keep",
+     "keep: below rho0 particles attract (the seeds); clamp: pressure >= 0, no tensile clumping"},
+    {"physics", "pressure_form", SPH_KEY_CHOICE, S(pressure_form), 0, 0, 0, 0, CH(sph_pressure_form_names), "",
+     "symmetric",
+     "symmetric: -m_j (p_i/rho_i^2 + p_j/rho_j^2) grad W, conserves momentum; shared: the seed's (p_i+p_j)/2 form"},
+    {"physics", "viscosity", SPH_KEY_FLOAT, S(viscosity), 0, 1e3, 0, 0, NULL, 0, "m^2/s", "0.001",
+     "kinematic viscosity nu"},
+    {"physics", "viscosity_form", SPH_KEY_CHOICE, S(viscosity_form), 0, 0, 0, 0, CH(sph_viscosity_form_names), "",
+     "laplacian",
+     "laplacian: Mueller's nu m_j (v_j - v_i)/rho_j lap W; smoothing: the seed's kernel-weighted velocity average"},
+    {"physics", "gravity", SPH_KEY_VEC, S(gravity), -1e4, 1e4, 0, 0, NULL, 0, "m/s^2", "0 -9.81 0", "g"},
+
+    {"kernels", "h", SPH_KEY_FLOAT, S(h), 0, BIG, 1, 0, NULL, 0, "m", "0.04",
+     "support radius, also the cell size of the neighbour search; about 2 spacings"},
+    {"kernels", "density", SPH_KEY_KERNEL, S(kernel_density), 0, 0, 0, 0, CH(sph_kernel_names), "", "poly6",
+     "kernel of the density sum"},
+    {"kernels", "pressure", SPH_KEY_KERNEL, S(kernel_pressure), 0, 0, 0, 0, CH(sph_kernel_names), "", "spiky",
+     "kernel whose gradient drives the pressure force"},
+    {"kernels", "viscosity", SPH_KEY_KERNEL, S(kernel_viscosity), 0, 0, 0, 0, CH(sph_kernel_names), "", "viscosity",
+     "kernel of the viscous force (its Laplacian, or its value for the smoothing form)"},
+
+    {"time", "dt", SPH_KEY_FLOAT, S(dt), 0, 1, 1, 0, NULL, 0, "s", "0.0005",
+     "time step with cfl = 0; upper bound of the adaptive step otherwise"},
+    {"time", "cfl", SPH_KEY_FLOAT, S(cfl), 0, 1, 0, 0, NULL, 0, "", "0",
+     "Courant factor; > 0 chooses dt each step from h, the speed of sound, speeds, forces and viscosity"},
+    {"time", "dt_min", SPH_KEY_FLOAT, S(dt_min), 0, 1, 1, 0, NULL, 0, "s", "1e-7",
+     "the adaptive step never goes below this"},
+
+    {"search", "method", SPH_KEY_CHOICE, S(search), 0, 0, 0, 0, CH(sph_search_names), "", "hash",
+     "hash: the seed's spatial hash; grid: a dense grid over the domain; brute: all pairs, O(N^2)"},
+    {"search", "sort", SPH_KEY_CHOICE, S(sort), 0, 0, 0, 0, CH(sph_sort_names), "", "counting",
+     "how hash entries are sorted by key: bitonic (the seed), counting, qsort (reference)"},
+    {"search", "table_size", SPH_KEY_UINT, S(table_size), 0, 2147483648.0, 0, 0, NULL, 0, "", "0",
+     "number of hash keys; 0: the particle count, as in the seed"},
+
+    {"fluid", "min", SPH_KEY_VEC, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
+    {"fluid", "max", SPH_KEY_VEC, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
+    {"fluid", "spacing", SPH_KEY_FLOAT, B(spacing), 0, BIG, 1, 0, NULL, 0, "m", "0.02",
+     "lattice spacing; particles sit at the centres of the lattice cells"},
+    {"fluid", "velocity", SPH_KEY_VEC, B(velocity), -BIG, BIG, 0, 0, NULL, 0, "m/s", "0 0 0", "initial velocity"},
+};
+const int sph_scene_key_count = (int)(sizeof sph_scene_keys / sizeof sph_scene_keys[0]);
+
+static const char *const known_sections[] = {"scene", "domain", "physics", "kernels", "time", "search"};
+
+/* ---- values ------------------------------------------------------------- */
+
+static bool is_fluid_section(const char *section)
+{
+    return strncmp(section, "fluid", 5) == 0 &&
+           (section[5] == '\0' || section[5] == ' ' || section[5] == '.' || section[5] == '\t');
+}
+
+/* "fluid pool", "fluid.pool" and "fluid   pool" all name the block "pool". */
+static const char *fluid_block_name(const char *section)
+{
+    const char *p = section + 5;
+    while (*p == ' ' || *p == '.' || *p == '\t') p++;
+    return p;
+}
+
+static void range_text(const sph_key *k, char *out, size_t n)
+{
+    if (k->type == SPH_KEY_CHOICE || k->type == SPH_KEY_KERNEL || k->type == SPH_KEY_EFFECTS) {
+        size_t used = (size_t)snprintf(out, n, "%s", k->type == SPH_KEY_EFFECTS ? "a list of: " : "one of: ");
+        for (int i = 0; i < k->n_choices && used < n; i++)
+            used += (size_t)snprintf(out + used, n - used, "%s%s", i ? ", " : "", k->choices[i]);
+        return;
+    }
+    if (k->type == SPH_KEY_STRING) {
+        snprintf(out, n, "any text up to 63 characters");
+        return;
+    }
+    const char *unit = k->unit && *k->unit ? k->unit : "";
+    const char *what = k->type == SPH_KEY_VEC ? "2 or 3 numbers, each " : "";
+    snprintf(out, n, "%s%s %g and %s %g%s%s", what, k->min_open ? "above" : "from", k->min,
+             k->max_open ? "below" : "up to", k->max, *unit ? " " : "", unit);
+}
+
+typedef struct where {
+    const char *file;
+    int line;          /* > 0: a file line; -1: --set */
+    const char *section;
+} where;
+
+static void where_text(const where *w, char *out, size_t n)
+{
+    if (w->line > 0)
+        snprintf(out, n, "%s:%d", w->file, w->line);
+    else
+        snprintf(out, n, "--set");
+}
+
+static sph_error_code bad_value(sph_error *err, sph_error_code code, const where *w, const sph_key *k,
+                                const char *value, const char *why)
+{
+    char loc[320], range[256];
+    where_text(w, loc, sizeof loc);
+    range_text(k, range, sizeof range);
+    return sph_fail(err, code, "%s: [%s] %s = '%.80s': %s (accepted: %s)", loc, w->section, k->name, value, why,
+                    range);
+}
+
+static bool parse_double(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s) return false;
+    while (isspace((unsigned char)*end)) end++;
+    if (*end != '\0') return false;
+    *out = v;
+    return true;
+}
+
+static bool in_range(const sph_key *k, double v)
+{
+    if (!isfinite(v)) return false;
+    if (k->min_open ? !(v > k->min) : !(v >= k->min)) return false;
+    if (k->max_open ? !(v < k->max) : !(v <= k->max)) return false;
+    return true;
+}
+
+static int find_choice(const sph_key *k, const char *s, size_t len)
+{
+    for (int i = 0; i < k->n_choices; i++)
+        if (strlen(k->choices[i]) == len && strncmp(k->choices[i], s, len) == 0) return i;
+    return -1;
+}
+
+/* Parses one value into the field at `base + k->offset`; sets *ncomp for vectors. */
+static sph_error_code set_value(const sph_key *k, void *base, const char *value, const where *w, int *ncomp,
+                                sph_error *err)
+{
+    char *field = (char *)base + k->offset;
+    *ncomp = 1;
+    switch (k->type) {
+    case SPH_KEY_STRING:
+        if (strlen(value) > 63) return bad_value(err, SPH_ERR_RANGE, w, k, value, "too long");
+        snprintf(field, 64, "%s", value);
+        return SPH_ERR_OK;
+    case SPH_KEY_FLOAT: {
+        double v;
+        if (!parse_double(value, &v)) return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a number");
+        if (!in_range(k, v)) return bad_value(err, SPH_ERR_RANGE, w, k, value, "out of range");
+        *(float *)field = (float)v;
+        return SPH_ERR_OK;
+    }
+    case SPH_KEY_INT:
+    case SPH_KEY_UINT: {
+        double v;
+        if (!parse_double(value, &v) || v != floor(v))
+            return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a whole number");
+        if (!in_range(k, v)) return bad_value(err, SPH_ERR_RANGE, w, k, value, "out of range");
+        if (k->type == SPH_KEY_INT)
+            *(int *)field = (int)v;
+        else
+            *(uint32_t *)field = (uint32_t)v;
+        return SPH_ERR_OK;
+    }
+    case SPH_KEY_VEC: {
+        float v[3] = {0, 0, 0};
+        int n = 0;
+        const char *p = value;
+        while (*p) {
+            while (isspace((unsigned char)*p) || *p == ',') p++;
+            if (!*p) break;
+            if (n == 3) return bad_value(err, SPH_ERR_PARSE, w, k, value, "more than 3 numbers");
+            char *end;
+            double d = strtod(p, &end);
+            if (end == p || (*end && !isspace((unsigned char)*end) && *end != ','))
+                return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a list of numbers");
+            if (!in_range(k, d)) return bad_value(err, SPH_ERR_RANGE, w, k, value, "a component is out of range");
+            v[n++] = (float)d;
+            p = end;
+        }
+        if (n < 2) return bad_value(err, SPH_ERR_PARSE, w, k, value, "needs 2 (2D) or 3 (3D) numbers");
+        memcpy(field, v, sizeof v);
+        *ncomp = n;
+        return SPH_ERR_OK;
+    }
+    case SPH_KEY_CHOICE:
+    case SPH_KEY_KERNEL: {
+        int c = find_choice(k, value, strlen(value));
+        if (c < 0) return bad_value(err, SPH_ERR_PARSE, w, k, value, "unknown choice");
+        *(int *)field = c;
+        return SPH_ERR_OK;
+    }
+    case SPH_KEY_EFFECTS: {
+        unsigned bits = 0;
+        const char *p = value;
+        while (*p) {
+            while (isspace((unsigned char)*p) || *p == ',') p++;
+            if (!*p) break;
+            const char *q = p;
+            while (*q && !isspace((unsigned char)*q) && *q != ',') q++;
+            if (!(q - p == 4 && strncmp(p, "none", 4) == 0)) {
+                int c = find_choice(k, p, (size_t)(q - p));
+                if (c < 0) return bad_value(err, SPH_ERR_PARSE, w, k, value, "unknown effect");
+                bits |= 1u << c;
+            }
+            p = q;
+        }
+        *(unsigned *)field = bits;
+        return SPH_ERR_OK;
+    }
+    }
+    return SPH_ERR_OK;
+}
+
+/* ---- defaults ----------------------------------------------------------- */
+
+static void apply_defaults(void *base, bool fluid)
+{
+    for (int i = 0; i < sph_scene_key_count; i++) {
+        const sph_key *k = &sph_scene_keys[i];
+        if ((strcmp(k->section, "fluid") == 0) != fluid) continue;
+        where w = {"(defaults)", 0, k->section};
+        int nc;
+        sph_error e;
+        if (set_value(k, base, k->def, &w, &nc, &e) != SPH_ERR_OK) abort(); /* table bug */
+    }
+}
+
+sph_scene_def sph_default_scene_def(void)
+{
+    sph_scene_def def;
+    memset(&def, 0, sizeof def);
+    apply_defaults(&def, false);
+    return def;
+}
+
+static sph_block_def default_block(void)
+{
+    sph_block_def b;
+    memset(&b, 0, sizeof b);
+    apply_defaults(&b, true);
+    return b;
+}
+
+/* ---- parsing ------------------------------------------------------------ */
+
+typedef struct parse_ctx {
+    sph_scene_def *def;
+    const char *file;
+    const char *text; /* whole file, NUL-terminated */
+    size_t len, pos;
+    int line;         /* line the reader handed out last */
+    sph_error *err;
+    sph_error_code code;
+} parse_ctx;
+
+static const sph_key *find_key(const char *section, const char *name, int *index)
+{
+    bool fluid = is_fluid_section(section);
+    for (int i = 0; i < sph_scene_key_count; i++) {
+        const sph_key *k = &sph_scene_keys[i];
+        bool match = fluid ? strcmp(k->section, "fluid") == 0 : strcmp(k->section, section) == 0;
+        if (match && strcmp(k->name, name) == 0) {
+            *index = i;
+            return k;
+        }
+    }
+    return NULL;
+}
+
+static bool known_section(const char *section)
+{
+    if (is_fluid_section(section)) return true;
+    for (size_t i = 0; i < sizeof known_sections / sizeof known_sections[0]; i++)
+        if (strcmp(section, known_sections[i]) == 0) return true;
+    return false;
+}
+
+static const char *section_list(void)
+{
+    return "scene, domain, physics, kernels, time, search, fluid NAME";
+}
+
+/* Index of the key among the fluid keys (origin slot of a block). */
+static int fluid_slot(int key_index)
+{
+    int slot = 0;
+    for (int i = 0; i < key_index; i++)
+        if (strcmp(sph_scene_keys[i].section, "fluid") == 0) slot++;
+    return slot;
+}
+
+static sph_block_def *find_block(sph_scene_def *def, const char *name)
+{
+    for (int b = 0; b < def->n_blocks; b++)
+        if (strcmp(def->blocks[b].name, name) == 0) return &def->blocks[b];
+    return NULL;
+}
+
+/* Applies one key = value; line > 0 for a file line, -1 for --set. */
+static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, const char *section,
+                                const char *name, const char *value, sph_error *err)
+{
+    where w = {file, line, section};
+    char loc[320];
+    where_text(&w, loc, sizeof loc);
+    if (!known_section(section))
+        return sph_fail(err, SPH_ERR_UNKNOWN_SECTION, "%s: unknown section [%.60s] (accepted: %s)", loc, section,
+                        section_list());
+    int index;
+    const sph_key *k = find_key(section, name, &index);
+    if (!k) {
+        char keys[512];
+        size_t used = 0;
+        keys[0] = '\0';
+        bool fluid = is_fluid_section(section);
+        for (int i = 0; i < sph_scene_key_count && used < sizeof keys; i++) {
+            const sph_key *c = &sph_scene_keys[i];
+            if (fluid ? strcmp(c->section, "fluid") == 0 : strcmp(c->section, section) == 0)
+                used += (size_t)snprintf(keys + used, sizeof keys - used, "%s%s", used ? ", " : "", c->name);
+        }
+        return sph_fail(err, SPH_ERR_UNKNOWN_KEY, "%s: unknown key '%.60s' in [%.60s] (accepted: %s)", loc, name,
+                        section, keys);
+    }
+    int ncomp;
+    if (is_fluid_section(section)) {
+        const char *bname = fluid_block_name(section);
+        int slot = fluid_slot(index);
+        sph_block_def *targets[SPH_MAX_BLOCKS];
+        int nt = 0;
+        if (line < 0 && *bname == '\0') { /* --set fluid.key=v: every block */
+            for (int b = 0; b < def->n_blocks; b++) targets[nt++] = &def->blocks[b];
+            if (nt == 0)
+                return sph_fail(err, SPH_ERR_SCENE, "--set [%s] %s: the scene has no fluid block", section, name);
+        } else {
+            sph_block_def *b = find_block(def, bname);
+            if (!b) {
+                if (line < 0)
+                    return sph_fail(err, SPH_ERR_SCENE, "--set: no fluid block named '%.40s'", bname);
+                if (def->n_blocks == SPH_MAX_BLOCKS)
+                    return sph_fail(err, SPH_ERR_RANGE, "%s: [%.60s]: more than %d fluid blocks", loc, section,
+                                    SPH_MAX_BLOCKS);
+                if (strlen(bname) >= sizeof b->name)
+                    return sph_fail(err, SPH_ERR_RANGE, "%s: [%.60s]: block name longer than %d characters", loc,
+                                    section, (int)sizeof b->name - 1);
+                b = &def->blocks[def->n_blocks++];
+                *b = default_block();
+                snprintf(b->name, sizeof b->name, "%s", bname);
+                b->line = line;
+            }
+            targets[nt++] = b;
+        }
+        for (int t = 0; t < nt; t++) {
+            sph_block_def *b = targets[t];
+            if (line > 0 && b->origin[slot].line > 0)
+                return sph_fail(err, SPH_ERR_DUPLICATE_KEY,
+                                "%s: duplicate key '%s' in [%.60s] (first set on line %d); give each fluid block its "
+                                "own name, e.g. [fluid pool]",
+                                loc, name, section, b->origin[slot].line);
+            sph_error_code c = set_value(k, b, value, &w, &ncomp, err);
+            if (c) return c;
+            b->origin[slot].line = line;
+            b->origin[slot].ncomp = ncomp;
+        }
+        return SPH_ERR_OK;
+    }
+    if (line > 0 && def->origin[index].line > 0)
+        return sph_fail(err, SPH_ERR_DUPLICATE_KEY, "%s: duplicate key '%s' in [%s] (first set on line %d)", loc,
+                        name, section, def->origin[index].line);
+    sph_error_code c = set_value(k, def, value, &w, &ncomp, err);
+    if (c) return c;
+    def->origin[index].line = line;
+    def->origin[index].ncomp = ncomp;
+    return SPH_ERR_OK;
+}
+
+static int on_key(void *user, const char *section, const char *name, const char *value)
+{
+    parse_ctx *ctx = user;
+    if (ctx->code) return 0;
+    ctx->code = apply_key(ctx->def, ctx->file, ctx->line, section, name, value, ctx->err);
+    return ctx->code == SPH_ERR_OK;
+}
+
+/* Hands inih one line at a time so that the handler knows the line number
+ * (Debian's libinih is built without INI_HANDLER_LINENO), and catches what
+ * inih would pass over silently: overlong lines, NUL bytes, unknown empty sections. */
+static char *ini_reader_fn(char *str, int num, void *stream)
+{
+    parse_ctx *ctx = stream;
+    if (ctx->code || ctx->pos >= ctx->len) return NULL;
+    const char *start = ctx->text + ctx->pos;
+    const char *nl = memchr(start, '\n', ctx->len - ctx->pos);
+    size_t n = nl ? (size_t)(nl - start) + 1 : ctx->len - ctx->pos;
+    ctx->line++;
+    if (memchr(start, '\0', n)) {
+        ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX, "%s:%d: binary data (a NUL byte): not a scene file",
+                             ctx->file, ctx->line);
+        return NULL;
+    }
+    if (n + 1 > (size_t)num) {
+        ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX, "%s:%d: line longer than %d characters", ctx->file,
+                             ctx->line, num - 2);
+        return NULL;
+    }
+    memcpy(str, start, n);
+    str[n] = '\0';
+    ctx->pos += n;
+    /* A section header: check its name now, as inih calls us only for keys. */
+    const char *p = str;
+    while (*p == ' ' || *p == '\t') p++;
+    if (*p == '[') {
+        const char *close = strchr(p, ']');
+        if (close) {
+            char name[200];
+            const char *a = p + 1, *b = close;
+            while (a < b && isspace((unsigned char)*a)) a++;
+            while (b > a && isspace((unsigned char)b[-1])) b--;
+            snprintf(name, sizeof name, "%.*s", (int)(b - a), a);
+            if (!known_section(name)) {
+                ctx->code = sph_fail(ctx->err, SPH_ERR_UNKNOWN_SECTION,
+                                     "%s:%d: unknown section [%.60s] (accepted: %s)", ctx->file, ctx->line, name,
+                                     section_list());
+                return NULL;
+            }
+        }
+    }
+    return str;
+}
+
+sph_error_code sph_scene_load_string(const char *text, const char *name, sph_scene_def *def, sph_error *err)
+{
+    parse_ctx ctx = {def, name, text, strlen(text), 0, 0, err, SPH_ERR_OK};
+    snprintf(def->file, sizeof def->file, "%s", name);
+    int rc = ini_parse_stream(ini_reader_fn, &ctx, on_key, &ctx);
+    if (ctx.code) return ctx.code;
+    if (rc > 0)
+        return sph_fail(err, SPH_ERR_SYNTAX, "%s:%d: syntax error: expected '[section]' or 'key = value'", name, rc);
+    if (rc < 0) return sph_fail(err, SPH_ERR_MEMORY, "%s: out of memory while parsing", name);
+    if (ctx.line == 0 || def->n_blocks == 0) {
+        /* validate() reports missing blocks; an empty file is worth its own words */
+        bool blank = true;
+        for (const char *p = text; *p; p++)
+            if (!isspace((unsigned char)*p)) blank = false;
+        if (blank) return sph_fail(err, SPH_ERR_SCENE, "%s: the file is empty: a scene needs at least a [fluid NAME] block", name);
+    }
+    return SPH_ERR_OK;
+}
+
+sph_error_code sph_scene_load(const char *path, sph_scene_def *def, sph_error *err)
+{
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return sph_fail(err, SPH_ERR_IO, "%s: cannot open scene file: %s", path, strerror(errno));
+    if (!S_ISREG(st.st_mode)) return sph_fail(err, SPH_ERR_IO, "%s: not a regular file (a directory?)", path);
+    if (st.st_size > (1 << 20)) return sph_fail(err, SPH_ERR_IO, "%s: larger than 1 MiB: not a scene file", path);
+    FILE *f = fopen(path, "rb");
+    if (!f) return sph_fail(err, SPH_ERR_IO, "%s: cannot open scene file: %s", path, strerror(errno));
+    size_t cap = (size_t)st.st_size + 1;
+    char *text = malloc(cap);
+    if (!text) {
+        fclose(f);
+        return sph_fail(err, SPH_ERR_MEMORY, "%s: out of memory", path);
+    }
+    size_t n = fread(text, 1, cap - 1, f);
+    bool failed = ferror(f);
+    fclose(f);
+    if (failed) {
+        free(text);
+        return sph_fail(err, SPH_ERR_IO, "%s: read error", path);
+    }
+    text[n] = '\0';
+    sph_error_code c;
+    if (memchr(text, '\0', n)) { /* strlen would stop there: say where */
+        int line = 1;
+        for (const char *p = text; *p; p++) line += *p == '\n';
+        c = sph_fail(err, SPH_ERR_SYNTAX, "%s:%d: binary data (a NUL byte): not a scene file", path, line);
+    } else {
+        c = sph_scene_load_string(text, path, def, err);
+    }
+    free(text);
+    return c;
+}
+
+sph_error_code sph_scene_set(sph_scene_def *def, const char *assignment, sph_error *err)
+{
+    const char *eq = strchr(assignment, '=');
+    char left[160];
+    if (!eq || (size_t)(eq - assignment) >= sizeof left)
+        return sph_fail(err, SPH_ERR_USAGE, "--set '%.80s': expected section.key=value, e.g. kernels.h=0.05",
+                        assignment);
+    snprintf(left, sizeof left, "%.*s", (int)(eq - assignment), assignment);
+    char *dot = strrchr(left, '.');
+    if (!dot || dot == left || !dot[1])
+        return sph_fail(err, SPH_ERR_USAGE, "--set '%.80s': expected section.key=value, e.g. kernels.h=0.05",
+                        assignment);
+    *dot = '\0';
+    const char *value = eq + 1;
+    while (isspace((unsigned char)*value)) value++;
+    return apply_key(def, def->file, -1, left, dot + 1, value, err);
+}
+
+/* ---- validation --------------------------------------------------------- */
+
+static int key_index(const char *section, const char *name)
+{
+    int i;
+    return find_key(section, name, &i) ? i : -1;
+}
+
+int64_t sph_block_nodes(const sph_scene_def *def, int b, int axis)
+{
+    const sph_block_def *blk = &def->blocks[b];
+    if (axis >= def->dim) return 1;
+    double extent = (double)blk->max[axis] - (double)blk->min[axis];
+    if (!(extent > 0) || !(blk->spacing > 0)) return 0;
+    double n = floor(extent / blk->spacing + 1e-4); /* tolerate a spacing that divides the box up to rounding */
+    return n > 9e15 ? (int64_t)9e15 : (int64_t)n;
+}
+
+double sph_scene_particle_count(const sph_scene_def *def)
+{
+    double total = 0;
+    for (int b = 0; b < def->n_blocks; b++) {
+        double n = 1;
+        for (int a = 0; a < def->dim; a++) n *= (double)sph_block_nodes(def, b, a);
+        total += n;
+    }
+    return total;
+}
+
+/* Bytes per particle of the largest configuration, neighbour lists of ~60 entries included. */
+#define SPH_BYTES_PER_PARTICLE 512.0
+#define SPH_MAX_PARTICLES 200000000.0
+
+static sph_error_code block_error(sph_error *err, const sph_scene_def *def, int b, const char *fmt, const char *what)
+{
+    return sph_fail(err, SPH_ERR_SCENE, fmt, def->file, def->blocks[b].line, def->blocks[b].name, what);
+}
+
+sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
+{
+    const char *axes = "xyz";
+    int dim = def->dim;
+    /* A 3D scene needs every vector with 3 components. */
+    if (dim == 3) {
+        for (int i = 0; i < sph_scene_key_count; i++) {
+            const sph_key *k = &sph_scene_keys[i];
+            if (k->type != SPH_KEY_VEC) continue;
+            if (strcmp(k->section, "fluid") == 0) {
+                int slot = fluid_slot(i);
+                for (int b = 0; b < def->n_blocks; b++)
+                    if (def->blocks[b].origin[slot].line != 0 && def->blocks[b].origin[slot].ncomp < 3)
+                        return sph_fail(err, SPH_ERR_RANGE,
+                                        "%s:%d: [fluid %s] %s has 2 components but the scene is 3D (accepted: 3 "
+                                        "numbers)",
+                                        def->file, def->blocks[b].origin[slot].line, def->blocks[b].name, k->name);
+            } else if (def->origin[i].line != 0 && def->origin[i].ncomp < 3) {
+                return sph_fail(err, SPH_ERR_RANGE,
+                                "%s:%d: [%s] %s has 2 components but the scene is 3D (accepted: 3 numbers)",
+                                def->file, def->origin[i].line, k->section, k->name);
+            }
+        }
+    }
+    for (int a = 0; a < dim; a++) {
+        if (!(def->domain_min[a] < def->domain_max[a])) {
+            int li = key_index("domain", "max");
+            return sph_fail(err, SPH_ERR_RANGE, "%s:%d: [domain] max.%c = %g is not above min.%c = %g", def->file,
+                            def->origin[li].line, axes[a], def->domain_max[a], axes[a], def->domain_min[a]);
+        }
+    }
+    if (def->n_blocks == 0)
+        return sph_fail(err, SPH_ERR_SCENE, "%s: no particles: the scene has no [fluid NAME] block", def->file);
+    for (int b = 0; b < def->n_blocks; b++) {
+        const sph_block_def *blk = &def->blocks[b];
+        for (int a = 0; a < dim; a++) {
+            if (!(blk->min[a] < blk->max[a])) {
+                char what[64];
+                snprintf(what, sizeof what, "max.%c (%g) is not above min.%c (%g)", axes[a], blk->max[a], axes[a],
+                         blk->min[a]);
+                return block_error(err, def, b, "%s:%d: [fluid %s]: %s", what);
+            }
+            if (blk->min[a] < def->domain_min[a] || blk->max[a] > def->domain_max[a]) {
+                char what[160];
+                snprintf(what, sizeof what, "%c from %g to %g leaves the domain, %g to %g", axes[a], blk->min[a],
+                         blk->max[a], def->domain_min[a], def->domain_max[a]);
+                return block_error(err, def, b, "%s:%d: [fluid %s]: block outside the domain: %s", what);
+            }
+            if (sph_block_nodes(def, b, a) == 0) {
+                char what[128];
+                snprintf(what, sizeof what, "along %c the box (%g m) is thinner than one spacing (%g m)", axes[a],
+                         blk->max[a] - blk->min[a], blk->spacing);
+                return block_error(err, def, b, "%s:%d: [fluid %s]: no particles: %s", what);
+            }
+        }
+    }
+    double count = sph_scene_particle_count(def);
+    double mem = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGE_SIZE);
+    double limit = SPH_MAX_PARTICLES;
+    if (mem > 0 && mem / 2 / SPH_BYTES_PER_PARTICLE < limit) limit = floor(mem / 2 / SPH_BYTES_PER_PARTICLE);
+    if (count > limit)
+        return sph_fail(err, SPH_ERR_MEMORY,
+                        "%s: the fluid blocks make %.3g particles, more than memory allows (at most %.0f here, "
+                        "about %.0f bytes each); raise [fluid] spacing or shrink the blocks",
+                        def->file, count, limit, SPH_BYTES_PER_PARTICLE);
+    if (def->search == SPH_SEARCH_GRID) {
+        double cells = 1;
+        for (int a = 0; a < dim; a++) cells *= ceil(((double)def->domain_max[a] - def->domain_min[a]) / def->h) + 1;
+        if (cells > 1 << 28)
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s:%d: [search] method = grid needs %.3g cells for this domain and h (at most %d); use "
+                            "method = hash",
+                            def->file, def->origin[key_index("search", "method")].line, cells, 1 << 28);
+    }
+    return SPH_ERR_OK;
+}

@@ -1,0 +1,161 @@
+/* A scene: everything a simulation starts from. sph_default_scene_def() gives
+ * every field its documented default; a scene file (INI) and --set overrides
+ * change only the keys they name. One table (sph_scene_keys) describes every
+ * key: section, name, type, unit, range, default and help. The parser, the
+ * validation, `sphlab keys` and docs/scene-format.md all follow from it. */
+#ifndef SPH_SCENE_H
+#define SPH_SCENE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "sph_error.h"
+#include "sph_kernel.h"
+
+#define SPH_MAX_BLOCKS 32
+#define SPH_MAX_KEYS 64
+
+/* Effects a scene can ask for; each pulls in the passes it needs. */
+#define SPH_EFFECTS(X)                                                  \
+    X(GRAVITY, "gravity", "uniform body force g")                       \
+    X(DENSITY, "density", "density by kernel summation (nothing moves by it)") \
+    X(PRESSURE, "pressure", "equation of state and pressure force")     \
+    X(VISCOSITY, "viscosity", "viscous force")                          \
+    X(WALLS, "walls", "the domain box reflects particles")
+
+enum {
+#define SPH_EFFECT_BIT(id, name, about) SPH_EFFECT_BIT_##id,
+    SPH_EFFECTS(SPH_EFFECT_BIT)
+#undef SPH_EFFECT_BIT
+    SPH_EFFECT_COUNT
+};
+#define SPH_EFFECT(id) (1u << SPH_EFFECT_BIT_##id)
+extern const char *const sph_effect_names[SPH_EFFECT_COUNT];
+extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
+
+/* The choices of each switchable method, as enums with their names. */
+#define SPH_EOS_CHOICES(X) X(LINEAR, "linear") X(TAIT, "tait")
+#define SPH_PFORM_CHOICES(X) X(SYMMETRIC, "symmetric") X(SHARED, "shared")
+#define SPH_VFORM_CHOICES(X) X(LAPLACIAN, "laplacian") X(SMOOTHING, "smoothing")
+#define SPH_SEARCH_CHOICES(X) X(HASH, "hash") X(GRID, "grid") X(BRUTE, "brute")
+#define SPH_SORT_CHOICES(X) X(BITONIC, "bitonic") X(COUNTING, "counting") X(QSORT, "qsort")
+#define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")
+
+#define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
+    typedef enum type { LIST(SPH_CHOICE_ITEM_##PREFIX) PREFIX##_COUNT } type;
+#define SPH_CHOICE_ITEM_SPH_EOS(id, name) SPH_EOS_##id,
+#define SPH_CHOICE_ITEM_SPH_PFORM(id, name) SPH_PFORM_##id,
+#define SPH_CHOICE_ITEM_SPH_VFORM(id, name) SPH_VFORM_##id,
+#define SPH_CHOICE_ITEM_SPH_SEARCH(id, name) SPH_SEARCH_##id,
+#define SPH_CHOICE_ITEM_SPH_SORT(id, name) SPH_SORT_##id,
+#define SPH_CHOICE_ITEM_SPH_NEGP(id, name) SPH_NEGP_##id,
+SPH_DECLARE_CHOICES(sph_eos, SPH_EOS, SPH_EOS_CHOICES)
+SPH_DECLARE_CHOICES(sph_pressure_form, SPH_PFORM, SPH_PFORM_CHOICES)
+SPH_DECLARE_CHOICES(sph_viscosity_form, SPH_VFORM, SPH_VFORM_CHOICES)
+SPH_DECLARE_CHOICES(sph_search, SPH_SEARCH, SPH_SEARCH_CHOICES)
+SPH_DECLARE_CHOICES(sph_sort, SPH_SORT, SPH_SORT_CHOICES)
+SPH_DECLARE_CHOICES(sph_negative_pressure, SPH_NEGP, SPH_NEGP_CHOICES)
+
+extern const char *const sph_eos_names[SPH_EOS_COUNT];
+extern const char *const sph_pressure_form_names[SPH_PFORM_COUNT];
+extern const char *const sph_viscosity_form_names[SPH_VFORM_COUNT];
+extern const char *const sph_search_names[SPH_SEARCH_COUNT];
+extern const char *const sph_sort_names[SPH_SORT_COUNT];
+extern const char *const sph_negative_pressure_names[SPH_NEGP_COUNT];
+
+/* Where a value came from, for messages: the file's line, or 0 for the default. */
+typedef struct sph_origin {
+    int line;   /* 1-based line in the scene file; 0: default; -1: --set */
+    int ncomp;  /* number of components given, for vectors */
+} sph_origin;
+
+/* A box filled with particles on a square/cubic lattice. */
+typedef struct sph_block_def {
+    char name[48];
+    float min[3];      /* [m] lower corner of the box */
+    float max[3];      /* [m] upper corner of the box */
+    float spacing;     /* [m] lattice spacing; each particle carries rest_density * spacing^dim of mass */
+    float velocity[3]; /* [m/s] initial velocity */
+    int line;          /* line of the [fluid ...] section header, for messages */
+    sph_origin origin[8];
+} sph_block_def;
+
+typedef struct sph_scene_def {
+    char file[256];    /* scene file it was read from, for messages */
+    char name[64];     /* title shown in tables and windows */
+    int dim;           /* [1] 2 or 3 */
+    unsigned effects;  /* SPH_EFFECT(...) bits */
+    float domain_min[3], domain_max[3]; /* [m] the box walls bound */
+    float wall_damping;                 /* [1] share of the normal speed kept at a wall bounce */
+    int n_blocks;
+    sph_block_def blocks[SPH_MAX_BLOCKS];
+
+    float h;            /* [m] kernel support radius (= cell size of the search) */
+    float rest_density; /* [kg/m^dim] rho0 */
+    sph_eos eos;
+    float stiffness;    /* [m^2/s^2] k in p = k (rho - rho0); c = sqrt(k) is the speed of sound */
+    float tait_gamma;   /* [1] exponent of the Tait equation */
+    sph_negative_pressure negative_pressure;
+    sph_pressure_form pressure_form;
+    float viscosity;    /* [m^2/s] kinematic viscosity nu */
+    sph_viscosity_form viscosity_form;
+    float gravity[3];   /* [m/s^2] */
+    sph_kernel_kind kernel_density, kernel_pressure, kernel_viscosity;
+
+    float dt;           /* [s] time step when cfl = 0; the first step's bound otherwise */
+    float cfl;          /* [1] Courant factor; > 0 selects the adaptive time step */
+    float dt_min;       /* [s] the adaptive step never goes below this */
+    int steps;          /* [1] default run length in steps (--steps overrides) */
+    float duration;     /* [s] default run length in simulated time; 0: use steps */
+
+    sph_search search;
+    sph_sort sort;
+    uint32_t table_size; /* [1] hash table size; 0: the particle count, as in the seed */
+    float jitter;        /* [1] random offset of each particle, in spacings */
+    uint32_t seed;       /* [1] random seed of the jitter */
+
+    sph_origin origin[SPH_MAX_KEYS]; /* per key of sph_scene_keys */
+} sph_scene_def;
+
+sph_scene_def sph_default_scene_def(void);
+
+/* Reads a scene file over *def (normally the defaults). Checks each value
+ * against its range; the caller applies any overrides, then calls
+ * sph_scene_validate for the checks that involve several keys. */
+sph_error_code sph_scene_load(const char *path, sph_scene_def *def, sph_error *err);
+/* Same from a string (tests, fuzzing); `name` stands for the file in messages. */
+sph_error_code sph_scene_load_string(const char *text, const char *name, sph_scene_def *def,
+                                     sph_error *err);
+/* Applies one "section.key=value" override (the command line's --set). */
+sph_error_code sph_scene_set(sph_scene_def *def, const char *assignment, sph_error *err);
+/* Cross-checks the scene: blocks inside the domain, particle count, memory. */
+sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err);
+
+/* Number of particles the blocks make (a double: counts can be absurd before validation). */
+double sph_scene_particle_count(const sph_scene_def *def);
+/* Positions of block b's lattice along axis a: count of nodes. */
+int64_t sph_block_nodes(const sph_scene_def *def, int b, int axis);
+
+/* The key table, for help text and docs. */
+typedef enum sph_key_type {
+    SPH_KEY_FLOAT, SPH_KEY_INT, SPH_KEY_UINT, SPH_KEY_VEC, SPH_KEY_CHOICE, SPH_KEY_KERNEL,
+    SPH_KEY_EFFECTS, SPH_KEY_STRING
+} sph_key_type;
+
+typedef struct sph_key {
+    const char *section;   /* "fluid" stands for every [fluid NAME] block */
+    const char *name;
+    sph_key_type type;
+    int offset;            /* into sph_scene_def, or into sph_block_def for fluid keys */
+    double min, max;       /* accepted range (inclusive unless min_open/max_open) */
+    bool min_open, max_open;
+    const char *const *choices; int n_choices;
+    const char *unit;
+    const char *def;       /* default, as written in a file */
+    const char *help;
+} sph_key;
+
+extern const sph_key sph_scene_keys[];
+extern const int sph_scene_key_count;
+
+#endif

@@ -1,0 +1,62 @@
+/* The spatial index shared by the hash, sort, offsets and neighbours passes:
+ * cells, the seed's hash, the sorts and the start-offset table. */
+#ifndef SPH_SEARCH_H
+#define SPH_SEARCH_H
+
+#include <math.h>
+#include <stdint.h>
+
+#include "sph_sim.h"
+
+/* Cells stay within +-2^30 so that a neighbour cell (c +- 1) never overflows int32. */
+#define SPH_CELL_LIMIT 1073741823
+
+/* Cell index along one axis: floor(x / h), computed as floor(x * (1/h)).
+ * floor, not truncation: truncation puts x = -0.5h and x = +0.5h in the same
+ * cell 0, making cell 0 twice as wide and losing neighbours across it (the
+ * seed's int(x / h) does this). Saturates far away, and maps NaN to 0, so the
+ * float-to-int conversion is always defined. */
+static inline int32_t sph_cell_coord(float x, float inv_h)
+{
+    float q = floorf(x * inv_h);
+    if (!(q >= -(float)SPH_CELL_LIMIT)) return q != q ? 0 : -SPH_CELL_LIMIT;
+    if (q > (float)SPH_CELL_LIMIT) return SPH_CELL_LIMIT;
+    return (int32_t)q;
+}
+
+/* The seed's hash of a cell, in unsigned arithmetic (wraps mod 2^32). */
+static inline uint32_t sph_hash_cell(int dim, int32_t cx, int32_t cy, int32_t cz)
+{
+    uint32_t h = (uint32_t)cx * SPH_HASH_P1 + (uint32_t)cy * SPH_HASH_P2;
+    if (dim == 3) h += (uint32_t)cz * SPH_HASH_P3;
+    return h;
+}
+
+/* Order of the sorted index: by key, then by particle index, so that every
+ * sort gives the same array and the simulation does not depend on which. */
+static inline int sph_entry_less(sph_entry a, sph_entry b)
+{
+    return a.key < b.key || (a.key == b.key && a.index < b.index);
+}
+
+/* The sorts of the sort pass, each leaving e[0..n) ordered by sph_entry_less. */
+void sph_sort_bitonic(sph_entry *e, uint32_t n);
+/* Stable counting sort by key: input must be in index order (as the hash pass
+ * writes it). Uses scratch[n] and count[table_size + 1]; the result is in e. */
+void sph_sort_counting(sph_entry *e, sph_entry *scratch, uint32_t *count, uint32_t n, uint32_t table_size);
+void sph_sort_qsort(sph_entry *e, uint32_t n);
+
+/* start[k] = position of the first entry with key k in the sorted e, or
+ * SPH_EMPTY where no particle has key k (the seed's "liste des departs"). */
+void sph_offsets_build(const sph_entry *e, uint32_t n, uint32_t *start, uint32_t table_size);
+
+/* Grid variant: cell index along one axis within the domain grid, clamped to
+ * [0, dims). Clamping never moves two cells further apart, so particles
+ * within h of each other stay in neighbouring cells even outside the domain. */
+static inline int32_t sph_grid_coord(float x, float lo, float inv_h, int32_t dims)
+{
+    int32_t c = sph_cell_coord(x - lo, inv_h);
+    return c < 0 ? 0 : c >= dims ? dims - 1 : c;
+}
+
+#endif

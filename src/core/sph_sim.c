@@ -1,0 +1,284 @@
+/* Simulation set-up, the time step as a list of passes, and statistics. */
+#include "sph_sim.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+const sph_pass *const sph_passes[SPH_PASS_COUNT] = {
+#define SPH_PASS_PTR(id, name) &sph_pass_##name,
+    SPH_PASSES(SPH_PASS_PTR)
+#undef SPH_PASS_PTR
+};
+
+bool sph_scene_needs_density(const sph_scene_def *def)
+{
+    return (def->effects & (SPH_EFFECT(DENSITY) | SPH_EFFECT(PRESSURE) | SPH_EFFECT(VISCOSITY))) != 0;
+}
+
+bool sph_scene_needs_neighbours(const sph_scene_def *def)
+{
+    return sph_scene_needs_density(def);
+}
+
+double sph_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+/* ---- creation ----------------------------------------------------------- */
+
+static void *alloc_zero(size_t count, size_t size, bool *ok)
+{
+    if (count == 0) count = 1;
+    void *p = calloc(count, size);
+    if (!p) *ok = false;
+    return p;
+}
+
+static void alloc_vec(float *v[3], int dim, uint32_t n, bool *ok)
+{
+    for (int d = 0; d < dim; d++) v[d] = alloc_zero(n, sizeof(float), ok);
+}
+
+/* splitmix64: a tiny, well-mixed generator, so a seed gives the same jitter everywhere. */
+static uint64_t rng_next(uint64_t *s)
+{
+    uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+static float rng_symmetric(uint64_t *s) /* uniform in [-1, 1) */
+{
+    return (float)((double)(rng_next(s) >> 11) * (2.0 / 9007199254740992.0) - 1.0);
+}
+
+static void place_particles(sph_sim *sim)
+{
+    const sph_scene_def *def = &sim->def;
+    sph_particles *P = &sim->P;
+    uint64_t rng = def->seed;
+    uint32_t i = 0;
+    for (int b = 0; b < def->n_blocks; b++) {
+        const sph_block_def *blk = &def->blocks[b];
+        int64_t nx = sph_block_nodes(def, b, 0), ny = sph_block_nodes(def, b, 1), nz = sph_block_nodes(def, b, 2);
+        float s = blk->spacing;
+        float mass = def->rest_density * (sim->dim == 3 ? s * s * s : s * s);
+        for (int64_t z = 0; z < nz; z++)
+            for (int64_t y = 0; y < ny; y++)
+                for (int64_t x = 0; x < nx; x++, i++) {
+                    int64_t node[3] = {x, y, z};
+                    P->id[i] = i;
+                    P->mass[i] = mass;
+                    for (int d = 0; d < sim->dim; d++) {
+                        float jit = def->jitter > 0 ? def->jitter * s * rng_symmetric(&rng) : 0.0f;
+                        float v = blk->min[d] + ((float)node[d] + 0.5f) * s + jit;
+                        /* jitter must not push a particle out of the domain */
+                        if (v < def->domain_min[d]) v = def->domain_min[d];
+                        if (v > def->domain_max[d]) v = def->domain_max[d];
+                        P->pos[d][i] = v;
+                        P->vel[d][i] = blk->velocity[d];
+                    }
+                }
+    }
+}
+
+sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **out, sph_error *err)
+{
+    *out = NULL;
+    sph_error_code c = sph_scene_validate(def, err);
+    if (c) return c;
+    sph_sim *sim = calloc(1, sizeof *sim);
+    if (!sim) return sph_fail(err, SPH_ERR_MEMORY, "out of memory");
+    sim->def = *def;
+    sim->dim = def->dim;
+    if (def->dim == 2) { /* a 2D scene has no z: keep stray z values out of every formula */
+        sim->def.gravity[2] = 0;
+        sim->def.domain_min[2] = sim->def.domain_max[2] = 0;
+    }
+    sim->n = (uint32_t)sph_scene_particle_count(def);
+#ifdef _OPENMP
+    sim->threads = threads > 0 ? threads : omp_get_num_procs();
+    if (sim->threads > SPH_MAX_THREADS) sim->threads = SPH_MAX_THREADS;
+#else
+    sim->threads = 1;
+    (void)threads;
+#endif
+    for (int p = 0; p < SPH_PASS_COUNT; p++) {
+        sim->in_pipeline[p] = sph_passes[p]->skip_reason(&sim->def) == NULL;
+        sim->enabled[p] = true;
+    }
+    sim->k_density = sph_kernel_make(def->kernel_density, def->dim, def->h);
+    sim->k_pressure = sph_kernel_make(def->kernel_pressure, def->dim, def->h);
+    sim->k_viscosity = sph_kernel_make(def->kernel_viscosity, def->dim, def->h);
+
+    /* Only the buffers of passes in the pipeline are allocated. */
+    uint32_t n = sim->n;
+    int dim = sim->dim;
+    bool ok = true;
+    sph_particles *P = &sim->P;
+    P->n = n;
+    P->id = alloc_zero(n, sizeof *P->id, &ok);
+    P->mass = alloc_zero(n, sizeof *P->mass, &ok);
+    alloc_vec(P->pos, dim, n, &ok);
+    alloc_vec(P->vel, dim, n, &ok);
+    if (sim->in_pipeline[SPH_PASS_NEIGHBOURS]) alloc_vec(P->pred, dim, n, &ok);
+    if (sim->in_pipeline[SPH_PASS_DENSITY]) P->rho = alloc_zero(n, sizeof(float), &ok);
+    if (sim->in_pipeline[SPH_PASS_PRESSURE]) P->p = alloc_zero(n, sizeof(float), &ok);
+    if (sim->in_pipeline[SPH_PASS_PRESSURE_FORCE]) alloc_vec(P->acc_p, dim, n, &ok);
+    if (sim->in_pipeline[SPH_PASS_VISCOSITY]) alloc_vec(P->acc_v, dim, n, &ok);
+
+    sph_search_data *S = &sim->S;
+    if (sim->in_pipeline[SPH_PASS_HASH]) {
+        if (def->search == SPH_SEARCH_GRID) {
+            uint64_t cells = 1;
+            for (int d = 0; d < 3; d++) {
+                S->grid_dims[d] = d < dim ? (int32_t)ceil((sim->def.domain_max[d] - sim->def.domain_min[d]) / def->h) + 1 : 1;
+                cells *= (uint64_t)S->grid_dims[d];
+            }
+            S->table_size = (uint32_t)cells;
+        } else {
+            S->table_size = def->table_size ? def->table_size : (n ? n : 1);
+        }
+        S->entries = alloc_zero(n, sizeof *S->entries, &ok);
+        S->start = alloc_zero(S->table_size, sizeof *S->start, &ok);
+        if (def->sort == SPH_SORT_COUNTING) {
+            S->scratch = alloc_zero(n, sizeof *S->scratch, &ok);
+            S->count = alloc_zero((size_t)S->table_size + 1, sizeof *S->count, &ok);
+        }
+    }
+    if (sim->in_pipeline[SPH_PASS_NEIGHBOURS]) {
+        S->nbr_start = alloc_zero((size_t)n + 1, sizeof *S->nbr_start, &ok);
+        S->n_threads = sim->threads;
+        S->tbuf = alloc_zero((size_t)S->n_threads, sizeof *S->tbuf, &ok);
+        S->tcap = alloc_zero((size_t)S->n_threads, sizeof *S->tcap, &ok);
+    }
+    if (!ok) {
+        sph_sim_destroy(sim);
+        return sph_fail(err, SPH_ERR_MEMORY, "%s: out of memory for %u particles", def->file, n);
+    }
+    place_particles(sim);
+    sim->dt = sph_time_step_choose(sim);
+    *out = sim;
+    return SPH_ERR_OK;
+}
+
+void sph_sim_destroy(sph_sim *sim)
+{
+    if (!sim) return;
+    sph_particles *P = &sim->P;
+    free(P->id);
+    free(P->mass);
+    for (int d = 0; d < 3; d++) {
+        free(P->pos[d]);
+        free(P->vel[d]);
+        free(P->pred[d]);
+        free(P->acc_p[d]);
+        free(P->acc_v[d]);
+    }
+    free(P->rho);
+    free(P->p);
+    sph_search_data *S = &sim->S;
+    free(S->entries);
+    free(S->scratch);
+    free(S->start);
+    free(S->count);
+    free(S->nbr_start);
+    free(S->nbr);
+    for (int t = 0; S->tbuf && t < S->n_threads; t++) free(S->tbuf[t]);
+    free(S->tbuf);
+    free(S->tcap);
+    free(sim);
+}
+
+/* ---- the time step ------------------------------------------------------ */
+
+static void run_timed(sph_sim *sim, int p)
+{
+    double t0 = sph_now_ms();
+    sph_passes[p]->run(sim);
+    double ms = sph_now_ms() - t0;
+    sim->timing[p].calls++;
+    sim->timing[p].total_ms += ms;
+    sim->timing[p].last_ms = ms;
+}
+
+sph_pass_id sph_sim_step_pass(sph_sim *sim)
+{
+#ifdef _OPENMP
+    omp_set_num_threads(sim->threads);
+#endif
+    if (sim->next_pass == 0) sim->dt = sph_time_step_choose(sim);
+    int p = sim->next_pass;
+    while (p < SPH_PASS_COUNT && !(sim->in_pipeline[p] && sim->enabled[p])) p++;
+    if (p < SPH_PASS_COUNT) run_timed(sim, p);
+    int next = p + 1;
+    while (next < SPH_PASS_COUNT && !(sim->in_pipeline[next] && sim->enabled[next])) next++;
+    if (next >= SPH_PASS_COUNT) { /* that was the step's last pass */
+        sim->t += sim->dt;
+        sim->step++;
+        next = 0;
+    }
+    sim->next_pass = next;
+    return (sph_pass_id)(p < SPH_PASS_COUNT ? p : SPH_PASS_COUNT);
+}
+
+/* The step reads as its passes: external forces, hash, sort, offsets,
+ * neighbours, density, pressure, pressure force, viscosity, integrate, walls
+ * (the order of SPH_PASSES); each runs if the scene needs it and it is on. */
+void sph_sim_step(sph_sim *sim)
+{
+    uint64_t step = sim->step;
+    while (sim->step == step) {
+        if (sph_sim_step_pass(sim) == SPH_PASS_COUNT) { /* no pass at all: still advance time */
+            if (sim->step == step) {
+                sim->t += sim->dt;
+                sim->step++;
+                sim->next_pass = 0;
+            }
+        }
+    }
+}
+
+void sph_sim_reset_timings(sph_sim *sim)
+{
+    memset(sim->timing, 0, sizeof sim->timing);
+}
+
+void sph_sim_stats(const sph_sim *sim, sph_stats *out)
+{
+    const sph_particles *P = &sim->P;
+    memset(out, 0, sizeof *out);
+    out->n = sim->n;
+    double rmin = INFINITY, rmax = -INFINITY, rsum = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        double v2 = 0;
+        for (int d = 0; d < sim->dim; d++) {
+            double v = P->vel[d][i];
+            v2 += v * v;
+            out->momentum[d] += P->mass[i] * v;
+        }
+        out->ekin += 0.5 * P->mass[i] * v2;
+        if (v2 > out->max_speed) out->max_speed = v2;
+        if (P->rho) {
+            double r = P->rho[i];
+            rsum += r;
+            if (r < rmin) rmin = r;
+            if (r > rmax) rmax = r;
+        }
+    }
+    out->max_speed = sqrt(out->max_speed);
+    if (P->rho && sim->n) {
+        out->rho_min = rmin;
+        out->rho_max = rmax;
+        out->rho_mean = rsum / sim->n;
+    }
+}

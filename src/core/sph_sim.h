@@ -1,0 +1,119 @@
+/* The simulation: particle data (one array per field), the spatial index,
+ * the pipeline of passes and its timings. No GL header below this line. */
+#ifndef SPH_SIM_H
+#define SPH_SIM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sph_kernel.h"
+#include "sph_pass.h"
+#include "sph_scene.h"
+
+/* Particle data, one array per field ("structure of arrays") so a pass reads
+ * only the fields it uses and its loops vectorise. Vector fields are one
+ * array per axis; the z arrays are NULL in 2D. Arrays of effects the scene
+ * does not ask for are not allocated (NULL). */
+typedef struct sph_particles {
+    uint32_t n;
+    uint32_t *id;    /* [1] index at creation; stays with the particle if data are reordered */
+    float *mass;     /* [kg] (3D) or [kg/m] (2D: per metre of depth): rho0 * spacing^dim */
+    float *pos[3];   /* [m] position */
+    float *vel[3];   /* [m/s] velocity */
+    float *pred[3];  /* [m] predicted position x + v dt: where neighbours and forces are evaluated */
+    float *rho;      /* [kg/m^dim] density */
+    float *p;        /* [Pa] (3D) or [N/m] (2D) pressure */
+    float *acc_p[3]; /* [m/s^2] acceleration from the pressure force */
+    float *acc_v[3]; /* [m/s^2] acceleration from viscosity */
+} sph_particles;
+
+/* One entry of the spatial index: the seed's (index, hash, key) triple. */
+typedef struct sph_entry {
+    uint32_t key;   /* hash % table_size: the slot in the start table */
+    uint32_t hash;  /* hash of the cell; tells apart cells that share a key */
+    uint32_t index; /* particle */
+} sph_entry;
+
+#define SPH_MAX_THREADS 256
+#define SPH_EMPTY UINT32_MAX /* start-table value of a key no particle has */
+
+/* The seed's primes; the hash is computed in unsigned 32-bit arithmetic,
+ * where overflow wraps (signed overflow, as in the seed's shader, is
+ * undefined behaviour in C). */
+#define SPH_HASH_P1 15823u
+#define SPH_HASH_P2 9737333u
+#define SPH_HASH_P3 440817757u
+
+typedef struct sph_search_data {
+    uint32_t table_size;  /* number of keys */
+    sph_entry *entries;   /* [n] written by hash, sorted in place by sort */
+    sph_entry *scratch;   /* [n] counting sort's output buffer */
+    uint32_t *start;      /* [table_size] offsets: first sorted entry of each key, or SPH_EMPTY */
+    uint32_t *count;      /* [table_size + 1] counting sort's histogram */
+    int32_t grid_dims[3]; /* grid variant: cells per axis over the domain */
+    /* Neighbour lists (compressed rows): neighbours of i, itself excluded,
+     * are nbr[nbr_start[i] .. nbr_start[i+1]). */
+    uint32_t *nbr_start;  /* [n + 1] */
+    uint32_t *nbr;        /* [nbr_cap] */
+    size_t nbr_cap;
+    /* One growable buffer per thread while the lists are built. */
+    int n_threads;
+    uint32_t **tbuf;
+    size_t *tcap;
+} sph_search_data;
+
+typedef struct sph_pass_timing {
+    uint64_t calls;
+    double total_ms; /* [ms] monotonic clock, summed over calls */
+    double last_ms;  /* [ms] latest call */
+} sph_pass_timing;
+
+typedef struct sph_stats {
+    uint32_t n;
+    double ekin;      /* [J] (3D) or [J/m] (2D) kinetic energy */
+    double momentum[3]; /* [kg m/s] total momentum */
+    double rho_min, rho_mean, rho_max; /* [kg/m^dim] 0 if density is not computed */
+    double max_speed; /* [m/s] */
+} sph_stats;
+
+struct sph_sim {
+    sph_scene_def def;    /* the scene it was made from; passes read their options here */
+    int dim;
+    uint32_t n;
+    sph_particles P;
+    sph_search_data S;
+    sph_kernel k_density, k_pressure, k_viscosity;
+
+    double t;             /* [s] simulated time */
+    float dt;             /* [s] time step of the current step */
+    uint64_t step;        /* steps completed */
+    float max_speed;      /* [m/s] after the latest integration, for the CFL condition */
+    float max_acc;        /* [m/s^2] likewise */
+
+    bool in_pipeline[SPH_PASS_COUNT]; /* the scene needs the pass */
+    bool enabled[SPH_PASS_COUNT];     /* switched on (a window toggle); only meaningful if in the pipeline */
+    sph_pass_timing timing[SPH_PASS_COUNT];
+    int next_pass;        /* next pass of the current step, for stepping pass by pass */
+    int threads;
+};
+
+/* threads <= 0: one per core; at most SPH_MAX_THREADS. */
+sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **out, sph_error *err);
+void sph_sim_destroy(sph_sim *sim);
+
+/* Runs the rest of the current time step (all of it if none is under way). */
+void sph_sim_step(sph_sim *sim);
+/* Runs the next pass of the pipeline; returns its id. The step is complete
+ * (t and step advanced) after the last one. */
+sph_pass_id sph_sim_step_pass(sph_sim *sim);
+
+void sph_sim_stats(const sph_sim *sim, sph_stats *out);
+void sph_sim_reset_timings(sph_sim *sim);
+
+/* Time-step choice (integrate.c): fixed, or the CFL conditions. */
+float sph_time_step_choose(const sph_sim *sim);
+
+/* Monotonic clock [ms]. */
+double sph_now_ms(void);
+
+#endif

@@ -1,0 +1,74 @@
+/* Pass: integration, symplectic Euler: v += dt (a_pressure + a_viscosity),
+ * then x += dt v with the new v (gravity was added to v by the external
+ * pass). Also measures the largest speed and acceleration, which the CFL
+ * time step of the next step needs. */
+#include "sph_sim.h"
+
+#include <math.h>
+#include <stdio.h>
+
+static const char *skip_reason(const sph_scene_def *def)
+{
+    (void)def;
+    return NULL;
+}
+
+static void describe(const sph_scene_def *def, char *out, int n)
+{
+    if (def->cfl > 0)
+        snprintf(out, (size_t)n, "symplectic Euler, adaptive dt (CFL %g, dt <= %g s)", def->cfl, def->dt);
+    else
+        snprintf(out, (size_t)n, "symplectic Euler, fixed dt %g s", def->dt);
+}
+
+/* dt from the CFL conditions, with h_s = h / 2 the smoothing length:
+ *   sound and flow:  dt <= cfl h_s / (c + |v|max)   (c = sqrt(k) with pressure)
+ *   forces:          dt <= cfl sqrt(h_s / |a|max)
+ *   viscosity:       dt <= cfl h_s^2 / nu
+ * bounded by [dt_min, dt]. With cfl = 0 the step is the fixed dt. */
+float sph_time_step_choose(const sph_sim *sim)
+{
+    const sph_scene_def *def = &sim->def;
+    if (def->cfl <= 0) return def->dt;
+    double hs = 0.5 * def->h, dt = def->dt;
+    double c = (def->effects & SPH_EFFECT(PRESSURE)) ? sqrt(def->stiffness) : 0.0;
+    double speed = c + sim->max_speed;
+    if (speed > 0) dt = fmin(dt, def->cfl * hs / speed);
+    if (sim->max_acc > 0) dt = fmin(dt, def->cfl * sqrt(hs / sim->max_acc));
+    if ((def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity > 0)
+        dt = fmin(dt, def->cfl * hs * hs / def->viscosity);
+    if (!(dt >= def->dt_min)) dt = def->dt_min; /* also catches NaN from a blown-up state */
+    return (float)dt;
+}
+
+static void run(sph_sim *sim)
+{
+    sph_particles *P = &sim->P;
+    const int n = (int)sim->n, dim = sim->dim;
+    const float dt = sim->dt;
+    const bool gravity = sim->def.effects & SPH_EFFECT(GRAVITY);
+    float g2 = 0;
+    for (int d = 0; d < dim; d++) g2 += gravity ? sim->def.gravity[d] * sim->def.gravity[d] : 0.0f;
+    float vmax2 = 0, amax2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : vmax2, amax2)
+    for (int i = 0; i < n; i++) {
+        float v2 = 0, a2 = 0;
+        for (int d = 0; d < dim; d++) {
+            float a = (P->acc_p[d] ? P->acc_p[d][i] : 0.0f) + (P->acc_v[d] ? P->acc_v[d][i] : 0.0f);
+            float v = P->vel[d][i] + dt * a;
+            P->vel[d][i] = v;
+            P->pos[d][i] += dt * v;
+            v2 += v * v;
+            a2 += a * a;
+        }
+        vmax2 = fmaxf(vmax2, v2);
+        amax2 = fmaxf(amax2, a2);
+    }
+    sim->max_speed = sqrtf(vmax2);
+    sim->max_acc = sqrtf(amax2) + sqrtf(g2);
+}
+
+const sph_pass sph_pass_integrate = {
+    "integrate", "symplectic Euler: velocities, then positions", "vel acc_p acc_v", "vel pos", skip_reason,
+    describe, run,
+};

@@ -1,0 +1,175 @@
+/* Pass: neighbour search. For each particle, the other particles closer than
+ * h (r^2 < h^2) at the predicted positions, stored as compressed rows so the
+ * density, pressure and viscosity passes reuse them instead of searching three
+ * times as the seed's shaders do.
+ *   hash:  visit the 3^dim cells around the particle's cell; for each, look up
+ *          its key's run in the sorted entries through the offsets table and
+ *          keep entries whose hash is the cell's (other cells share the key).
+ *   grid:  the same walk over the dense grid's cells (no collisions).
+ *   brute: every pair, O(N^2): the reference the others are tested against.
+ * The stencil's cells have distinct hashes (tests/test_search.c checks the
+ * primes), so no entry is visited twice. Every variant gives the same sets. */
+#include "sph_search.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+static const char *skip_reason(const sph_scene_def *def)
+{
+    return sph_scene_needs_neighbours(def) ? NULL : "no effect needs neighbours (density, pressure, viscosity)";
+}
+
+static void describe(const sph_scene_def *def, char *out, int n)
+{
+    static const char *const about[SPH_SEARCH_COUNT] = {
+        "hash: 3^d cells through keys and offsets", "grid: 3^d cells of a dense grid", "brute force, all pairs O(N^2)"};
+    snprintf(out, (size_t)n, "%s", about[def->search]);
+}
+
+typedef struct list {
+    uint32_t *buf;
+    size_t len, cap;
+} list;
+
+static void list_push(list *l, uint32_t j)
+{
+    if (l->len == l->cap) {
+        size_t cap = l->cap ? l->cap * 2 : 4096;
+        uint32_t *b = realloc(l->buf, cap * sizeof *b);
+        if (!b) {
+            fprintf(stderr, "sphlab: out of memory for neighbour lists (%zu entries)\n", cap);
+            exit(3);
+        }
+        l->buf = b;
+        l->cap = cap;
+    }
+    l->buf[l->len++] = j;
+}
+
+/* Appends the neighbours of i found in the run of one cell's key. */
+static inline void scan_cell(const sph_sim *sim, list *out, uint32_t i, uint32_t hash, const float xi[3], float h2)
+{
+    const sph_search_data *S = &sim->S;
+    const uint32_t key = hash % S->table_size;
+    uint32_t e = S->start[key];
+    if (e == SPH_EMPTY) return;
+    const sph_entry *en = S->entries;
+    const int dim = sim->dim;
+    for (; e < sim->n && en[e].key == key; e++) {
+        if (en[e].hash != hash) continue;
+        uint32_t j = en[e].index;
+        if (j == i) continue;
+        float r2 = 0;
+        for (int d = 0; d < dim; d++) {
+            float dx = sim->P.pred[d][j] - xi[d];
+            r2 += dx * dx;
+        }
+        if (r2 < h2) list_push(out, j);
+    }
+}
+
+static void neighbours_of(const sph_sim *sim, list *out, uint32_t i)
+{
+    const sph_particles *P = &sim->P;
+    const int dim = sim->dim;
+    const float h2 = sim->def.h * sim->def.h, inv_h = 1.0f / sim->def.h;
+    float xi[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
+    const int zr = dim == 3 ? 1 : 0;
+    if (sim->def.search == SPH_SEARCH_BRUTE) {
+        for (uint32_t j = 0; j < sim->n; j++) {
+            if (j == i) continue;
+            float r2 = 0;
+            for (int d = 0; d < dim; d++) {
+                float dx = P->pred[d][j] - xi[d];
+                r2 += dx * dx;
+            }
+            if (r2 < h2) list_push(out, j);
+        }
+    } else if (sim->def.search == SPH_SEARCH_GRID) {
+        const int32_t *g = sim->S.grid_dims;
+        int32_t c[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) c[d] = sph_grid_coord(xi[d], sim->def.domain_min[d], inv_h, g[d]);
+        for (int dz = -zr; dz <= zr; dz++) {
+            int32_t z = c[2] + dz;
+            if (z < 0 || z >= g[2]) continue;
+            for (int dy = -1; dy <= 1; dy++) {
+                int32_t y = c[1] + dy;
+                if (y < 0 || y >= g[1]) continue;
+                for (int dx = -1; dx <= 1; dx++) {
+                    int32_t x = c[0] + dx;
+                    if (x < 0 || x >= g[0]) continue;
+                    uint32_t cell = (uint32_t)x + (uint32_t)g[0] * ((uint32_t)y + (uint32_t)g[1] * (uint32_t)z);
+                    scan_cell(sim, out, i, cell, xi, h2);
+                }
+            }
+        }
+    } else {
+        int32_t c[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) c[d] = sph_cell_coord(xi[d], inv_h);
+        for (int dz = -zr; dz <= zr; dz++)
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++)
+                    scan_cell(sim, out, i, sph_hash_cell(dim, c[0] + dx, c[1] + dy, c[2] + dz), xi, h2);
+    }
+}
+
+/* Each thread builds the lists of a contiguous range of particles in its own
+ * buffer; the rows are then laid end to end. */
+static void run(sph_sim *sim)
+{
+    sph_search_data *S = &sim->S;
+    const uint32_t n = sim->n;
+    const int T = S->n_threads;
+    size_t base[SPH_MAX_THREADS + 1];
+#pragma omp parallel num_threads(T)
+    {
+        int t = 0, nt = 1;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+        nt = omp_get_num_threads();
+#endif
+        uint32_t lo = (uint32_t)((uint64_t)n * (uint64_t)t / (uint64_t)nt);
+        uint32_t hi = (uint32_t)((uint64_t)n * (uint64_t)(t + 1) / (uint64_t)nt);
+        list l = {S->tbuf[t], 0, S->tcap[t]};
+        for (uint32_t i = lo; i < hi; i++) {
+            neighbours_of(sim, &l, i);
+            S->nbr_start[i + 1] = (uint32_t)l.len; /* local end of row i, made global below */
+        }
+        S->tbuf[t] = l.buf;
+        S->tcap[t] = l.cap;
+        base[t + 1] = l.len;
+#pragma omp barrier
+#pragma omp single
+        {
+            base[0] = 0;
+            for (int k = 0; k < nt; k++) base[k + 1] += base[k];
+            for (int k = nt + 1; k <= T; k++) base[k] = base[nt];
+            if (base[nt] > UINT32_MAX) {
+                fprintf(stderr, "sphlab: more than 2^32 neighbour pairs\n");
+                exit(3);
+            }
+            if (base[nt] > S->nbr_cap) {
+                size_t cap = base[nt] + base[nt] / 4 + 1024;
+                uint32_t *b = realloc(S->nbr, cap * sizeof *b);
+                if (!b) {
+                    fprintf(stderr, "sphlab: out of memory for %zu neighbour pairs\n", base[nt]);
+                    exit(3);
+                }
+                S->nbr = b;
+                S->nbr_cap = cap;
+            }
+            S->nbr_start[0] = 0;
+        }
+        for (uint32_t i = lo; i < hi; i++) S->nbr_start[i + 1] += (uint32_t)base[t];
+        if (l.len) memcpy(S->nbr + base[t], l.buf, l.len * sizeof *l.buf);
+    }
+}
+
+const sph_pass sph_pass_neighbours = {
+    "neighbours", "neighbour lists within h", "pred entries start", "nbr_start nbr", skip_reason, describe, run,
+};

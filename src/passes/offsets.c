@@ -1,0 +1,40 @@
+/* Pass: the start-offset table (the seed's "liste des departs"): for each
+ * key, where its run begins in the sorted entries; SPH_EMPTY if no particle
+ * has that key. */
+#include "sph_search.h"
+
+#include <stdio.h>
+
+static const char *skip_reason(const sph_scene_def *def)
+{
+    return sph_pass_hash.skip_reason(def);
+}
+
+static void describe(const sph_scene_def *def, char *out, int n)
+{
+    (void)def;
+    snprintf(out, (size_t)n, "first sorted entry of each key, empty keys marked");
+}
+
+void sph_offsets_build(const sph_entry *e, uint32_t n, uint32_t *start, uint32_t table_size)
+{
+#pragma omp parallel
+    {
+#pragma omp for schedule(static)
+        for (int64_t k = 0; k < (int64_t)table_size; k++) start[k] = SPH_EMPTY;
+        /* Each entry that begins a run writes its own slot: no two entries
+         * write the same key, so the loop needs no ordering. */
+#pragma omp for schedule(static)
+        for (int64_t i = 0; i < (int64_t)n; i++)
+            if (i == 0 || e[i].key != e[i - 1].key) start[e[i].key] = (uint32_t)i;
+    }
+}
+
+static void run(sph_sim *sim)
+{
+    sph_offsets_build(sim->S.entries, sim->n, sim->S.start, sim->S.table_size);
+}
+
+const sph_pass sph_pass_offsets = {
+    "offsets", "start of each key in the sorted entries", "entries", "start", skip_reason, describe, run,
+};

@@ -1,0 +1,47 @@
+/* Pass: pressure from the equation of state.
+ *   linear (the seeds): p = k (rho - rho0)
+ *   tait:               p = (k rho0 / gamma) ((rho / rho0)^gamma - 1)
+ * Both have the speed of sound c = sqrt(k) at rest density. With
+ * negative_pressure = clamp, p < 0 is set to 0: no attraction between
+ * particles below rest density (at a free surface), so no tensile clumping. */
+#include "sph_sim.h"
+
+#include <math.h>
+#include <stdio.h>
+
+static const char *skip_reason(const sph_scene_def *def)
+{
+    return (def->effects & SPH_EFFECT(PRESSURE)) ? NULL : "effects do not list pressure";
+}
+
+static void describe(const sph_scene_def *def, char *out, int n)
+{
+    if (def->eos == SPH_EOS_TAIT)
+        snprintf(out, (size_t)n, "tait, gamma %g, k %g m^2/s^2%s", def->tait_gamma, def->stiffness,
+                 def->negative_pressure == SPH_NEGP_CLAMP ? ", p >= 0" : "");
+    else
+        snprintf(out, (size_t)n, "linear, k %g m^2/s^2%s", def->stiffness,
+                 def->negative_pressure == SPH_NEGP_CLAMP ? ", p >= 0" : "");
+}
+
+static void run(sph_sim *sim)
+{
+    const sph_scene_def *def = &sim->def;
+    const float *restrict rho = sim->P.rho;
+    float *restrict p = sim->P.p;
+    const int n = (int)sim->n;
+    const float k = def->stiffness, rho0 = def->rest_density, inv_rho0 = 1.0f / rho0;
+    const float clamp = def->negative_pressure == SPH_NEGP_CLAMP ? 0.0f : -INFINITY;
+    if (def->eos == SPH_EOS_TAIT) {
+        const float gamma = def->tait_gamma, B = k * rho0 / gamma;
+#pragma omp parallel for schedule(static)
+        for (int i = 0; i < n; i++) p[i] = fmaxf(clamp, B * (powf(rho[i] * inv_rho0, gamma) - 1.0f));
+    } else {
+#pragma omp parallel for schedule(static)
+        for (int i = 0; i < n; i++) p[i] = fmaxf(clamp, k * (rho[i] - rho0));
+    }
+}
+
+const sph_pass sph_pass_pressure = {
+    "pressure", "pressure from the equation of state", "rho", "p", skip_reason, describe, run,
+};

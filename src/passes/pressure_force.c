@@ -1,0 +1,58 @@
+/* Pass: pressure force, as an acceleration a = F / (rho dV).
+ *   symmetric: a_i = - sum_j m_j (p_i / rho_i^2 + p_j / rho_j^2) grad W_ij
+ *              (from the Lagrangian; the pair terms are equal and opposite,
+ *              so total momentum is conserved exactly up to round-off)
+ *   shared:    a_i = - (1 / rho_i) sum_j (m_j / rho_j) (p_i + p_j) / 2 grad W_ij
+ *              (the seed's form, Mueller 2003; m_i a_i != -m_j a_j when the
+ *              densities differ, so momentum drifts)
+ * grad W_ij = W'(r) (x_i - x_j) / r; coincident particles (r = 0) exert none. */
+#include "sph_sim.h"
+
+#include <math.h>
+#include <stdio.h>
+
+static const char *skip_reason(const sph_scene_def *def)
+{
+    return (def->effects & SPH_EFFECT(PRESSURE)) ? NULL : "effects do not list pressure";
+}
+
+static void describe(const sph_scene_def *def, char *out, int n)
+{
+    snprintf(out, (size_t)n, "%s form, gradient of the %s kernel", sph_pressure_form_names[def->pressure_form],
+             sph_kernel_names[def->kernel_pressure]);
+}
+
+static void run(sph_sim *sim)
+{
+    const sph_particles *P = &sim->P;
+    const sph_search_data *S = &sim->S;
+    const sph_kernel k = sim->k_pressure;
+    const int n = (int)sim->n, dim = sim->dim;
+    const int symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++) {
+        const float rho_i = P->rho[i], p_i = P->p[i];
+        const float pi_over = p_i / (rho_i * rho_i);
+        float a[3] = {0, 0, 0};
+        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+            uint32_t j = S->nbr[e];
+            float dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < dim; d++) {
+                dx[d] = P->pred[d][i] - P->pred[d][j];
+                r2 += dx[d] * dx[d];
+            }
+            if (r2 <= 0.0f) continue;
+            float r = sqrtf(r2);
+            float dw_over_r = sph_kernel_dw(&k, r) / r;
+            float rho_j = P->rho[j];
+            float coef = symmetric ? P->mass[j] * (pi_over + P->p[j] / (rho_j * rho_j))
+                                   : P->mass[j] / rho_j * 0.5f * (p_i + P->p[j]) / rho_i;
+            for (int d = 0; d < dim; d++) a[d] -= coef * dw_over_r * dx[d];
+        }
+        for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
+    }
+}
+
+const sph_pass sph_pass_pressure_force = {
+    "pressure_force", "pressure force (acceleration)", "pred mass rho p nbr", "acc_p", skip_reason, describe, run,
+};

@@ -1,0 +1,58 @@
+/* Pass: viscosity, as an acceleration approximating nu lap v.
+ *   laplacian: a_i = (nu rho0 / rho_i) sum_j m_j (v_j - v_i) / rho_j lap W_ij
+ *              (Mueller 2003 with mu = nu rho0; pairwise equal and opposite)
+ *   smoothing: a_i = nu (2 dim / M2) sum_j (m_j / rho_j) (v_j - v_i) W_ij
+ *              (the seed's velocity smoothing; a kernel average differs from
+ *              the centre value by (M2 / 2 dim) lap v, M2 = int r^2 W dV, so
+ *              the factor makes both forms mean the same nu)
+ * It reads vel and writes acc_v only: the seed's shader added the result to
+ * the velocities it was still reading for other particles, so its outcome
+ * depended on the order threads ran in. */
+#include "sph_sim.h"
+
+#include <math.h>
+#include <stdio.h>
+
+static const char *skip_reason(const sph_scene_def *def)
+{
+    return (def->effects & SPH_EFFECT(VISCOSITY)) ? NULL : "effects do not list viscosity";
+}
+
+static void describe(const sph_scene_def *def, char *out, int n)
+{
+    snprintf(out, (size_t)n, "%s form, %s kernel, nu %g m^2/s", sph_viscosity_form_names[def->viscosity_form],
+             sph_kernel_names[def->kernel_viscosity], def->viscosity);
+}
+
+static void run(sph_sim *sim)
+{
+    const sph_particles *P = &sim->P;
+    const sph_search_data *S = &sim->S;
+    const sph_kernel k = sim->k_viscosity;
+    const int n = (int)sim->n, dim = sim->dim;
+    const int laplacian = sim->def.viscosity_form == SPH_VFORM_LAPLACIAN;
+    const float nu = sim->def.viscosity;
+    const float scale = laplacian ? nu * sim->def.rest_density : nu * 2.0f * (float)dim / k.m2;
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; i++) {
+        float a[3] = {0, 0, 0};
+        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+            uint32_t j = S->nbr[e];
+            float r2 = 0;
+            for (int d = 0; d < dim; d++) {
+                float dx = P->pred[d][i] - P->pred[d][j];
+                r2 += dx * dx;
+            }
+            float r = sqrtf(r2);
+            float w = laplacian ? sph_kernel_lap(&k, r) : sph_kernel_w(&k, r);
+            float coef = P->mass[j] / P->rho[j] * w;
+            for (int d = 0; d < dim; d++) a[d] += coef * (P->vel[d][j] - P->vel[d][i]);
+        }
+        float s = laplacian ? scale / P->rho[i] : scale;
+        for (int d = 0; d < dim; d++) P->acc_v[d][i] = s * a[d];
+    }
+}
+
+const sph_pass sph_pass_viscosity = {
+    "viscosity", "viscous force (acceleration)", "pred mass rho vel nbr", "acc_v", skip_reason, describe, run,
+};

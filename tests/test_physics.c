@@ -1,0 +1,246 @@
+/* Physics of the pipeline: density of a lattice, conservation, free fall,
+ * walls, and the pipeline leaving out what a scene does not ask for. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "test_util.h"
+
+/* Interior density of a uniform lattice, h = 3 spacings (about 28 neighbours
+ * in 2D, 113 in 3D): the sum m W over the lattice approximates rho0 * int W = rho0. */
+static void check_lattice_density(int dim, const char *kernel, double tol)
+{
+    char ini[1024];
+    snprintf(ini, sizeof ini,
+             "[scene]\ndimension=%d\neffects=density\n[domain]\nmin=0 0 0\nmax=1 1 1\n"
+             "[fluid a]\nmin=0 0 0\nmax=0.4 0.4 0.4\nspacing=0.02\n[kernels]\nh=0.06\ndensity=%s\n",
+             dim, kernel);
+    sph_sim *sim = test_sim(ini, 2);
+    sph_sim_step(sim); /* nothing moves: no gravity, no pressure */
+    const sph_particles *P = &sim->P;
+    int checked = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        bool interior = true;
+        for (int d = 0; d < dim; d++) interior &= P->pos[d][i] > 0.1f && P->pos[d][i] < 0.3f;
+        if (!interior) continue;
+        checked++;
+        cr_assert(fabs(P->rho[i] - 1000.0) <= tol * 1000.0, "%dD %s: interior rho = %g, want 1000 within %g%%", dim,
+                  kernel, P->rho[i], 100 * tol);
+    }
+    cr_assert(checked > 0);
+    sph_sim_destroy(sim);
+}
+
+Test(physics, lattice_density_interior_within_1_percent)
+{
+    const char *kernels[] = {"poly6", "cubic", "wendland"};
+    for (int k = 0; k < 3; k++) {
+        check_lattice_density(2, kernels[k], 0.01);
+        check_lattice_density(3, kernels[k], 0.01);
+    }
+}
+
+/* Integral of W over the quadrant x > -a, y > -a around the particle (2D),
+ * by the midpoint rule on a fine grid: what the density sum of a particle at
+ * distance a from two free surfaces approximates, as a fraction of rho0. */
+static double kernel_mass_in_quadrant(const sph_kernel *k, double a)
+{
+    const int n = 800;
+    double h = k->h, step = 2 * h / n, sum = 0;
+    for (int iy = 0; iy < n; iy++)
+        for (int ix = 0; ix < n; ix++) {
+            double x = -h + (ix + 0.5) * step, y = -h + (iy + 0.5) * step;
+            if (x < -a || y < -a) continue;
+            sum += sph_kernel_w(k, (float)sqrt(x * x + y * y)) * step * step;
+        }
+    return sum;
+}
+
+/* The particle deficiency at a free surface: the corner particle of a block
+ * sees only about a quarter of its support filled. Its density matches the
+ * integral of W over the filled quadrant (the lattice sum is a midpoint rule). */
+Test(physics, free_surface_density_deficit)
+{
+    sph_sim *sim = test_sim("[scene]\neffects=density\n[domain]\nmax=1 1\n[fluid a]\nmin=0 0\nmax=0.4 0.4\n"
+                            "spacing=0.02\n[kernels]\nh=0.06\n",
+                            1);
+    sph_sim_step(sim);
+    double want = 1000.0 * kernel_mass_in_quadrant(&sim->k_density, 0.01);
+    cr_assert(want > 250 && want < 500, "quadrant integral %g: a quarter and a bit", want);
+    cr_assert(fabs(sim->P.rho[0] - want) <= 0.02 * want, "corner rho %g, integral says %g", sim->P.rho[0], want);
+    sph_sim_destroy(sim);
+}
+
+static void total_momentum(const sph_sim *sim, double p[3], double *scale)
+{
+    sph_stats s;
+    sph_sim_stats(sim, &s);
+    memcpy(p, s.momentum, sizeof s.momentum);
+    *scale = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        double v2 = 0;
+        for (int d = 0; d < sim->dim; d++) v2 += (double)sim->P.vel[d][i] * sim->P.vel[d][i];
+        *scale += sim->P.mass[i] * sqrt(v2);
+    }
+}
+
+/* Two jittered blocks collide head-on, free (no gravity, no walls): with the
+ * symmetric pressure form and Mueller viscosity every pair force is equal and
+ * opposite, so total momentum stays as it was up to float round-off. */
+static void check_momentum(int dim)
+{
+    char ini[1024];
+    snprintf(ini, sizeof ini,
+             "[scene]\ndimension=%d\neffects=pressure viscosity\njitter=0.2\nseed=7\n"
+             "[domain]\nmin=-1 -1 -1\nmax=1 1 1\n"
+             "[fluid left]\nmin=-0.2 0 0\nmax=0 0.2 0.1\nspacing=0.02\nvelocity=1.5 0.3 0.2\n"
+             "[fluid right]\nmin=0.01 0.05 0\nmax=0.21 0.25 0.1\nspacing=0.02\nvelocity=-1 0 -0.1\n"
+             "[physics]\npressure_form=symmetric\nviscosity=0.01\nstiffness=400\n"
+             "[kernels]\nh=0.045\n[time]\ndt=0.0002\n",
+             dim);
+    sph_sim *sim = test_sim(ini, 2);
+    double p0[3], p1[3], scale;
+    total_momentum(sim, p0, &scale);
+    for (int s = 0; s < 100; s++) sph_sim_step(sim);
+    total_momentum(sim, p1, &scale);
+    double moved = 0;
+    for (uint32_t i = 0; i < sim->n; i++) moved = fmax(moved, fabs(sim->P.acc_p[0][i]));
+    cr_assert_gt(moved, 10.0, "the blocks should have interacted (max pressure acceleration %g)", moved);
+    for (int d = 0; d < dim; d++)
+        cr_assert(fabs(p1[d] - p0[d]) <= 2e-5 * scale, "%dD momentum[%d] went from %.9g to %.9g (scale %g)", dim, d,
+                  p0[d], p1[d], scale);
+    sph_sim_destroy(sim);
+}
+
+Test(physics, symmetric_pressure_and_viscosity_conserve_momentum_2d) { check_momentum(2); }
+Test(physics, symmetric_pressure_and_viscosity_conserve_momentum_3d) { check_momentum(3); }
+
+Test(physics, scene_without_viscosity_runs_no_viscosity_pass)
+{
+    sph_sim *sim = test_sim("[scene]\neffects=gravity pressure walls\n[domain]\nmax=1 1\n"
+                            "[fluid a]\nmin=0 0\nmax=0.2 0.2\n",
+                            1);
+    cr_assert_not(sim->in_pipeline[SPH_PASS_VISCOSITY]);
+    cr_assert_null(sim->P.acc_v[0], "viscosity buffers must not be allocated");
+    for (int s = 0; s < 5; s++) sph_sim_step(sim);
+    cr_assert_eq(sim->timing[SPH_PASS_VISCOSITY].calls, 0);
+    cr_assert_eq(sim->timing[SPH_PASS_DENSITY].calls, 5);
+    sph_sim_destroy(sim);
+}
+
+/* Gravity alone: no search, no density; the symplectic Euler positions are
+ * x_n = x_0 + v_0 n dt + g dt^2 n (n + 1) / 2 exactly (up to float round-off). */
+Test(physics, gravity_only_is_free_fall_without_search)
+{
+    sph_sim *sim = test_sim("[scene]\neffects=gravity\n[domain]\nmin=-100 -100\nmax=100 100\n"
+                            "[fluid a]\nmin=0 0\nmax=0.1 0.1\nvelocity=1 2\n[time]\ndt=0.001\n",
+                            1);
+    for (int p = SPH_PASS_HASH; p <= SPH_PASS_VISCOSITY; p++)
+        cr_assert_not(sim->in_pipeline[p], "pass %s should be left out", sph_passes[p]->name);
+    cr_assert_null(sim->P.rho);
+    cr_assert_null(sim->P.pred[0]);
+    float x0 = sim->P.pos[0][0], y0 = sim->P.pos[1][0];
+    const int n = 1000;
+    for (int s = 0; s < n; s++) sph_sim_step(sim);
+    double dt = 0.001, g = -9.81;
+    double want_x = x0 + 1.0 * n * dt, want_y = y0 + 2.0 * n * dt + g * dt * dt * n * (n + 1) / 2.0;
+    cr_assert_float_eq(sim->P.pos[0][0], want_x, 1e-4);
+    cr_assert_float_eq(sim->P.pos[1][0], want_y, 1e-3);
+    /* and within dt g t / 2 of the exact parabola */
+    double t = n * dt, exact = y0 + 2.0 * t + 0.5 * g * t * t;
+    cr_assert(fabs(sim->P.pos[1][0] - exact) <= 0.5 * fabs(g) * dt * t + 1e-4);
+    cr_assert_eq(sim->timing[SPH_PASS_INTEGRATE].calls, (uint64_t)n);
+    sph_sim_destroy(sim);
+}
+
+Test(physics, walls_keep_fast_particles_inside)
+{
+    sph_sim *sim = test_sim("[scene]\ndimension=3\neffects=gravity walls\n[domain]\nmin=0 0 0\nmax=1 1 1\n"
+                            "[fluid a]\nmin=0.4 0.4 0.4\nmax=0.6 0.6 0.6\nspacing=0.05\nvelocity=500 -300 800\n"
+                            "[time]\ndt=0.01\n",
+                            2);
+    for (int s = 0; s < 50; s++) {
+        sph_sim_step(sim);
+        for (uint32_t i = 0; i < sim->n; i++)
+            for (int d = 0; d < 3; d++)
+                cr_assert(sim->P.pos[d][i] >= 0.0f && sim->P.pos[d][i] <= 1.0f, "particle %u left the box: %g", i,
+                          sim->P.pos[d][i]);
+    }
+    sph_sim_destroy(sim);
+}
+
+static const char *dam_ini = "[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmax=0.6 0.4\n"
+                             "[fluid a]\nmin=0 0\nmax=0.2 0.3\nspacing=0.01\n[kernels]\nh=0.02\n"
+                             "[physics]\nnegative_pressure=clamp\n[time]\ncfl=0.4\n";
+
+static void run_variant(const char *extra, int threads, int steps, sph_sim **out)
+{
+    char ini[2048];
+    snprintf(ini, sizeof ini, "%s%s", dam_ini, extra);
+    *out = test_sim(ini, threads);
+    for (int s = 0; s < steps; s++) sph_sim_step(*out);
+}
+
+static int same_state(const sph_sim *a, const sph_sim *b)
+{
+    for (int d = 0; d < a->dim; d++)
+        if (memcmp(a->P.pos[d], b->P.pos[d], a->n * sizeof(float)) ||
+            memcmp(a->P.vel[d], b->P.vel[d], a->n * sizeof(float)))
+            return 0;
+    return 1;
+}
+
+/* Every sum runs over one particle's neighbour list in a fixed order, and every
+ * sort orders by (key, index): threads and sort variants cannot change a bit. */
+Test(physics, results_do_not_depend_on_threads_or_sort)
+{
+    sph_sim *ref, *other;
+    run_variant("[search]\nsort=qsort\n", 1, 60, &ref);
+    run_variant("[search]\nsort=counting\n", 2, 60, &other);
+    cr_assert(same_state(ref, other), "counting sort on 2 threads differs from qsort on 1");
+    sph_sim_destroy(other);
+    run_variant("[search]\nsort=bitonic\n", 2, 60, &other);
+    cr_assert(same_state(ref, other), "bitonic sort differs from qsort");
+    sph_sim_destroy(other);
+    sph_sim_destroy(ref);
+}
+
+/* The search variants give the same neighbour sets in another order, so the
+ * sums differ only by round-off: after 30 steps positions agree to 1e-4 m. */
+Test(physics, search_variants_give_the_same_flow)
+{
+    sph_sim *ref, *other;
+    run_variant("[search]\nmethod=brute\n", 2, 30, &ref);
+    const char *variants[] = {"[search]\nmethod=hash\n", "[search]\nmethod=grid\n",
+                              "[search]\nmethod=hash\ntable_size=7\n"};
+    for (int v = 0; v < 3; v++) {
+        run_variant(variants[v], 2, 30, &other);
+        for (int d = 0; d < 2; d++)
+            for (uint32_t i = 0; i < ref->n; i++)
+                cr_assert(fabsf(ref->P.pos[d][i] - other->P.pos[d][i]) < 1e-4f, "%s: particle %u axis %d: %g vs %g",
+                          variants[v], i, d, ref->P.pos[d][i], other->P.pos[d][i]);
+        sph_sim_destroy(other);
+    }
+    sph_sim_destroy(ref);
+}
+
+/* A pass at a time reaches the same state as whole steps. */
+Test(physics, stepping_pass_by_pass_equals_whole_steps)
+{
+    sph_sim *a, *b;
+    run_variant("", 1, 10, &a);
+    run_variant("", 1, 0, &b);
+    int passes = 0;
+    while (b->step < 10) {
+        sph_pass_id id = sph_sim_step_pass(b);
+        cr_assert(id < SPH_PASS_COUNT && b->in_pipeline[id]);
+        passes++;
+    }
+    int per_step = 0;
+    for (int p = 0; p < SPH_PASS_COUNT; p++) per_step += b->in_pipeline[p];
+    cr_assert_eq(passes, 10 * per_step);
+    cr_assert(same_state(a, b));
+    sph_sim_destroy(a);
+    sph_sim_destroy(b);
+}
