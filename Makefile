@@ -15,7 +15,7 @@ BUILD   := build
 CORE    := sph_error sph_kernel sph_scene sph_sim
 PASSES  := external hash sort offsets neighbours density pressure pressure_force viscosity integrate walls
 APP     := main cmd_run cmd_check
-TESTS   := test_physics
+TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 
 CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
 APP_OBJ  := $(APP:%=$(BUILD)/app/%.o)
