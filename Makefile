@@ -4,7 +4,7 @@
 CC      ?= cc
 OPT     ?= -O2 -march=native
 CFLAGS  ?= $(OPT) -g
-WARN    := -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wvla-larger-than=4096 -D_POSIX_C_SOURCE=200809L
+WARN    := -std=c11 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wvla -D_POSIX_C_SOURCE=200809L
 OMP     := -fopenmp
 PKGS_CORE := inih
 PKGS_TEST := criterion
@@ -21,7 +21,7 @@ CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
 APP_OBJ  := $(APP:%=$(BUILD)/app/%.o)
 TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
 
-.PHONY: all demo test check-tests asan deps clean
+.PHONY: all demo test check-tests check-clang asan deps clean
 
 all: sphlab
 
@@ -58,6 +58,12 @@ demo: deps
 test: deps
 	$(MAKE) sphlab $(BUILD)/sphlab-tests
 	$(MAKE) check-tests
+	$(MAKE) check-clang
+
+# Warnings are errors under both compilers: compile everything with clang too.
+check-clang:
+	$(MAKE) CC=clang BUILD=build-clang build-clang/libsphcore.a $(APP:%=build-clang/app/%.o) $(TEST_OBJ:$(BUILD)/%=build-clang/%)
+	@echo "clang: library, app and tests compile with -Wall -Wextra -Werror"
 
 # Runs the suite against the binaries already built (also used by `make asan`).
 check-tests:
@@ -78,4 +84,4 @@ check-tests-asan:
 	sh tests/cli.sh ./sphlab-asan
 
 clean:
-	rm -rf build build-asan sphlab sphlab-asan
+	rm -rf build build-asan build-clang sphlab sphlab-asan

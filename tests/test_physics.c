@@ -244,3 +244,30 @@ Test(physics, stepping_pass_by_pass_equals_whole_steps)
     sph_sim_destroy(a);
     sph_sim_destroy(b);
 }
+
+/* Switching variants live keeps the particles and changes the pipeline. */
+Test(physics, reconfigure_switches_variants_and_keeps_state)
+{
+    sph_sim *sim;
+    run_variant("[search]\nsort=qsort\n", 1, 20, &sim);
+    float x = sim->P.pos[0][5], v = sim->P.vel[1][5];
+    double t = sim->t;
+    sph_scene_def def = sim->def;
+    sph_error err;
+    cr_assert_eq(sph_scene_set(&def, "search.sort=counting", &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_eq(sph_scene_set(&def, "scene.effects=gravity pressure walls", &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_eq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_eq(sim->P.pos[0][5], x);
+    cr_assert_eq(sim->P.vel[1][5], v);
+    cr_assert_eq(sim->t, t);
+    cr_assert_eq(sim->def.sort, SPH_SORT_COUNTING);
+    cr_assert_not(sim->in_pipeline[SPH_PASS_VISCOSITY]);
+    cr_assert_not_null(sim->S.scratch, "counting sort needs its scratch buffer");
+    sph_sim_step(sim);
+    cr_assert_eq(sim->step, 21);
+    /* a change that makes other particles is refused, and leaves the sim as it was */
+    cr_assert_eq(sph_scene_set(&def, "fluid.spacing=0.005", &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_eq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_SCENE);
+    cr_assert_eq(sim->step, 21);
+    sph_sim_destroy(sim);
+}

@@ -206,7 +206,8 @@ int cmd_run(int argc, char **argv)
     double wall = sph_now_ms() - t0;
     if (progress) fprintf(stderr, "\r%78s\r", "");
     if (dump.f) write_dump(dump.f, sim);
-    bool ok = app_out_commit(&stats) & app_out_commit(&dump);
+    bool stats_ok = app_out_commit(&stats), dump_ok = app_out_commit(&dump); /* both, even if one fails */
+    bool ok = stats_ok && dump_ok;
     if (!quiet) print_report(sim, wall);
     sph_sim_destroy(sim);
     return ok ? 0 : 1;

@@ -150,6 +150,7 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
         }
         S->entries = alloc_zero(n, sizeof *S->entries, &ok);
         S->start = alloc_zero(S->table_size, sizeof *S->start, &ok);
+        S->spos = alloc_zero(4 * (size_t)n, sizeof *S->spos, &ok);
         if (def->sort == SPH_SORT_COUNTING) {
             S->scratch = alloc_zero(n, sizeof *S->scratch, &ok);
             S->count = alloc_zero((size_t)S->table_size + 1, sizeof *S->count, &ok);
@@ -190,6 +191,7 @@ void sph_sim_destroy(sph_sim *sim)
     free(S->entries);
     free(S->scratch);
     free(S->start);
+    free(S->spos);
     free(S->count);
     free(S->nbr_start);
     free(S->nbr);
@@ -197,6 +199,38 @@ void sph_sim_destroy(sph_sim *sim)
     free(S->tbuf);
     free(S->tcap);
     free(sim);
+}
+
+static void copy_vec(float *dst[3], float *const src[3], int dim, uint32_t n)
+{
+    for (int d = 0; d < dim; d++) memcpy(dst[d], src[d], (size_t)n * sizeof(float));
+}
+
+sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err)
+{
+    if (def->dim != sim->def.dim || def->n_blocks != sim->def.n_blocks ||
+        sph_scene_particle_count(def) != (double)sim->n)
+        return sph_fail(err, SPH_ERR_SCENE, "this change makes other particles: reset the scene instead");
+    sph_sim *next;
+    sph_error_code c = sph_sim_create(def, sim->threads, &next, err);
+    if (c) return c;
+    uint32_t n = sim->n;
+    memcpy(next->P.id, sim->P.id, (size_t)n * sizeof *next->P.id);
+    memcpy(next->P.mass, sim->P.mass, (size_t)n * sizeof *next->P.mass);
+    copy_vec(next->P.pos, sim->P.pos, sim->dim, n);
+    copy_vec(next->P.vel, sim->P.vel, sim->dim, n);
+    next->t = sim->t;
+    next->step = sim->step;
+    next->max_speed = sim->max_speed;
+    next->max_acc = sim->max_acc;
+    memcpy(next->enabled, sim->enabled, sizeof next->enabled);
+    next->dt = sph_time_step_choose(next);
+    /* swap contents so the caller's pointer stays valid */
+    sph_sim tmp = *sim;
+    *sim = *next;
+    *next = tmp;
+    sph_sim_destroy(next);
+    return SPH_ERR_OK;
 }
 
 /* ---- the time step ------------------------------------------------------ */

@@ -50,6 +50,7 @@ typedef struct sph_search_data {
     sph_entry *scratch;   /* [n] counting sort's output buffer */
     uint32_t *start;      /* [table_size] offsets: first sorted entry of each key, or SPH_EMPTY */
     uint32_t *count;      /* [table_size + 1] counting sort's histogram */
+    float *spos;          /* [4 n] [m] predicted positions in sorted order (x, y, z, 0), for the scan */
     int32_t grid_dims[3]; /* grid variant: cells per axis over the domain */
     /* Neighbour lists (compressed rows): neighbours of i, itself excluded,
      * are nbr[nbr_start[i] .. nbr_start[i+1]). */
@@ -106,6 +107,12 @@ void sph_sim_step(sph_sim *sim);
 /* Runs the next pass of the pipeline; returns its id. The step is complete
  * (t and step advanced) after the last one. */
 sph_pass_id sph_sim_step_pass(sph_sim *sim);
+
+/* Switches variants or effects at run time: rebuilds the pipeline and its
+ * buffers for `def` and carries the particles (positions, velocities, ids,
+ * masses), time and step over. `def` must make the same particles (same
+ * dimension and blocks); pass toggles are kept. On error sim is unchanged. */
+sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err);
 
 void sph_sim_stats(const sph_sim *sim, sph_stats *out);
 void sph_sim_reset_timings(sph_sim *sim);

@@ -35,44 +35,54 @@ typedef struct list {
     size_t len, cap;
 } list;
 
-static void list_push(list *l, uint32_t j)
+static void list_grow(list *l, size_t need)
 {
-    if (l->len == l->cap) {
-        size_t cap = l->cap ? l->cap * 2 : 4096;
-        uint32_t *b = realloc(l->buf, cap * sizeof *b);
-        if (!b) {
-            fprintf(stderr, "sphlab: out of memory for neighbour lists (%zu entries)\n", cap);
-            exit(3);
-        }
-        l->buf = b;
-        l->cap = cap;
+    size_t cap = l->cap ? l->cap : 4096;
+    while (cap < need) cap *= 2;
+    uint32_t *b = realloc(l->buf, cap * sizeof *b);
+    if (!b) {
+        fprintf(stderr, "sphlab: out of memory for neighbour lists (%zu entries)\n", cap);
+        exit(3);
     }
-    l->buf[l->len++] = j;
+    l->buf = b;
+    l->cap = cap;
 }
 
-/* Appends the neighbours of i found in the run of one cell's key. */
-static inline void scan_cell(const sph_sim *sim, list *out, uint32_t i, uint32_t hash, const float xi[3], float h2)
+static inline void list_reserve(list *l, size_t more)
+{
+    if (l->len + more > l->cap) list_grow(l, l->len + more);
+}
+
+/* Appends the neighbours of i found in the run of one cell's key. The run is
+ * scanned without branches on the distance test (each candidate is written,
+ * and kept by advancing the length only if it passes), as that test is a coin
+ * flip the branch predictor cannot learn. Positions come from spos, the
+ * positions gathered in sorted order, so a run is read contiguously. */
+static inline void scan_cell(const sph_sim *sim, const float *spos, list *out, uint32_t i, uint32_t hash,
+                             const float xi[3], float h2)
 {
     const sph_search_data *S = &sim->S;
     const uint32_t key = hash % S->table_size;
     uint32_t e = S->start[key];
     if (e == SPH_EMPTY) return;
     const sph_entry *en = S->entries;
-    const int dim = sim->dim;
-    for (; e < sim->n && en[e].key == key; e++) {
-        if (en[e].hash != hash) continue;
+    uint32_t end = e;
+    while (end < sim->n && en[end].key == key) end++;
+    list_reserve(out, end - e);
+    uint32_t *buf = out->buf;
+    size_t len = out->len;
+    for (; e < end; e++) {
+        const float *xj = spos + 4 * (size_t)e;
+        float dx = xj[0] - xi[0], dy = xj[1] - xi[1], dz = xj[2] - xi[2];
+        float r2 = dx * dx + dy * dy + dz * dz;
         uint32_t j = en[e].index;
-        if (j == i) continue;
-        float r2 = 0;
-        for (int d = 0; d < dim; d++) {
-            float dx = sim->P.pred[d][j] - xi[d];
-            r2 += dx * dx;
-        }
-        if (r2 < h2) list_push(out, j);
+        buf[len] = j;
+        len += (en[e].hash == hash) & (j != i) & (r2 < h2);
     }
+    out->len = len;
 }
 
-static void neighbours_of(const sph_sim *sim, list *out, uint32_t i)
+static void neighbours_of(const sph_sim *sim, const float *spos, list *out, uint32_t i)
 {
     const sph_particles *P = &sim->P;
     const int dim = sim->dim;
@@ -81,14 +91,15 @@ static void neighbours_of(const sph_sim *sim, list *out, uint32_t i)
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
     const int zr = dim == 3 ? 1 : 0;
     if (sim->def.search == SPH_SEARCH_BRUTE) {
+        list_reserve(out, sim->n);
         for (uint32_t j = 0; j < sim->n; j++) {
-            if (j == i) continue;
             float r2 = 0;
             for (int d = 0; d < dim; d++) {
                 float dx = P->pred[d][j] - xi[d];
                 r2 += dx * dx;
             }
-            if (r2 < h2) list_push(out, j);
+            out->buf[out->len] = j;
+            out->len += (j != i) & (r2 < h2);
         }
     } else if (sim->def.search == SPH_SEARCH_GRID) {
         const int32_t *g = sim->S.grid_dims;
@@ -104,7 +115,7 @@ static void neighbours_of(const sph_sim *sim, list *out, uint32_t i)
                     int32_t x = c[0] + dx;
                     if (x < 0 || x >= g[0]) continue;
                     uint32_t cell = (uint32_t)x + (uint32_t)g[0] * ((uint32_t)y + (uint32_t)g[1] * (uint32_t)z);
-                    scan_cell(sim, out, i, cell, xi, h2);
+                    scan_cell(sim, spos, out, i, cell, xi, h2);
                 }
             }
         }
@@ -114,7 +125,7 @@ static void neighbours_of(const sph_sim *sim, list *out, uint32_t i)
         for (int dz = -zr; dz <= zr; dz++)
             for (int dy = -1; dy <= 1; dy++)
                 for (int dx = -1; dx <= 1; dx++)
-                    scan_cell(sim, out, i, sph_hash_cell(dim, c[0] + dx, c[1] + dy, c[2] + dz), xi, h2);
+                    scan_cell(sim, spos, out, i, sph_hash_cell(dim, c[0] + dx, c[1] + dy, c[2] + dz), xi, h2);
     }
 }
 
@@ -126,6 +137,19 @@ static void run(sph_sim *sim)
     const uint32_t n = sim->n;
     const int T = S->n_threads;
     size_t base[SPH_MAX_THREADS + 1];
+    float *spos = S->spos;
+    if (spos) { /* positions in sorted order, padded to 4 floats (z = 0 in 2D) */
+        const int dim = sim->dim;
+#pragma omp parallel for schedule(static)
+        for (int64_t e = 0; e < (int64_t)n; e++) {
+            uint32_t j = S->entries[e].index;
+            float *o = spos + 4 * e;
+            o[0] = sim->P.pred[0][j];
+            o[1] = sim->P.pred[1][j];
+            o[2] = dim == 3 ? sim->P.pred[2][j] : 0.0f;
+            o[3] = 0.0f;
+        }
+    }
 #pragma omp parallel num_threads(T)
     {
         int t = 0, nt = 1;
@@ -137,7 +161,7 @@ static void run(sph_sim *sim)
         uint32_t hi = (uint32_t)((uint64_t)n * (uint64_t)(t + 1) / (uint64_t)nt);
         list l = {S->tbuf[t], 0, S->tcap[t]};
         for (uint32_t i = lo; i < hi; i++) {
-            neighbours_of(sim, &l, i);
+            neighbours_of(sim, spos, &l, i);
             S->nbr_start[i + 1] = (uint32_t)l.len; /* local end of row i, made global below */
         }
         S->tbuf[t] = l.buf;
