@@ -17,8 +17,17 @@ PASSES  := external hash sort offsets neighbours density pressure pressure_force
 APP     := main cmd_run cmd_check
 TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 
+# Modules above the core (rendering, plotting) add objects, flags and libraries
+# to these from their own fragment, src/MODULE/module.mk.
+# Debian packages the build and tests need; modules append theirs.
+DEB_PKGS := build-essential clang pkg-config libinih-dev libcriterion-dev libomp-dev
+MOD_OBJ  :=
+MOD_LIBS :=
+MOD_TEST_LIBS :=
+-include $(wildcard src/*/module.mk)
+
 CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
-APP_OBJ  := $(APP:%=$(BUILD)/app/%.o)
+APP_OBJ  := $(APP:%=$(BUILD)/app/%.o) $(MOD_OBJ)
 TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
 
 .PHONY: all demo test check-tests check-clang asan deps clean
@@ -26,7 +35,7 @@ TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
 all: sphlab
 
 sphlab: $(BUILD)/libsphcore.a $(APP_OBJ)
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS)
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_LIBS)
 
 $(BUILD)/libsphcore.a: $(CORE_OBJ)
 	ar rcs $@ $^
@@ -44,12 +53,12 @@ $(BUILD)/core $(BUILD)/passes $(BUILD)/app $(BUILD)/tests:
 	mkdir -p $@
 
 $(BUILD)/sphlab-tests: $(TEST_OBJ) $(BUILD)/libsphcore.a
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) \
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_TEST_LIBS) \
 	    $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null || echo -lcriterion)
 
 # Installs what is missing (Debian packages); does nothing when all are there.
 deps:
-	@sh tests/install-deps.sh
+	@sh tests/install-deps.sh $(DEB_PKGS)
 
 demo: deps
 	$(MAKE) sphlab
@@ -77,7 +86,7 @@ asan: deps
 	    $(MAKE) BUILD=build-asan SPHLAB_BIN=./sphlab-asan check-tests-asan
 
 sphlab-asan: $(BUILD)/libsphcore.a $(APP_OBJ)
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS)
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_LIBS)
 
 check-tests-asan:
 	SPHLAB=./sphlab-asan $(BUILD)/sphlab-tests --jobs 2

@@ -1,8 +1,9 @@
 #!/bin/sh
-# Installs the Debian packages sphlab needs, if any are missing. Run by
-# `make demo` and `make test`; does nothing (and needs no root) when all are there.
+# Installs the given Debian packages (the Makefile's DEB_PKGS) if any are
+# missing. Run by `make demo` and `make test`; does nothing, and needs no root,
+# when all are there.
 set -e
-PKGS="build-essential clang pkg-config libinih-dev libcriterion-dev libomp-dev"
+PKGS="$*"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

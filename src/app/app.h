@@ -34,8 +34,6 @@ bool app_out_open(app_out *o, const char *path);
 bool app_out_commit(app_out *o); /* closes and renames; false (and message) on a write error */
 void app_out_abort(app_out *o);  /* closes and removes the temporary */
 
-int cmd_run(int argc, char **argv);
-int cmd_check(int argc, char **argv);
 
 void app_print_pipeline(FILE *f, const sph_sim *sim);
 

@@ -6,22 +6,21 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "commands.h"
 
 static void usage(FILE *f)
 {
-    fputs("usage: sphlab COMMAND [options]\n"
-          "\n"
-          "commands:\n"
-          "  run SCENE.ini     simulate a scene; print per-pass timings and a summary\n"
-          "  check SCENE.ini   validate a scene and print the pipeline it resolves to\n"
-          "  keys              list every scene key with its unit, range and default\n"
-          "\n"
-          "`sphlab COMMAND --help` describes a command's options.\n",
-          f);
+    fputs("usage: sphlab COMMAND [options]\n\ncommands:\n", f);
+#define SPH_COMMAND_HELP(name, args, about) fprintf(f, "  %-7s %-10s %s\n", #name, args, about);
+    SPH_COMMANDS(SPH_COMMAND_HELP)
+#undef SPH_COMMAND_HELP
+    fputs("\n`sphlab COMMAND --help` describes a command's options.\n", f);
 }
 
-static int cmd_keys(void)
+int cmd_keys(int argc, char **argv)
 {
+    (void)argc;
+    (void)argv;
     const char *last = "";
     for (int i = 0; i < sph_scene_key_count; i++) {
         const sph_key *k = &sph_scene_keys[i];
@@ -133,9 +132,10 @@ int main(int argc, char **argv)
         usage(stdout);
         return 0;
     }
-    if (strcmp(cmd, "run") == 0) return cmd_run(argc - 1, argv + 1);
-    if (strcmp(cmd, "check") == 0) return cmd_check(argc - 1, argv + 1);
-    if (strcmp(cmd, "keys") == 0) return cmd_keys();
+#define SPH_COMMAND_RUN(name, args, about) \
+    if (strcmp(cmd, #name) == 0) return cmd_##name(argc - 1, argv + 1);
+    SPH_COMMANDS(SPH_COMMAND_RUN)
+#undef SPH_COMMAND_RUN
     fprintf(stderr, "sphlab: unknown command '%s'\n", cmd);
     usage(stderr);
     return 2;

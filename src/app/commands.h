@@ -1,0 +1,16 @@
+/* The sphlab commands, written once: main() dispatches from this list and
+ * prints its help from it. A module that adds a command adds one line here and
+ * defines `int cmd_NAME(int argc, char **argv)` (argv[0] is the command name). */
+#ifndef SPH_COMMANDS_H
+#define SPH_COMMANDS_H
+
+#define SPH_COMMANDS(X)                                                          \
+    X(run, "SCENE.ini", "simulate a scene; print per-pass timings and a summary") \
+    X(check, "SCENE.ini", "validate a scene and print the pipeline it resolves to") \
+    X(keys, "", "list every scene key with its default, unit and meaning")
+
+#define SPH_COMMAND_DECL(name, args, about) int cmd_##name(int argc, char **argv);
+SPH_COMMANDS(SPH_COMMAND_DECL)
+#undef SPH_COMMAND_DECL
+
+#endif
