@@ -271,3 +271,30 @@ Test(physics, reconfigure_switches_variants_and_keeps_state)
     cr_assert_eq(sim->step, 21);
     sph_sim_destroy(sim);
 }
+
+/* The interaction pulls particles inside its radius towards the point and
+ * leaves those outside alone; it does nothing while the button is up. */
+Test(physics, interaction_pulls_within_radius_only)
+{
+    sph_sim *sim = test_sim("[scene]\neffects=interaction\n[domain]\nmin=-1 -1\nmax=1 1\n"
+                            "[fluid a]\nmin=-0.5 -0.5\nmax=0.5 0.5\nspacing=0.1\n"
+                            "[interaction]\nradius=0.3\nstrength=10\n[time]\ndt=0.01\n",
+                            1);
+    cr_assert(sim->in_pipeline[SPH_PASS_INTERACTION]);
+    sph_sim_step(sim);
+    for (uint32_t i = 0; i < sim->n; i++) cr_assert_eq(sim->P.vel[0][i], 0.0f, "moved with the button up");
+    sim->interaction_active = true;
+    sim->interaction_point[0] = 0.0f;
+    sim->interaction_point[1] = 0.0f;
+    sph_sim_step(sim);
+    for (uint32_t i = 0; i < sim->n; i++) {
+        float x = sim->P.pos[0][i] - sim->dt * sim->P.vel[0][i], y = sim->P.pos[1][i] - sim->dt * sim->P.vel[1][i];
+        float r = sqrtf(x * x + y * y);
+        float radial = (x * sim->P.vel[0][i] + y * sim->P.vel[1][i]) / (r > 0 ? r : 1);
+        if (r < 0.3f && r > 0)
+            cr_assert_lt(radial, 0.0f, "particle at r=%g should move inwards", r);
+        else if (r >= 0.3f)
+            cr_assert_eq(radial, 0.0f, "particle at r=%g is outside the radius", r);
+    }
+    sph_sim_destroy(sim);
+}

@@ -22,6 +22,7 @@
     X(PRESSURE, pressure)  \
     X(PRESSURE_FORCE, pressure_force) \
     X(VISCOSITY, viscosity) \
+    X(INTERACTION, interaction) \
     X(INTEGRATE, integrate) \
     X(WALLS, walls)
 

@@ -97,6 +97,11 @@ const sph_key sph_scene_keys[] = {
     {"search", "table_size", SPH_KEY_UINT, S(table_size), 0, 2147483648.0, 0, 0, NULL, 0, "", "0",
      "number of hash keys; 0: the particle count, as in the seed"},
 
+    {"interaction", "radius", SPH_KEY_FLOAT, S(interaction_radius), 0, BIG, 1, 0, NULL, 0, "m", "0.2",
+     "reach of the push/pull around the mouse point"},
+    {"interaction", "strength", SPH_KEY_FLOAT, S(interaction_strength), -1e6, 1e6, 0, 0, NULL, 0, "m/s^2", "40",
+     "acceleration at the point, fading to 0 at the radius; > 0 pulls, < 0 pushes"},
+
     {"fluid", "min", SPH_KEY_VEC, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_VEC, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
     {"fluid", "spacing", SPH_KEY_FLOAT, B(spacing), 0, BIG, 1, 0, NULL, 0, "m", "0.02",
@@ -105,7 +110,7 @@ const sph_key sph_scene_keys[] = {
 };
 const int sph_scene_key_count = (int)(sizeof sph_scene_keys / sizeof sph_scene_keys[0]);
 
-static const char *const known_sections[] = {"scene", "domain", "physics", "kernels", "time", "search"};
+static const char *const known_sections[] = {"scene", "domain", "physics", "kernels", "time", "search", "interaction"};
 
 /* ---- values ------------------------------------------------------------- */
 
@@ -338,7 +343,7 @@ static bool known_section(const char *section)
 
 static const char *section_list(void)
 {
-    return "scene, domain, physics, kernels, time, search, fluid NAME";
+    return "scene, domain, physics, kernels, time, search, interaction, fluid NAME";
 }
 
 /* Index of the key among the fluid keys (origin slot of a block). */

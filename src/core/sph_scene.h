@@ -21,7 +21,8 @@
     X(DENSITY, "density", "density by kernel summation (nothing moves by it)") \
     X(PRESSURE, "pressure", "equation of state and pressure force")     \
     X(VISCOSITY, "viscosity", "viscous force")                          \
-    X(WALLS, "walls", "the domain box reflects particles")
+    X(WALLS, "walls", "the domain box reflects particles")               \
+    X(INTERACTION, "interaction", "push or pull the fluid around a point (the mouse)")
 
 enum {
 #define SPH_EFFECT_BIT(id, name, about) SPH_EFFECT_BIT_##id,
@@ -113,6 +114,8 @@ typedef struct sph_scene_def {
     uint32_t table_size; /* [1] hash table size; 0: the particle count, as in the seed */
     float jitter;        /* [1] random offset of each particle, in spacings */
     uint32_t seed;       /* [1] random seed of the jitter */
+    float interaction_radius;   /* [m] reach of the push/pull around the point */
+    float interaction_strength; /* [m/s^2] acceleration at the point; > 0 pulls, < 0 pushes */
 
     sph_origin origin[SPH_MAX_KEYS]; /* per key of sph_scene_keys */
 } sph_scene_def;

@@ -116,6 +116,7 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
         sim->in_pipeline[p] = sph_passes[p]->skip_reason(&sim->def) == NULL;
         sim->enabled[p] = true;
     }
+    sim->interaction_sign = 1.0f;
     sim->k_density = sph_kernel_make(def->kernel_density, def->dim, def->h);
     sim->k_pressure = sph_kernel_make(def->kernel_pressure, def->dim, def->h);
     sim->k_viscosity = sph_kernel_make(def->kernel_viscosity, def->dim, def->h);
@@ -135,6 +136,7 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
     if (sim->in_pipeline[SPH_PASS_PRESSURE]) P->p = alloc_zero(n, sizeof(float), &ok);
     if (sim->in_pipeline[SPH_PASS_PRESSURE_FORCE]) alloc_vec(P->acc_p, dim, n, &ok);
     if (sim->in_pipeline[SPH_PASS_VISCOSITY]) alloc_vec(P->acc_v, dim, n, &ok);
+    if (sim->in_pipeline[SPH_PASS_INTERACTION]) alloc_vec(P->acc_i, dim, n, &ok);
 
     sph_search_data *S = &sim->S;
     if (sim->in_pipeline[SPH_PASS_HASH]) {
@@ -184,6 +186,7 @@ void sph_sim_destroy(sph_sim *sim)
         free(P->pred[d]);
         free(P->acc_p[d]);
         free(P->acc_v[d]);
+        free(P->acc_i[d]);
     }
     free(P->rho);
     free(P->p);
@@ -223,6 +226,9 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     next->step = sim->step;
     next->max_speed = sim->max_speed;
     next->max_acc = sim->max_acc;
+    next->interaction_active = sim->interaction_active;
+    memcpy(next->interaction_point, sim->interaction_point, sizeof next->interaction_point);
+    next->interaction_sign = sim->interaction_sign;
     memcpy(next->enabled, sim->enabled, sizeof next->enabled);
     next->dt = sph_time_step_choose(next);
     /* swap contents so the caller's pointer stays valid */

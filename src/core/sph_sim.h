@@ -25,6 +25,7 @@ typedef struct sph_particles {
     float *p;        /* [Pa] (3D) or [N/m] (2D) pressure */
     float *acc_p[3]; /* [m/s^2] acceleration from the pressure force */
     float *acc_v[3]; /* [m/s^2] acceleration from viscosity */
+    float *acc_i[3]; /* [m/s^2] acceleration from the interaction (mouse) */
 } sph_particles;
 
 /* One entry of the spatial index: the seed's (index, hash, key) triple. */
@@ -95,6 +96,10 @@ struct sph_sim {
     bool enabled[SPH_PASS_COUNT];     /* switched on (a window toggle); only meaningful if in the pipeline */
     sph_pass_timing timing[SPH_PASS_COUNT];
     int next_pass;        /* next pass of the current step, for stepping pass by pass */
+    /* The interaction effect's point (the mouse), set by the window. */
+    bool interaction_active; /* the button is down */
+    float interaction_point[3]; /* [m] */
+    float interaction_sign;  /* +1 pull, -1 push (times the scene's strength) */
     int threads;
 };
 

@@ -1,4 +1,4 @@
-/* Pass: integration, symplectic Euler: v += dt (a_pressure + a_viscosity),
+/* Pass: integration, symplectic Euler: v += dt (a_pressure + a_viscosity + a_interaction),
  * then x += dt v with the new v (gravity was added to v by the external
  * pass). Also measures the largest speed and acceleration, which the CFL
  * time step of the next step needs. */
@@ -54,7 +54,8 @@ static void run(sph_sim *sim)
     for (int i = 0; i < n; i++) {
         float v2 = 0, a2 = 0;
         for (int d = 0; d < dim; d++) {
-            float a = (P->acc_p[d] ? P->acc_p[d][i] : 0.0f) + (P->acc_v[d] ? P->acc_v[d][i] : 0.0f);
+            float a = (P->acc_p[d] ? P->acc_p[d][i] : 0.0f) + (P->acc_v[d] ? P->acc_v[d][i] : 0.0f) +
+                      (P->acc_i[d] ? P->acc_i[d][i] : 0.0f);
             float v = P->vel[d][i] + dt * a;
             P->vel[d][i] = v;
             P->pos[d][i] += dt * v;
@@ -69,6 +70,6 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_integrate = {
-    "integrate", "symplectic Euler: velocities, then positions", "vel acc_p acc_v", "vel pos", skip_reason,
+    "integrate", "symplectic Euler: velocities, then positions", "vel acc_p acc_v acc_i", "vel pos", skip_reason,
     describe, run,
 };
