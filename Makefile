@@ -12,9 +12,9 @@ CORE_CFLAGS := $(WARN) $(OMP) -Isrc/core $(shell pkg-config --cflags $(PKGS_CORE
 CORE_LIBS   := $(shell pkg-config --libs $(PKGS_CORE) 2>/dev/null || echo -linih) -lm
 
 BUILD   := build
-CORE    := sph_error sph_kernel sph_scene sph_sim
+CORE    := sph_error sph_kernel sph_scene sph_sim sph_watchdog
 PASSES  := external hash sort offsets neighbours density pressure pressure_force viscosity interaction integrate walls
-APP     := main cmd_run cmd_check
+APP     := main cmd_run cmd_check cmd_hardcases
 TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 
 # Modules above the core (rendering, plotting) add objects, flags and libraries

@@ -17,7 +17,9 @@ static void usage(FILE *f)
           "  --dump FILE.csv     final particles: id,x,y,z,vx,vy,vz,rho,p\n"
           "  --threads N         worker threads (default: one per core)\n"
           "  --quiet             no progress line, no tables\n"
-          "  --help              this text\n",
+          "  --help              this text\n"
+          "exit status: 0 done; 1 bad scene or output; 2 bad command line; 4 the watchdog stopped the run\n"
+          "(a non-finite or runaway value: the report names the step, pass and particle; --dump keeps that state)\n",
           f);
 }
 
@@ -189,10 +191,17 @@ int cmd_run(int argc, char **argv)
     }
     if (stats.f) write_stats_header(stats.f, sim);
     bool progress = !quiet && isatty(STDERR_FILENO);
+    bool warned = false;
+    char warning[512];
     double t0 = sph_now_ms(), last_shown = t0;
     for (;;) {
+        if (!warned && sph_sim_dt_warning(sim, warning, sizeof warning)) {
+            fprintf(stderr, "%ssphlab: warning: %s\n", progress ? "\r" : "", warning);
+            warned = true; /* once: the condition names the step where it first broke */
+        }
         if (until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps) break;
         sph_sim_step(sim);
+        if (sim->alarm.raised) break;
         if (stats.f) write_stats_row(stats.f, sim, sim->dt);
         double now = sph_now_ms();
         if (progress && now - last_shown > 200) {
@@ -205,10 +214,16 @@ int cmd_run(int argc, char **argv)
     }
     double wall = sph_now_ms() - t0;
     if (progress) fprintf(stderr, "\r%78s\r", "");
+    if (sim->alarm.raised) {
+        char report[4096];
+        sph_sim_alarm_report(sim, report, sizeof report);
+        fprintf(stderr, "sphlab: %s", report);
+    }
     if (dump.f) write_dump(dump.f, sim);
     bool stats_ok = app_out_commit(&stats), dump_ok = app_out_commit(&dump); /* both, even if one fails */
     bool ok = stats_ok && dump_ok;
     if (!quiet) print_report(sim, wall);
+    int code = !ok ? 1 : sim->alarm.raised ? 4 : 0;
     sph_sim_destroy(sim);
-    return ok ? 0 : 1;
+    return code;
 }

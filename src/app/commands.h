@@ -7,7 +7,8 @@
 #define SPH_COMMANDS(X)                                                          \
     X(run, "SCENE.ini", "simulate a scene; print per-pass timings and a summary") \
     X(check, "SCENE.ini", "validate a scene and print the pipeline it resolves to") \
-    X(keys, "", "list every scene key with its default, unit and meaning")
+    X(keys, "", "list every scene key with its default, unit and meaning") \
+    X(hardcases, "", "run the hard cases (odd parameters) and print a verdict for each")
 
 #define SPH_COMMAND_DECL(name, args, about) int cmd_##name(int argc, char **argv);
 SPH_COMMANDS(SPH_COMMAND_DECL)

@@ -579,7 +579,7 @@ int64_t sph_block_nodes(const sph_scene_def *def, int b, int axis)
     if (axis >= def->dim) return 1;
     double extent = (double)blk->max[axis] - (double)blk->min[axis];
     if (!(extent > 0) || !(blk->spacing > 0)) return 0;
-    double n = floor(extent / blk->spacing + 1e-4); /* tolerate a spacing that divides the box up to rounding */
+    double n = floor(extent / blk->spacing + 1e-3); /* tolerate float rounding of the corners (up to 0.1% of a spacing) */
     return n > 9e15 ? (int64_t)9e15 : (int64_t)n;
 }
 

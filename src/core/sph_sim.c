@@ -91,6 +91,32 @@ static void place_particles(sph_sim *sim)
     }
 }
 
+/* Bounds beyond which the watchdog calls a value a runaway: 20 times the
+ * fastest speed the scene can plausibly make (sound, a fall across the
+ * domain, the blocks' own speed, the mouse), and 100 rho0. */
+static void set_bounds(sph_sim *sim)
+{
+    const sph_scene_def *def = &sim->def;
+    double c = (def->effects & SPH_EFFECT(PRESSURE)) ? sqrt(def->stiffness) : 0.0;
+    double g2 = 0, L2 = 0, v0 = 0;
+    for (int d = 0; d < def->dim; d++) {
+        g2 += (def->effects & SPH_EFFECT(GRAVITY)) ? (double)def->gravity[d] * def->gravity[d] : 0.0;
+        double e = (double)def->domain_max[d] - def->domain_min[d];
+        L2 += e * e;
+    }
+    for (int b = 0; b < def->n_blocks; b++) {
+        double s2 = 0;
+        for (int d = 0; d < def->dim; d++) s2 += (double)def->blocks[b].velocity[d] * def->blocks[b].velocity[d];
+        v0 = fmax(v0, sqrt(s2));
+    }
+    double fall = sqrt(2.0 * sqrt(g2) * sqrt(L2));
+    double mouse = (def->effects & SPH_EFFECT(INTERACTION))
+                       ? sqrt(2.0 * fabs(def->interaction_strength) * def->interaction_radius)
+                       : 0.0;
+    sim->speed_bound = (float)(20.0 * (c + fall + v0 + mouse) + 1.0);
+    sim->density_bound = 100.0f * def->rest_density;
+}
+
 sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **out, sph_error *err)
 {
     *out = NULL;
@@ -117,6 +143,9 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
         sim->enabled[p] = true;
     }
     sim->interaction_sign = 1.0f;
+    sim->watchdog = true;
+    for (int p = 0; p < SPH_PASS_COUNT; p++) sim->pass_writes[p] = sph_watchdog_fields(sph_passes[p]->writes);
+    set_bounds(sim);
     sim->k_density = sph_kernel_make(def->kernel_density, def->dim, def->h);
     sim->k_pressure = sph_kernel_make(def->kernel_pressure, def->dim, def->h);
     sim->k_viscosity = sph_kernel_make(def->kernel_viscosity, def->dim, def->h);
@@ -249,6 +278,7 @@ static void run_timed(sph_sim *sim, int p)
     sim->timing[p].calls++;
     sim->timing[p].total_ms += ms;
     sim->timing[p].last_ms = ms;
+    if (sim->watchdog) sph_watchdog_check(sim, p); /* its cost is not counted as the pass's */
 }
 
 sph_pass_id sph_sim_step_pass(sph_sim *sim)
@@ -256,6 +286,7 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
 #ifdef _OPENMP
     omp_set_num_threads(sim->threads);
 #endif
+    if (sim->alarm.raised) return SPH_PASS_COUNT; /* stopped: the state stays as the watchdog found it */
     if (sim->next_pass == 0) sim->dt = sph_time_step_choose(sim);
     int p = sim->next_pass;
     while (p < SPH_PASS_COUNT && !(sim->in_pipeline[p] && sim->enabled[p])) p++;
@@ -277,7 +308,7 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
 void sph_sim_step(sph_sim *sim)
 {
     uint64_t step = sim->step;
-    while (sim->step == step) {
+    while (sim->step == step && !sim->alarm.raised) {
         if (sph_sim_step_pass(sim) == SPH_PASS_COUNT) { /* no pass at all: still advance time */
             if (sim->step == step) {
                 sim->t += sim->dt;
@@ -291,6 +322,20 @@ void sph_sim_step(sph_sim *sim)
 void sph_sim_reset_timings(sph_sim *sim)
 {
     memset(sim->timing, 0, sizeof sim->timing);
+}
+
+/* Internal energy per unit mass that the equation of state stores at density
+ * rho: e = integral from rho0 to rho of p / rho'^2. With it, kinetic +
+ * gravitational + internal energy is what the pressure force conserves. */
+static double eos_energy(const sph_scene_def *def, double rho)
+{
+    double r0 = def->rest_density, k = def->stiffness;
+    if (def->negative_pressure == SPH_NEGP_CLAMP && rho < r0) return 0.0;
+    if (def->eos == SPH_EOS_TAIT) {
+        double g = def->tait_gamma, B = k * r0 / g;
+        return B * ((pow(rho, g - 1) - pow(r0, g - 1)) / ((g - 1) * pow(r0, g)) + 1.0 / rho - 1.0 / r0);
+    }
+    return k * (log(rho / r0) + r0 / rho - 1.0);
 }
 
 void sph_sim_stats(const sph_sim *sim, sph_stats *out)
@@ -307,6 +352,10 @@ void sph_sim_stats(const sph_sim *sim, sph_stats *out)
             out->momentum[d] += P->mass[i] * v;
         }
         out->ekin += 0.5 * P->mass[i] * v2;
+        if (sim->def.effects & SPH_EFFECT(GRAVITY))
+            for (int d = 0; d < sim->dim; d++)
+                out->epot -= P->mass[i] * sim->def.gravity[d] * ((double)P->pos[d][i] - sim->def.domain_min[d]);
+        if (P->p && P->rho[i] > 0) out->eint += P->mass[i] * eos_energy(&sim->def, P->rho[i]);
         if (v2 > out->max_speed) out->max_speed = v2;
         if (P->rho) {
             double r = P->rho[i];

@@ -36,6 +36,9 @@ typedef struct sph_entry {
 } sph_entry;
 
 #define SPH_MAX_THREADS 256
+/* Below this many items a parallel region costs more than it saves (thread
+ * wake-up is microseconds, more on a loaded machine). */
+#define SPH_PARALLEL_MIN 4096
 #define SPH_EMPTY UINT32_MAX /* start-table value of a key no particle has */
 
 /* The seed's primes; the hash is computed in unsigned 32-bit arithmetic,
@@ -64,6 +67,42 @@ typedef struct sph_search_data {
     size_t *tcap;
 } sph_search_data;
 
+/* Per-particle fields by name, for the watchdog, colouring and file output. */
+#define SPH_FIELDS(X)                                                 \
+    X(POS, "pos", "m", 3, "position")                                 \
+    X(VEL, "vel", "m/s", 3, "velocity")                               \
+    X(PRED, "pred", "m", 3, "predicted position")                     \
+    X(RHO, "rho", "kg/m^dim", 1, "density")                           \
+    X(P, "p", "Pa", 1, "pressure")                                    \
+    X(ACC_P, "acc_p", "m/s^2", 3, "pressure acceleration")            \
+    X(ACC_V, "acc_v", "m/s^2", 3, "viscous acceleration")             \
+    X(ACC_I, "acc_i", "m/s^2", 3, "interaction acceleration")         \
+    X(MASS, "mass", "kg", 1, "mass")
+
+typedef enum sph_field_id {
+#define SPH_FIELD_ENUM(id, name, unit, ncomp, about) SPH_FIELD_##id,
+    SPH_FIELDS(SPH_FIELD_ENUM)
+#undef SPH_FIELD_ENUM
+    SPH_FIELD_COUNT
+} sph_field_id;
+
+typedef struct sph_field {
+    const char *name, *unit, *about;
+    int ncomp;   /* components stored (vectors: the scene's dimension) */
+    float *c[3]; /* component arrays */
+} sph_field;
+
+/* What the watchdog found: the first non-finite or runaway value. */
+typedef struct sph_alarm {
+    bool raised;
+    uint64_t step;     /* the step being computed (steps completed before it) */
+    int pass;          /* the pass that wrote the value */
+    uint32_t particle; /* index in the arrays (id: P.id[particle]) */
+    int field, comp;
+    float value;
+    char what[200];    /* e.g. "not finite", "speed 812 m/s above the bound 300 m/s" */
+} sph_alarm;
+
 typedef struct sph_pass_timing {
     uint64_t calls;
     double total_ms; /* [ms] monotonic clock, summed over calls */
@@ -73,6 +112,8 @@ typedef struct sph_pass_timing {
 typedef struct sph_stats {
     uint32_t n;
     double ekin;      /* [J] (3D) or [J/m] (2D) kinetic energy */
+    double epot;      /* [J] or [J/m] gravitational energy, from the domain's lower corner */
+    double eint;      /* [J] or [J/m] energy stored in compression by the equation of state */
     double momentum[3]; /* [kg m/s] total momentum */
     double rho_min, rho_mean, rho_max; /* [kg/m^dim] 0 if density is not computed */
     double max_speed; /* [m/s] */
@@ -96,6 +137,12 @@ struct sph_sim {
     bool enabled[SPH_PASS_COUNT];     /* switched on (a window toggle); only meaningful if in the pipeline */
     sph_pass_timing timing[SPH_PASS_COUNT];
     int next_pass;        /* next pass of the current step, for stepping pass by pass */
+    /* Watchdog: after every pass, the fields it wrote are checked. */
+    bool watchdog;        /* on by default */
+    float speed_bound;    /* [m/s] a speed above this is a runaway (from c, g, the domain and the blocks) */
+    float density_bound;  /* [kg/m^dim] likewise for density (100 rho0) */
+    unsigned pass_writes[SPH_PASS_COUNT]; /* field bits of each pass's `writes` */
+    sph_alarm alarm;
     /* The interaction effect's point (the mouse), set by the window. */
     bool interaction_active; /* the button is down */
     float interaction_point[3]; /* [m] */
@@ -120,10 +167,27 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim);
 sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err);
 
 void sph_sim_stats(const sph_sim *sim, sph_stats *out);
+
+/* A field of the particles; false if the scene does not allocate it. */
+bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out);
+int sph_field_find(const char *name); /* -1 if none */
+/* The watchdog's report: step, pass, particle, its values and neighbours. */
+void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n);
+
+/* Largest time step the CFL conditions allow now with factor cfl; *which
+ * names the condition that binds ("sound and flow", "forces", "viscosity"). */
+float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which);
+/* With a fixed dt (cfl = 0): a warning if dt breaks a CFL condition with the
+ * reference factor 0.4, naming it and the largest stable dt; NULL if fine. */
+const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n);
 void sph_sim_reset_timings(sph_sim *sim);
 
 /* Time-step choice (integrate.c): fixed, or the CFL conditions. */
 float sph_time_step_choose(const sph_sim *sim);
+
+/* The watchdog (sph_watchdog.c), run by the pipeline after each pass. */
+unsigned sph_watchdog_fields(const char *writes); /* field bits of a pass's `writes` list */
+void sph_watchdog_check(sph_sim *sim, int pass);
 
 /* Monotonic clock [ms]. */
 double sph_now_ms(void);

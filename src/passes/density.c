@@ -24,7 +24,7 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const float w0 = sph_kernel_w(&k, 0.0f);
     float *restrict rho = P->rho;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         float sum = P->mass[i] * w0;
         for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {

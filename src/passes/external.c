@@ -30,13 +30,13 @@ static void run(sph_sim *sim)
         float *restrict v = P->vel[d];
         const float gdt = gravity ? sim->def.gravity[d] * dt : 0.0f;
         if (gdt != 0.0f) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
             for (int i = 0; i < n; i++) v[i] += gdt;
         }
         if (P->pred[d]) {
             const float *restrict x = P->pos[d];
             float *restrict xp = P->pred[d];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
             for (int i = 0; i < n; i++) xp[i] = x[i] + v[i] * dt;
         }
     }

@@ -35,7 +35,7 @@ static void run(sph_sim *sim)
     if (sim->def.search == SPH_SEARCH_GRID) {
         const int32_t *g = S->grid_dims;
         const float *lo = sim->def.domain_min;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) {
             uint32_t cell = 0;
             for (int d = dim - 1; d >= 0; d--)
@@ -44,7 +44,7 @@ static void run(sph_sim *sim)
         }
         return;
     }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         int32_t cz = dim == 3 ? sph_cell_coord(P->pred[2][i], inv_h) : 0;
         uint32_t hash = sph_hash_cell(dim, sph_cell_coord(P->pred[0][i], inv_h),

@@ -32,7 +32,7 @@ static void run(sph_sim *sim)
     const float s = sim->def.interaction_strength * sim->interaction_sign;
     const float *c = sim->interaction_point;
     float *const *x = P->pred[0] ? P->pred : P->pos;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         float dx[3] = {0, 0, 0}, r2 = 0;
         for (int d = 0; d < dim; d++) {

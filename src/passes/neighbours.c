@@ -140,7 +140,7 @@ static void run(sph_sim *sim)
     float *spos = S->spos;
     if (spos) { /* positions in sorted order, padded to 4 floats (z = 0 in 2D) */
         const int dim = sim->dim;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int64_t e = 0; e < (int64_t)n; e++) {
             uint32_t j = S->entries[e].index;
             float *o = spos + 4 * e;
@@ -150,7 +150,7 @@ static void run(sph_sim *sim)
             o[3] = 0.0f;
         }
     }
-#pragma omp parallel num_threads(T)
+#pragma omp parallel num_threads(T) if (n > SPH_PARALLEL_MIN)
     {
         int t = 0, nt = 1;
 #ifdef _OPENMP

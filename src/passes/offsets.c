@@ -18,7 +18,7 @@ static void describe(const sph_scene_def *def, char *out, int n)
 
 void sph_offsets_build(const sph_entry *e, uint32_t n, uint32_t *start, uint32_t table_size)
 {
-#pragma omp parallel
+#pragma omp parallel if ((size_t)n + table_size > SPH_PARALLEL_MIN)
     {
 #pragma omp for schedule(static)
         for (int64_t k = 0; k < (int64_t)table_size; k++) start[k] = SPH_EMPTY;

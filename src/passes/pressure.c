@@ -34,10 +34,10 @@ static void run(sph_sim *sim)
     const float clamp = def->negative_pressure == SPH_NEGP_CLAMP ? 0.0f : -INFINITY;
     if (def->eos == SPH_EOS_TAIT) {
         const float gamma = def->tait_gamma, B = k * rho0 / gamma;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) p[i] = fmaxf(clamp, B * (powf(rho[i] * inv_rho0, gamma) - 1.0f));
     } else {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) p[i] = fmaxf(clamp, k * (rho[i] - rho0));
     }
 }

@@ -5,7 +5,8 @@
  *   shared:    a_i = - (1 / rho_i) sum_j (m_j / rho_j) (p_i + p_j) / 2 grad W_ij
  *              (the seed's form, Mueller 2003; m_i a_i != -m_j a_j when the
  *              densities differ, so momentum drifts)
- * grad W_ij = W'(r) (x_i - x_j) / r; coincident particles (r = 0) exert none. */
+ * grad W_ij = W'(r) (x_i - x_j) / r. Coincident particles get a direction
+ * (see below), else they would never separate. */
 #include "sph_sim.h"
 
 #include <math.h>
@@ -29,7 +30,8 @@ static void run(sph_sim *sim)
     const sph_kernel k = sim->k_pressure;
     const int n = (int)sim->n, dim = sim->dim;
     const int symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
-#pragma omp parallel for schedule(static)
+    const float r_min = SPH_KERNEL_R_MIN * k.h; /* below this, particles count as coincident */
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         const float rho_i = P->rho[i], p_i = P->p[i];
         const float pi_over = p_i / (rho_i * rho_i);
@@ -41,8 +43,17 @@ static void run(sph_sim *sim)
                 dx[d] = P->pred[d][i] - P->pred[d][j];
                 r2 += dx[d] * dx[d];
             }
-            if (r2 <= 0.0f) continue;
-            float r = sqrtf(r2);
+            float r;
+            if (r2 < r_min * r_min) {
+                /* Coincident (or nearly): the gradient has no direction. Push
+                 * the pair apart along x, in opposite senses for i and j so
+                 * the pair force stays equal and opposite (momentum kept). */
+                dx[0] = (uint32_t)i < j ? -r_min : r_min;
+                for (int d = 1; d < dim; d++) dx[d] = 0.0f;
+                r = r_min;
+            } else {
+                r = sqrtf(r2);
+            }
             float dw_over_r = sph_kernel_dw(&k, r) / r;
             float rho_j = P->rho[j];
             float coef = symmetric ? P->mass[j] * (pi_over + P->p[j] / (rho_j * rho_j))

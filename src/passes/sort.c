@@ -42,7 +42,7 @@ void sph_sort_bitonic(sph_entry *e, uint32_t n)
         for (uint32_t w = w0; w >= 1; w >>= 1) {     /* step: compare distance class w */
             const int64_t pairs = P / 2;
             const int flip = w == w0;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (pairs > SPH_PARALLEL_MIN)
             for (int64_t i = 0; i < pairs; i++) {
                 uint32_t h = (uint32_t)i & (w - 1);
                 uint32_t left = h + 2 * w * ((uint32_t)i / w);

@@ -33,7 +33,7 @@ static void run(sph_sim *sim)
     const int laplacian = sim->def.viscosity_form == SPH_VFORM_LAPLACIAN;
     const float nu = sim->def.viscosity;
     const float scale = laplacian ? nu * sim->def.rest_density : nu * 2.0f * (float)dim / k.m2;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         float a[3] = {0, 0, 0};
         for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {

@@ -24,7 +24,7 @@ static void run(sph_sim *sim)
     for (int d = 0; d < sim->dim; d++) {
         float *restrict x = P->pos[d], *restrict v = P->vel[d];
         const float lo = sim->def.domain_min[d], hi = sim->def.domain_max[d];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) {
             if (x[i] < lo) {
                 x[i] = lo;

@@ -1,0 +1,290 @@
+/* sphlab hardcases: scenes that break naive SPH codes, each with a verdict.
+ *
+ * A case passes when the run is stable (no non-finite value, no runaway, no
+ * particle outside the walls, total energy not growing beyond a tolerance) and
+ * its own figures hold; or, for the cases that are meant to break, when the
+ * watchdog stops the run with a report instead of letting NaNs through.
+ * Energy is kinetic + gravitational + the internal energy the equation of
+ * state stores in compression; the pressure force conserves their sum, and
+ * viscosity and wall damping only take energy out. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app.h"
+
+typedef struct hardcase {
+    const char *name;
+    const char *about;
+    const char *ini;
+    int steps;             /* steps to run (--quick divides by 4, but never below 200) */
+    bool expect_stop;      /* meant to break: passes if the watchdog stops it with a report */
+    double max_rho_err;    /* bound on max (rho_max - rho0) / rho0 over the run; < 0: not checked */
+    double max_gain;       /* bound on (E_end - E_start) / energy scale */
+    double max_speed_end;  /* bound on the final max speed [m/s]; < 0: not checked */
+    const char *compare;   /* if set, an override ("search.method=brute"): positions must agree */
+} hardcase;
+
+#define BOX2 "[domain]\nmin = 0 0\nmax = 1 1\nwall_damping = 0.5\n"
+#define BOX3 "[scene]\ndimension = 3\n[domain]\nmin = 0 0 0\nmax = 1 1 1\nwall_damping = 0.5\n"
+#define WATER "[physics]\nstiffness = 400\nviscosity = 0.002\nnegative_pressure = clamp\n[time]\ncfl = 0.4\ndt = 0.002\n"
+
+static const hardcase cases[] = {
+    {"rest-2d", "a fluid at rest stays at rest (2D)",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid pool]\nmin = 0 0\nmax = 1 0.3\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
+     3000, false, 0.03, 0.02, 0.15, NULL},
+    {"rest-3d", "a fluid at rest stays at rest (3D)",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX3
+     "[fluid pool]\nmin = 0 0 0\nmax = 1 0.2 1\nspacing = 0.05\n[kernels]\nh = 0.1\n" WATER,
+     1500, false, 0.03, 0.02, 0.15, NULL},
+    {"coincident-2d", "two blocks on the same lattice: every particle has a twin at distance 0",
+     "[scene]\neffects = pressure viscosity walls\n" BOX2
+     "[fluid a]\nmin = 0.3 0.3\nmax = 0.5 0.5\nspacing = 0.02\n[fluid b]\nmin = 0.3 0.3\nmax = 0.5 0.5\nspacing = "
+     "0.02\n[kernels]\nh = 0.04\n" WATER,
+     1000, false, 1.5, 0.02, -1, NULL},
+    {"coincident-3d", "two blocks on the same lattice (3D)",
+     "[scene]\neffects = pressure viscosity walls\n" BOX3
+     "[fluid a]\nmin = 0.4 0.4 0.4\nmax = 0.6 0.6 0.6\nspacing = 0.04\n[fluid b]\nmin = 0.4 0.4 0.4\nmax = 0.6 0.6 "
+     "0.6\nspacing = 0.04\n[kernels]\nh = 0.08\n" WATER,
+     600, false, 1.5, 0.02, -1, NULL},
+    {"single-particle", "one particle: no neighbours, falls and bounces",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid one]\nmin = 0.5 0.5\nmax = 0.52 0.52\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
+     2000, false, -1, 0.02, -1, NULL},
+    {"isolated-particle", "a block and one particle far away from it",
+     "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 100 1\n"
+     "[fluid block]\nmin = 0 0\nmax = 0.3 0.3\nspacing = 0.02\n[fluid far]\nmin = 99.9 0.9\nmax = 99.92 "
+     "0.92\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
+     1000, false, 0.2, 0.05, -1, NULL},
+    {"one-cell", "400 particles inside one cell of the search grid",
+     "[scene]\neffects = pressure viscosity walls\n" BOX2
+     "[fluid clump]\nmin = 0.5 0.5\nmax = 0.54 0.54\nspacing = 0.002\n[kernels]\nh = 0.05\n" WATER,
+     1500, false, -1, 0.05, -1, NULL},
+    {"table-size-1", "a hash table of one key: every entry collides; must flow as with brute force",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n[search]\ntable_size = 1\n" WATER,
+     300, false, 0.2, 0.05, -1, "search.method=brute"},
+    {"negative-borders", "negative coordinates, particles exactly on cell borders; must flow as with brute force",
+     "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = -3 -3\nmax = -1 -1\n"
+     "[fluid a]\nmin = -2.0625 -3\nmax = -1.5 -2.5\nspacing = 0.125\n[kernels]\nh = 0.25\n" WATER,
+     300, false, 0.3, 0.05, -1, "search.method=brute"},
+    {"negative-borders-3d", "the same in 3D, against brute force",
+     "[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = -3 -3 -3\nmax = -1 -1 -1\n"
+     "[fluid a]\nmin = -2.0625 -3 -2.0625\nmax = -1.5 -2.5 -1.5\nspacing = 0.125\n[kernels]\nh = 0.25\n" WATER,
+     200, false, 0.3, 0.05, -1, "search.method=brute"},
+    {"impact-2d", "a block hits a wall at 50 m/s",
+     "[scene]\neffects = pressure viscosity walls\n" BOX2
+     "[fluid bullet]\nmin = 0.5 0.4\nmax = 0.7 0.6\nspacing = 0.02\nvelocity = 50 0\n[kernels]\nh = 0.04\n" WATER,
+     1500, false, -1, 0.02, -1, NULL},
+    {"impact-3d", "a block hits a wall at 50 m/s (3D)",
+     "[scene]\neffects = pressure viscosity walls\n" BOX3
+     "[fluid bullet]\nmin = 0.5 0.4 0.4\nmax = 0.7 0.6 0.6\nspacing = 0.04\nvelocity = 50 0 0\n[kernels]\nh = 0.08\n" WATER,
+     800, false, -1, 0.02, -1, NULL},
+    {"dt-above-cfl-adaptive", "dt bound 0.05 s, far above the CFL limit, with the adaptive step on",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
+     "[physics]\nstiffness = 400\nviscosity = 0.002\nnegative_pressure = clamp\n[time]\ncfl = 0.4\ndt = 0.05\n",
+     1500, false, 0.2, 0.05, -1, NULL},
+    {"dt-above-cfl-fixed", "a fixed dt 50x the CFL limit: must stop with a report, not run on NaNs",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
+     "[physics]\nstiffness = 400\n[time]\ncfl = 0\ndt = 0.01\n",
+     500, true, -1, 0, -1, NULL},
+    {"very-stiff", "stiffness 1e6 m^2/s^2 (c = 1000 m/s): tiny adaptive steps, still stable",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.2 0.3\nspacing = 0.02\n[kernels]\nh = 0.04\n"
+     "[physics]\nstiffness = 1e6\nviscosity = 0.002\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
+     2000, false, 0.01, 0.02, -1, NULL},
+    {"tait-stiff", "Tait equation, gamma 7",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
+     "[physics]\neos = tait\nstiffness = 400\nviscosity = 0.002\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
+     1500, false, 0.2, 0.05, -1, NULL},
+    {"zero-viscosity", "no viscosity at all (effect listed, nu = 0)",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
+     "[physics]\nstiffness = 400\nviscosity = 0\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
+     1500, false, 0.2, 0.05, -1, NULL},
+    {"high-viscosity", "nu = 1 m^2/s, a million times water's: the viscous CFL condition binds",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
+     "[physics]\nstiffness = 400\nviscosity = 1\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
+     1000, false, 0.2, 0.02, -1, NULL},
+    {"smoothing-viscosity", "the seed's velocity-smoothing viscosity and shared-pressure form",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
+     "[physics]\nstiffness = 400\nviscosity = 0.01\nviscosity_form = smoothing\npressure_form = shared\n"
+     "negative_pressure = clamp\n[time]\ncfl = 0.4\n",
+     1500, false, 0.2, 0.05, -1, NULL},
+    {"dam-break-long", "a 2D dam break over 20,000 steps: bounded energy, no particle lost",
+     "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 2 1\nwall_damping = 0.5\n"
+     "[fluid column]\nmin = 0 0\nmax = 0.5 0.8\nspacing = 0.04\n[kernels]\nh = 0.08\n"
+     "[physics]\nstiffness = 400\nviscosity = 0.005\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
+     20000, false, 0.2, 0.05, -1, NULL},
+    {"dam-break-3d", "a 3D dam break",
+     "[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0 0\nmax = 1.2 1 0.4\n"
+     "[fluid column]\nmin = 0 0 0\nmax = 0.4 0.6 0.4\nspacing = 0.05\n[kernels]\nh = 0.1\n" WATER,
+     1500, false, 0.2, 0.05, -1, NULL},
+};
+#define N_CASES (int)(sizeof cases / sizeof cases[0])
+
+typedef struct outcome {
+    uint64_t steps;
+    bool stopped;         /* the watchdog stopped it */
+    double rho_err;       /* max over the run of (rho_max - rho0) / rho0 */
+    double gain;          /* (E_end - E_start) / scale */
+    uint32_t lost;        /* particles outside the walls (or not finite) at the end */
+    double speed_end;     /* [m/s] */
+    double compare_diff;  /* [m] largest position difference against the comparison run */
+    char report[1024];
+} outcome;
+
+static double total_energy(const sph_stats *s)
+{
+    return s->ekin + s->epot + s->eint;
+}
+
+static bool make_sim(const hardcase *c, const char *override, sph_sim **sim, char *why, size_t n)
+{
+    sph_scene_def def = sph_default_scene_def();
+    sph_error err;
+    if (sph_scene_load_string(c->ini, c->name, &def, &err) || (override && sph_scene_set(&def, override, &err)) ||
+        sph_sim_create(&def, 0, sim, &err)) {
+        snprintf(why, n, "%s", err.msg);
+        return false;
+    }
+    return true;
+}
+
+static bool run_case(const hardcase *c, int steps, outcome *o)
+{
+    memset(o, 0, sizeof *o);
+    sph_sim *sim;
+    if (!make_sim(c, NULL, &sim, o->report, sizeof o->report)) return false;
+    sph_stats s;
+    sph_sim_step(sim); /* energy from after the first step, when density (and so eint) exists */
+    sph_sim_stats(sim, &s);
+    double e0 = total_energy(&s), scale = fabs(e0);
+    double rho0 = sim->def.rest_density;
+    for (int k = 1; k < steps && !sim->alarm.raised; k++) {
+        sph_sim_step(sim);
+        if (k % 10 == 0 || k == steps - 1) {
+            sph_sim_stats(sim, &s);
+            scale = fmax(scale, s.ekin);
+            if (sim->P.rho) o->rho_err = fmax(o->rho_err, (s.rho_max - rho0) / rho0);
+        }
+    }
+    o->steps = sim->step;
+    o->stopped = sim->alarm.raised;
+    if (o->stopped) sph_sim_alarm_report(sim, o->report, sizeof o->report);
+    sph_sim_stats(sim, &s);
+    o->gain = (total_energy(&s) - e0) / (scale > 0 ? scale : 1.0);
+    o->speed_end = s.max_speed;
+    if (sim->def.effects & SPH_EFFECT(WALLS))
+        for (uint32_t i = 0; i < sim->n; i++)
+            for (int d = 0; d < sim->dim; d++) {
+                float x = sim->P.pos[d][i];
+                if (!(x >= sim->def.domain_min[d] && x <= sim->def.domain_max[d])) {
+                    o->lost++;
+                    break;
+                }
+            }
+    if (c->compare && !o->stopped) {
+        sph_sim *ref;
+        if (!make_sim(c, c->compare, &ref, o->report, sizeof o->report)) {
+            sph_sim_destroy(sim);
+            return false;
+        }
+        while (ref->step < sim->step && !ref->alarm.raised) sph_sim_step(ref);
+        for (int d = 0; d < sim->dim; d++)
+            for (uint32_t i = 0; i < sim->n; i++)
+                o->compare_diff = fmax(o->compare_diff, fabs((double)sim->P.pos[d][i] - ref->P.pos[d][i]));
+        sph_sim_destroy(ref);
+    }
+    sph_sim_destroy(sim);
+    return true;
+}
+
+/* The verdict, and why a case failed. */
+static bool judge(const hardcase *c, const outcome *o, int steps, char *why, size_t n)
+{
+    why[0] = '\0';
+    if (c->expect_stop) {
+        if (!o->stopped) snprintf(why, n, "expected the watchdog to stop this run; it ran %llu steps",
+                                  (unsigned long long)o->steps);
+        return o->stopped;
+    }
+    if (o->stopped) snprintf(why, n, "stopped by the watchdog (see its report)");
+    else if (o->steps < (uint64_t)steps) snprintf(why, n, "ran %llu of %d steps", (unsigned long long)o->steps, steps);
+    else if (o->lost) snprintf(why, n, "%u particles outside the walls", o->lost);
+    else if (o->gain > c->max_gain) snprintf(why, n, "energy grew by %.3g of its scale (bound %.3g)", o->gain, c->max_gain);
+    else if (c->max_rho_err >= 0 && o->rho_err > c->max_rho_err)
+        snprintf(why, n, "density error %.3g above %.3g", o->rho_err, c->max_rho_err);
+    else if (c->max_speed_end >= 0 && o->speed_end > c->max_speed_end)
+        snprintf(why, n, "final max speed %.3g m/s above %.3g m/s: not at rest", o->speed_end, c->max_speed_end);
+    else if (c->compare && o->compare_diff > 1e-3)
+        snprintf(why, n, "differs from the %s run by %.3g m", c->compare, o->compare_diff);
+    return why[0] == '\0';
+}
+
+static void usage(FILE *f)
+{
+    fputs("usage: sphlab hardcases [--quick] [--only NAME] [--list] [--verbose]\n"
+          "Runs scenes that break naive SPH codes and prints a verdict for each: max density error\n"
+          "(rho_max - rho0)/rho0, energy change relative to its scale, particles lost, whether the\n"
+          "watchdog stopped it, steps run. Exit status 1 if any case fails.\n"
+          "  --quick     a quarter of the steps (at least 200), for CI\n"
+          "  --only NAME run one case\n"
+          "  --list      list the cases\n"
+          "  --verbose   print the watchdog's report of cases it stopped\n",
+          f);
+}
+
+int cmd_hardcases(int argc, char **argv)
+{
+    bool quick = false, verbose = false;
+    const char *only = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--quick") == 0) quick = true;
+        else if (strcmp(argv[i], "--verbose") == 0) verbose = true;
+        else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
+        else if (strcmp(argv[i], "--list") == 0) {
+            for (int k = 0; k < N_CASES; k++) printf("%-22s %s\n", cases[k].name, cases[k].about);
+            return 0;
+        } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else {
+            fprintf(stderr, "sphlab hardcases: unknown option '%s'\n", argv[i]);
+            usage(stderr);
+            return 2;
+        }
+    }
+    int passed = 0, failed = 0;
+    printf("%-22s %7s %9s %9s %5s %8s  %s\n", "case", "steps", "rho err", "energy", "lost", "watchdog", "verdict");
+    for (int k = 0; k < N_CASES; k++) {
+        const hardcase *c = &cases[k];
+        if (only && strcmp(only, c->name) != 0) continue;
+        int steps = quick ? (c->steps / 4 > 200 ? c->steps / 4 : (c->steps < 200 ? c->steps : 200)) : c->steps;
+        outcome o;
+        char why[256];
+        double t0 = sph_now_ms();
+        bool ran = run_case(c, steps, &o);
+        bool ok = ran && judge(c, &o, steps, why, sizeof why);
+        if (!ran) snprintf(why, sizeof why, "%.200s", o.report);
+        printf("%-22s %7llu %8.2f%% %8.2f%% %5u %8s  %s%s%s (%.1f s)\n", c->name, (unsigned long long)o.steps,
+               100 * o.rho_err, 100 * o.gain, o.lost, o.stopped ? "stopped" : "-", ok ? "pass" : "FAIL",
+               why[0] ? ": " : "", why, (sph_now_ms() - t0) / 1e3);
+        if (c->compare && ran && !o.stopped)
+            printf("%-22s %7s same flow as %s within %.2g m\n", "", "", c->compare, o.compare_diff);
+        if (o.stopped && (verbose || !ok)) printf("%s", o.report);
+        ok ? passed++ : failed++;
+    }
+    if (only && passed + failed == 0) {
+        fprintf(stderr, "sphlab hardcases: no case named '%s' (see --list)\n", only);
+        return 2;
+    }
+    printf("hardcases: %d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}

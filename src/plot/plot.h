@@ -1,0 +1,114 @@
+/* sphlab plot: charts for a report, drawn with PLplot (cairo driver) as PNG
+ * and PDF, each beside the CSV that holds the data it shows.
+ *
+ * Three layers:
+ *   plot_csv.c   reads a CSV with a header line into columns of doubles;
+ *   plot_out.c   stages output files (written to DIR/.NAME.PID.tmp.EXT and
+ *                renamed only when every file of the command is complete);
+ *   plot_draw.c  the chart types (stacked line panels, horizontal bars,
+ *                stacked areas) and their black-and-white-safe styles;
+ *   cmd_plot.c   the subcommands: passes, series, kernel, kernels. */
+#ifndef SPH_PLOT_H
+#define SPH_PLOT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+/* ---- CSV tables ---------------------------------------------------------- */
+
+typedef struct plot_table {
+    char path[1024];
+    int ncols;
+    char **names;   /* ncols column names, from the header */
+    double **col;   /* ncols arrays of nrows values */
+    size_t nrows;
+} plot_table;
+
+/* Reads a comma-separated file whose first line names the columns and whose
+ * other lines are numbers. Prints a message naming the file (and line and
+ * column for a bad value) and returns false on failure. */
+bool plot_table_read(plot_table *t, const char *path);
+void plot_table_free(plot_table *t);
+/* Index of the named column, or -1. */
+int plot_table_find(const plot_table *t, const char *name);
+/* Like plot_table_find, but prints "FILE: no column 'NAME' (what)" when missing. */
+int plot_table_need(const plot_table *t, const char *name, const char *what);
+
+/* ---- output files ---------------------------------------------------------- */
+
+/* Makes DIR (and its parents) if it does not exist; message and false if it
+ * cannot be made or is not a directory. */
+bool plot_out_dir(const char *dir);
+/* Stages DIR/FILE: creates its temporary (so an unwritable DIR fails here,
+ * before anything is drawn) and returns the temporary's path, or NULL with a
+ * message. The path stays valid until plot_out_commit/abort. */
+const char *plot_out_stage(const char *dir, const char *file);
+/* Opens a staged CSV for writing; NULL with a message on failure. */
+FILE *plot_out_stage_csv(const char *dir, const char *file);
+/* Closes a CSV opened by plot_out_stage_csv; false (and message) on a write error. */
+bool plot_out_close_csv(FILE *f, const char *dir, const char *file);
+/* Renames every staged temporary to its final name, printing "wrote PATH"
+ * unless quiet. Returns false (and removes what is left) on failure. */
+bool plot_out_commit(bool quiet);
+/* Removes every staged temporary. Also run if PLplot exits on an error. */
+void plot_out_abort(void);
+
+/* ---- charts ---------------------------------------------------------------- */
+
+enum { PLOT_MAX_SERIES = 8, PLOT_MAX_PANELS = 4, PLOT_MAX_BARS = 32, PLOT_MAX_LAYERS = 32 };
+
+typedef struct plot_series {
+    char label[64];     /* legend text (PLplot escapes allowed) */
+    const double *x, *y;
+    size_t n;
+    int style;          /* index into the style table: colour, line style, marker */
+} plot_series;
+
+typedef struct plot_panel {
+    char ylabel[128];   /* quantity [unit] */
+    plot_series s[PLOT_MAX_SERIES];
+    int n;
+    bool zero_line;     /* draw y = 0 */
+    bool clip_singular; /* keep values near x = xlo that blow up off the scale */
+} plot_panel;
+
+/* Line chart: panels stacked top to bottom over one x axis. */
+typedef struct plot_lines {
+    char title[160], subtitle[200], xlabel[64];
+    double xlo, xhi;    /* xlo == xhi: from the data */
+    plot_panel p[PLOT_MAX_PANELS];
+    int np;
+} plot_lines;
+
+/* Horizontal bars, one per category, top to bottom, value written at the end. */
+typedef struct plot_bars {
+    char title[160], subtitle[200], xlabel[64];
+    char name[PLOT_MAX_BARS][40];
+    char note[PLOT_MAX_BARS][48];
+    double value[PLOT_MAX_BARS];
+    int n;
+} plot_bars;
+
+/* Stacked areas over x, first layer at the bottom. */
+typedef struct plot_stack {
+    char title[160], subtitle[200], xlabel[64], ylabel[64];
+    const double *x;
+    size_t n;
+    char name[PLOT_MAX_LAYERS][40];
+    const double *y[PLOT_MAX_LAYERS];
+    int nl;
+} plot_stack;
+
+typedef enum plot_kind { PLOT_LINES, PLOT_BARS, PLOT_STACK } plot_kind;
+
+/* Draws a chart into DIR/BASE.png (width x height pixels) and DIR/BASE.pdf
+ * (width/2 x height/2 points: the same layout, 144 dpi), both staged.
+ * Deterministic: the PDF's creation date is SOURCE_DATE_EPOCH, or 1970-01-01
+ * when that is not set. Returns false with a message on failure. */
+bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *base, int width, int height);
+
+/* Escapes PLplot's text escape character '#' in s (for file names in titles). */
+void plot_escape(char *dst, size_t cap, const char *s);
+
+#endif
