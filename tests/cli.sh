@@ -23,5 +23,9 @@ for scene in lessons/scenes/*.ini; do
     fi
 done
 
+# The hard cases: every verdict must be "pass" (they run headless, a few seconds).
+if "$BIN" hardcases --quick > "$tmp/hard.txt" 2>&1; then ok; else bad "hardcases"; cat "$tmp/hard.txt"; fi
+grep -q '^hardcases: [0-9]* passed, 0 failed$' "$tmp/hard.txt" && ok || bad "hardcases summary line"
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

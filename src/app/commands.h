@@ -7,6 +7,7 @@
 #define SPH_COMMANDS(X)                                                          \
     X(run, "SCENE.ini", "simulate a scene; print per-pass timings and a summary") \
     X(check, "SCENE.ini", "validate a scene and print the pipeline it resolves to") \
+    X(plot, "WHAT ...", "charts for a report: ms per pass, --stats series, kernels (PNG + PDF)") \
     X(keys, "", "list every scene key with its default, unit and meaning") \
     X(hardcases, "", "run the hard cases (odd parameters) and print a verdict for each")
 

@@ -48,6 +48,44 @@ static float kernel_second_moment(const sph_kernel *k)
     return (float)(sum * dr / 3.0);
 }
 
+/* The wall tables. The plane integral at distance x from the centre is
+ *   3D: A(x) = 2 pi int_x^h W(r) r dr  (rings of radius sqrt(r^2 - x^2))
+ *   2D: A(x) = 2 int_0^sqrt(h^2-x^2) W(sqrt(x^2 + y^2)) dy
+ * and psi(d) = int_d^h A(x) dx, both integrated on a fine grid in double. */
+static void kernel_wall_tables(sph_kernel *k)
+{
+    enum { FINE = 16 * SPH_WALL_TABLE, STEPS = 512 };
+    const double pi = 3.14159265358979323846, h = k->h, dx = h / FINE;
+    double A[FINE + 1];
+    for (int i = 0; i <= FINE; i++) {
+        double x = i * dx, sum = 0;
+        if (k->dim == 3) {
+            double dr = (h - x) / STEPS;
+            for (int s = 0; s < STEPS; s++) {
+                double r = x + (s + 0.5) * dr;
+                sum += sph_kernel_w(k, (float)r) * r * dr;
+            }
+            sum *= 2 * pi;
+        } else {
+            double ymax = sqrt(fmax(h * h - x * x, 0)), dy = ymax / STEPS;
+            for (int s = 0; s < STEPS; s++) {
+                double y = (s + 0.5) * dy;
+                sum += sph_kernel_w(k, (float)sqrt(x * x + y * y)) * dy;
+            }
+            sum *= 2;
+        }
+        A[i] = sum;
+    }
+    double psi = 0; /* integrate from h down to 0 */
+    for (int i = FINE; i >= 0; i--) {
+        if (i < FINE) psi += 0.5 * (A[i] + A[i + 1]) * dx;
+        if (i % 16 == 0) {
+            k->wall_psi[i / 16] = (float)psi;
+            k->wall_area[i / 16] = (float)A[i];
+        }
+    }
+}
+
 sph_kernel sph_kernel_make(sph_kernel_kind kind, int dim, float h)
 {
     sph_kernel k;
@@ -59,6 +97,7 @@ sph_kernel sph_kernel_make(sph_kernel_kind kind, int dim, float h)
     k.inv_h = 1.0f / h;
     k.sigma = (float)kernel_sigma(kind, k.dim, h);
     k.m2 = kernel_second_moment(&k);
+    kernel_wall_tables(&k);
     return k;
 }
 

@@ -34,6 +34,8 @@ typedef enum sph_kernel_kind {
 extern const char *const sph_kernel_names[SPH_KERNEL_COUNT];
 extern const char *const sph_kernel_about[SPH_KERNEL_COUNT];
 
+#define SPH_WALL_TABLE 128
+
 /* A kernel bound to a dimension and a support radius, with its constants
  * precomputed so the per-pair functions do no divisions by h. */
 typedef struct sph_kernel {
@@ -44,6 +46,12 @@ typedef struct sph_kernel {
     float inv_h;   /* [1/m] */
     float sigma;   /* [1/m^dim] normalisation of the shape */
     float m2;      /* [m^2] second moment: integral of r^2 W dV */
+    /* A plane wall at distance d from a particle hides part of its support.
+     * wall_psi(d) = integral of W over the half-space beyond the wall [1];
+     * wall_area(d) = integral of W over the wall's plane [1/m] = -d psi / dd.
+     * Tabulated at d = i h / SPH_WALL_TABLE; 0.5 and its slope at d = 0. */
+    float wall_psi[SPH_WALL_TABLE + 1];
+    float wall_area[SPH_WALL_TABLE + 1];
 } sph_kernel;
 
 sph_kernel sph_kernel_make(sph_kernel_kind kind, int dim, float h);
@@ -64,6 +72,22 @@ static inline float sph_kernel_lap(const sph_kernel *k, float r);
 int sph_kernel_find(const char *name);
 
 #define SPH_KERNEL_R_MIN 1e-3f /* [h] where singular kernels are evaluated instead of 0 */
+
+/* psi(d) and, in *area, the plane integral at distance d from a wall (linear
+ * interpolation in the tables); both 0 for d >= h, and d < 0 counts as 0. */
+static inline float sph_kernel_wall(const sph_kernel *k, float d, float *area)
+{
+    float t = d * k->inv_h * (float)SPH_WALL_TABLE;
+    if (!(t < (float)SPH_WALL_TABLE)) {
+        *area = 0.0f;
+        return 0.0f;
+    }
+    if (t < 0.0f) t = 0.0f;
+    int i = (int)t;
+    float f = t - (float)i;
+    *area = k->wall_area[i] + f * (k->wall_area[i + 1] - k->wall_area[i]);
+    return k->wall_psi[i] + f * (k->wall_psi[i + 1] - k->wall_psi[i]);
+}
 
 static inline float sph_kernel_w(const sph_kernel *k, float r)
 {

@@ -49,7 +49,7 @@ int sph_overlay_find(const char *name);
 /* ---- colour fields ------------------------------------------------------- */
 
 /* Fields particles can be coloured by: (id, name, unit in 2D, unit in 3D, about). */
-#define SPH_FIELDS(X)                                                                  \
+#define SPH_COLOR_FIELDS(X)                                                                  \
     X(DENSITY, "density", "kg/m^2", "kg/m^3", "rho, from the density pass")            \
     X(PRESSURE, "pressure", "N/m", "Pa", "p, from the equation of state")              \
     X(SPEED, "speed", "m/s", "m/s", "|v|")                                             \
@@ -58,26 +58,26 @@ int sph_overlay_find(const char *name);
     X(ACC_P, "pressure-acc", "m/s^2", "m/s^2", "|a| of the pressure force")            \
     X(ACC_V, "viscosity-acc", "m/s^2", "m/s^2", "|a| of the viscous force")
 
-typedef enum sph_field {
-#define SPH_FIELD_ENUM(id, name, u2, u3, about) SPH_FIELD_##id,
-    SPH_FIELDS(SPH_FIELD_ENUM)
-#undef SPH_FIELD_ENUM
-    SPH_FIELD_COUNT
-} sph_field;
+typedef enum sph_color_field {
+#define SPH_COLOR_ENUM(id, name, u2, u3, about) SPH_COLOR_##id,
+    SPH_COLOR_FIELDS(SPH_COLOR_ENUM)
+#undef SPH_COLOR_ENUM
+    SPH_COLOR_COUNT
+} sph_color_field;
 
-extern const char *const sph_field_names[SPH_FIELD_COUNT];
-int sph_field_find(const char *name);
-const char *sph_field_unit(sph_field f, int dim);
+extern const char *const sph_color_field_names[SPH_COLOR_COUNT];
+int sph_color_field_find(const char *name);
+const char *sph_color_field_unit(sph_color_field f, int dim);
 /* NULL if the simulation has the field, else why not (a sentence). */
-const char *sph_field_missing(const sph_sim *sim, sph_field f);
+const char *sph_color_field_missing(const sph_sim *sim, sph_color_field f);
 /* The field the simulation shows first: density if computed, else speed. */
-sph_field sph_field_default(const sph_sim *sim);
+sph_color_field sph_color_field_default(const sph_sim *sim);
 /* The field a pass writes, for highlighting after one pass; -1 if none. */
-int sph_field_of_pass(const sph_sim *sim, sph_pass_id p);
+int sph_color_field_of_pass(const sph_sim *sim, sph_pass_id p);
 /* Fills out[n] with the field (0 where the sim has no such data) and its
  * range over finite values; returns false if the field is missing. */
-bool sph_field_values(const sph_sim *sim, sph_field f, float *out, float *lo, float *hi);
-bool sph_field_categorical(sph_field f);
+bool sph_color_field_values(const sph_sim *sim, sph_color_field f, float *out, float *lo, float *hi);
+bool sph_color_field_categorical(sph_color_field f);
 
 /* Colours are packed so that their bytes in memory are R, G, B, A. */
 #define SPH_RGBA(r, g, b, a) \
@@ -89,7 +89,7 @@ uint32_t sph_colormap_viridis(float t);
 /* Tableau's ten categorical colours; equal keys give equal colours. */
 uint32_t sph_colormap_category(uint32_t key);
 /* The colour of a value of field f with the given range. */
-uint32_t sph_field_color(sph_field f, float v, float lo, float hi);
+uint32_t sph_color_of(sph_color_field f, float v, float lo, float hi);
 
 /* ---- primitives ---------------------------------------------------------- */
 

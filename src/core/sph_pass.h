@@ -59,5 +59,8 @@ extern const sph_pass *const sph_passes[SPH_PASS_COUNT];
 /* Scene tests the passes share in their skip_reason. */
 bool sph_scene_needs_neighbours(const sph_scene_def *def);
 bool sph_scene_needs_density(const sph_scene_def *def);
+/* Walls listed, with wall_model = volume: they count in density and pressure. */
+bool sph_scene_wall_volume(const sph_scene_def *def);
+#define sph_sim_wall_volume(sim) sph_scene_wall_volume(&(sim)->def)
 
 #endif

@@ -20,6 +20,7 @@ const char *const sph_viscosity_form_names[SPH_VFORM_COUNT] = {SPH_VFORM_CHOICES
 const char *const sph_search_names[SPH_SEARCH_COUNT] = {SPH_SEARCH_CHOICES(NAMES)};
 const char *const sph_sort_names[SPH_SORT_COUNT] = {SPH_SORT_CHOICES(NAMES)};
 const char *const sph_negative_pressure_names[SPH_NEGP_COUNT] = {SPH_NEGP_CHOICES(NAMES)};
+const char *const sph_wall_model_names[SPH_WALL_COUNT] = {SPH_WALL_CHOICES(NAMES)};
 #undef NAMES
 #define EFFECT_NAME(id, name, about) name,
 const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
@@ -53,6 +54,10 @@ const sph_key sph_scene_keys[] = {
     {"domain", "max", SPH_KEY_VEC, S(domain_max), -BIG, BIG, 0, 0, NULL, 0, "m", "1 1 1", "upper corner of the box"},
     {"domain", "wall_damping", SPH_KEY_FLOAT, S(wall_damping), 0, 1, 0, 0, NULL, 0, "", "0.5",
      "share of the normal speed a particle keeps when it bounces off a wall"},
+    {"domain", "wall_model", SPH_KEY_CHOICE, S(wall_model), 0, 0, 0, 0, CH(sph_wall_model_names), "", "volume",
+     "volume: the space behind each wall counts as fluid at rest in the density sum and pushes back with the "
+     "particle's pressure, so particles near a wall miss none of their support; reflect: only the seed's damped "
+     "reflection (particles near walls lack neighbours and sink into them)"},
 
     {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 0, BIG, 1, 0, NULL, 0, "kg/m^dim", "1000",
      "rho0: density at which the pressure is zero"},

@@ -41,6 +41,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_SEARCH_CHOICES(X) X(HASH, "hash") X(GRID, "grid") X(BRUTE, "brute")
 #define SPH_SORT_CHOICES(X) X(BITONIC, "bitonic") X(COUNTING, "counting") X(QSORT, "qsort")
 #define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")
+#define SPH_WALL_CHOICES(X) X(VOLUME, "volume") X(REFLECT, "reflect")
 
 #define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
     typedef enum type { LIST(SPH_CHOICE_ITEM_##PREFIX) PREFIX##_COUNT } type;
@@ -50,12 +51,14 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_SEARCH(id, name) SPH_SEARCH_##id,
 #define SPH_CHOICE_ITEM_SPH_SORT(id, name) SPH_SORT_##id,
 #define SPH_CHOICE_ITEM_SPH_NEGP(id, name) SPH_NEGP_##id,
+#define SPH_CHOICE_ITEM_SPH_WALL(id, name) SPH_WALL_##id,
 SPH_DECLARE_CHOICES(sph_eos, SPH_EOS, SPH_EOS_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_form, SPH_PFORM, SPH_PFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_viscosity_form, SPH_VFORM, SPH_VFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_search, SPH_SEARCH, SPH_SEARCH_CHOICES)
 SPH_DECLARE_CHOICES(sph_sort, SPH_SORT, SPH_SORT_CHOICES)
 SPH_DECLARE_CHOICES(sph_negative_pressure, SPH_NEGP, SPH_NEGP_CHOICES)
+SPH_DECLARE_CHOICES(sph_wall_model, SPH_WALL, SPH_WALL_CHOICES)
 
 extern const char *const sph_eos_names[SPH_EOS_COUNT];
 extern const char *const sph_pressure_form_names[SPH_PFORM_COUNT];
@@ -63,6 +66,7 @@ extern const char *const sph_viscosity_form_names[SPH_VFORM_COUNT];
 extern const char *const sph_search_names[SPH_SEARCH_COUNT];
 extern const char *const sph_sort_names[SPH_SORT_COUNT];
 extern const char *const sph_negative_pressure_names[SPH_NEGP_COUNT];
+extern const char *const sph_wall_model_names[SPH_WALL_COUNT];
 
 /* Where a value came from, for messages: the file's line, or 0 for the default. */
 typedef struct sph_origin {
@@ -88,6 +92,7 @@ typedef struct sph_scene_def {
     unsigned effects;  /* SPH_EFFECT(...) bits */
     float domain_min[3], domain_max[3]; /* [m] the box walls bound */
     float wall_damping;                 /* [1] share of the normal speed kept at a wall bounce */
+    sph_wall_model wall_model;          /* volume: walls also count in density and pressure */
     int n_blocks;
     sph_block_def blocks[SPH_MAX_BLOCKS];
 

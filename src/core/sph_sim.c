@@ -20,6 +20,11 @@ bool sph_scene_needs_density(const sph_scene_def *def)
     return (def->effects & (SPH_EFFECT(DENSITY) | SPH_EFFECT(PRESSURE) | SPH_EFFECT(VISCOSITY))) != 0;
 }
 
+bool sph_scene_wall_volume(const sph_scene_def *def)
+{
+    return (def->effects & SPH_EFFECT(WALLS)) && def->wall_model == SPH_WALL_VOLUME;
+}
+
 bool sph_scene_needs_neighbours(const sph_scene_def *def)
 {
     return sph_scene_needs_density(def);

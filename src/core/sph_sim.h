@@ -189,6 +189,13 @@ float sph_time_step_choose(const sph_sim *sim);
 unsigned sph_watchdog_fields(const char *writes); /* field bits of a pass's `writes` list */
 void sph_watchdog_check(sph_sim *sim, int pass);
 
+/* Walls of the volume model (density.c): the share of particle i's support
+ * hidden behind the domain walls, 1 - prod_w (1 - psi(d_w)), which is exact at
+ * one wall and at a corner's tip and counts corners once, not twice. If grad
+ * is not NULL it receives the gradient of that share [1/m] with respect to
+ * the particle's position. */
+float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad[3]);
+
 /* Monotonic clock [ms]. */
 double sph_now_ms(void);
 

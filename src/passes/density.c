@@ -1,6 +1,8 @@
 /* Pass: density by summation, rho_i = sum_j m_j W(|x_i - x_j|, h), the
  * particle itself included (its W(0) term is most of the sum at low
- * neighbour counts). */
+ * neighbour counts). With walls of the volume model, rho0 times the share of
+ * the kernel hidden behind the walls is added (sph_wall_hidden): a particle at
+ * a wall is not missing half its neighbours. */
 #include "sph_sim.h"
 
 #include <math.h>
@@ -13,7 +15,38 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "summation with the %s kernel", sph_kernel_names[def->kernel_density]);
+    snprintf(out, (size_t)n, "summation with the %s kernel%s", sph_kernel_names[def->kernel_density],
+             sph_scene_wall_volume(def) ? ", walls count as fluid at rest" : "");
+}
+
+float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad[3])
+{
+    const int dim = sim->dim;
+    float vis[6], dvis[6]; /* per wall: visible share 1 - psi, and its derivative along the axis */
+    float all = 1.0f;
+    for (int d = 0; d < dim; d++) {
+        float x = sim->P.pred[d][i], area;
+        float lo = sph_kernel_wall(k, x - sim->def.domain_min[d], &area);
+        vis[2 * d] = 1.0f - lo;
+        dvis[2 * d] = area; /* moving away from the low wall uncovers support */
+        float hi = sph_kernel_wall(k, sim->def.domain_max[d] - x, &area);
+        vis[2 * d + 1] = 1.0f - hi;
+        dvis[2 * d + 1] = -area;
+        all *= vis[2 * d] * vis[2 * d + 1];
+    }
+    if (grad) {
+        for (int d = 0; d < dim; d++) {
+            float g = 0;
+            for (int w = 2 * d; w <= 2 * d + 1; w++) {
+                float others = 1.0f; /* product of the other walls' visible shares */
+                for (int o = 0; o < 2 * dim; o++)
+                    if (o != w) others *= vis[o];
+                g += dvis[w] * others;
+            }
+            grad[d] = -g; /* hidden = 1 - visible */
+        }
+    }
+    return 1.0f - all;
 }
 
 static void run(sph_sim *sim)
@@ -24,6 +57,8 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const float w0 = sph_kernel_w(&k, 0.0f);
     float *restrict rho = P->rho;
+    const bool walls = sph_sim_wall_volume(sim);
+    const float rho0 = sim->def.rest_density;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         float sum = P->mass[i] * w0;
@@ -36,6 +71,7 @@ static void run(sph_sim *sim)
             }
             sum += P->mass[j] * sph_kernel_w(&k, sqrtf(r2));
         }
+        if (walls) sum += rho0 * sph_wall_hidden(sim, &k, i, NULL);
         rho[i] = sum;
     }
 }

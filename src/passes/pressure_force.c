@@ -19,8 +19,8 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "%s form, gradient of the %s kernel", sph_pressure_form_names[def->pressure_form],
-             sph_kernel_names[def->kernel_pressure]);
+    snprintf(out, (size_t)n, "%s form, gradient of the %s kernel%s", sph_pressure_form_names[def->pressure_form],
+             sph_kernel_names[def->kernel_pressure], sph_scene_wall_volume(def) ? ", walls push back" : "");
 }
 
 static void run(sph_sim *sim)
@@ -31,6 +31,8 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const int symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
     const float r_min = SPH_KERNEL_R_MIN * k.h; /* below this, particles count as coincident */
+    const bool walls = sph_sim_wall_volume(sim);
+    const float rho0 = sim->def.rest_density;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         const float rho_i = P->rho[i], p_i = P->p[i];
@@ -59,6 +61,14 @@ static void run(sph_sim *sim)
             float coef = symmetric ? P->mass[j] * (pi_over + P->p[j] / (rho_j * rho_j))
                                    : P->mass[j] / rho_j * 0.5f * (p_i + P->p[j]) / rho_i;
             for (int d = 0; d < dim; d++) a[d] -= coef * dw_over_r * dx[d];
+        }
+        if (walls) {
+            /* The force that makes the walls' density term conservative:
+             * a = -(p_i / rho_i^2) grad(rho0 * hidden share), with the
+             * density kernel, so walls neither add nor remove energy. */
+            float grad[3];
+            sph_wall_hidden(sim, &sim->k_density, i, grad);
+            for (int d = 0; d < dim; d++) a[d] -= rho0 * pi_over * grad[d];
         }
         for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
     }

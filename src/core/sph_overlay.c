@@ -1,0 +1,760 @@
+/* Overlay content as primitives, without GL (see sph_overlay.h). */
+#include "sph_overlay.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sph_search.h"
+
+const char *const sph_overlay_names[SPH_OV_COUNT] = {
+#define SPH_OVERLAY_NAME(id, name, about) name,
+    SPH_OVERLAYS(SPH_OVERLAY_NAME)
+#undef SPH_OVERLAY_NAME
+};
+const char *const sph_overlay_about[SPH_OV_COUNT] = {
+#define SPH_OVERLAY_ABOUT(id, name, about) about,
+    SPH_OVERLAYS(SPH_OVERLAY_ABOUT)
+#undef SPH_OVERLAY_ABOUT
+};
+
+int sph_overlay_find(const char *name)
+{
+    for (int i = 0; i < SPH_OV_COUNT; i++)
+        if (strcmp(name, sph_overlay_names[i]) == 0) return i;
+    return -1;
+}
+
+/* ---- colour fields ------------------------------------------------------- */
+
+const char *const sph_color_field_names[SPH_COLOR_COUNT] = {
+#define SPH_COLOR_NAME(id, name, u2, u3, about) name,
+    SPH_COLOR_FIELDS(SPH_COLOR_NAME)
+#undef SPH_COLOR_NAME
+};
+static const char *const color_units[SPH_COLOR_COUNT][2] = {
+#define SPH_COLOR_UNITS(id, name, u2, u3, about) {u2, u3},
+    SPH_COLOR_FIELDS(SPH_COLOR_UNITS)
+#undef SPH_COLOR_UNITS
+};
+
+int sph_color_field_find(const char *name)
+{
+    for (int i = 0; i < SPH_COLOR_COUNT; i++)
+        if (strcmp(name, sph_color_field_names[i]) == 0) return i;
+    return -1;
+}
+
+const char *sph_color_field_unit(sph_color_field f, int dim)
+{
+    return color_units[f][dim == 3];
+}
+
+bool sph_color_field_categorical(sph_color_field f)
+{
+    return f == SPH_COLOR_KEY;
+}
+
+/* The hash pass has filled the index at least once since the simulation was
+ * made (before that, entries are zeros). */
+static bool index_built(const sph_sim *sim)
+{
+    return sim->in_pipeline[SPH_PASS_HASH] && sim->S.entries && sim->timing[SPH_PASS_HASH].calls > 0;
+}
+
+static bool lists_built(const sph_sim *sim)
+{
+    return sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start && sim->timing[SPH_PASS_NEIGHBOURS].calls > 0;
+}
+
+const char *sph_color_field_missing(const sph_sim *sim, sph_color_field f)
+{
+    switch (f) {
+    case SPH_COLOR_DENSITY: return sim->P.rho ? NULL : "no effect of the scene needs density";
+    case SPH_COLOR_PRESSURE: return sim->P.p ? NULL : "the scene has no pressure effect";
+    case SPH_COLOR_SPEED: return NULL;
+    case SPH_COLOR_KEY: return sim->in_pipeline[SPH_PASS_HASH] ? NULL : "the scene has no spatial hash (no neighbours, or search = brute)";
+    case SPH_COLOR_NEIGHBOURS: return sim->in_pipeline[SPH_PASS_NEIGHBOURS] ? NULL : "no effect of the scene needs neighbours";
+    case SPH_COLOR_ACC_P: return sim->P.acc_p[0] ? NULL : "the scene has no pressure effect";
+    case SPH_COLOR_ACC_V: return sim->P.acc_v[0] ? NULL : "the scene has no viscosity effect";
+    default: return "unknown field";
+    }
+}
+
+sph_color_field sph_color_field_default(const sph_sim *sim)
+{
+    return sim->P.rho ? SPH_COLOR_DENSITY : SPH_COLOR_SPEED;
+}
+
+int sph_color_field_of_pass(const sph_sim *sim, sph_pass_id p)
+{
+    int f = -1;
+    switch (p) {
+    case SPH_PASS_HASH:
+    case SPH_PASS_SORT:
+    case SPH_PASS_OFFSETS: f = SPH_COLOR_KEY; break;
+    case SPH_PASS_NEIGHBOURS: f = SPH_COLOR_NEIGHBOURS; break;
+    case SPH_PASS_DENSITY: f = SPH_COLOR_DENSITY; break;
+    case SPH_PASS_PRESSURE: f = SPH_COLOR_PRESSURE; break;
+    case SPH_PASS_PRESSURE_FORCE: f = SPH_COLOR_ACC_P; break;
+    case SPH_PASS_VISCOSITY: f = SPH_COLOR_ACC_V; break;
+    case SPH_PASS_EXTERNAL:
+    case SPH_PASS_INTEGRATE:
+    case SPH_PASS_WALLS: f = SPH_COLOR_SPEED; break;
+    default: break;
+    }
+    return f >= 0 && !sph_color_field_missing(sim, (sph_color_field)f) ? f : -1;
+}
+
+static float vec_norm(float *const v[3], int dim, uint32_t i)
+{
+    float s = 0;
+    for (int d = 0; d < dim; d++) s += v[d][i] * v[d][i];
+    return sqrtf(s);
+}
+
+bool sph_color_field_values(const sph_sim *sim, sph_color_field f, float *out, float *lo, float *hi)
+{
+    if (sph_color_field_missing(sim, f)) return false;
+    const sph_particles *P = &sim->P;
+    const uint32_t n = sim->n;
+    switch (f) {
+    case SPH_COLOR_DENSITY: memcpy(out, P->rho, n * sizeof *out); break;
+    case SPH_COLOR_PRESSURE: memcpy(out, P->p, n * sizeof *out); break;
+    case SPH_COLOR_SPEED:
+        for (uint32_t i = 0; i < n; i++) out[i] = vec_norm(P->vel, sim->dim, i);
+        break;
+    case SPH_COLOR_ACC_P:
+        for (uint32_t i = 0; i < n; i++) out[i] = vec_norm(P->acc_p, sim->dim, i);
+        break;
+    case SPH_COLOR_ACC_V:
+        for (uint32_t i = 0; i < n; i++) out[i] = vec_norm(P->acc_v, sim->dim, i);
+        break;
+    case SPH_COLOR_KEY:
+        memset(out, 0, n * sizeof *out);
+        if (index_built(sim))
+            for (uint32_t s = 0; s < n; s++) {
+                uint32_t i = sim->S.entries[s].index;
+                if (i < n) out[i] = (float)sim->S.entries[s].key;
+            }
+        break;
+    case SPH_COLOR_NEIGHBOURS:
+        memset(out, 0, n * sizeof *out);
+        if (lists_built(sim))
+            for (uint32_t i = 0; i < n; i++) out[i] = (float)(sim->S.nbr_start[i + 1] - sim->S.nbr_start[i]);
+        break;
+    default: return false;
+    }
+    float a = INFINITY, b = -INFINITY;
+    for (uint32_t i = 0; i < n; i++) {
+        if (!isfinite(out[i])) continue;
+        if (out[i] < a) a = out[i];
+        if (out[i] > b) b = out[i];
+    }
+    if (a > b) a = b = 0;
+    *lo = a;
+    *hi = b;
+    return true;
+}
+
+/* Viridis as a polynomial in t (a least-squares fit of matplotlib's table,
+ * within about 1/255 of it), evaluated in double so every machine gets the
+ * same bytes. */
+uint32_t sph_colormap_viridis(float t)
+{
+    static const double c[7][3] = {
+        {0.2777273272234177, 0.005407344544966578, 0.3340998053353061},
+        {0.1050930431085774, 1.404613529898575, 1.384590162594685},
+        {-0.3308618287255563, 0.214847559468213, 0.09509516302823659},
+        {-4.634230498983486, -5.799100973351585, -19.33244095627987},
+        {6.228269936347081, 14.17993336680509, 56.69055260068105},
+        {4.776384997670288, -13.74514537774601, -65.35303263337234},
+        {-5.435455855934631, 4.645852612178535, 26.3124352495832},
+    };
+    if (t != t) return SPH_RGBA(128, 128, 128, 255);
+    double x = t < 0 ? 0 : t > 1 ? 1 : t;
+    /* quantise first: 256 levels, as a colour-map texture would */
+    x = floor(x * 255.0 + 0.5) / 255.0;
+    int rgb[3];
+    for (int k = 0; k < 3; k++) {
+        double v = c[6][k];
+        for (int j = 5; j >= 0; j--) v = v * x + c[j][k];
+        v = v < 0 ? 0 : v > 1 ? 1 : v;
+        rgb[k] = (int)floor(v * 255.0 + 0.5);
+    }
+    return SPH_RGBA(rgb[0], rgb[1], rgb[2], 255);
+}
+
+uint32_t sph_colormap_category(uint32_t key)
+{
+    static const uint8_t tab10[10][3] = {
+        {31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},  {148, 103, 189},
+        {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207},
+    };
+    const uint8_t *c = tab10[key % 10];
+    return SPH_RGBA(c[0], c[1], c[2], 255);
+}
+
+uint32_t sph_color_of(sph_color_field f, float v, float lo, float hi)
+{
+    if (sph_color_field_categorical(f)) return sph_colormap_category(v >= 0 && v < 4294967040.0f ? (uint32_t)v : 0);
+    float t = hi > lo ? (v - lo) / (hi - lo) : 0.5f;
+    return sph_colormap_viridis(t);
+}
+
+/* ---- building ------------------------------------------------------------ */
+
+static bool grow(void **p, int *cap, int need, size_t size)
+{
+    if (need <= *cap) return true;
+    int c = *cap ? *cap : 64;
+    while (c < need) c *= 2;
+    void *q = realloc(*p, (size_t)c * size);
+    if (!q) return false;
+    *p = q;
+    *cap = c;
+    return true;
+}
+
+typedef struct builder {
+    sph_overlay *ov;
+    bool ok;
+} builder;
+
+static void add_line(builder *b, const float a[3], const float e[3], uint32_t rgba, float width, sph_space sp,
+                     bool arrow)
+{
+    sph_overlay *ov = b->ov;
+    if (!grow((void **)&ov->lines, &ov->cap_lines, ov->n_lines + 1, sizeof *ov->lines)) {
+        b->ok = false;
+        return;
+    }
+    sph_ov_line *l = &ov->lines[ov->n_lines++];
+    memcpy(l->a, a, sizeof l->a);
+    memcpy(l->b, e, sizeof l->b);
+    l->rgba = rgba;
+    l->width = width;
+    l->space = (uint8_t)sp;
+    l->arrow = arrow;
+}
+
+static void add_disc(builder *b, const float c[3], float r, float r_min_px, uint32_t fill, uint32_t edge)
+{
+    sph_overlay *ov = b->ov;
+    if (!grow((void **)&ov->discs, &ov->cap_discs, ov->n_discs + 1, sizeof *ov->discs)) {
+        b->ok = false;
+        return;
+    }
+    ov->discs[ov->n_discs++] = (sph_ov_disc){{c[0], c[1], c[2]}, r, r_min_px, fill, edge, SPH_SPACE_WORLD};
+}
+
+static void add_box(builder *b, float x0, float y0, float x1, float y1, float z, uint32_t fill, uint32_t edge,
+                    sph_space sp)
+{
+    sph_overlay *ov = b->ov;
+    if (!grow((void **)&ov->boxes, &ov->cap_boxes, ov->n_boxes + 1, sizeof *ov->boxes)) {
+        b->ok = false;
+        return;
+    }
+    ov->boxes[ov->n_boxes++] = (sph_ov_box){{x0, y0}, {x1, y1}, z, fill, edge, (uint8_t)sp};
+}
+
+static void add_label(builder *b, float x, float y, float z, uint32_t rgba, sph_text_size size, sph_align align,
+                      sph_space sp, const char *fmt, ...) __attribute__((format(printf, 9, 10)));
+
+static void add_label(builder *b, float x, float y, float z, uint32_t rgba, sph_text_size size, sph_align align,
+                      sph_space sp, const char *fmt, ...)
+{
+    sph_overlay *ov = b->ov;
+    if (!grow((void **)&ov->labels, &ov->cap_labels, ov->n_labels + 1, sizeof *ov->labels)) {
+        b->ok = false;
+        return;
+    }
+    sph_ov_label *l = &ov->labels[ov->n_labels++];
+    l->pos[0] = x;
+    l->pos[1] = y;
+    l->pos[2] = z;
+    l->rgba = rgba;
+    l->size = (uint8_t)size;
+    l->align = (uint8_t)align;
+    l->space = (uint8_t)sp;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(l->text, sizeof l->text, fmt, ap);
+    va_end(ap);
+}
+
+static void note(sph_overlay *ov, const char *text)
+{
+    size_t len = strlen(ov->note);
+    snprintf(ov->note + len, sizeof ov->note - len, "%s%s", len ? "; " : "", text);
+}
+
+float sph_grid_origin(const sph_sim *sim, int d)
+{
+    return sim->def.search == SPH_SEARCH_GRID ? sim->def.domain_min[d] : 0.0f;
+}
+
+void sph_overlay_cell_of(const sph_sim *sim, uint32_t i, int32_t c[3])
+{
+    const float inv_h = 1.0f / sim->def.h;
+    float *const *x = sim->P.pred[0] ? sim->P.pred : sim->P.pos;
+    c[0] = c[1] = c[2] = 0;
+    for (int d = 0; d < sim->dim; d++) {
+        if (sim->def.search == SPH_SEARCH_GRID && sim->S.grid_dims[d] > 0)
+            c[d] = sph_grid_coord(x[d][i], sim->def.domain_min[d], inv_h, sim->S.grid_dims[d]);
+        else
+            c[d] = sph_cell_coord(x[d][i], inv_h);
+    }
+}
+
+/* The hash the hash pass gives a cell (the dense cell number for the grid search). */
+static uint32_t cell_hash(const sph_sim *sim, const int32_t c[3])
+{
+    if (sim->def.search == SPH_SEARCH_GRID) {
+        const int32_t *g = sim->S.grid_dims;
+        return (uint32_t)c[0] + (uint32_t)g[0] * ((uint32_t)c[1] + (uint32_t)g[1] * (uint32_t)c[2]);
+    }
+    return sph_hash_cell(sim->dim, c[0], c[1], c[2]);
+}
+
+static int cmp_cell(const void *pa, const void *pb)
+{
+    const sph_ov_cell *a = pa, *b = pb;
+    for (int d = 2; d >= 0; d--)
+        if (a->c[d] != b->c[d]) return a->c[d] < b->c[d] ? -1 : 1;
+    return 0;
+}
+
+static int cmp_key(const void *pa, const void *pb)
+{
+    const sph_ov_cell *a = pa, *b = pb;
+    if (a->key != b->key) return a->key < b->key ? -1 : 1;
+    return cmp_cell(pa, pb);
+}
+
+/* Occupied cells from the index: one per distinct cell, with the key and
+ * hash the hash pass stored, sorted by cell; collisions marked. */
+static bool build_cells(const sph_sim *sim, sph_overlay *ov)
+{
+    const uint32_t n = sim->n;
+    if (!grow((void **)&ov->cells, &ov->cap_cells, (int)(n ? n : 1), sizeof *ov->cells)) return false;
+    int stale = 0;
+    for (uint32_t s = 0; s < n; s++) {
+        const sph_entry *e = &sim->S.entries[s];
+        sph_ov_cell *c = &ov->cells[s];
+        sph_overlay_cell_of(sim, e->index < n ? e->index : 0, c->c);
+        c->hash = e->hash;
+        c->key = e->key;
+        c->count = 1;
+        c->collides = false;
+        stale += cell_hash(sim, c->c) != e->hash;
+    }
+    qsort(ov->cells, n, sizeof *ov->cells, cmp_cell);
+    int m = 0;
+    for (uint32_t s = 0; s < n; s++) {
+        if (m > 0 && cmp_cell(&ov->cells[m - 1], &ov->cells[s]) == 0)
+            ov->cells[m - 1].count++;
+        else
+            ov->cells[m++] = ov->cells[s];
+    }
+    ov->n_cells = m;
+    /* collisions: distinct cells with one key */
+    qsort(ov->cells, (size_t)m, sizeof *ov->cells, cmp_key);
+    for (int a = 0; a < m;) {
+        int b = a + 1;
+        while (b < m && ov->cells[b].key == ov->cells[a].key) b++;
+        if (b - a > 1)
+            for (int k = a; k < b; k++) ov->cells[k].collides = true;
+        a = b;
+    }
+    qsort(ov->cells, (size_t)m, sizeof *ov->cells, cmp_cell);
+    ov->n_colliding = 0;
+    for (int k = 0; k < m; k++) ov->n_colliding += ov->cells[k].collides;
+    if (stale) note(ov, "the index is older than the positions (the hash pass runs next)");
+    return true;
+}
+
+static int digits(uint32_t v)
+{
+    int d = 1;
+    while (v >= 10) {
+        v /= 10;
+        d++;
+    }
+    return d;
+}
+
+static void build_grid(builder *b, const sph_sim *sim, const sph_overlay_opts *o, float z)
+{
+    sph_overlay *ov = b->ov;
+    const float h = sim->def.h;
+    const float *lo = sim->def.domain_min, *hi = sim->def.domain_max;
+    if (o->px_per_m > 0 && h * o->px_per_m < 3.0f) {
+        note(ov, "grid hidden: cells are under 3 px");
+        return;
+    }
+    for (int d = 0; d < 2; d++) {
+        float org = sph_grid_origin(sim, d);
+        double k0 = ceil((lo[d] - org) / h), k1 = floor((hi[d] - org) / h);
+        if (k1 - k0 > 4000) {
+            note(ov, "grid hidden: over 4000 lines");
+            return;
+        }
+        ov->grid_origin[d] = org;
+        for (double k = k0; k <= k1; k++) {
+            float x = org + (float)k * h;
+            float a[3], e[3];
+            a[d] = e[d] = x;
+            a[1 - d] = lo[1 - d];
+            e[1 - d] = hi[1 - d];
+            a[2] = e[2] = z;
+            add_line(b, a, e, SPH_RGBA(200, 200, 210, 150), 1.0f, SPH_SPACE_WORLD, false);
+            ov->grid_lines[d]++;
+        }
+    }
+}
+
+static void cell_rect(const sph_sim *sim, const int32_t c[3], float r[4])
+{
+    const float h = sim->def.h;
+    for (int d = 0; d < 2; d++) {
+        float org = sph_grid_origin(sim, d);
+        r[d] = org + (float)c[d] * h;
+        r[d + 2] = org + (float)(c[d] + 1) * h;
+    }
+}
+
+static void build_keys(builder *b, const sph_sim *sim, const sph_overlay_opts *o, int32_t slice, float z)
+{
+    sph_overlay *ov = b->ov;
+    const float h = sim->def.h;
+    bool keys = o->layers & SPH_OV_BIT(KEYS), coll = o->layers & SPH_OV_BIT(COLLISIONS);
+    bool labels = keys;
+    if (keys && o->px_per_m > 0) {
+        /* a label needs about 7 px per digit at the small size */
+        int dg = digits(sim->S.table_size ? sim->S.table_size - 1 : 0);
+        if (h * o->px_per_m < 7.0f * (float)dg + 2.0f) {
+            labels = false;
+            note(ov, "keys hidden: cells too small for their labels (enlarge or zoom)");
+        }
+    }
+    for (int k = 0; k < ov->n_cells; k++) {
+        const sph_ov_cell *c = &ov->cells[k];
+        if (sim->dim == 3 && c->c[2] != slice) continue;
+        float r[4];
+        cell_rect(sim, c->c, r);
+        if (coll && c->collides)
+            add_box(b, r[0], r[1], r[2], r[3], z, SPH_RGBA(230, 40, 40, 90), SPH_RGBA(255, 60, 60, 255), SPH_SPACE_WORLD);
+        if (labels)
+            add_label(b, 0.5f * (r[0] + r[2]), 0.5f * (r[1] + r[3]), z,
+                      c->collides && coll ? SPH_RGBA(255, 200, 200, 255) : SPH_RGBA(255, 255, 255, 255),
+                      SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_WORLD, "%u", c->key);
+    }
+}
+
+static void particle_pos(const sph_sim *sim, uint32_t i, float x[3], bool predicted)
+{
+    float *const *p = predicted && sim->P.pred[0] ? sim->P.pred : sim->P.pos;
+    x[0] = x[1] = x[2] = 0;
+    for (int d = 0; d < sim->dim; d++) x[d] = p[d][i];
+}
+
+static void build_neighbours(builder *b, const sph_sim *sim, const sph_overlay_opts *o)
+{
+    sph_overlay *ov = b->ov;
+    const uint32_t i = (uint32_t)o->selected;
+    const float h = sim->def.h;
+    float xi[3];
+    /* where the search looked: the predicted position */
+    particle_pos(sim, i, xi, true);
+    int32_t c[3];
+    sph_overlay_cell_of(sim, i, c);
+    memcpy(ov->sel_cell, c, sizeof ov->sel_cell);
+    ov->sel_key = 0;
+    bool hashed = sim->in_pipeline[SPH_PASS_HASH];
+    if (hashed) ov->sel_key = cell_hash(sim, c) % (sim->S.table_size ? sim->S.table_size : 1);
+    /* the 3^d cells it visits (in 3D: the 9 of its own layer are drawn) */
+    if (sim->def.search != SPH_SEARCH_BRUTE)
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                int32_t v[3] = {c[0] + dx, c[1] + dy, c[2]};
+                float r[4];
+                cell_rect(sim, v, r);
+                bool own = dx == 0 && dy == 0;
+                add_box(b, r[0], r[1], r[2], r[3], xi[2], SPH_RGBA(255, 220, 60, own ? 50 : 25),
+                        SPH_RGBA(255, 220, 60, 220), SPH_SPACE_WORLD);
+                if (hashed && (!o->px_per_m || h * o->px_per_m >= 40.0f)) {
+                    uint32_t key = cell_hash(sim, v) % (sim->S.table_size ? sim->S.table_size : 1);
+                    add_label(b, r[0] + 0.04f * h, r[3] - 0.04f * h, xi[2], SPH_RGBA(255, 230, 120, 255), SPH_TEXT_SMALL,
+                              SPH_ALIGN_LEFT, SPH_SPACE_WORLD, "k%u", key);
+                }
+            }
+    /* support circle */
+    add_disc(b, xi, h, 0, 0, SPH_RGBA(255, 255, 255, 140));
+    ov->n_nbr = 0;
+    ov->nbr = NULL;
+    if (!lists_built(sim)) {
+        note(ov, "no neighbour lists yet (or the scene has none)");
+    } else {
+        uint32_t s = sim->S.nbr_start[i], e = sim->S.nbr_start[i + 1];
+        ov->nbr = sim->S.nbr + s;
+        ov->n_nbr = (int)(e - s);
+        if (!grow((void **)&ov->weights, &ov->cap_weights, ov->n_nbr + 1, sizeof *ov->weights)) {
+            b->ok = false;
+            return;
+        }
+        const sph_kernel *k = &sim->k_density;
+        float w0 = sph_kernel_w(k, 0.0f);
+        bool weight_labels = ov->n_nbr <= 64 && (!o->px_per_m || h * o->px_per_m >= 60.0f);
+        for (int m = 0; m < ov->n_nbr; m++) {
+            uint32_t j = ov->nbr[m];
+            float xj[3], r2 = 0;
+            particle_pos(sim, j, xj, true);
+            for (int d = 0; d < 3; d++) r2 += (xj[d] - xi[d]) * (xj[d] - xi[d]);
+            float w = w0 > 0 ? sph_kernel_w(k, sqrtf(r2)) / w0 : 0.0f;
+            ov->weights[m] = w;
+            int alpha = 60 + (int)(195.0f * (w < 0 ? 0 : w > 1 ? 1 : w));
+            add_line(b, xi, xj, SPH_RGBA(255, 170, 60, alpha), 1.5f, SPH_SPACE_WORLD, false);
+            add_disc(b, xj, 0, 4.0f, 0, SPH_RGBA(255, 170, 60, 255));
+            if (weight_labels)
+                add_label(b, xj[0], xj[1] + 0.12f * h, xj[2], SPH_RGBA(255, 210, 150, 255), SPH_TEXT_SMALL,
+                          SPH_ALIGN_CENTER, SPH_SPACE_WORLD, "%.2f", w);
+        }
+        if (!weight_labels && ov->n_nbr) note(ov, "weights hidden: too many neighbours or too small");
+    }
+    add_disc(b, xi, 0, 6.0f, 0, SPH_RGBA(255, 255, 255, 255));
+}
+
+static void build_forces(builder *b, const sph_sim *sim, const sph_overlay_opts *o, float slice_zm)
+{
+    sph_overlay *ov = b->ov;
+    const sph_particles *P = &sim->P;
+    const int dim = sim->dim;
+    const float h = sim->def.h;
+    float g[3] = {0, 0, 0}, gn = 0;
+    if (sim->def.effects & SPH_EFFECT(GRAVITY))
+        for (int d = 0; d < dim; d++) {
+            g[d] = sim->def.gravity[d];
+            gn += g[d] * g[d];
+        }
+    gn = sqrtf(gn);
+    int max_arrows = o->max_arrows > 0 ? o->max_arrows : 400;
+    uint32_t stride = sim->n > (uint32_t)max_arrows ? (sim->n + (uint32_t)max_arrows - 1) / (uint32_t)max_arrows : 1;
+    float ref = gn;
+    if (!(ref > 0)) { /* no gravity: the largest drawn acceleration sets the scale */
+        for (uint32_t i = 0; i < sim->n; i += stride) {
+            if (P->acc_p[0]) ref = fmaxf(ref, vec_norm(P->acc_p, dim, i));
+            if (P->acc_v[0]) ref = fmaxf(ref, vec_norm(P->acc_v, dim, i));
+        }
+    }
+    if (!(ref > 0)) {
+        note(ov, "no forces to draw");
+        return;
+    }
+    ov->arrow_m_per_acc = 0.8f * h / ref;
+    const float cap = 2.5f * h;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (i % stride && (int32_t)i != o->selected) continue;
+        float x[3];
+        particle_pos(sim, i, x, false);
+        if (dim == 3 && fabsf(x[2] - slice_zm) > 0.5f * h && (int32_t)i != o->selected) continue;
+        float *const *acc[2] = {P->acc_p[0] ? P->acc_p : NULL, P->acc_v[0] ? P->acc_v : NULL};
+        const uint32_t col[3] = {SPH_RGBA(255, 80, 70, 230), SPH_RGBA(80, 160, 255, 230), SPH_RGBA(90, 220, 90, 230)};
+        for (int f = 0; f < 3; f++) {
+            float a[3] = {0, 0, 0};
+            if (f < 2) {
+                if (!acc[f]) continue;
+                for (int d = 0; d < dim; d++) a[d] = acc[f][d][i];
+            } else {
+                if (!(gn > 0)) continue;
+                memcpy(a, g, sizeof a);
+            }
+            float len = sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) * ov->arrow_m_per_acc;
+            if (!(len > 1e-6f * h)) continue;
+            float s = len > cap ? cap / len : 1.0f;
+            float e[3];
+            for (int d = 0; d < 3; d++) e[d] = x[d] + a[d] * ov->arrow_m_per_acc * s;
+            add_line(b, x, e, col[f], 1.5f, SPH_SPACE_WORLD, true);
+        }
+    }
+    if (stride > 1) note(ov, "forces: arrows on a regular subset of particles");
+}
+
+/* The index strip: rows of boxes, x counts boxes (after a title column of
+ * width TITLE), y counts rows from the top. */
+#define STRIP_TITLE 3
+static void build_strip(builder *b, const sph_sim *sim, const sph_overlay_opts *o)
+{
+    sph_overlay *ov = b->ov;
+    const uint32_t n = sim->n, T = sim->S.table_size;
+    int cols = o->strip_cols > 0 ? o->strip_cols : 24;
+    uint32_t ne = n < (uint32_t)cols ? n : (uint32_t)cols;
+    uint32_t nk = T < (uint32_t)cols ? T : (uint32_t)cols;
+    const sph_entry *en = sim->S.entries;
+    /* entry window: around the selected particle's entry, else from the start */
+    uint32_t s_sel = UINT32_MAX;
+    if (o->selected >= 0)
+        for (uint32_t s = 0; s < n; s++)
+            if (en[s].index == (uint32_t)o->selected) s_sel = s;
+    uint32_t s0 = 0;
+    if (s_sel != UINT32_MAX && s_sel > ne / 2) s0 = s_sel - ne / 2;
+    if (s0 + ne > n) s0 = n - ne;
+    uint32_t kc = s_sel != UINT32_MAX ? en[s_sel].key : (ne ? en[s0 + ne / 2].key : 0);
+    uint32_t k0 = kc > nk / 2 ? kc - nk / 2 : 0;
+    if (k0 + nk > T) k0 = T - nk;
+    ov->strip_first_entry = s0;
+    ov->strip_first_key = k0;
+    ov->strip_cols = STRIP_TITLE + cols;
+    ov->strip_rows = 6;
+    const uint32_t grey = SPH_RGBA(170, 170, 180, 255), white = SPH_RGBA(255, 255, 255, 255);
+    const uint32_t edge = SPH_RGBA(20, 20, 26, 255), hl = SPH_RGBA(255, 220, 60, 255);
+    const float t = STRIP_TITLE;
+    add_label(b, t - 0.2f, 0.5f, 0, grey, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "entry");
+    add_label(b, t - 0.2f, 1.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "index");
+    add_label(b, t - 0.2f, 2.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "key");
+    add_label(b, t - 0.2f, 4.5f, 0, grey, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "key");
+    add_label(b, t - 0.2f, 5.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "start");
+    for (uint32_t m = 0; m < ne; m++) {
+        uint32_t s = s0 + m;
+        float x = t + (float)m;
+        bool sel = s == s_sel;
+        add_label(b, x + 0.5f, 0.5f, 0, grey, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "%u", s);
+        add_box(b, x, 1, x + 1, 2, 0, SPH_RGBA(60, 62, 72, 255), sel ? hl : edge, SPH_SPACE_STRIP);
+        add_label(b, x + 0.5f, 1.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "%u", en[s].index);
+        add_box(b, x, 2, x + 1, 3, 0, SPH_RGBA_ALPHA(sph_colormap_category(en[s].key), 200), sel ? hl : edge,
+                SPH_SPACE_STRIP);
+        add_label(b, x + 0.5f, 2.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "%u", en[s].key);
+    }
+    for (uint32_t m = 0; m < nk; m++) {
+        uint32_t k = k0 + m, st = sim->S.start[k];
+        float x = t + (float)m;
+        bool sel = s_sel != UINT32_MAX && k == en[s_sel].key;
+        add_label(b, x + 0.5f, 4.5f, 0, grey, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "%u", k);
+        add_box(b, x, 5, x + 1, 6, 0, st == SPH_EMPTY ? SPH_RGBA(40, 40, 46, 255) : SPH_RGBA_ALPHA(sph_colormap_category(k), 200),
+                sel ? hl : edge, SPH_SPACE_STRIP);
+        if (st == SPH_EMPTY)
+            add_label(b, x + 0.5f, 5.5f, 0, grey, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "-");
+        else
+            add_label(b, x + 0.5f, 5.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "%u", st);
+        /* the offset points at the first entry of its key's run */
+        if (st != SPH_EMPTY && st >= s0 && st < s0 + ne) {
+            float a[3] = {x + 0.5f, 4.0f, 0}, e[3] = {t + (float)(st - s0) + 0.5f, 3.0f, 0};
+            add_line(b, a, e, sel ? hl : SPH_RGBA(200, 200, 210, 200), 1.0f, SPH_SPACE_STRIP, true);
+        }
+    }
+}
+
+bool sph_overlay_build(const sph_sim *sim, const sph_overlay_opts *o, sph_overlay *ov)
+{
+    builder b = {ov, true};
+    ov->n_lines = ov->n_discs = ov->n_boxes = ov->n_labels = 0;
+    ov->grid_lines[0] = ov->grid_lines[1] = 0;
+    ov->n_cells = ov->n_colliding = ov->n_nbr = 0;
+    ov->nbr = NULL;
+    ov->selected = -1;
+    ov->strip_cols = ov->strip_rows = 0;
+    ov->arrow_m_per_acc = 0;
+    ov->note[0] = '\0';
+    const unsigned L = o->layers;
+    const float h = sim->def.h;
+    /* the slice: in 3D the plane z = slice_z; in 2D everything is at z = 0 */
+    float z = sim->dim == 3 ? o->slice_z : 0.0f;
+    int32_t slice = 0;
+    if (sim->dim == 3)
+        slice = sim->def.search == SPH_SEARCH_GRID && sim->S.grid_dims[2] > 0
+                    ? sph_grid_coord(z, sim->def.domain_min[2], 1.0f / h, sim->S.grid_dims[2])
+                    : sph_cell_coord(z, 1.0f / h);
+    if (L & SPH_OV_BIT(GRID)) build_grid(&b, sim, o, z);
+    bool want_cells = L & (SPH_OV_BIT(KEYS) | SPH_OV_BIT(COLLISIONS));
+    if (want_cells) {
+        if (!sim->in_pipeline[SPH_PASS_HASH])
+            note(ov, "no spatial hash in this scene (no neighbours, or search = brute)");
+        else if (!index_built(sim))
+            note(ov, "the index is not built yet (run a step)");
+        else if (!build_cells(sim, ov))
+            b.ok = false;
+        else
+            build_keys(&b, sim, o, slice, z);
+    }
+    if ((L & SPH_OV_BIT(NEIGHBOURS)) && o->selected >= 0 && (uint32_t)o->selected < sim->n) {
+        ov->selected = o->selected;
+        build_neighbours(&b, sim, o);
+    }
+    if (L & SPH_OV_BIT(FORCES)) build_forces(&b, sim, o, z);
+    if (L & SPH_OV_BIT(INDEX)) {
+        if (!sim->in_pipeline[SPH_PASS_HASH])
+            note(ov, "no index strip: the scene has no spatial hash");
+        else if (!index_built(sim))
+            note(ov, "no index strip: the index is not built yet (run a step)");
+        else
+            build_strip(&b, sim, o);
+    }
+    return b.ok;
+}
+
+void sph_overlay_free(sph_overlay *ov)
+{
+    free(ov->lines);
+    free(ov->discs);
+    free(ov->boxes);
+    free(ov->labels);
+    free(ov->cells);
+    free(ov->weights);
+    memset(ov, 0, sizeof *ov);
+}
+
+/* ---- HUD ----------------------------------------------------------------- */
+
+double sph_density_error(const sph_sim *sim)
+{
+    if (!sim->P.rho || !sim->n || !(sim->def.rest_density > 0)) return NAN;
+    float mx = -INFINITY;
+    for (uint32_t i = 0; i < sim->n; i++)
+        if (sim->P.rho[i] > mx) mx = sim->P.rho[i];
+    return ((double)mx - sim->def.rest_density) / sim->def.rest_density;
+}
+
+int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128], int max_lines)
+{
+    int k = 0;
+#define HUD_LINE(...) \
+    if (k < max_lines) snprintf(lines[k++], 128, __VA_ARGS__)
+    HUD_LINE("%s   %dD   %u particles", sim->def.name[0] ? sim->def.name : "scene", sim->dim, sim->n);
+    HUD_LINE("step %llu   t = %.4f s   dt = %.3g ms%s", (unsigned long long)sim->step, sim->t, 1e3 * sim->dt,
+             info && info->paused ? "   PAUSED" : "");
+    double e = sph_density_error(sim);
+    if (e == e) {
+        HUD_LINE("density error (rho_max - rho0)/rho0 = %+.2f %%", 100 * e);
+    } else {
+        HUD_LINE("density not computed");
+    }
+    char off[100] = "";
+    int on = 0, total = 0;
+    for (int p = 0; p < SPH_PASS_COUNT; p++) {
+        if (!sim->in_pipeline[p]) continue;
+        total++;
+        if (sim->enabled[p]) {
+            on++;
+        } else {
+            size_t len = strlen(off);
+            snprintf(off + len, sizeof off - len, " %s", sph_passes[p]->name);
+        }
+    }
+    if (on == total) {
+        HUD_LINE("passes: all %d on", total);
+    } else {
+        HUD_LINE("passes: %d of %d on; off:%s", on, total, off);
+    }
+    if (info && info->steps_per_s >= 0) HUD_LINE("%.0f steps/s", info->steps_per_s);
+    if (info && info->last_pass >= 0 && info->last_pass < SPH_PASS_COUNT) {
+        const sph_pass *p = sph_passes[info->last_pass];
+        HUD_LINE("ran pass %s: wrote %s; next: %s", p->name, p->writes,
+                 sim->next_pass == 0 ? "a new step" : sph_passes[sim->next_pass]->name);
+    }
+    if (info && info->message && *info->message) HUD_LINE("%s", info->message);
+#undef HUD_LINE
+    return k;
+}

@@ -1,0 +1,640 @@
+/* The chart types, drawn with PLplot's cairo driver (pngcairo, pdfcairo).
+ *
+ * Style, for print in black and white: white background, black axes and
+ * text, light grey grid; curves differ by line style (solid, dashed, dotted,
+ * dash-dot, ...) and by marker (circle, square, triangle, ...) as well as by
+ * colour; filled areas and bars differ by grey level and hatching. Legends
+ * are drawn beside the plot area, never over the data. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <plplot.h>
+
+#include "plot.h"
+
+/* ---- palette and styles ---------------------------------------------------- */
+
+enum {
+    COL_BG = 0,
+    COL_FG = 1,
+    COL_GRID = 2,
+    COL_ZERO = 3,
+    COL_CURVE = 4,  /* 8 curve colours */
+    COL_FILL = 12,  /* fill greys */
+    N_COLOURS = 24
+};
+
+static const unsigned char curve_rgb[8][3] = {
+    {0, 0, 0}, {0, 84, 166}, {190, 30, 45}, {0, 120, 60}, {120, 50, 150}, {190, 100, 0}, {80, 80, 80}, {0, 130, 140},
+};
+
+/* Line styles as PLplot mark/space lengths in micrometres (0 marks: solid). */
+static const struct {
+    int n;
+    PLINT mark[3], space[3];
+} line_style[8] = {
+    {0, {0}, {0}},                                /* solid */
+    {1, {4500}, {2200}},                          /* dashed */
+    {1, {600}, {1400}},                           /* dotted */
+    {2, {4500, 600}, {1600, 1600}},               /* dash-dot */
+    {1, {9000}, {2600}},                          /* long dashes */
+    {3, {4500, 600, 600}, {1400, 1400, 1400}},    /* dash-dot-dot */
+    {1, {1800}, {1500}},                          /* short dashes */
+    {2, {9000, 2500}, {2000, 2000}},              /* long-short */
+};
+
+/* Markers, as glyphs for plstring (unicode, DejaVu Sans has them). */
+static const char *const marker[8] = {
+    "#[0x25cb]", /* circle */
+    "#[0x25a1]", /* square */
+    "#[0x25b3]", /* triangle */
+    "#[0x25c7]", /* diamond */
+    "#[0x00d7]", /* cross */
+    "+",         /* plus */
+    "#[0x25cf]", /* filled circle */
+    "#[0x25bd]", /* down triangle */
+};
+
+/* Fills: a grey level (0-255) and a PLplot hatch pattern (0: none), all
+ * combinations distinct; hatching is drawn in black over the grey. */
+static const struct {
+    unsigned char grey;
+    int pattern;
+} fill_style[12] = {
+    {225, 0}, {255, 3}, {140, 0}, {205, 4}, {255, 8}, {90, 0},
+    {235, 1}, {175, 3}, {255, 7}, {205, 2}, {120, 0}, {255, 5},
+};
+
+static void set_line_style(int style)
+{
+    int s = ((style % 8) + 8) % 8;
+    if (line_style[s].n == 0)
+        pllsty(1);
+    else
+        plstyl(line_style[s].n, line_style[s].mark, line_style[s].space);
+}
+
+static void setup_colours(void)
+{
+    plscmap0n(N_COLOURS);
+    plscol0(COL_BG, 255, 255, 255);
+    plscol0(COL_FG, 0, 0, 0);
+    plscol0(COL_GRID, 215, 215, 215);
+    plscol0(COL_ZERO, 110, 110, 110);
+    for (int i = 0; i < 8; i++) plscol0(COL_CURVE + i, curve_rgb[i][0], curve_rgb[i][1], curve_rgb[i][2]);
+    for (int i = 0; i < 12; i++) plscol0(COL_FILL + i, fill_style[i].grey, fill_style[i].grey, fill_style[i].grey);
+    plscolbg(255, 255, 255);
+}
+
+void plot_escape(char *dst, size_t cap, const char *s)
+{
+    size_t n = 0;
+    for (; *s && n + 2 < cap; s++) {
+        if (*s == '#') dst[n++] = '#';
+        dst[n++] = *s;
+    }
+    if (cap) dst[n < cap ? n : cap - 1] = '\0';
+}
+
+/* ---- page geometry --------------------------------------------------------- */
+
+/* Height of one line of text at scale 1, in normalised page coordinates. */
+static double line_height(void)
+{
+    PLFLT def, ht, x0, x1, y0, y1;
+    plgchr(&def, &ht);
+    plgspa(&x0, &x1, &y0, &y1);
+    return ht / (y1 - y0);
+}
+
+/* Visible characters of a PLplot string: #[0x...] and #gX count one, #u #d none. */
+static int visible_chars(const char *s)
+{
+    int n = 0;
+    while (*s) {
+        if (s[0] == '#' && s[1] == '[') {
+            const char *e = strchr(s, ']');
+            s = e ? e + 1 : s + 2;
+            n++;
+        } else if (s[0] == '#' && (s[1] == 'u' || s[1] == 'd')) {
+            s += 2;
+        } else if (s[0] == '#' && s[1] == 'g' && s[2]) {
+            s += 3;
+            n++;
+        } else if (s[0] == '#' && s[1] == '#') {
+            s += 2;
+            n++;
+        } else {
+            n += ((unsigned char)*s & 0xC0) != 0x80; /* UTF-8: count lead bytes */
+            s++;
+        }
+    }
+    return n;
+}
+
+/* The text scale, at most `scale`, at which s fits in `width` (a fraction of
+ * the page width). Estimate: a DejaVu Sans character is about 0.7 of the
+ * character height wide. */
+static double fit_scale(const char *s, double scale, double width)
+{
+    PLFLT def, ht, x0, x1, y0, y1;
+    plgchr(&def, &ht);
+    plgspa(&x0, &x1, &y0, &y1);
+    double est = visible_chars(s) * 0.7 * def * scale / (x1 - x0);
+    return est > width ? scale * width / est : scale;
+}
+
+static void page_text(double x, double y, double scale, double just, const char *s)
+{
+    plvpor(0, 1, 0, 1);
+    plwind(0, 1, 0, 1);
+    plschr(0, fit_scale(s, scale, 0.97));
+    plcol0(COL_FG);
+    plptex(x, y, 1, 0, just, s);
+    plschr(0, 1.0);
+}
+
+static void titles(const char *title, const char *subtitle)
+{
+    page_text(0.5, 0.962, 1.3, 0.5, title);
+    if (subtitle && *subtitle) page_text(0.5, 0.922, 0.95, 0.5, subtitle);
+}
+
+/* ---- data ranges ----------------------------------------------------------- */
+
+typedef struct range {
+    double lo, hi;
+} range;
+
+static range range_empty(void) { return (range){INFINITY, -INFINITY}; }
+static void range_add(range *r, double v)
+{
+    if (!isfinite(v)) return;
+    if (v < r->lo) r->lo = v;
+    if (v > r->hi) r->hi = v;
+}
+static range range_pad(range r, double frac)
+{
+    if (!(r.lo <= r.hi)) return (range){0, 1};
+    if (r.hi - r.lo <= 1e-300 * (fabs(r.lo) + 1)) {
+        double d = r.lo != 0 ? 0.1 * fabs(r.lo) : 1.0;
+        return (range){r.lo - d, r.hi + d};
+    }
+    double d = (r.hi - r.lo) * frac;
+    return (range){r.lo - d, r.hi + d};
+}
+
+/* Whether a series runs off the scale near x = xlo: its values in the first
+ * tenth of the x range exceed 3 times the largest magnitude elsewhere. */
+static bool singular_near_lo(const plot_series *s, double xlo, double xhi)
+{
+    double cut = xlo + 0.1 * (xhi - xlo), far = 0, near = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        double v = fabs(s->y[i]);
+        if (!isfinite(v)) continue;
+        if (s->x[i] >= cut)
+            far = fmax(far, v);
+        else
+            near = fmax(near, v);
+    }
+    return far > 0 && near > 3 * far;
+}
+
+/* ---- curves ---------------------------------------------------------------- */
+
+/* Draws a series as a polyline; breaks it at non-finite values; above 3000
+ * points keeps the min and max of each bin so that spikes still show. */
+static void draw_polyline(const double *x, const double *y, size_t n, double scale)
+{
+    size_t bin = n > 3000 ? (n + 1499) / 1500 : 1;
+    size_t cap = 2 * (n / bin + 2);
+    PLFLT *px = malloc(cap * sizeof *px), *py = malloc(cap * sizeof *py);
+    if (!px || !py) {
+        free(px);
+        free(py);
+        return;
+    }
+    size_t m = 0;
+    for (size_t i = 0; i < n; i += bin) {
+        size_t end = i + bin < n ? i + bin : n, imin = n, imax = n;
+        bool broken = false;
+        for (size_t j = i; j < end; j++) {
+            if (!isfinite(x[j]) || !isfinite(y[j])) {
+                broken = true;
+                continue;
+            }
+            if (imin == n || y[j] < y[imin]) imin = j;
+            if (imax == n || y[j] > y[imax]) imax = j;
+        }
+        if (broken || imin == n) {
+            if (m > 1) plline((PLINT)m, px, py);
+            m = 0;
+            if (imin == n) continue;
+        }
+        size_t a = imin < imax ? imin : imax, b = imin < imax ? imax : imin;
+        px[m] = x[a], py[m++] = scale * y[a];
+        if (b != a) px[m] = x[b], py[m++] = scale * y[b];
+    }
+    if (m > 1) plline((PLINT)m, px, py);
+    free(px);
+    free(py);
+}
+
+static void draw_markers(const plot_series *s, int k, int count, range xr, range yr, double scale)
+{
+    const int per_curve = 8;
+    if (s->n == 0) return;
+    plschr(0, 0.85);
+    for (int j = 0; j < per_curve; j++) {
+        double f = (j + (k + 1.0) / (count + 1.0)) / per_curve;
+        size_t i = (size_t)(f * (double)(s->n - 1) + 0.5);
+        if (i >= s->n) i = s->n - 1;
+        PLFLT x = s->x[i], y = scale * s->y[i];
+        if (!isfinite(x) || !isfinite(y) || x < xr.lo || x > xr.hi || y < yr.lo || y > yr.hi) continue;
+        plstring(1, &x, &y, marker[s->style % 8]);
+    }
+    plschr(0, 1.0);
+}
+
+/* ---- legends --------------------------------------------------------------- */
+
+/* A legend box to the right of the plot area, its top at `top`. Each entry is
+ * a line sample with its marker, or a fill sample. */
+typedef struct legend_entry {
+    const char *text;
+    int style; /* line style / marker / colour, or fill style */
+} legend_entry;
+
+static void legend(const legend_entry *e, int n, bool fills, double x0, double x1, double top, const char *note)
+{
+    if (n <= 0) return;
+    const double ts = 0.85;
+    double row = 1.9 * ts * line_height(), pad = 0.5 * row;
+    int rows = n + (note ? 1 : 0);
+    double y1 = top, y0 = top - rows * row - 2 * pad;
+    if (y0 < 0.01) y0 = 0.01;
+    plvpor(0, 1, 0, 1);
+    plwind(0, 1, 0, 1); /* world = page coordinates */
+    PLFLT bx[5] = {x0, x1, x1, x0, x0}, by[5] = {y0, y0, y1, y1, y0};
+    plcol0(COL_BG);
+    plpsty(0);
+    plfill(4, bx, by);
+    plcol0(COL_FG);
+    pllsty(1);
+    plwidth(1.0);
+    plline(5, bx, by);
+    double w = x1 - x0, sx0 = x0 + 0.05 * w, sx1 = x0 + 0.24 * w, tx = x0 + 0.285 * w;
+    for (int i = 0; i < n; i++) {
+        double y = y1 - pad - (i + 0.5) * row;
+        if (fills) {
+            double hh = 0.36 * row;
+            PLFLT fx[5] = {sx0, sx1, sx1, sx0, sx0}, fy[5] = {y - hh, y - hh, y + hh, y + hh, y - hh};
+            int f = e[i].style % 12;
+            plcol0(COL_FILL + f);
+            plpsty(0);
+            plfill(4, fx, fy);
+            if (fill_style[f].pattern) {
+                plcol0(COL_FG);
+                plpsty(fill_style[f].pattern);
+                plfill(4, fx, fy);
+                plpsty(0);
+            }
+            plcol0(COL_FG);
+            plwidth(1.0);
+            plline(5, fx, fy);
+        } else {
+            PLFLT lx[2] = {sx0, sx1}, ly[2] = {y, y}, mx = 0.5 * (sx0 + sx1), my = y;
+            plcol0(COL_CURVE + e[i].style % 8);
+            plwidth(2.2);
+            set_line_style(e[i].style);
+            plline(2, lx, ly);
+            pllsty(1);
+            plschr(0, 0.85);
+            plstring(1, &mx, &my, marker[e[i].style % 8]);
+        }
+        plcol0(COL_FG);
+        plschr(0, fit_scale(e[i].text, ts, x1 - tx - 0.01));
+        plptex(tx, y, 1, 0, 0.0, e[i].text);
+    }
+    if (note) {
+        plschr(0, fit_scale(note, 0.75, x1 - sx0 - 0.01));
+        plptex(sx0, y1 - pad - (n + 0.5) * row, 1, 0, 0.0, note);
+    }
+    plschr(0, 1.0);
+    plwidth(1.0);
+}
+
+/* "Q [U]" with values scaled by 10^-e: "Q [10^e U]", or "Q [10^e/m]" for U = 1/m. */
+static void scale_label(char *dst, size_t cap, const char *label, int e)
+{
+    const char *open = strstr(label, " ["), *close = strrchr(label, ']');
+    if (!open || !close || close < open) {
+        snprintf(dst, cap, "%s [10#u%d#d]", label, e);
+        return;
+    }
+    const char *unit = open + 2;
+    int qlen = (int)(open - label), ulen = (int)(close - unit);
+    if (strncmp(unit, "1/", 2) == 0)
+        snprintf(dst, cap, "%.*s [10#u%d#d/%.*s]", qlen, label, e, ulen - 2, unit + 2);
+    else
+        snprintf(dst, cap, "%.*s [10#u%d#d %.*s]", qlen, label, e, ulen, unit);
+}
+
+/* ---- line charts ----------------------------------------------------------- */
+
+static void draw_lines(const plot_lines *c)
+{
+    const double vx0 = 0.125, vx1 = 0.75, vy0 = 0.10, vy1 = 0.885, gap = 0.035;
+    int np = c->np > 0 ? c->np : 1;
+    double ph = (vy1 - vy0 - gap * (np - 1)) / np;
+
+    range xr = {c->xlo, c->xhi};
+    if (!(c->xlo < c->xhi)) {
+        xr = range_empty();
+        for (int p = 0; p < c->np; p++)
+            for (int k = 0; k < c->p[p].n; k++)
+                for (size_t i = 0; i < c->p[p].s[k].n; i++) range_add(&xr, c->p[p].s[k].x[i]);
+        if (!(xr.lo < xr.hi)) xr = range_pad(xr, 0.05);
+        if (xr.lo > 0 && xr.lo < 0.05 * (xr.hi - xr.lo)) xr.lo = 0; /* time from 0 */
+    }
+
+    titles(c->title, c->subtitle);
+    for (int p = 0; p < c->np; p++) {
+        const plot_panel *P = &c->p[p];
+        double top = vy1 - p * (ph + gap), bottom = top - ph;
+
+        /* y range, leaving out the near-x0 part of curves that blow up there */
+        bool singular[PLOT_MAX_SERIES] = {false}, any_singular = false;
+        range yr = range_empty();
+        for (int k = 0; k < P->n; k++) {
+            const plot_series *s = &P->s[k];
+            singular[k] = P->clip_singular && singular_near_lo(s, xr.lo, xr.hi);
+            any_singular |= singular[k];
+            double cut = xr.lo + 0.1 * (xr.hi - xr.lo);
+            for (size_t i = 0; i < s->n; i++)
+                if (s->x[i] >= xr.lo && s->x[i] <= xr.hi && (!singular[k] || s->x[i] >= cut)) range_add(&yr, s->y[i]);
+        }
+        if (P->zero_line) range_add(&yr, 0.0);
+        /* large or small values: scale by a power of ten, named in the unit */
+        double mag = fmax(fabs(yr.lo), fabs(yr.hi)), scale = 1;
+        char ylabel[192];
+        snprintf(ylabel, sizeof ylabel, "%s", P->ylabel);
+        if (isfinite(mag) && mag > 0 && (mag >= 1e4 || mag < 1e-2)) {
+            int e = (int)floor(log10(mag));
+            scale = pow(10, -e);
+            yr.lo *= scale;
+            yr.hi *= scale;
+            scale_label(ylabel, sizeof ylabel, P->ylabel, e);
+        }
+        yr = range_pad(yr, 0.07);
+
+        plvpor(vx0, vx1, bottom, top);
+        plwind(xr.lo, xr.hi, yr.lo, yr.hi);
+        plcol0(COL_GRID);
+        plwidth(1.0);
+        pllsty(1);
+        plbox("g", 0, 0, "g", 0, 0);
+        if (P->zero_line && yr.lo < 0 && yr.hi > 0) {
+            PLFLT zx[2] = {xr.lo, xr.hi}, zy[2] = {0, 0};
+            plcol0(COL_ZERO);
+            plline(2, zx, zy);
+        }
+        for (int k = 0; k < P->n; k++) {
+            const plot_series *s = &P->s[k];
+            plcol0(COL_CURVE + s->style % 8);
+            plwidth(2.2);
+            set_line_style(s->style);
+            draw_polyline(s->x, s->y, s->n, scale);
+            pllsty(1);
+            draw_markers(s, k, P->n, xr, yr, scale);
+        }
+        plcol0(COL_FG);
+        plwidth(1.6);
+        pllsty(1);
+        plbox(p == c->np - 1 ? "bcnst" : "bcst", 0, 0, "bcnstv", 0, 0);
+        plwidth(1.0);
+        plmtex("l", 5.2, 0.5, 0.5, ylabel);
+        if (p == c->np - 1) plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
+
+        legend_entry e[PLOT_MAX_SERIES];
+        char text[PLOT_MAX_SERIES][72];
+        for (int k = 0; k < P->n; k++) {
+            snprintf(text[k], sizeof text[k], "%s%s", P->s[k].label, singular[k] ? "*" : "");
+            e[k] = (legend_entry){text[k], P->s[k].style};
+        }
+        legend(e, P->n, false, vx1 + 0.015, 0.992, top, any_singular ? "* off scale near 0" : NULL);
+    }
+}
+
+/* ---- horizontal bars -------------------------------------------------------- */
+
+static void fill_box(PLFLT *fx, PLFLT *fy, int style)
+{
+    int f = style % 12;
+    plcol0(COL_FILL + f);
+    plpsty(0);
+    plfill(4, fx, fy);
+    if (fill_style[f].pattern) {
+        plcol0(COL_FG);
+        plwidth(1.0);
+        plpsty(fill_style[f].pattern);
+        plfill(4, fx, fy);
+        plpsty(0);
+    }
+}
+
+static void draw_bars(const plot_bars *c)
+{
+    const double vx0 = 0.20, vx1 = 0.955, vy0 = 0.11, vy1 = 0.875;
+    double vmax = 0;
+    for (int i = 0; i < c->n; i++)
+        if (isfinite(c->value[i])) vmax = fmax(vmax, c->value[i]);
+    if (vmax <= 0) vmax = 1;
+    double xmax = vmax * 1.5;
+
+    titles(c->title, c->subtitle);
+    plvpor(vx0, vx1, vy0, vy1);
+    plwind(0, xmax, 0, c->n);
+    plcol0(COL_GRID);
+    plwidth(1.0);
+    pllsty(1);
+    plbox("g", 0, 0, "", 0, 0);
+    for (int i = 0; i < c->n; i++) {
+        double yc = c->n - 1 - i + 0.5, hh = 0.34, v = isfinite(c->value[i]) ? fmax(c->value[i], 0) : 0;
+        PLFLT fx[5] = {0, v, v, 0, 0}, fy[5] = {yc - hh, yc - hh, yc + hh, yc + hh, yc - hh};
+        fill_box(fx, fy, i);
+        plcol0(COL_FG);
+        plwidth(1.2);
+        plline(5, fx, fy);
+        plwidth(1.0);
+        plschr(0, 0.85);
+        plptex(v + 0.012 * xmax, yc, 1, 0, 0.0, c->note[i]);
+        plschr(0, 0.95);
+        plmtex("lv", 0.8, yc / c->n, 1.0, c->name[i]);
+        plschr(0, 1.0);
+    }
+    plcol0(COL_FG);
+    plwidth(1.6);
+    plbox("bcnst", 0, 0, "bc", 0, 0);
+    plwidth(1.0);
+    plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
+}
+
+/* ---- stacked areas ---------------------------------------------------------- */
+
+static void draw_stack(const plot_stack *c)
+{
+    const double vx0 = 0.11, vx1 = 0.74, vy0 = 0.10, vy1 = 0.885;
+    size_t n = c->n;
+    double *base = calloc(n ? n : 1, sizeof *base);
+    PLFLT *px = malloc((2 * n + 1) * sizeof *px), *py = malloc((2 * n + 1) * sizeof *py);
+    if (!base || !px || !py) goto out;
+
+    range xr = range_empty(), yr = {0, 0};
+    for (size_t i = 0; i < n; i++) {
+        range_add(&xr, c->x[i]);
+        double sum = 0;
+        for (int l = 0; l < c->nl; l++) sum += isfinite(c->y[l][i]) ? fmax(c->y[l][i], 0) : 0;
+        yr.hi = fmax(yr.hi, sum);
+    }
+    if (!(xr.lo < xr.hi)) xr = range_pad(xr, 0.05);
+    if (yr.hi <= 0) yr.hi = 1;
+    yr.hi *= 1.06;
+
+    titles(c->title, c->subtitle);
+    plvpor(vx0, vx1, vy0, vy1);
+    plwind(xr.lo, xr.hi, yr.lo, yr.hi);
+    for (int l = 0; l < c->nl; l++) {
+        size_t m = 0;
+        for (size_t i = 0; i < n; i++) px[m] = c->x[i], py[m++] = base[i];
+        for (size_t i = n; i-- > 0;) {
+            double v = isfinite(c->y[l][i]) ? fmax(c->y[l][i], 0) : 0;
+            base[i] += v;
+            px[m] = c->x[i], py[m++] = base[i];
+        }
+        if (n >= 2) {
+            int f = l % 12;
+            plcol0(COL_FILL + f);
+            plpsty(0);
+            plfill((PLINT)m, px, py);
+            if (fill_style[f].pattern) {
+                plcol0(COL_FG);
+                plpsty(fill_style[f].pattern);
+                plfill((PLINT)m, px, py);
+                plpsty(0);
+            }
+            plcol0(COL_FG);
+            plwidth(0.8);
+            plline((PLINT)n, c->x, base); /* the layer's upper edge */
+        }
+    }
+    plcol0(COL_FG);
+    plwidth(1.6);
+    plbox("bcnst", 0, 0, "bcnstv", 0, 0);
+    plwidth(1.0);
+    plmtex("l", 5.2, 0.5, 0.5, c->ylabel);
+    plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
+
+    legend_entry e[PLOT_MAX_LAYERS];
+    for (int l = 0; l < c->nl; l++) e[l] = (legend_entry){c->name[c->nl - 1 - l], c->nl - 1 - l};
+    legend(e, c->nl, true, vx1 + 0.015, 0.992, vy1, NULL);
+out:
+    free(base);
+    free(px);
+    free(py);
+}
+
+/* ---- devices and files ------------------------------------------------------ */
+
+static int on_plplot_exit(PLCHAR_VECTOR msg)
+{
+    fprintf(stderr, "sphlab plot: PLplot stopped: %s\n", msg ? msg : "");
+    plot_out_abort();
+    return 1;
+}
+
+static bool have_device(const char *name)
+{
+    const char *menu_a[64], *devs_a[64];
+    const char **menu = menu_a, **devs = devs_a;
+    int n = 64;
+    plgDevs(&menu, &devs, &n);
+    for (int i = 0; i < n; i++)
+        if (strcmp(devs[i], name) == 0) return true;
+    return false;
+}
+
+static void render(plot_kind kind, const void *chart, const char *dev, const char *file, int w, int h)
+{
+    plsexit(on_plplot_exit);
+    plsdev(dev);
+    plsfnam(file);
+    plspage(0, 0, w, h, 0, 0);
+    setup_colours();
+    plinit();
+    pladv(0);
+    plschr(0, 1.0);
+    switch (kind) {
+    case PLOT_LINES: draw_lines(chart); break;
+    case PLOT_BARS: draw_bars(chart); break;
+    case PLOT_STACK: draw_stack(chart); break;
+    }
+    plend();
+}
+
+/* cairo writes the time of day into the PDF as /CreationDate (D:YYYYMMDDHHMMSS...).
+ * Overwrite those 14 digits in place (same length: the offsets stay valid). */
+static bool fix_pdf_date(const char *path)
+{
+    FILE *f = fopen(path, "r+b");
+    if (!f) return false;
+    static char buf[1 << 20];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    const char key[] = "/CreationDate (D:";
+    char *p = NULL;
+    for (size_t i = 0; i + sizeof key <= n; i++)
+        if (memcmp(buf + i, key, sizeof key - 1) == 0) p = buf + i + sizeof key - 1;
+    bool ok = true;
+    if (p && p + 14 <= buf + n) {
+        time_t when = 0;
+        const char *sde = getenv("SOURCE_DATE_EPOCH");
+        if (sde && *sde) when = (time_t)strtoll(sde, NULL, 10);
+        struct tm tm;
+        char date[32];
+        if (gmtime_r(&when, &tm) && strftime(date, sizeof date, "%Y%m%d%H%M%S", &tm) == 14) {
+            ok = fseek(f, (long)(p - buf), SEEK_SET) == 0 && fwrite(date, 1, 14, f) == 14;
+        }
+    }
+    ok &= fclose(f) == 0;
+    return ok;
+}
+
+bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *base, int width, int height)
+{
+    for (int i = 0; i < 2; i++) {
+        const char *dev = i ? "pdfcairo" : "pngcairo";
+        if (!have_device(dev)) {
+            fprintf(stderr, "sphlab plot: PLplot has no %s driver (Debian: apt-get install plplot-driver-cairo)\n",
+                    dev);
+            return false;
+        }
+    }
+    char png[300], pdf[300];
+    snprintf(png, sizeof png, "%s.png", base);
+    snprintf(pdf, sizeof pdf, "%s.pdf", base);
+    const char *png_tmp = plot_out_stage(dir, png);
+    if (!png_tmp) return false;
+    const char *pdf_tmp = plot_out_stage(dir, pdf);
+    if (!pdf_tmp) return false;
+    render(kind, chart, "pngcairo", png_tmp, width, height);
+    /* same layout on a page of half the pixel count in points: the PNG is the PDF at 144 dpi */
+    render(kind, chart, "pdfcairo", pdf_tmp, (width + 1) / 2, (height + 1) / 2);
+    if (!fix_pdf_date(pdf_tmp)) {
+        fprintf(stderr, "sphlab plot: %s/%s: cannot finish the PDF\n", dir, pdf);
+        return false;
+    }
+    return true;
+}

@@ -1,0 +1,102 @@
+/* EGL surfaceless context: no display, no window, no GPU needed. Mesa's
+ * EGL_MESA_platform_surfaceless gives a display without any window system;
+ * with no GPU (or LIBGL_ALWAYS_SOFTWARE=1) Mesa renders with llvmpipe. We
+ * draw into a framebuffer object, so the context needs no surface at all.
+ * EGL itself is called through libEGL; GL through libepoxy (gl_epoxy.c). */
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_context.h"
+
+struct sph_glctx {
+    EGLDisplay dpy;
+    EGLContext ctx;
+};
+
+static const char *egl_error_name(EGLint e)
+{
+    switch (e) {
+    case EGL_SUCCESS: return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
+    default: return "an unknown EGL error";
+    }
+}
+
+static bool has_word(const char *list, const char *word)
+{
+    size_t n = strlen(word);
+    for (const char *p = list; p && (p = strstr(p, word)); p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+    return false;
+}
+
+sph_glctx *sph_glctx_create_egl(sph_gl *gl, char *err, size_t n)
+{
+    const char *ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!ext || !has_word(ext, "EGL_MESA_platform_surfaceless")) {
+        snprintf(err, n, "EGL (surfaceless): this EGL has no EGL_MESA_platform_surfaceless "
+                         "(install Debian's libegl-mesa0 and libgl1-mesa-dri, or try --gl osmesa)");
+        return NULL;
+    }
+    sph_glctx *c = calloc(1, sizeof *c);
+    if (!c) {
+        snprintf(err, n, "EGL: out of memory");
+        return NULL;
+    }
+    c->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    EGLint major = 0, minor = 0;
+    const char *what = NULL;
+    if (c->dpy == EGL_NO_DISPLAY) {
+        what = "eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA)";
+    } else if (!eglInitialize(c->dpy, &major, &minor)) {
+        what = "eglInitialize";
+        c->dpy = EGL_NO_DISPLAY;
+    } else if (!eglBindAPI(EGL_OPENGL_API)) {
+        what = "eglBindAPI(EGL_OPENGL_API)";
+    } else {
+        const EGLint cfg_attr[] = {EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        EGLConfig cfg = NULL;
+        EGLint ncfg = 0;
+        if (!eglChooseConfig(c->dpy, cfg_attr, &cfg, 1, &ncfg)) ncfg = 0;
+        const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+        /* surfaceless contexts may have no config (EGL_KHR_no_config_context) */
+        c->ctx = eglCreateContext(c->dpy, ncfg ? cfg : (EGLConfig)0, EGL_NO_CONTEXT, ctx_attr);
+        if (c->ctx == EGL_NO_CONTEXT)
+            what = "eglCreateContext (OpenGL 3.3 core)";
+        else if (!eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, c->ctx))
+            what = "eglMakeCurrent without a surface";
+    }
+    if (what) {
+        snprintf(err, n, "EGL (surfaceless): %s failed: %s (no usable OpenGL; try --gl osmesa)", what,
+                 egl_error_name(eglGetError()));
+        sph_glctx_destroy(c);
+        return NULL;
+    }
+    sph_gl_load_epoxy(gl);
+    return c;
+}
+
+void sph_glctx_destroy(sph_glctx *c)
+{
+    if (!c) return;
+    if (c->dpy != EGL_NO_DISPLAY) {
+        eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (c->ctx != EGL_NO_CONTEXT) eglDestroyContext(c->dpy, c->ctx);
+        eglTerminate(c->dpy);
+    }
+    free(c);
+}

@@ -1,0 +1,72 @@
+/* The renderer: draws a simulation's state (particles, overlays, HUD,
+ * legend) into an offscreen framebuffer, headless (EGL surfaceless or
+ * OSMesa) or in the current context of a window (SDL). All GL code of sphlab
+ * lives in src/render/; this header has no GL type in it. */
+#ifndef SPH_RENDER_H
+#define SPH_RENDER_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "camera.h"
+#include "sph_overlay.h"
+#include "sph_sim.h"
+
+#define SPH_GL_BACKENDS(X)                                     \
+    X(EGL, "egl", "EGL surfaceless, GL through libepoxy")       \
+    X(OSMESA, "osmesa", "OSMesa, GL through OSMesaGetProcAddress") \
+    X(CURRENT, "current", "the caller's current context (the SDL window), GL through libepoxy")
+
+typedef enum sph_gl_backend {
+#define SPH_GL_BACKEND_ENUM(id, name, about) SPH_GL_##id,
+    SPH_GL_BACKENDS(SPH_GL_BACKEND_ENUM)
+#undef SPH_GL_BACKEND_ENUM
+    SPH_GL_BACKEND_COUNT
+} sph_gl_backend;
+extern const char *const sph_gl_backend_names[SPH_GL_BACKEND_COUNT];
+
+/* What to draw and how; sph_view_default() fills it for a simulation. */
+typedef struct sph_view {
+    sph_color_field field;
+    unsigned overlays;       /* SPH_OV_BIT(...) */
+    int32_t selected;        /* particle index, or -1 */
+    float slice_z;           /* [m] 3D: the plane of the grid, keys and collisions */
+    sph_orbit orbit;         /* 3D camera; 2D uses zoom and pan */
+    bool fixed_range;        /* colour range from range[] instead of the data */
+    float range[2];
+    sph_hud_info hud;
+} sph_view;
+
+sph_view sph_view_default(const sph_sim *sim);
+
+typedef struct sph_renderer sph_renderer;
+
+/* Makes the context (EGL, OSMesa) or takes the current one (CURRENT), and a
+ * w x h framebuffer. NULL on failure, with the reason in err. */
+sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *err, size_t n);
+bool sph_renderer_resize(sph_renderer *r, int w, int h, char *err, size_t n);
+void sph_renderer_destroy(sph_renderer *r);
+/* "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5 (Core Profile) Mesa 22.3.6" */
+const char *sph_renderer_info(const sph_renderer *r);
+void sph_renderer_size(const sph_renderer *r, int *w, int *h);
+
+/* Draws the state; false (with the reason) on a GL error or out of memory. */
+bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *err, size_t n);
+/* The frame just drawn, RGB, rows from the top: w * h * 3 bytes. */
+void sph_renderer_read_rgb(sph_renderer *r, uint8_t *rgb);
+/* Copies the frame to the default framebuffer (the window), w x h pixels. */
+void sph_renderer_present(sph_renderer *r, int w, int h);
+
+/* The camera and overlays of the last frame (picking, tests). */
+const sph_camera *sph_renderer_camera(const sph_renderer *r);
+const sph_overlay *sph_renderer_overlay(const sph_renderer *r);
+/* Particle drawn nearest to pixel px within max_px; -1 if none. */
+int32_t sph_renderer_pick(const sph_renderer *r, const sph_sim *sim, const float px[2], float max_px);
+/* [m] radius particles are drawn with. */
+float sph_particle_radius(const sph_sim *sim);
+
+/* PNG (RGB) through stb_image_write, written to PATH.tmp and renamed. */
+bool sph_write_png(const char *path, const uint8_t *rgb, int w, int h, char *err, size_t n);
+
+#endif
