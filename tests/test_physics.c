@@ -298,3 +298,54 @@ Test(physics, interaction_pulls_within_radius_only)
     }
     sph_sim_destroy(sim);
 }
+
+/* The wall tables: a wall through the particle hides half the support
+ * (psi(0) = 1/2, by symmetry), none at d >= h, and the tabulated plane
+ * integral is -d psi / dd (checked by central differences of the table). */
+Test(physics, wall_tables_half_at_contact_and_consistent_slope)
+{
+    for (int dim = 2; dim <= 3; dim++)
+        for (int kind = 0; kind < SPH_KERNEL_COUNT; kind++) {
+            sph_kernel k = sph_kernel_make((sph_kernel_kind)kind, dim, 0.7f);
+            float area;
+            cr_assert_float_eq(sph_kernel_wall(&k, 0.0f, &area), 0.5f, 1e-3, "%dD %s", dim, sph_kernel_names[kind]);
+            cr_assert_eq(sph_kernel_wall(&k, 0.7f, &area), 0.0f);
+            cr_assert_eq(area, 0.0f);
+            for (float q = 0.1f; q < 0.9f; q += 0.1f) {
+                float d = q * 0.7f, e = 0.01f * 0.7f, a;
+                float slope = (sph_kernel_wall(&k, d + e, &a) - sph_kernel_wall(&k, d - e, &a)) / (2 * e);
+                sph_kernel_wall(&k, d, &area);
+                /* linear interpolation of a 128-entry table: 2% of the contact value */
+                cr_assert(fabsf(-slope - area) <= 0.02f * k.wall_area[0], "%dD %s d=%g: area %g, -slope %g", dim,
+                          sph_kernel_names[kind], d, area, -slope);
+            }
+        }
+}
+
+/* With wall_model = volume, the row next to a wall reads the interior's
+ * density (within the lattice's own 2%); with reflect it misses about half. */
+Test(physics, volume_walls_fill_the_support_of_wall_particles)
+{
+    for (int model = 0; model < 2; model++) {
+        char ini[512];
+        snprintf(ini, sizeof ini,
+                 "[scene]\neffects=density walls\n[domain]\nmin=0 0\nmax=1 1\nwall_model=%s\n[fluid a]\nmin=0 0\n"
+                 "max=0.4 0.4\nspacing=0.02\n[kernels]\nh=0.04\n",
+                 model == 0 ? "volume" : "reflect");
+        sph_sim *sim = test_sim(ini, 1);
+        sph_sim_step(sim);
+        float interior = 0, wall = 0;
+        for (uint32_t i = 0; i < sim->n; i++) {
+            float x = sim->P.pos[0][i], y = sim->P.pos[1][i];
+            if (fabsf(x - 0.21f) < 0.005f && fabsf(y - 0.21f) < 0.005f) interior = sim->P.rho[i];
+            if (fabsf(x - 0.21f) < 0.005f && fabsf(y - 0.01f) < 0.005f) wall = sim->P.rho[i];
+        }
+        cr_assert(interior > 0 && wall > 0);
+        if (model == 0)
+            cr_assert(fabsf(wall - interior) <= 0.02f * interior, "volume walls: wall row %g, interior %g", wall,
+                      interior);
+        else
+            cr_assert_lt(wall, 0.8f * interior, "reflect walls: wall row %g should miss support", wall);
+        sph_sim_destroy(sim);
+    }
+}
