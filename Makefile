@@ -20,7 +20,7 @@ TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c)
 # Modules above the core (rendering, plotting) add objects, flags and libraries
 # to these from their own fragment, src/MODULE/module.mk.
 # Debian packages the build and tests need; modules append theirs.
-DEB_PKGS := build-essential clang pkg-config libinih-dev libcriterion-dev libomp-dev
+DEB_PKGS := build-essential clang pkg-config libinih-dev libcriterion-dev libomp-dev libclang-rt-14-dev
 MOD_OBJ  :=
 MOD_LIBS :=
 MOD_TEST_LIBS :=
@@ -30,7 +30,7 @@ CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
 APP_OBJ  := $(APP:%=$(BUILD)/app/%.o) $(MOD_OBJ)
 TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
 
-.PHONY: all demo test check-tests check-clang asan deps clean
+.PHONY: all demo test check-tests check-clang asan fuzz deps clean
 
 all: sphlab
 
@@ -92,5 +92,17 @@ check-tests-asan:
 	SPHLAB=./sphlab-asan $(BUILD)/sphlab-tests --jobs 2
 	sh tests/cli.sh ./sphlab-asan
 
+# Fuzzing the scene parser with libFuzzer (clang, ASan, UBSan). FUZZ_SECONDS
+# bounds the run; the corpus starts from the shipped scenes and grows in build-fuzz/corpus.
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	mkdir -p build-fuzz/corpus
+	cp lessons/scenes/*.ini build-fuzz/corpus/ 2>/dev/null || true
+	clang -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -fopenmp \
+	    -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Werror -Isrc/core $(shell pkg-config --cflags inih) \
+	    -o build-fuzz/fuzz_scene tests/fuzz_scene.c $(CORE:%=src/core/%.c) $(PASSES:%=src/passes/%.c) $(CORE_LIBS)
+	build-fuzz/fuzz_scene -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 \
+	    -artifact_prefix=build-fuzz/ build-fuzz/corpus
+
 clean:
-	rm -rf build build-asan build-clang sphlab sphlab-asan
+	rm -rf build build-asan build-clang build-fuzz sphlab sphlab-asan

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "app.h"
+#include "../render/vtk.h"
 
 static void usage(FILE *f)
 {
@@ -15,6 +16,8 @@ static void usage(FILE *f)
           "  --stats FILE.csv    one row per step: step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed,\n"
           "                      then the milliseconds of each pass in the pipeline\n"
           "  --dump FILE.csv     final particles: id,x,y,z,vx,vy,vz,rho,p\n"
+          "  --vtk DIR           particles and all their fields as DIR/particles_NNNNN.vtk (ParaView)\n"
+          "  --every K           with --vtk: a file every K steps, the first at step 0 (default 10)\n"
           "  --threads N         worker threads (default: one per core)\n"
           "  --quiet             no progress line, no tables\n"
           "  --help              this text\n"
@@ -118,7 +121,8 @@ int cmd_run(int argc, char **argv)
     app_scene_opts o = {0};
     long steps = -1, threads = 0;
     double until = -1;
-    const char *stats_path = NULL, *dump_path = NULL;
+    const char *stats_path = NULL, *dump_path = NULL, *vtk_dir = NULL;
+    long vtk_every = 10;
     bool quiet = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v;
@@ -147,6 +151,11 @@ int cmd_run(int argc, char **argv)
             if (!(stats_path = opt_value(argc, argv, &i, "--stats"))) return 2;
         } else if (is_opt(a, "--dump")) {
             if (!(dump_path = opt_value(argc, argv, &i, "--dump"))) return 2;
+        } else if (is_opt(a, "--vtk")) {
+            if (!(vtk_dir = opt_value(argc, argv, &i, "--vtk"))) return 2;
+        } else if (is_opt(a, "--every")) {
+            if (!(v = opt_value(argc, argv, &i, "--every")) || !app_parse_int("--every", v, 1, 2000000000L, &vtk_every))
+                return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab run: unknown option '%s'\n", a);
             usage(stderr);
@@ -176,6 +185,11 @@ int cmd_run(int argc, char **argv)
     }
     /* Open the outputs before simulating: an unwritable path fails now, not after the run. */
     app_out stats = {0}, dump = {0};
+    char vtk_err[1200];
+    if (vtk_dir && !sph_output_dir(vtk_dir, vtk_err, sizeof vtk_err)) {
+        fprintf(stderr, "sphlab run: %s\n", vtk_err);
+        return 1;
+    }
     if (stats_path && !app_out_open(&stats, stats_path)) return 1;
     if (dump_path && !app_out_open(&dump, dump_path)) {
         app_out_abort(&stats);
@@ -194,7 +208,13 @@ int cmd_run(int argc, char **argv)
     bool warned = false;
     char warning[512];
     double t0 = sph_now_ms(), last_shown = t0;
+    bool vtk_ok = true;
     for (;;) {
+        if (vtk_dir && sim->step % (uint64_t)vtk_every == 0 &&
+            !(vtk_ok = sph_vtk_write_frame(sim, vtk_dir, (unsigned)(sim->step / (uint64_t)vtk_every), vtk_err, sizeof vtk_err))) {
+            fprintf(stderr, "sphlab run: %s\n", vtk_err);
+            break;
+        }
         if (!warned && sph_sim_dt_warning(sim, warning, sizeof warning)) {
             fprintf(stderr, "%ssphlab: warning: %s\n", progress ? "\r" : "", warning);
             warned = true; /* once: the condition names the step where it first broke */
@@ -221,7 +241,7 @@ int cmd_run(int argc, char **argv)
     }
     if (dump.f) write_dump(dump.f, sim);
     bool stats_ok = app_out_commit(&stats), dump_ok = app_out_commit(&dump); /* both, even if one fails */
-    bool ok = stats_ok && dump_ok;
+    bool ok = stats_ok && dump_ok && vtk_ok;
     if (!quiet) print_report(sim, wall);
     int code = !ok ? 1 : sim->alarm.raised ? 4 : 0;
     sph_sim_destroy(sim);

@@ -9,6 +9,8 @@
     X(check, "SCENE.ini", "validate a scene and print the pipeline it resolves to") \
     X(plot, "WHAT ...", "charts for a report: ms per pass, --stats series, kernels (PNG + PDF)") \
     X(keys, "", "list every scene key with its default, unit and meaning") \
+    X(render, "SCENE.ini", "simulate headless and write PNG frames (and VTK files)") \
+    X(view, "SCENE.ini", "open a window and run the scene live, with overlays") \
     X(hardcases, "", "run the hard cases (odd parameters) and print a verdict for each")
 
 #define SPH_COMMAND_DECL(name, args, about) int cmd_##name(int argc, char **argv);

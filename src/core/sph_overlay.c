@@ -758,3 +758,72 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
 #undef HUD_LINE
     return k;
 }
+
+static void vec_text(char *out, size_t n, float *const v[3], int dim, uint32_t i)
+{
+    if (!v[0]) {
+        snprintf(out, n, "-");
+        return;
+    }
+    float a[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++) a[d] = v[d][i];
+    if (dim == 3)
+        snprintf(out, n, "(%.4g, %.4g, %.4g), |%.4g|", a[0], a[1], a[2], sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
+    else
+        snprintf(out, n, "(%.4g, %.4g), |%.4g|", a[0], a[1], sqrtf(a[0] * a[0] + a[1] * a[1]));
+}
+
+int sph_inspect_lines(const sph_sim *sim, uint32_t i, char lines[][128], int max_lines)
+{
+    if (i >= sim->n) return 0;
+    const sph_particles *P = &sim->P;
+    const int dim = sim->dim;
+    int k = 0;
+    char buf[96];
+#define INSPECT(...) \
+    if (k < max_lines) snprintf(lines[k++], 128, __VA_ARGS__)
+    INSPECT("particle %u (index %u)", P->id[i], i);
+    vec_text(buf, sizeof buf, P->pos, dim, i);
+    INSPECT("x  %s m", buf);
+    vec_text(buf, sizeof buf, P->vel, dim, i);
+    INSPECT("v  %s m/s", buf);
+    int32_t c[3];
+    sph_overlay_cell_of(sim, i, c);
+    if (sim->in_pipeline[SPH_PASS_HASH]) {
+        uint32_t h = cell_hash(sim, c), T = sim->S.table_size ? sim->S.table_size : 1;
+        if (dim == 3) {
+            INSPECT("cell (%d, %d, %d)  hash %u  key %u", c[0], c[1], c[2], h, h % T);
+        } else {
+            INSPECT("cell (%d, %d)  hash %u  key %u", c[0], c[1], h, h % T);
+        }
+    } else if (dim == 3) {
+        INSPECT("cell (%d, %d, %d)  (no hash: search = brute)", c[0], c[1], c[2]);
+    } else {
+        INSPECT("cell (%d, %d)  (no hash: search = brute)", c[0], c[1]);
+    }
+    if (lists_built(sim)) INSPECT("neighbours %u", sim->S.nbr_start[i + 1] - sim->S.nbr_start[i]);
+    if (P->rho) INSPECT("rho %.6g %s", P->rho[i], dim == 3 ? "kg/m^3" : "kg/m^2");
+    if (P->p) INSPECT("p   %.6g %s", P->p[i], dim == 3 ? "Pa" : "N/m");
+    if (P->acc_p[0]) {
+        vec_text(buf, sizeof buf, P->acc_p, dim, i);
+        INSPECT("a pressure   %s m/s^2", buf);
+    }
+    if (P->acc_v[0]) {
+        vec_text(buf, sizeof buf, P->acc_v, dim, i);
+        INSPECT("a viscosity  %s m/s^2", buf);
+    }
+    if (P->acc_i[0]) {
+        vec_text(buf, sizeof buf, P->acc_i, dim, i);
+        INSPECT("a mouse      %s m/s^2", buf);
+    }
+    if (sim->def.effects & SPH_EFFECT(GRAVITY)) {
+        const float *g = sim->def.gravity;
+        if (dim == 3) {
+            INSPECT("a gravity    (%.4g, %.4g, %.4g) m/s^2", g[0], g[1], g[2]);
+        } else {
+            INSPECT("a gravity    (%.4g, %.4g) m/s^2", g[0], g[1]);
+        }
+    }
+#undef INSPECT
+    return k;
+}

@@ -197,4 +197,8 @@ typedef struct sph_hud_info {
 /* The HUD's text lines (without timings). Returns the number of lines. */
 int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128], int max_lines);
 
+/* The inspector's lines for particle i: id, position, cell, hash, key,
+ * neighbours, density, pressure and each acceleration term. */
+int sph_inspect_lines(const sph_sim *sim, uint32_t i, char lines[][128], int max_lines);
+
 #endif

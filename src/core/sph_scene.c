@@ -21,6 +21,7 @@ const char *const sph_search_names[SPH_SEARCH_COUNT] = {SPH_SEARCH_CHOICES(NAMES
 const char *const sph_sort_names[SPH_SORT_COUNT] = {SPH_SORT_CHOICES(NAMES)};
 const char *const sph_negative_pressure_names[SPH_NEGP_COUNT] = {SPH_NEGP_CHOICES(NAMES)};
 const char *const sph_wall_model_names[SPH_WALL_COUNT] = {SPH_WALL_CHOICES(NAMES)};
+const char *const sph_axis_names[3] = {"x", "y", "z"};
 #undef NAMES
 #define EFFECT_NAME(id, name, about) name,
 const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
@@ -39,7 +40,7 @@ const char *const sph_effect_about[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_ABOUT
 const sph_key sph_scene_keys[] = {
     {"scene", "name", SPH_KEY_STRING, S(name), 0, 0, 0, 0, NULL, 0, "", "", "title shown in tables and windows"},
     {"scene", "dimension", SPH_KEY_INT, S(dim), 2, 3, 0, 0, NULL, 0, "", "2", "2 or 3"},
-    {"scene", "effects", SPH_KEY_EFFECTS, S(effects), 0, 0, 0, 0, CH(sph_effect_names), "",
+    {"scene", "effects", SPH_KEY_FLAGS, S(effects), 0, 0, 0, 0, CH(sph_effect_names), "",
      "gravity pressure viscosity walls",
      "the effects to simulate; passes needed only by others are left out"},
     {"scene", "steps", SPH_KEY_INT, S(steps), 1, 1e9, 0, 0, NULL, 0, "", "1000",
@@ -54,6 +55,9 @@ const sph_key sph_scene_keys[] = {
     {"domain", "max", SPH_KEY_VEC, S(domain_max), -BIG, BIG, 0, 0, NULL, 0, "m", "1 1 1", "upper corner of the box"},
     {"domain", "wall_damping", SPH_KEY_FLOAT, S(wall_damping), 0, 1, 0, 0, NULL, 0, "", "0.5",
      "share of the normal speed a particle keeps when it bounces off a wall"},
+    {"domain", "periodic", SPH_KEY_FLAGS, S(periodic), 0, 0, 0, 0, CH(sph_axis_names), "", "none",
+     "axes that wrap around: a particle leaving at max comes back at min (no walls there); each needs a length of "
+     "at least 3 h"},
     {"domain", "wall_model", SPH_KEY_CHOICE, S(wall_model), 0, 0, 0, 0, CH(sph_wall_model_names), "", "volume",
      "volume: the space behind each wall counts as fluid at rest in the density sum and pushes back with the "
      "particle's pressure, so particles near a wall miss none of their support; reflect: only the seed's damped "
@@ -135,8 +139,8 @@ static const char *fluid_block_name(const char *section)
 
 static void range_text(const sph_key *k, char *out, size_t n)
 {
-    if (k->type == SPH_KEY_CHOICE || k->type == SPH_KEY_KERNEL || k->type == SPH_KEY_EFFECTS) {
-        size_t used = (size_t)snprintf(out, n, "%s", k->type == SPH_KEY_EFFECTS ? "a list of: " : "one of: ");
+    if (k->type == SPH_KEY_CHOICE || k->type == SPH_KEY_KERNEL || k->type == SPH_KEY_FLAGS) {
+        size_t used = (size_t)snprintf(out, n, "%s", k->type == SPH_KEY_FLAGS ? "a list of (or none): " : "one of: ");
         for (int i = 0; i < k->n_choices && used < n; i++)
             used += (size_t)snprintf(out + used, n - used, "%s%s", i ? ", " : "", k->choices[i]);
         return;
@@ -260,7 +264,7 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
         *(int *)field = c;
         return SPH_ERR_OK;
     }
-    case SPH_KEY_EFFECTS: {
+    case SPH_KEY_FLAGS: {
         unsigned bits = 0;
         const char *p = value;
         while (*p) {
@@ -638,6 +642,19 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
             return sph_fail(err, SPH_ERR_RANGE, "%s:%d: [domain] max.%c = %g is not above min.%c = %g", def->file,
                             def->origin[li].line, axes[a], def->domain_max[a], axes[a], def->domain_min[a]);
         }
+    }
+    for (int a = 0; a < 3; a++) {
+        if (!(def->periodic & (1u << a))) continue;
+        int li = key_index("domain", "periodic");
+        if (a >= dim)
+            return sph_fail(err, SPH_ERR_RANGE, "%s:%d: [domain] periodic lists %c but the scene is %dD", def->file,
+                            def->origin[li].line, axes[a], dim);
+        double len = (double)def->domain_max[a] - def->domain_min[a];
+        if (len < 3.0 * def->h * (1.0 + 1.0 / 1024))
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s:%d: [domain] periodic %c: the domain is %g m long, less than 3 h = %g m (a particle "
+                            "would meet its own image)",
+                            def->file, def->origin[li].line, axes[a], len, 3.0 * def->h);
     }
     if (def->n_blocks == 0)
         return sph_fail(err, SPH_ERR_SCENE, "%s: no particles: the scene has no [fluid NAME] block", def->file);

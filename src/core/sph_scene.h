@@ -67,6 +67,7 @@ extern const char *const sph_search_names[SPH_SEARCH_COUNT];
 extern const char *const sph_sort_names[SPH_SORT_COUNT];
 extern const char *const sph_negative_pressure_names[SPH_NEGP_COUNT];
 extern const char *const sph_wall_model_names[SPH_WALL_COUNT];
+extern const char *const sph_axis_names[3];
 
 /* Where a value came from, for messages: the file's line, or 0 for the default. */
 typedef struct sph_origin {
@@ -93,6 +94,7 @@ typedef struct sph_scene_def {
     float domain_min[3], domain_max[3]; /* [m] the box walls bound */
     float wall_damping;                 /* [1] share of the normal speed kept at a wall bounce */
     sph_wall_model wall_model;          /* volume: walls also count in density and pressure */
+    unsigned periodic;                  /* bit d: axis d wraps around (no walls on it) */
     int n_blocks;
     sph_block_def blocks[SPH_MAX_BLOCKS];
 
@@ -147,7 +149,7 @@ int64_t sph_block_nodes(const sph_scene_def *def, int b, int axis);
 /* The key table, for help text and docs. */
 typedef enum sph_key_type {
     SPH_KEY_FLOAT, SPH_KEY_INT, SPH_KEY_UINT, SPH_KEY_VEC, SPH_KEY_CHOICE, SPH_KEY_KERNEL,
-    SPH_KEY_EFFECTS, SPH_KEY_STRING
+    SPH_KEY_FLAGS, SPH_KEY_STRING
 } sph_key_type;
 
 typedef struct sph_key {

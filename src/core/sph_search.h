@@ -4,6 +4,7 @@
 #define SPH_SEARCH_H
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "sph_sim.h"
@@ -57,6 +58,50 @@ static inline int32_t sph_grid_coord(float x, float lo, float inv_h, int32_t dim
 {
     int32_t c = sph_cell_coord(x - lo, inv_h);
     return c < 0 ? 0 : c >= dims ? dims - 1 : c;
+}
+
+/* Cell of coordinate x along axis d: bounded axes clamp (a periodic axis's
+ * positions are already wrapped; the clamp only absorbs rounding). */
+static inline int32_t sph_cells_coord(const sph_cells *g, int d, float x)
+{
+    int32_t c = sph_cell_coord(x - g->origin[d], g->inv_size[d]);
+    if (g->count[d]) c = c < 0 ? 0 : c >= g->count[d] ? g->count[d] - 1 : c;
+    return c;
+}
+
+/* The neighbouring cell c + delta along axis d; false if there is none
+ * (past the edge of a bounded, non-periodic grid). */
+static inline bool sph_cells_step(const sph_cells *g, int d, int32_t c, int delta, int32_t *out)
+{
+    int32_t n = c + delta;
+    if (g->count[d] && (n < 0 || n >= g->count[d])) {
+        if (!g->wrap[d]) return false;
+        n = n < 0 ? n + g->count[d] : n - g->count[d];
+    }
+    *out = n;
+    return true;
+}
+
+/* The hash of a cell: the seed's primes, or the cell's number in a dense grid. */
+static inline uint32_t sph_cells_hash(const sph_cells *g, const int32_t c[3])
+{
+    if (g->dense)
+        return (uint32_t)c[0] + (uint32_t)g->count[0] * ((uint32_t)c[1] + (uint32_t)g->count[1] * (uint32_t)c[2]);
+    return sph_hash_cell(g->dim, c[0], c[1], c[2]);
+}
+
+/* Shortest displacement along an axis with period p (inv_p = 1/p; both 0 if
+ * not periodic, which leaves dx as it is). */
+static inline float sph_min_image(float dx, float p, float inv_p)
+{
+    return dx - p * rintf(dx * inv_p);
+}
+
+/* A coordinate brought back into [lo, lo + p). */
+static inline float sph_wrap(float x, float lo, float p, float inv_p)
+{
+    float w = x - p * floorf((x - lo) * inv_p);
+    return w >= lo + p ? lo : w < lo ? lo : w;
 }
 
 #endif

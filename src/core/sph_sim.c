@@ -173,17 +173,36 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
     if (sim->in_pipeline[SPH_PASS_INTERACTION]) alloc_vec(P->acc_i, dim, n, &ok);
 
     sph_search_data *S = &sim->S;
-    if (sim->in_pipeline[SPH_PASS_HASH]) {
-        if (def->search == SPH_SEARCH_GRID) {
-            uint64_t cells = 1;
-            for (int d = 0; d < 3; d++) {
-                S->grid_dims[d] = d < dim ? (int32_t)ceil((sim->def.domain_max[d] - sim->def.domain_min[d]) / def->h) + 1 : 1;
-                cells *= (uint64_t)S->grid_dims[d];
-            }
-            S->table_size = (uint32_t)cells;
-        } else {
-            S->table_size = def->table_size ? def->table_size : (n ? n : 1);
+    for (int d = 0; d < dim; d++)
+        if (def->periodic & (1u << d)) {
+            sim->period[d] = sim->def.domain_max[d] - sim->def.domain_min[d];
+            sim->inv_period[d] = 1.0f / sim->period[d];
         }
+    if (sim->in_pipeline[SPH_PASS_HASH]) {
+        sph_cells *g = &S->cells;
+        const double size = (double)def->h * (1.0 + 1.0 / 1024);
+        uint64_t cells = 1;
+        g->dim = dim;
+        g->dense = def->search == SPH_SEARCH_GRID;
+        for (int d = 0; d < 3; d++) {
+            double len = (double)sim->def.domain_max[d] - sim->def.domain_min[d];
+            g->size[d] = (float)size;
+            if (d >= dim) {
+                g->count[d] = g->dense ? 1 : 0;
+            } else if (sim->period[d] > 0) {
+                g->wrap[d] = true;
+                g->count[d] = (int32_t)floor(len / size);
+                g->size[d] = (float)(len / g->count[d]);
+                g->origin[d] = sim->def.domain_min[d];
+            } else if (g->dense) {
+                g->count[d] = (int32_t)ceil(len / size) + 1;
+                g->origin[d] = sim->def.domain_min[d];
+            }
+            g->inv_size[d] = 1.0f / g->size[d];
+            if (g->dense) cells *= (uint64_t)g->count[d];
+            S->grid_dims[d] = g->dense ? g->count[d] : 0;
+        }
+        S->table_size = g->dense ? (uint32_t)cells : def->table_size ? def->table_size : (n ? n : 1);
         S->entries = alloc_zero(n, sizeof *S->entries, &ok);
         S->start = alloc_zero(S->table_size, sizeof *S->start, &ok);
         S->spos = alloc_zero(4 * (size_t)n, sizeof *S->spos, &ok);

@@ -48,7 +48,23 @@ typedef struct sph_entry {
 #define SPH_HASH_P2 9737333u
 #define SPH_HASH_P3 440817757u
 
+/* How positions map to search cells, per axis (set up by sph_sim_create).
+ * Cells are a hair larger than the support, h (1 + 2^-10): then two particles
+ * closer than h, as float arithmetic measures it, always fall in the same or
+ * adjacent cells, however the products x / size round (with cells of exactly
+ * h, x = 0.0599999949 and x = -1e-9 at h = 0.06 land two cells apart). */
+typedef struct sph_cells {
+    int dim;
+    bool dense;        /* grid variant: a cell's key is its number in the grid */
+    float origin[3];   /* [m] where cell 0 starts: 0 for the hash (as the seed), the domain's min otherwise */
+    float size[3];     /* [m] cell size: h (1 + 2^-10), or L / floor(L / that) on a periodic axis */
+    float inv_size[3]; /* [1/m] */
+    int32_t count[3];  /* cells over the domain; 0: unbounded (the hash along a non-periodic axis) */
+    bool wrap[3];      /* periodic axis: cell count wraps to 0 */
+} sph_cells;
+
 typedef struct sph_search_data {
+    sph_cells cells;
     uint32_t table_size;  /* number of keys */
     sph_entry *entries;   /* [n] written by hash, sorted in place by sort */
     sph_entry *scratch;   /* [n] counting sort's output buffer */
@@ -132,6 +148,8 @@ struct sph_sim {
     uint64_t step;        /* steps completed */
     float max_speed;      /* [m/s] after the latest integration, for the CFL condition */
     float max_acc;        /* [m/s^2] likewise */
+    float period[3];      /* [m] domain length on periodic axes, 0 on others */
+    float inv_period[3];  /* [1/m] 1 / period, 0 on non-periodic axes */
 
     bool in_pipeline[SPH_PASS_COUNT]; /* the scene needs the pass */
     bool enabled[SPH_PASS_COUNT];     /* switched on (a window toggle); only meaningful if in the pipeline */

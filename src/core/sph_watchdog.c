@@ -201,6 +201,7 @@ void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n)
             float r2 = 0;
             for (int d = 0; d < sim->dim; d++) {
                 float dx = sim->P.pred[d][j] - sim->P.pred[d][i];
+                if (sim->period[d] > 0) dx -= sim->period[d] * rintf(dx * sim->inv_period[d]);
                 r2 += dx * dx;
             }
             append(out, n, &used, "    %u: r=%.4g m", j, sqrtf(r2));

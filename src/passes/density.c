@@ -3,7 +3,7 @@
  * neighbour counts). With walls of the volume model, rho0 times the share of
  * the kernel hidden behind the walls is added (sph_wall_hidden): a particle at
  * a wall is not missing half its neighbours. */
-#include "sph_sim.h"
+#include "sph_search.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -25,6 +25,11 @@ float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad
     float vis[6], dvis[6]; /* per wall: visible share 1 - psi, and its derivative along the axis */
     float all = 1.0f;
     for (int d = 0; d < dim; d++) {
+        if (sim->period[d] > 0) { /* no walls on a periodic axis */
+            vis[2 * d] = vis[2 * d + 1] = 1.0f;
+            dvis[2 * d] = dvis[2 * d + 1] = 0.0f;
+            continue;
+        }
         float x = sim->P.pred[d][i], area;
         float lo = sph_kernel_wall(k, x - sim->def.domain_min[d], &area);
         vis[2 * d] = 1.0f - lo;
@@ -56,6 +61,7 @@ static void run(sph_sim *sim)
     const sph_kernel k = sim->k_density;
     const int n = (int)sim->n, dim = sim->dim;
     const float w0 = sph_kernel_w(&k, 0.0f);
+    const float *per = sim->period, *iper = sim->inv_period;
     float *restrict rho = P->rho;
     const bool walls = sph_sim_wall_volume(sim);
     const float rho0 = sim->def.rest_density;
@@ -66,7 +72,7 @@ static void run(sph_sim *sim)
             uint32_t j = S->nbr[e];
             float r2 = 0;
             for (int d = 0; d < dim; d++) {
-                float dx = P->pred[d][i] - P->pred[d][j];
+                float dx = sph_min_image(P->pred[d][i] - P->pred[d][j], per[d], iper[d]);
                 r2 += dx * dx;
             }
             sum += P->mass[j] * sph_kernel_w(&k, sqrtf(r2));

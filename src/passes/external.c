@@ -2,7 +2,7 @@
  * v += g dt for each particle, then pred = x + v dt: neighbours and forces are
  * evaluated where the particle is about to be, which keeps stiff pressure
  * stable at larger time steps. Each particle touches only its own data. */
-#include "sph_sim.h"
+#include "sph_search.h"
 
 #include <stdio.h>
 
@@ -38,6 +38,11 @@ static void run(sph_sim *sim)
             float *restrict xp = P->pred[d];
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
             for (int i = 0; i < n; i++) xp[i] = x[i] + v[i] * dt;
+            if (sim->period[d] > 0) {
+                const float lo = sim->def.domain_min[d], per = sim->period[d], iper = sim->inv_period[d];
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+                for (int i = 0; i < n; i++) xp[i] = sph_wrap(xp[i], lo, per, iper);
+            }
         }
     }
 }

@@ -1,8 +1,9 @@
 /* Pass: spatial hash. Each particle gets the seed's (index, hash, key) entry
- * for the cell of its predicted position: cell = floor(x / h), hash from the
- * seed's primes in unsigned arithmetic, key = hash % table_size. The grid
- * variant numbers the cells of a dense grid over the domain instead (no
- * collisions, but memory grows with the domain, not with the fluid). */
+ * for the cell of its predicted position: cell = floor(x / size) with size a
+ * hair above h (see sph_cells), hash from the seed's primes in unsigned
+ * arithmetic, key = hash % table_size. The grid variant numbers the cells of
+ * a dense grid over the domain instead (no collisions, but memory grows with
+ * the domain, not with the fluid). Periodic axes have their own cell count. */
 #include "sph_search.h"
 
 #include <stdio.h>
@@ -28,27 +29,15 @@ static void run(sph_sim *sim)
 {
     const sph_particles *P = &sim->P;
     sph_search_data *S = &sim->S;
+    const sph_cells *g = &S->cells;
     const int n = (int)sim->n, dim = sim->dim;
-    const float inv_h = 1.0f / sim->def.h;
     const uint32_t T = S->table_size;
     sph_entry *restrict e = S->entries;
-    if (sim->def.search == SPH_SEARCH_GRID) {
-        const int32_t *g = S->grid_dims;
-        const float *lo = sim->def.domain_min;
-#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-        for (int i = 0; i < n; i++) {
-            uint32_t cell = 0;
-            for (int d = dim - 1; d >= 0; d--)
-                cell = cell * (uint32_t)g[d] + (uint32_t)sph_grid_coord(P->pred[d][i], lo[d], inv_h, g[d]);
-            e[i] = (sph_entry){cell, cell, (uint32_t)i};
-        }
-        return;
-    }
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
-        int32_t cz = dim == 3 ? sph_cell_coord(P->pred[2][i], inv_h) : 0;
-        uint32_t hash = sph_hash_cell(dim, sph_cell_coord(P->pred[0][i], inv_h),
-                                      sph_cell_coord(P->pred[1][i], inv_h), cz);
+        int32_t c[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) c[d] = sph_cells_coord(g, d, P->pred[d][i]);
+        uint32_t hash = sph_cells_hash(g, c);
         e[i] = (sph_entry){hash % T, hash, (uint32_t)i};
     }
 }

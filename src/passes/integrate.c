@@ -1,8 +1,8 @@
 /* Pass: integration, symplectic Euler: v += dt (a_pressure + a_viscosity + a_interaction),
  * then x += dt v with the new v (gravity was added to v by the external
- * pass). Also measures the largest speed and acceleration, which the CFL
+ * pass); positions on periodic axes are wrapped back into the domain. Also measures the largest speed and acceleration, which the CFL
  * time step of the next step needs. */
-#include "sph_sim.h"
+#include "sph_search.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -98,6 +98,13 @@ static void run(sph_sim *sim)
         vmax2 = fmaxf(vmax2, v2);
         amax2 = fmaxf(amax2, a2);
     }
+    for (int d = 0; d < dim; d++) /* periodic axes: back into the domain */
+        if (sim->period[d] > 0) {
+            const float lo = sim->def.domain_min[d], per = sim->period[d], iper = sim->inv_period[d];
+            float *restrict x = P->pos[d];
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+            for (int i = 0; i < n; i++) x[i] = sph_wrap(x[i], lo, per, iper);
+        }
     sim->max_speed = sqrtf(vmax2);
     sim->max_acc = sqrtf(amax2) + sqrtf(g2);
 }

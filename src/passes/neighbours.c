@@ -61,6 +61,7 @@ static inline void list_reserve(list *l, size_t more)
 static inline void scan_cell(const sph_sim *sim, const float *spos, list *out, uint32_t i, uint32_t hash,
                              const float xi[3], float h2)
 {
+    const float *per = sim->period, *iper = sim->inv_period;
     const sph_search_data *S = &sim->S;
     const uint32_t key = hash % S->table_size;
     uint32_t e = S->start[key];
@@ -73,7 +74,9 @@ static inline void scan_cell(const sph_sim *sim, const float *spos, list *out, u
     size_t len = out->len;
     for (; e < end; e++) {
         const float *xj = spos + 4 * (size_t)e;
-        float dx = xj[0] - xi[0], dy = xj[1] - xi[1], dz = xj[2] - xi[2];
+        float dx = sph_min_image(xj[0] - xi[0], per[0], iper[0]);
+        float dy = sph_min_image(xj[1] - xi[1], per[1], iper[1]);
+        float dz = sph_min_image(xj[2] - xi[2], per[2], iper[2]);
         float r2 = dx * dx + dy * dy + dz * dz;
         uint32_t j = en[e].index;
         buf[len] = j;
@@ -86,46 +89,38 @@ static void neighbours_of(const sph_sim *sim, const float *spos, list *out, uint
 {
     const sph_particles *P = &sim->P;
     const int dim = sim->dim;
-    const float h2 = sim->def.h * sim->def.h, inv_h = 1.0f / sim->def.h;
+    const float h2 = sim->def.h * sim->def.h;
     float xi[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
-    const int zr = dim == 3 ? 1 : 0;
     if (sim->def.search == SPH_SEARCH_BRUTE) {
         list_reserve(out, sim->n);
         for (uint32_t j = 0; j < sim->n; j++) {
             float r2 = 0;
             for (int d = 0; d < dim; d++) {
-                float dx = P->pred[d][j] - xi[d];
+                float dx = sph_min_image(P->pred[d][j] - xi[d], sim->period[d], sim->inv_period[d]);
                 r2 += dx * dx;
             }
             out->buf[out->len] = j;
             out->len += (j != i) & (r2 < h2);
         }
-    } else if (sim->def.search == SPH_SEARCH_GRID) {
-        const int32_t *g = sim->S.grid_dims;
-        int32_t c[3] = {0, 0, 0};
-        for (int d = 0; d < dim; d++) c[d] = sph_grid_coord(xi[d], sim->def.domain_min[d], inv_h, g[d]);
-        for (int dz = -zr; dz <= zr; dz++) {
-            int32_t z = c[2] + dz;
-            if (z < 0 || z >= g[2]) continue;
-            for (int dy = -1; dy <= 1; dy++) {
-                int32_t y = c[1] + dy;
-                if (y < 0 || y >= g[1]) continue;
-                for (int dx = -1; dx <= 1; dx++) {
-                    int32_t x = c[0] + dx;
-                    if (x < 0 || x >= g[0]) continue;
-                    uint32_t cell = (uint32_t)x + (uint32_t)g[0] * ((uint32_t)y + (uint32_t)g[1] * (uint32_t)z);
-                    scan_cell(sim, spos, out, i, cell, xi, h2);
-                }
+        return;
+    }
+    /* The 3^dim cells around the particle's cell (fewer at the edge of a
+     * bounded grid; wrapped on periodic axes). */
+    const sph_cells *g = &sim->S.cells;
+    int32_t c[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++) c[d] = sph_cells_coord(g, d, xi[d]);
+    const int zr = dim == 3 ? 1 : 0;
+    int32_t cell[3] = {0, 0, 0};
+    for (int dz = -zr; dz <= zr; dz++) {
+        if (dim == 3 && !sph_cells_step(g, 2, c[2], dz, &cell[2])) continue;
+        for (int dy = -1; dy <= 1; dy++) {
+            if (!sph_cells_step(g, 1, c[1], dy, &cell[1])) continue;
+            for (int dx = -1; dx <= 1; dx++) {
+                if (!sph_cells_step(g, 0, c[0], dx, &cell[0])) continue;
+                scan_cell(sim, spos, out, i, sph_cells_hash(g, cell), xi, h2);
             }
         }
-    } else {
-        int32_t c[3] = {0, 0, 0};
-        for (int d = 0; d < dim; d++) c[d] = sph_cell_coord(xi[d], inv_h);
-        for (int dz = -zr; dz <= zr; dz++)
-            for (int dy = -1; dy <= 1; dy++)
-                for (int dx = -1; dx <= 1; dx++)
-                    scan_cell(sim, spos, out, i, sph_hash_cell(dim, c[0] + dx, c[1] + dy, c[2] + dz), xi, h2);
     }
 }
 

@@ -7,7 +7,7 @@
  *              densities differ, so momentum drifts)
  * grad W_ij = W'(r) (x_i - x_j) / r. Coincident particles get a direction
  * (see below), else they would never separate. */
-#include "sph_sim.h"
+#include "sph_search.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -32,6 +32,7 @@ static void run(sph_sim *sim)
     const int symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
     const float r_min = SPH_KERNEL_R_MIN * k.h; /* below this, particles count as coincident */
     const bool walls = sph_sim_wall_volume(sim);
+    const float *per = sim->period, *iper = sim->inv_period;
     const float rho0 = sim->def.rest_density;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
@@ -42,7 +43,7 @@ static void run(sph_sim *sim)
             uint32_t j = S->nbr[e];
             float dx[3] = {0, 0, 0}, r2 = 0;
             for (int d = 0; d < dim; d++) {
-                dx[d] = P->pred[d][i] - P->pred[d][j];
+                dx[d] = sph_min_image(P->pred[d][i] - P->pred[d][j], per[d], iper[d]);
                 r2 += dx[d] * dx[d];
             }
             float r;

@@ -8,7 +8,7 @@
  * It reads vel and writes acc_v only: the seed's shader added the result to
  * the velocities it was still reading for other particles, so its outcome
  * depended on the order threads ran in. */
-#include "sph_sim.h"
+#include "sph_search.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -32,6 +32,7 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const int laplacian = sim->def.viscosity_form == SPH_VFORM_LAPLACIAN;
     const float nu = sim->def.viscosity;
+    const float *per = sim->period, *iper = sim->inv_period;
     const float scale = laplacian ? nu * sim->def.rest_density : nu * 2.0f * (float)dim / k.m2;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
@@ -40,7 +41,7 @@ static void run(sph_sim *sim)
             uint32_t j = S->nbr[e];
             float r2 = 0;
             for (int d = 0; d < dim; d++) {
-                float dx = P->pred[d][i] - P->pred[d][j];
+                float dx = sph_min_image(P->pred[d][i] - P->pred[d][j], per[d], iper[d]);
                 r2 += dx * dx;
             }
             float r = sqrtf(r2);

@@ -22,6 +22,7 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n;
     const float damp = sim->def.wall_damping;
     for (int d = 0; d < sim->dim; d++) {
+        if (sim->period[d] > 0) continue; /* a periodic axis has no walls */
         float *restrict x = P->pos[d], *restrict v = P->vel[d];
         const float lo = sim->def.domain_min[d], hi = sim->def.domain_max[d];
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)

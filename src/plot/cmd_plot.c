@@ -406,7 +406,7 @@ static int plot_series_cmd(const plot_opts *o, const char *dir)
     }
     if (m < sizeof L.title) snprintf(L.title + m, sizeof L.title - m, " over %s", xname[0] == 't' ? "time" : "steps");
     if (L.title[0] >= 'a' && L.title[0] <= 'z') L.title[0] = (char)(L.title[0] - 'a' + 'A');
-    snprintf(L.subtitle, sizeof L.subtitle, "%zu steps from %s", t.nrows, src);
+    snprintf(L.subtitle, sizeof L.subtitle, "%zu step%s from %s", t.nrows, t.nrows == 1 ? "" : "s", src);
     column_axis(xname, o->dim, L.xlabel, sizeof L.xlabel);
 
     snprintf(file, sizeof file, "%s.csv", base);

@@ -67,13 +67,47 @@ static const struct {
     {235, 1}, {175, 3}, {255, 7}, {205, 2}, {120, 0}, {255, 5},
 };
 
+/* PLplot's PDF page is half the PNG's size in mm (same layout); lengths that
+ * PLplot keeps absolute (line widths, dashes, hatch spacing) are scaled by
+ * this so that the PDF looks like the PNG. */
+static double g_scale = 1.0;
+
+static void set_width(double w) { plwidth(w * g_scale); }
+
 static void set_line_style(int style)
 {
     int s = ((style % 8) + 8) % 8;
-    if (line_style[s].n == 0)
+    if (line_style[s].n == 0) {
         pllsty(1);
-    else
-        plstyl(line_style[s].n, line_style[s].mark, line_style[s].space);
+        return;
+    }
+    PLINT mark[3], space[3];
+    for (int i = 0; i < line_style[s].n; i++) {
+        mark[i] = (PLINT)(line_style[s].mark[i] * g_scale);
+        space[i] = (PLINT)(line_style[s].space[i] * g_scale);
+    }
+    plstyl(line_style[s].n, mark, space);
+}
+
+/* PLplot's hatch patterns 1-8 (angle in tenths of a degree, spacing in
+ * micrometres), with the spacing scaled; 0: solid. */
+static void set_pattern(int pattern)
+{
+    static const struct {
+        int n;
+        PLINT inc[2], del[2];
+    } pat[9] = {
+        {0, {0, 0}, {0, 0}},       {1, {0, 0}, {2000, 0}},       {1, {900, 0}, {2000, 0}},
+        {1, {450, 0}, {2000, 0}},  {1, {-450, 0}, {2000, 0}},    {1, {300, 0}, {2000, 0}},
+        {1, {-300, 0}, {2000, 0}}, {2, {0, 900}, {2000, 2000}}, {2, {450, -450}, {2000, 2000}},
+    };
+    if (pattern <= 0 || pattern > 8) {
+        set_pattern(0);
+        return;
+    }
+    PLINT del[2] = {(PLINT)(pat[pattern].del[0] * g_scale), (PLINT)(pat[pattern].del[1] * g_scale)};
+    PLINT inc[2] = {pat[pattern].inc[0], pat[pattern].inc[1]};
+    plpat(pat[pattern].n, inc, del);
 }
 
 static void setup_colours(void)
@@ -279,11 +313,11 @@ static void legend(const legend_entry *e, int n, bool fills, double x0, double x
     plwind(0, 1, 0, 1); /* world = page coordinates */
     PLFLT bx[5] = {x0, x1, x1, x0, x0}, by[5] = {y0, y0, y1, y1, y0};
     plcol0(COL_BG);
-    plpsty(0);
+    set_pattern(0);
     plfill(4, bx, by);
     plcol0(COL_FG);
     pllsty(1);
-    plwidth(1.0);
+    set_width(1.0);
     plline(5, bx, by);
     double w = x1 - x0, sx0 = x0 + 0.05 * w, sx1 = x0 + 0.24 * w, tx = x0 + 0.285 * w;
     for (int i = 0; i < n; i++) {
@@ -293,21 +327,21 @@ static void legend(const legend_entry *e, int n, bool fills, double x0, double x
             PLFLT fx[5] = {sx0, sx1, sx1, sx0, sx0}, fy[5] = {y - hh, y - hh, y + hh, y + hh, y - hh};
             int f = e[i].style % 12;
             plcol0(COL_FILL + f);
-            plpsty(0);
+            set_pattern(0);
             plfill(4, fx, fy);
             if (fill_style[f].pattern) {
                 plcol0(COL_FG);
-                plpsty(fill_style[f].pattern);
+                set_pattern(fill_style[f].pattern);
                 plfill(4, fx, fy);
-                plpsty(0);
+                set_pattern(0);
             }
             plcol0(COL_FG);
-            plwidth(1.0);
+            set_width(1.0);
             plline(5, fx, fy);
         } else {
             PLFLT lx[2] = {sx0, sx1}, ly[2] = {y, y}, mx = 0.5 * (sx0 + sx1), my = y;
             plcol0(COL_CURVE + e[i].style % 8);
-            plwidth(2.2);
+            set_width(2.2);
             set_line_style(e[i].style);
             plline(2, lx, ly);
             pllsty(1);
@@ -323,7 +357,7 @@ static void legend(const legend_entry *e, int n, bool fills, double x0, double x
         plptex(sx0, y1 - pad - (n + 0.5) * row, 1, 0, 0.0, note);
     }
     plschr(0, 1.0);
-    plwidth(1.0);
+    set_width(1.0);
 }
 
 /* "Q [U]" with values scaled by 10^-e: "Q [10^e U]", or "Q [10^e/m]" for U = 1/m. */
@@ -393,7 +427,7 @@ static void draw_lines(const plot_lines *c)
         plvpor(vx0, vx1, bottom, top);
         plwind(xr.lo, xr.hi, yr.lo, yr.hi);
         plcol0(COL_GRID);
-        plwidth(1.0);
+        set_width(1.0);
         pllsty(1);
         plbox("g", 0, 0, "g", 0, 0);
         if (P->zero_line && yr.lo < 0 && yr.hi > 0) {
@@ -404,17 +438,17 @@ static void draw_lines(const plot_lines *c)
         for (int k = 0; k < P->n; k++) {
             const plot_series *s = &P->s[k];
             plcol0(COL_CURVE + s->style % 8);
-            plwidth(2.2);
+            set_width(2.2);
             set_line_style(s->style);
             draw_polyline(s->x, s->y, s->n, scale);
             pllsty(1);
             draw_markers(s, k, P->n, xr, yr, scale);
         }
         plcol0(COL_FG);
-        plwidth(1.6);
+        set_width(1.6);
         pllsty(1);
         plbox(p == c->np - 1 ? "bcnst" : "bcst", 0, 0, "bcnstv", 0, 0);
-        plwidth(1.0);
+        set_width(1.0);
         plmtex("l", 5.2, 0.5, 0.5, ylabel);
         if (p == c->np - 1) plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
 
@@ -434,14 +468,14 @@ static void fill_box(PLFLT *fx, PLFLT *fy, int style)
 {
     int f = style % 12;
     plcol0(COL_FILL + f);
-    plpsty(0);
+    set_pattern(0);
     plfill(4, fx, fy);
     if (fill_style[f].pattern) {
         plcol0(COL_FG);
-        plwidth(1.0);
-        plpsty(fill_style[f].pattern);
+        set_width(1.0);
+        set_pattern(fill_style[f].pattern);
         plfill(4, fx, fy);
-        plpsty(0);
+        set_pattern(0);
     }
 }
 
@@ -458,7 +492,7 @@ static void draw_bars(const plot_bars *c)
     plvpor(vx0, vx1, vy0, vy1);
     plwind(0, xmax, 0, c->n);
     plcol0(COL_GRID);
-    plwidth(1.0);
+    set_width(1.0);
     pllsty(1);
     plbox("g", 0, 0, "", 0, 0);
     for (int i = 0; i < c->n; i++) {
@@ -466,9 +500,9 @@ static void draw_bars(const plot_bars *c)
         PLFLT fx[5] = {0, v, v, 0, 0}, fy[5] = {yc - hh, yc - hh, yc + hh, yc + hh, yc - hh};
         fill_box(fx, fy, i);
         plcol0(COL_FG);
-        plwidth(1.2);
+        set_width(1.2);
         plline(5, fx, fy);
-        plwidth(1.0);
+        set_width(1.0);
         plschr(0, 0.85);
         plptex(v + 0.012 * xmax, yc, 1, 0, 0.0, c->note[i]);
         plschr(0, 0.95);
@@ -476,9 +510,9 @@ static void draw_bars(const plot_bars *c)
         plschr(0, 1.0);
     }
     plcol0(COL_FG);
-    plwidth(1.6);
+    set_width(1.6);
     plbox("bcnst", 0, 0, "bc", 0, 0);
-    plwidth(1.0);
+    set_width(1.0);
     plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
 }
 
@@ -517,23 +551,23 @@ static void draw_stack(const plot_stack *c)
         if (n >= 2) {
             int f = l % 12;
             plcol0(COL_FILL + f);
-            plpsty(0);
+            set_pattern(0);
             plfill((PLINT)m, px, py);
             if (fill_style[f].pattern) {
                 plcol0(COL_FG);
-                plpsty(fill_style[f].pattern);
+                set_pattern(fill_style[f].pattern);
                 plfill((PLINT)m, px, py);
-                plpsty(0);
+                set_pattern(0);
             }
             plcol0(COL_FG);
-            plwidth(0.8);
+            set_width(0.8);
             plline((PLINT)n, c->x, base); /* the layer's upper edge */
         }
     }
     plcol0(COL_FG);
-    plwidth(1.6);
+    set_width(1.6);
     plbox("bcnst", 0, 0, "bcnstv", 0, 0);
-    plwidth(1.0);
+    set_width(1.0);
     plmtex("l", 5.2, 0.5, 0.5, c->ylabel);
     plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
 
@@ -566,8 +600,9 @@ static bool have_device(const char *name)
     return false;
 }
 
-static void render(plot_kind kind, const void *chart, const char *dev, const char *file, int w, int h)
+static void render(plot_kind kind, const void *chart, const char *dev, const char *file, int w, int h, double scale)
 {
+    g_scale = scale;
     plsexit(on_plplot_exit);
     plsdev(dev);
     plsfnam(file);
@@ -629,9 +664,9 @@ bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *
     if (!png_tmp) return false;
     const char *pdf_tmp = plot_out_stage(dir, pdf);
     if (!pdf_tmp) return false;
-    render(kind, chart, "pngcairo", png_tmp, width, height);
+    render(kind, chart, "pngcairo", png_tmp, width, height, 1.0);
     /* same layout on a page of half the pixel count in points: the PNG is the PDF at 144 dpi */
-    render(kind, chart, "pdfcairo", pdf_tmp, (width + 1) / 2, (height + 1) / 2);
+    render(kind, chart, "pdfcairo", pdf_tmp, (width + 1) / 2, (height + 1) / 2, 0.5);
     if (!fix_pdf_date(pdf_tmp)) {
         fprintf(stderr, "sphlab plot: %s/%s: cannot finish the PDF\n", dir, pdf);
         return false;

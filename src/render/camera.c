@@ -95,11 +95,12 @@ static void fit_3d(sph_camera *c, const float lo[3], const float hi[3], const sp
     float fit = fminf(half, half * aspect); /* the narrower half-angle's tangent */
     float zoom = o->zoom > 0 ? o->zoom : 1.0f;
     float dist = rad / sinf(atanf(fit)) / zoom;
-    /* z is up in the scene (gravity along -z in 3D scenes), the orbit turns about it */
+    /* y is up, as in the 2D scenes (gravity along -y); the orbit turns about
+     * it. Yaw 0, pitch 0 looks along -z: the x-y plane as in 2D. */
     float yaw = o->yaw * PI_F / 180.0f, pitch = o->pitch * PI_F / 180.0f;
-    float dir[3] = {cosf(pitch) * sinf(yaw), -cosf(pitch) * cosf(yaw), sinf(pitch)};
+    float dir[3] = {cosf(pitch) * sinf(yaw), sinf(pitch), cosf(pitch) * cosf(yaw)};
     for (int d = 0; d < 3; d++) c->eye[d] = ctr[d] + dist * dir[d];
-    float f[3] = {-dir[0], -dir[1], -dir[2]}, up[3] = {0, 0, 1}, s[3], u[3];
+    float f[3] = {-dir[0], -dir[1], -dir[2]}, up[3] = {0, 1, 0}, s[3], u[3];
     cross(f, up, s);
     normalize(s);
     cross(s, f, u);

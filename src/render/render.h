@@ -36,6 +36,10 @@ typedef struct sph_view {
     bool fixed_range;        /* colour range from range[] instead of the data */
     float range[2];
     sph_hud_info hud;
+    /* A text panel at the view's top right (the window's inspector or key
+     * list); NULL or 0 lines: none. */
+    const char (*panel)[128];
+    int panel_lines;
 } sph_view;
 
 sph_view sph_view_default(const sph_sim *sim);

@@ -47,7 +47,7 @@ struct sph_renderer {
     int w, h;
     GLuint fbo, rb_color, rb_depth;
     GLuint prog_p, prog_c;
-    GLint up_view, up_proj, up_radius, up_sphere, uc_size, uc_atlas;
+    GLint up_view, up_proj, up_radius, up_sphere, up_cut, uc_size, uc_atlas;
     GLuint vao_p, vbo_corner, vbo_inst, vao_c, vbo_c, tex;
     sph_font font;
     bool have_font;
@@ -221,6 +221,7 @@ sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *er
     r->up_proj = gl->GetUniformLocation(r->prog_p, "u_proj");
     r->up_radius = gl->GetUniformLocation(r->prog_p, "u_radius");
     r->up_sphere = gl->GetUniformLocation(r->prog_p, "u_sphere");
+    r->up_cut = gl->GetUniformLocation(r->prog_p, "u_cut");
     r->uc_size = gl->GetUniformLocation(r->prog_c, "u_size");
     r->uc_atlas = gl->GetUniformLocation(r->prog_c, "u_atlas");
 
@@ -584,6 +585,18 @@ static void draw_hud(sph_renderer *r, const sph_sim *sim, const sph_view *v)
     }
 }
 
+/* A box of text lines at the view's top-right corner. */
+static void draw_panel(sph_renderer *r, const char (*lines)[128], int n)
+{
+    const float fs = r->font.px[SPH_TEXT_SMALL];
+    float w = 0;
+    for (int i = 0; i < n; i++) w = fmaxf(w, sph_font_width(&r->font, SPH_TEXT_SMALL, lines[i]));
+    float x1 = (float)(r->cam.rect[0] + r->cam.rect[2]) - 4, x0 = x1 - w - 12, y0 = (float)r->cam.rect[1] + 4;
+    rect(r, x0, y0, x1, y0 + (float)n * 1.25f * fs + 8, SPH_RGBA(0, 0, 0, 185));
+    for (int i = 0; i < n; i++)
+        text(r, SPH_TEXT_SMALL, x0 + 6, y0 + 4 + (float)i * 1.25f * fs, SPH_RGBA(235, 235, 240, 255), lines[i]);
+}
+
 static void fmt_num(char *out, size_t n, float v)
 {
     snprintf(out, n, "%.4g", (double)v);
@@ -775,6 +788,10 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         gl->UniformMatrix4fv(r->up_proj, 1, GL_FALSE, r->cam.proj);
         gl->Uniform1f(r->up_radius, rad);
         gl->Uniform1i(r->up_sphere, sim->dim == 3);
+        /* 3D with the slice's overlays: cut the fluid open at the slice, the
+         * camera's side removed, so the slice's cells are seen, not hidden */
+        bool cut = sim->dim == 3 && (L & (SPH_OV_BIT(GRID) | SPH_OV_BIT(KEYS) | SPH_OV_BIT(COLLISIONS)));
+        gl->Uniform1f(r->up_cut, cut ? v->slice_z + 0.5f * sph_particle_radius(sim) : 3.0e38f);
         if (sim->dim == 3) {
             gl->Enable(GL_DEPTH_TEST);
             gl->DepthFunc(GL_LESS);
@@ -790,11 +807,21 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
 
     /* canvas over: overlays, notes, HUD, legend */
     draw_overlay(r);
-    if (r->ov.note[0] && (L & ~(SPH_OV_BIT(HUD) | SPH_OV_BIT(LEGEND) | SPH_OV_BIT(TIMINGS))))
-        text_at(r, SPH_TEXT_SMALL, (float)rc[0] + 4, (float)(rc[1] + rc[3]) - 0.8f * fs, SPH_ALIGN_LEFT,
-                SPH_RGBA(255, 220, 120, 255), r->ov.note, true);
+    if (r->ov.note[0] && (L & ~(SPH_OV_BIT(HUD) | SPH_OV_BIT(LEGEND) | SPH_OV_BIT(TIMINGS)))) {
+        /* the builder joins its notes with "; ": one line each, upwards from the view's bottom */
+        char notes[sizeof r->ov.note];
+        snprintf(notes, sizeof notes, "%s", r->ov.note);
+        float y = (float)(rc[1] + rc[3]) - 0.8f * fs;
+        char *parts[8];
+        int np = 0;
+        for (char *save = NULL, *t = strtok_r(notes, ";", &save); t && np < 8; t = strtok_r(NULL, ";", &save))
+            parts[np++] = t + (*t == ' ');
+        for (int k = np - 1; k >= 0; k--, y -= 1.3f * fs)
+            text_at(r, SPH_TEXT_SMALL, (float)rc[0] + 4, y, SPH_ALIGN_LEFT, SPH_RGBA(255, 220, 120, 255), parts[k], true);
+    }
     if (L & (SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS))) draw_hud(r, sim, v);
     if (legend_w) draw_legend(r, sim, f, lo, hi);
+    if (v->panel && v->panel_lines > 0) draw_panel(r, v->panel, v->panel_lines);
     if (!flush(r)) goto oom;
     gl->BindVertexArray(0);
     GLenum e = gl->GetError();

@@ -1,0 +1,197 @@
+/* sphlab render SCENE.ini --out DIR: simulate headless and write a PNG every
+ * K steps (and VTK files with --vtk), through EGL surfaceless or OSMesa. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cmd_common.h"
+#include "commands.h"
+#include "vtk.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: sphlab render SCENE.ini --out DIR [options]\n"
+            "Simulates the scene and writes DIR/frame_00000.png, one every K steps (the first\n"
+            "is the initial state), without a display or a GPU. The same scene and options give\n"
+            "the same bytes.\n"
+            "  --out DIR           where the frames go (made if missing)\n"
+            "  --every K           a frame every K steps (default 10)\n"
+            "  --steps N           simulate N steps (default: the scene's duration or steps)\n"
+            "  --time T            simulate until T seconds\n"
+            "  --gl egl|osmesa     GL backend (default egl: EGL surfaceless; osmesa: Mesa's OSMesa)\n"
+            "  --vtk DIR           also write DIR/particles_NNNNN.vtk for each frame (ParaView)\n"
+            "  --set S.K=V         override a scene key (repeatable)\n"
+            "  --threads N         simulation threads (default: one per core)\n"
+            "  --quiet             no progress line, no summary\n" VIEW_OPTS_HELP "  --help              this text\n"
+            "Rendering is in software (llvmpipe) unless LIBGL_ALWAYS_SOFTWARE is set to 0.\n",
+            800, 600);
+}
+
+int cmd_render(int argc, char **argv)
+{
+    app_scene_opts so = {0};
+    view_opts vo;
+    view_opts_init(&vo, 800, 600);
+    const char *out = NULL, *vtk_dir = NULL, *v;
+    long every = 10, steps = -1, threads = 0;
+    double until = -1;
+    sph_gl_backend backend = SPH_GL_EGL;
+    bool quiet = false;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int taken = view_opts_parse(&vo, "render", argc, argv, &i);
+        if (taken < 0) return 2;
+        if (taken) continue;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
+            quiet = true;
+        } else if (opt_is(a, "--out")) {
+            if (!(out = opt_val("render", argc, argv, &i, "--out"))) return 2;
+        } else if (opt_is(a, "--vtk")) {
+            if (!(vtk_dir = opt_val("render", argc, argv, &i, "--vtk"))) return 2;
+        } else if (opt_is(a, "--every")) {
+            if (!(v = opt_val("render", argc, argv, &i, "--every")) || !app_parse_int("--every", v, 1, 2000000000L, &every))
+                return 2;
+        } else if (opt_is(a, "--steps")) {
+            if (!(v = opt_val("render", argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 0, 2000000000L, &steps))
+                return 2;
+        } else if (opt_is(a, "--time")) {
+            if (!(v = opt_val("render", argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
+                return 2;
+        } else if (opt_is(a, "--threads")) {
+            if (!(v = opt_val("render", argc, argv, &i, "--threads")) ||
+                !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
+                return 2;
+        } else if (opt_is(a, "--gl")) {
+            if (!(v = opt_val("render", argc, argv, &i, "--gl"))) return 2;
+            if (strcmp(v, "egl") == 0) {
+                backend = SPH_GL_EGL;
+            } else if (strcmp(v, "osmesa") == 0) {
+                backend = SPH_GL_OSMESA;
+            } else {
+                fprintf(stderr, "sphlab render: --gl '%s': accepted: egl, osmesa\n", v);
+                return 2;
+            }
+        } else if (opt_is(a, "--set")) {
+            if (!(v = opt_val("render", argc, argv, &i, "--set"))) return 2;
+            if (so.n_sets == APP_MAX_SETS) {
+                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
+                return 2;
+            }
+            so.sets[so.n_sets++] = v;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "sphlab render: unknown option '%s'\n", a);
+            usage(stderr);
+            return 2;
+        } else if (!so.path) {
+            so.path = a;
+        } else {
+            fprintf(stderr, "sphlab render: more than one scene file ('%s')\n", a);
+            return 2;
+        }
+    }
+    if (!so.path || !out) {
+        if (so.path) fprintf(stderr, "sphlab render: --out DIR is needed\n");
+        usage(stderr);
+        return 2;
+    }
+    if (steps >= 0 && until >= 0) {
+        fprintf(stderr, "sphlab render: give --steps or --time, not both\n");
+        return 2;
+    }
+    sph_scene_def def;
+    if (!app_load_scene(&so, &def)) return 1;
+    if (steps < 0 && until < 0) {
+        if (def.duration > 0)
+            until = def.duration;
+        else
+            steps = def.steps;
+    }
+    char err[1024];
+    if (!sph_output_dir(out, err, sizeof err) || (vtk_dir && !sph_output_dir(vtk_dir, err, sizeof err))) {
+        fprintf(stderr, "sphlab render: %s\n", err);
+        return 1;
+    }
+    sph_sim *sim;
+    sph_error serr;
+    if (sph_sim_create(&def, (int)threads, &sim, &serr) != SPH_ERR_OK) {
+        fprintf(stderr, "sphlab: %s\n", serr.msg);
+        return 1;
+    }
+    sph_view view;
+    if (!view_opts_apply(&vo, "render", sim, &view)) {
+        sph_sim_destroy(sim);
+        return 2;
+    }
+    /* software rasterising: the same pixels on every machine */
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
+    sph_renderer *r = sph_renderer_create(backend, vo.w, vo.h, err, sizeof err);
+    if (!r) {
+        fprintf(stderr, "sphlab render: no usable OpenGL: %s\n", err);
+        sph_sim_destroy(sim);
+        return 1;
+    }
+    uint8_t *rgb = malloc((size_t)vo.w * vo.h * 3);
+    if (!rgb) {
+        fprintf(stderr, "sphlab render: out of memory\n");
+        sph_renderer_destroy(r);
+        sph_sim_destroy(sim);
+        return 1;
+    }
+    bool progress = !quiet && isatty(STDERR_FILENO), ok = true, alarm = false;
+    double t0 = sph_now_ms(), shown = t0;
+    unsigned frame = 0;
+    for (;;) {
+        if (!sph_render(r, sim, &view, err, sizeof err)) {
+            fprintf(stderr, "sphlab render: %s\n", err);
+            ok = false;
+            break;
+        }
+        sph_renderer_read_rgb(r, rgb);
+        char path[1100];
+        snprintf(path, sizeof path, "%s/frame_%05u.png", out, frame);
+        if (!sph_write_png(path, rgb, vo.w, vo.h, err, sizeof err) ||
+            (vtk_dir && !sph_vtk_write_frame(sim, vtk_dir, frame, err, sizeof err))) {
+            fprintf(stderr, "sphlab render: %s\n", err);
+            ok = false;
+            break;
+        }
+        frame++;
+        bool done = until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps;
+        if (done) break;
+        for (long k = 0; k < every; k++) {
+            if (until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps) break;
+            sph_sim_step(sim);
+        }
+        if (sim->alarm.raised && !alarm) {
+            char rep[1024];
+            sph_sim_alarm_report(sim, rep, sizeof rep);
+            fprintf(stderr, "%ssphlab render: the watchdog stopped the run:\n%s\n", progress ? "\n" : "", rep);
+            /* the state it stopped at is drawn as the last frame */
+            until = sim->t;
+            steps = (long)sim->step;
+            alarm = true;
+        }
+        double now = sph_now_ms();
+        if (progress && now - shown > 200) {
+            shown = now;
+            double doneness = until >= 0 ? sim->t / until : (double)sim->step / (double)(steps ? steps : 1);
+            fprintf(stderr, "\r  frame %u  step %llu  t = %.4f s  %3.0f%%   ", frame, (unsigned long long)sim->step, sim->t,
+                    100 * doneness);
+        }
+    }
+    if (progress) fprintf(stderr, "\r%60s\r", "");
+    if (!quiet && frame)
+        printf("%u frame%s (%dx%d) in %s/%s%s%s, %.1f s; %s: %s\n", frame, frame == 1 ? "" : "s", vo.w, vo.h, out,
+               vtk_dir ? " and VTK in " : "", vtk_dir ? vtk_dir : "", vtk_dir ? "/" : "", (sph_now_ms() - t0) / 1e3,
+               sph_gl_backend_names[backend], sph_renderer_info(r));
+    free(rgb);
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+    return !ok ? 1 : alarm ? 4 : 0;
+}

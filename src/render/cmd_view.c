@@ -1,0 +1,589 @@
+/* sphlab view SCENE.ini: an SDL2 window with an OpenGL 3.3 core context
+ * (GL through libepoxy), running the scene live. The same renderer as
+ * `sphlab render` draws into an offscreen framebuffer, which is copied to
+ * the window; a screenshot reads that framebuffer, so it holds exactly what
+ * is on screen, overlays and HUD included.
+ *
+ * Scripted mode (--frames N [--screenshot FILE] [--keys KEYS]) draws N
+ * frames, pressing one key of KEYS before each, saves the last and exits:
+ * the tests run the window path that way through SDL's offscreen driver. */
+#include <SDL.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cmd_common.h"
+#include "commands.h"
+
+/* The key bindings, written once: the help panel, `--help` and
+ * docs/rendering.md list them from here. */
+#define VIEW_KEYS(X)                                                          \
+    X("space", "pause / run")                                                 \
+    X(".", "advance one pass (colours by what it wrote)")                     \
+    X("enter", "advance one whole step")                                      \
+    X("r", "reset: the scene from its start")                                 \
+    X("F1..F12", "switch pass 1..12 on or off (order of the pipeline)")       \
+    X("k / shift+k", "cycle the density / pressure kernel")                   \
+    X("o", "cycle the sort: bitonic, counting, qsort")                        \
+    X("m", "cycle the search: hash, grid, brute")                             \
+    X("1..9", "overlays: grid keys collisions neighbours forces index hud timings legend") \
+    X("c / shift+c", "next / previous colour field")                          \
+    X("z / x", "3D: slice down / up by h")                                    \
+    X("arrows", "3D: orbit; 2D: pan")                                         \
+    X("+ / - / wheel", "zoom")                                                \
+    X("left click", "pick a particle (inspector, neighbours)")                \
+    X("left / right drag", "pull / push the fluid")                           \
+    X("middle drag", "3D: orbit")                                             \
+    X("p", "screenshot PNG (what is on screen)")                              \
+    X("h", "this list")                                                       \
+    X("esc / q", "quit")
+
+static const char *const key_names[] = {
+#define VIEW_KEY_NAME(k, about) k,
+    VIEW_KEYS(VIEW_KEY_NAME)
+#undef VIEW_KEY_NAME
+};
+static const char *const key_about[] = {
+#define VIEW_KEY_ABOUT(k, about) about,
+    VIEW_KEYS(VIEW_KEY_ABOUT)
+#undef VIEW_KEY_ABOUT
+};
+#define N_KEYS ((int)(sizeof key_names / sizeof *key_names))
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: sphlab view SCENE.ini [options]\n"
+            "Opens a window and runs the scene live.\n"
+            "  --set S.K=V         override a scene key (repeatable)\n"
+            "  --threads N         simulation threads (default: one per core)\n"
+            "  --paused            start paused\n"
+            "  --steps-per-frame K steps between frames (default: as many as fit in 15 ms; 1 when scripted)\n"
+            "  --frames N          scripted: draw N frames, then exit\n"
+            "  --keys KEYS         scripted: press one key of KEYS before each frame\n"
+            "  --screenshot FILE   scripted: save the last frame as a PNG\n" VIEW_OPTS_HELP
+            "  --help              this text\n"
+            "Needs a display (X11 or Wayland). Without one, SDL_VIDEODRIVER=offscreen runs the\n"
+            "scripted mode headless.\n\nkeys:\n",
+            1024, 720);
+    for (int k = 0; k < N_KEYS; k++) fprintf(f, "  %-18s %s\n", key_names[k], key_about[k]);
+}
+
+typedef struct viewer {
+    sph_scene_def def;   /* current definition: variants switched here */
+    sph_scene_def start; /* as loaded, for messages */
+    sph_sim *sim;
+    sph_renderer *r;
+    sph_view v;
+    int threads;
+    bool paused, help, quit;
+    sph_color_field user_field; /* the field chosen by the user, restored after pass stepping */
+    int last_pass;
+    char msg[200];
+    double msg_until;
+    double sps;          /* steps per second, smoothed */
+    /* mouse */
+    bool down[3];
+    float press[2];
+    bool dragging;
+    int shots;
+    char panel[24][128];
+    bool scripted;
+} viewer;
+
+static void say(viewer *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void say(viewer *w, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(w->msg, sizeof w->msg, fmt, ap);
+    va_end(ap);
+    w->msg_until = sph_now_ms() + 4000;
+    if (w->scripted) fprintf(stderr, "sphlab view: %s\n", w->msg);
+}
+
+/* Rebuilds the simulation for w->def (a variant changed), keeping the particles. */
+static void reconfigure(viewer *w, const sph_scene_def *next, const char *what)
+{
+    sph_error err;
+    if (sph_sim_reconfigure(w->sim, next, &err) != SPH_ERR_OK) {
+        say(w, "%s: %s", what, err.msg);
+        return;
+    }
+    w->def = *next;
+    if (sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
+    say(w, "%s", what);
+}
+
+static void set_variant(viewer *w, const char *assignment)
+{
+    sph_scene_def next = w->def;
+    sph_error err;
+    if (sph_scene_set(&next, assignment, &err) != SPH_ERR_OK) {
+        say(w, "%s", err.msg);
+        return;
+    }
+    reconfigure(w, &next, assignment);
+}
+
+static void reset(viewer *w)
+{
+    sph_sim *fresh;
+    sph_error err;
+    if (sph_sim_create(&w->def, w->threads, &fresh, &err) != SPH_ERR_OK) {
+        say(w, "reset: %s", err.msg);
+        return;
+    }
+    memcpy(fresh->enabled, w->sim->enabled, sizeof fresh->enabled);
+    sph_sim_destroy(w->sim);
+    w->sim = fresh;
+    w->last_pass = -1;
+    if (w->v.selected >= (int32_t)fresh->n) w->v.selected = -1;
+    say(w, "reset to t = 0");
+}
+
+static void cycle_field(viewer *w, int dir)
+{
+    int f = (int)w->v.field;
+    for (int k = 0; k < SPH_COLOR_COUNT; k++) {
+        f = (f + dir + SPH_COLOR_COUNT) % SPH_COLOR_COUNT;
+        if (!sph_color_field_missing(w->sim, (sph_color_field)f)) break;
+    }
+    w->v.field = w->user_field = (sph_color_field)f;
+    say(w, "colour: %s", sph_color_field_names[f]);
+}
+
+static void cycle_kernel(viewer *w, bool pressure)
+{
+    char a[64];
+    int k = ((int)(pressure ? w->def.kernel_pressure : w->def.kernel_density) + 1) % SPH_KERNEL_COUNT;
+    snprintf(a, sizeof a, "kernels.%s=%s", pressure ? "pressure" : "density", sph_kernel_names[k]);
+    set_variant(w, a);
+}
+
+static void screenshot(viewer *w, const char *path)
+{
+    int width, height;
+    sph_renderer_size(w->r, &width, &height);
+    uint8_t *rgb = malloc((size_t)width * height * 3);
+    char name[64], err[1024];
+    if (!path) {
+        snprintf(name, sizeof name, "sphlab-%04d.png", w->shots++);
+        path = name;
+    }
+    if (!rgb) {
+        say(w, "screenshot: out of memory");
+        return;
+    }
+    sph_renderer_read_rgb(w->r, rgb);
+    if (sph_write_png(path, rgb, width, height, err, sizeof err))
+        say(w, "saved %s (%dx%d)", path, width, height);
+    else
+        say(w, "screenshot: %s", err);
+    free(rgb);
+}
+
+static void toggle_pass(viewer *w, int p)
+{
+    if (p >= SPH_PASS_COUNT) return;
+    if (!w->sim->in_pipeline[p]) {
+        say(w, "pass %s is not in this scene's pipeline", sph_passes[p]->name);
+        return;
+    }
+    w->sim->enabled[p] = !w->sim->enabled[p];
+    say(w, "pass %s %s", sph_passes[p]->name, w->sim->enabled[p] ? "on" : "off");
+}
+
+static void step_pass(viewer *w)
+{
+    sph_pass_id p = sph_sim_step_pass(w->sim);
+    if (p >= SPH_PASS_COUNT) {
+        say(w, "no pass ran (all off, or the watchdog stopped the run)");
+        return;
+    }
+    w->last_pass = (int)p;
+    w->paused = true;
+    int f = sph_color_field_of_pass(w->sim, p);
+    if (f >= 0) w->v.field = (sph_color_field)f;
+    say(w, "pass %s wrote %s%s%s", sph_passes[p]->name, sph_passes[p]->writes, f >= 0 ? "; colour: " : "",
+        f >= 0 ? sph_color_field_names[f] : "");
+}
+
+static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
+{
+    const bool shift = mod & KMOD_SHIFT;
+    const float h = w->def.h;
+    sph_orbit *o = &w->v.orbit;
+    if (k >= SDLK_1 && k <= SDLK_9) {
+        int ov = (int)(k - SDLK_1);
+        if (ov < SPH_OV_COUNT) {
+            w->v.overlays ^= 1u << ov;
+            say(w, "overlay %s %s", sph_overlay_names[ov], (w->v.overlays >> ov) & 1 ? "on" : "off");
+        }
+        return;
+    }
+    if (k >= SDLK_F1 && k <= SDLK_F12) {
+        toggle_pass(w, (int)(k - SDLK_F1));
+        return;
+    }
+    switch (k) {
+    case SDLK_ESCAPE:
+    case SDLK_q: w->quit = true; break;
+    case SDLK_SPACE:
+        w->paused = !w->paused;
+        if (!w->paused) {
+            w->last_pass = -1;
+            w->v.field = w->user_field;
+        }
+        break;
+    case SDLK_PERIOD: step_pass(w); break;
+    case SDLK_RETURN:
+    case SDLK_KP_ENTER:
+        sph_sim_step(w->sim);
+        w->last_pass = -1;
+        w->paused = true;
+        w->v.field = w->user_field;
+        break;
+    case SDLK_r: reset(w); break;
+    case SDLK_k: cycle_kernel(w, shift); break;
+    case SDLK_o: {
+        char a[64];
+        snprintf(a, sizeof a, "search.sort=%s", sph_sort_names[(w->def.sort + 1) % SPH_SORT_COUNT]);
+        set_variant(w, a);
+        break;
+    }
+    case SDLK_m: {
+        char a[64];
+        snprintf(a, sizeof a, "search.method=%s", sph_search_names[(w->def.search + 1) % SPH_SEARCH_COUNT]);
+        set_variant(w, a);
+        break;
+    }
+    case SDLK_c: cycle_field(w, shift ? -1 : 1); break;
+    case SDLK_z: w->v.slice_z -= h; say(w, "slice z = %.4g m", w->v.slice_z); break;
+    case SDLK_x: w->v.slice_z += h; say(w, "slice z = %.4g m", w->v.slice_z); break;
+    case SDLK_LEFT:
+    case SDLK_RIGHT:
+    case SDLK_UP:
+    case SDLK_DOWN: {
+        float dx = k == SDLK_LEFT ? -1.0f : k == SDLK_RIGHT ? 1.0f : 0.0f, dy = k == SDLK_DOWN ? -1.0f : k == SDLK_UP ? 1.0f : 0.0f;
+        if (w->sim->dim == 3) {
+            o->yaw += 10.0f * dx;
+            o->pitch = fmaxf(-89.0f, fminf(89.0f, o->pitch + 10.0f * dy));
+        } else {
+            float span = (w->def.domain_max[0] - w->def.domain_min[0]) / o->zoom;
+            o->pan[0] += 0.1f * span * dx;
+            o->pan[1] += 0.1f * span * dy;
+        }
+        break;
+    }
+    case SDLK_PLUS:
+    case SDLK_EQUALS:
+    case SDLK_KP_PLUS: o->zoom *= 1.25f; break;
+    case SDLK_MINUS:
+    case SDLK_KP_MINUS: o->zoom /= 1.25f; break;
+    case SDLK_p: screenshot(w, NULL); break;
+    case SDLK_h: w->help = !w->help; break;
+    default: break;
+    }
+}
+
+/* Scripted keys: one character each ('.', ' ', digits, letters; '\n' is enter). */
+static void press_char(viewer *w, char c)
+{
+    SDL_Keycode k = c == '\n' ? SDLK_RETURN : (SDL_Keycode)(unsigned char)(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    handle_key(w, k, (c >= 'A' && c <= 'Z') ? KMOD_SHIFT : 0);
+}
+
+static void mouse_world(viewer *w, float x, float y, float out[3])
+{
+    float px[2] = {x, y}, on[3];
+    for (int d = 0; d < 3; d++) on[d] = 0.5f * (w->def.domain_min[d] + w->def.domain_max[d]);
+    if (w->sim->dim == 3) on[2] = w->v.slice_z;
+    sph_camera_unproject(sph_renderer_camera(w->r), px, on, out);
+}
+
+static void start_interaction(viewer *w, float sign)
+{
+    if (!(w->def.effects & SPH_EFFECT(INTERACTION))) {
+        sph_scene_def next = w->def;
+        next.effects |= SPH_EFFECT(INTERACTION);
+        reconfigure(w, &next, "added the interaction effect (mouse push/pull)");
+        if (!(w->def.effects & SPH_EFFECT(INTERACTION))) return;
+    }
+    w->sim->interaction_active = true;
+    w->sim->interaction_sign = sign;
+}
+
+static void handle_event(viewer *w, const SDL_Event *e, float scale)
+{
+    switch (e->type) {
+    case SDL_QUIT: w->quit = true; break;
+    case SDL_KEYDOWN: handle_key(w, e->key.keysym.sym, e->key.keysym.mod); break;
+    case SDL_MOUSEBUTTONDOWN: {
+        int b = e->button.button == SDL_BUTTON_LEFT ? 0 : e->button.button == SDL_BUTTON_RIGHT ? 1 : 2;
+        w->down[b] = true;
+        w->press[0] = (float)e->button.x * scale;
+        w->press[1] = (float)e->button.y * scale;
+        w->dragging = false;
+        break;
+    }
+    case SDL_MOUSEBUTTONUP: {
+        int b = e->button.button == SDL_BUTTON_LEFT ? 0 : e->button.button == SDL_BUTTON_RIGHT ? 1 : 2;
+        w->down[b] = false;
+        if (!w->dragging && b < 2) {
+            float px[2] = {(float)e->button.x * scale, (float)e->button.y * scale};
+            int32_t i = b == 0 ? sph_renderer_pick(w->r, w->sim, px, 12.0f * scale) : -1;
+            w->v.selected = i;
+            if (i >= 0) {
+                w->v.overlays |= SPH_OV_BIT(NEIGHBOURS);
+                say(w, "picked particle %u", w->sim->P.id[i]);
+            }
+        }
+        w->sim->interaction_active = false;
+        w->dragging = false;
+        break;
+    }
+    case SDL_MOUSEMOTION: {
+        float x = (float)e->motion.x * scale, y = (float)e->motion.y * scale;
+        if (!(w->down[0] || w->down[1] || w->down[2])) break;
+        if (!w->dragging && fabsf(x - w->press[0]) + fabsf(y - w->press[1]) > 4) {
+            w->dragging = true;
+            if (w->down[0] || w->down[1]) start_interaction(w, w->down[0] ? 1.0f : -1.0f);
+        }
+        if (!w->dragging) break;
+        if (w->down[2] && w->sim->dim == 3) {
+            w->v.orbit.yaw += 0.4f * (float)e->motion.xrel;
+            w->v.orbit.pitch = fmaxf(-89.0f, fminf(89.0f, w->v.orbit.pitch + 0.4f * (float)e->motion.yrel));
+        } else if (w->sim->interaction_active) {
+            mouse_world(w, x, y, w->sim->interaction_point);
+        }
+        break;
+    }
+    case SDL_MOUSEWHEEL:
+        if (e->wheel.y > 0) w->v.orbit.zoom *= 1.1f;
+        if (e->wheel.y < 0) w->v.orbit.zoom /= 1.1f;
+        break;
+    default: break;
+    }
+}
+
+static void fill_panel(viewer *w)
+{
+    w->v.panel = NULL;
+    w->v.panel_lines = 0;
+    int n = 0;
+    if (w->help) {
+        snprintf(w->panel[n++], 128, "keys");
+        for (int k = 0; k < N_KEYS && n < 24; k++) snprintf(w->panel[n++], 128, "%-14s %s", key_names[k], key_about[k]);
+    } else if (w->v.selected >= 0 && (uint32_t)w->v.selected < w->sim->n) {
+        n = sph_inspect_lines(w->sim, (uint32_t)w->v.selected, w->panel, 24);
+    } else {
+        return;
+    }
+    w->v.panel = (const char(*)[128])w->panel;
+    w->v.panel_lines = n;
+}
+
+/* SDL picks its offscreen driver by itself when there is no display; a
+ * window nobody sees is only wanted when asked for (the scripted tests). */
+static bool display_check(char *err, size_t n)
+{
+    const char *drv = getenv("SDL_VIDEODRIVER");
+    if (drv && *drv) return true;
+    const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
+    if ((x && *x) || (wl && *wl)) return true;
+    snprintf(err, n, "no display: DISPLAY and WAYLAND_DISPLAY are not set (sphlab view needs X11 or Wayland; "
+                     "`sphlab render` works without one, and SDL_VIDEODRIVER=offscreen runs `view --frames N` headless)");
+    return false;
+}
+
+int cmd_view(int argc, char **argv)
+{
+    app_scene_opts so = {0};
+    view_opts vo;
+    view_opts_init(&vo, 1024, 720);
+    long threads = 0, frames = -1, spf = -1;
+    const char *shot = NULL, *keys = "", *v;
+    bool start_paused = false;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int taken = view_opts_parse(&vo, "view", argc, argv, &i);
+        if (taken < 0) return 2;
+        if (taken) continue;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--paused") == 0) {
+            start_paused = true;
+        } else if (opt_is(a, "--frames")) {
+            if (!(v = opt_val("view", argc, argv, &i, "--frames")) || !app_parse_int("--frames", v, 1, 1000000, &frames))
+                return 2;
+        } else if (opt_is(a, "--steps-per-frame")) {
+            if (!(v = opt_val("view", argc, argv, &i, "--steps-per-frame")) ||
+                !app_parse_int("--steps-per-frame", v, 0, 1000000, &spf))
+                return 2;
+        } else if (opt_is(a, "--screenshot")) {
+            if (!(shot = opt_val("view", argc, argv, &i, "--screenshot"))) return 2;
+        } else if (opt_is(a, "--keys")) {
+            if (!(keys = opt_val("view", argc, argv, &i, "--keys"))) return 2;
+        } else if (opt_is(a, "--threads")) {
+            if (!(v = opt_val("view", argc, argv, &i, "--threads")) ||
+                !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
+                return 2;
+        } else if (opt_is(a, "--set")) {
+            if (!(v = opt_val("view", argc, argv, &i, "--set"))) return 2;
+            if (so.n_sets == APP_MAX_SETS) {
+                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
+                return 2;
+            }
+            so.sets[so.n_sets++] = v;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "sphlab view: unknown option '%s'\n", a);
+            usage(stderr);
+            return 2;
+        } else if (!so.path) {
+            so.path = a;
+        } else {
+            fprintf(stderr, "sphlab view: more than one scene file ('%s')\n", a);
+            return 2;
+        }
+    }
+    if (!so.path) {
+        usage(stderr);
+        return 2;
+    }
+    if ((shot || *keys) && frames < 0) {
+        fprintf(stderr, "sphlab view: --screenshot and --keys go with --frames N\n");
+        return 2;
+    }
+    viewer w;
+    memset(&w, 0, sizeof w);
+    w.threads = (int)threads;
+    w.scripted = frames > 0;
+    w.last_pass = -1;
+    w.paused = start_paused;
+    if (!app_load_scene(&so, &w.def)) return 1;
+    w.start = w.def;
+    char err[1024];
+    if (!display_check(err, sizeof err)) {
+        fprintf(stderr, "sphlab view: %s\n", err);
+        return 1;
+    }
+    sph_error serr;
+    if (sph_sim_create(&w.def, w.threads, &w.sim, &serr) != SPH_ERR_OK) {
+        fprintf(stderr, "sphlab: %s\n", serr.msg);
+        return 1;
+    }
+    if (!view_opts_apply(&vo, "view", w.sim, &w.v)) {
+        sph_sim_destroy(w.sim);
+        return 2;
+    }
+    /* the window shows everything by default, except what a script leaves out */
+    bool chose = vo.ov_on || vo.ov_off || vo.ov_none;
+    if (!chose) w.v.overlays |= SPH_OV_BIT(TIMINGS);
+    w.user_field = w.v.field;
+
+    int rc = 1;
+    SDL_Window *win = NULL;
+    SDL_GLContext ctx = NULL;
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
+        fprintf(stderr, "sphlab view: SDL cannot open the video subsystem: %s\n", SDL_GetError());
+        goto out;
+    }
+    SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 3);
+    SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 3);
+    SDL_GL_SetAttribute(SDL_GL_CONTEXT_PROFILE_MASK, SDL_GL_CONTEXT_PROFILE_CORE);
+    SDL_GL_SetAttribute(SDL_GL_DOUBLEBUFFER, 1);
+    char title[128];
+    snprintf(title, sizeof title, "sphlab: %s", w.def.name[0] ? w.def.name : so.path);
+    win = SDL_CreateWindow(title, SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, vo.w, vo.h,
+                           SDL_WINDOW_OPENGL | SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI);
+    if (!win) {
+        fprintf(stderr, "sphlab view: SDL (%s driver) cannot open a window: %s\n", SDL_GetCurrentVideoDriver(),
+                SDL_GetError());
+        goto out;
+    }
+    ctx = SDL_GL_CreateContext(win);
+    if (!ctx) {
+        fprintf(stderr, "sphlab view: no usable OpenGL: SDL (%s driver) cannot make an OpenGL 3.3 core context: %s\n",
+                SDL_GetCurrentVideoDriver(), SDL_GetError());
+        goto out;
+    }
+    SDL_GL_SetSwapInterval(w.scripted ? 0 : 1);
+    int dw, dh;
+    SDL_GL_GetDrawableSize(win, &dw, &dh);
+    w.r = sph_renderer_create(SPH_GL_CURRENT, dw, dh, err, sizeof err);
+    if (!w.r) {
+        fprintf(stderr, "sphlab view: no usable OpenGL: %s\n", err);
+        goto out;
+    }
+    if (!w.scripted) {
+        printf("sphlab view: %s; press h for the keys\n", sph_renderer_info(w.r));
+        fflush(stdout);
+    }
+    double last = sph_now_ms();
+    for (long frame = 0; !w.quit && (frames < 0 || frame < frames); frame++) {
+        int ww, wh;
+        SDL_GetWindowSize(win, &ww, &wh);
+        SDL_GL_GetDrawableSize(win, &dw, &dh);
+        float scale = ww > 0 ? (float)dw / (float)ww : 1.0f;
+        SDL_Event e;
+        while (SDL_PollEvent(&e)) handle_event(&w, &e, scale);
+        if (w.scripted && frame < (long)strlen(keys)) press_char(&w, keys[frame]);
+        if (w.quit) break;
+        if (!sph_renderer_resize(w.r, dw, dh, err, sizeof err)) {
+            fprintf(stderr, "sphlab view: %s\n", err);
+            goto out;
+        }
+        /* advance: a fixed number of steps, or as many as fit in 15 ms */
+        double t0 = sph_now_ms();
+        uint64_t s0 = w.sim->step;
+        if (!w.paused && !w.sim->alarm.raised) {
+            if (spf >= 0 || w.scripted) {
+                for (long k = 0; k < (spf >= 0 ? spf : 1); k++) sph_sim_step(w.sim);
+            } else {
+                do sph_sim_step(w.sim);
+                while (sph_now_ms() - t0 < 15.0 && !w.sim->alarm.raised);
+            }
+            if (w.sim->alarm.raised) {
+                char rep[2048];
+                sph_sim_alarm_report(w.sim, rep, sizeof rep);
+                fprintf(stderr, "sphlab view: the watchdog stopped the run:\n%s\n", rep);
+                say(&w, "the watchdog stopped the run (see the terminal); r resets");
+                w.paused = true;
+            }
+        }
+        double now = sph_now_ms();
+        if (w.sim->step > s0 && now > last) {
+            double sps = (double)(w.sim->step - s0) / ((now - last) / 1e3);
+            w.sps = w.sps > 0 ? 0.9 * w.sps + 0.1 * sps : sps;
+        }
+        last = now;
+        w.v.hud.steps_per_s = w.paused ? 0 : w.sps;
+        w.v.hud.paused = w.paused;
+        w.v.hud.last_pass = w.last_pass;
+        w.v.hud.message = now < w.msg_until ? w.msg : NULL;
+        fill_panel(&w);
+        if (!sph_render(w.r, w.sim, &w.v, err, sizeof err)) {
+            fprintf(stderr, "sphlab view: %s\n", err);
+            goto out;
+        }
+        sph_renderer_present(w.r, dw, dh);
+        SDL_GL_SwapWindow(win);
+    }
+    rc = 0;
+    if (shot) {
+        w.msg[0] = '\0';
+        screenshot(&w, shot);
+        if (strncmp(w.msg, "saved", 5) != 0) rc = 1;
+    }
+out:
+    sph_renderer_destroy(w.r);
+    if (ctx) SDL_GL_DeleteContext(ctx);
+    if (win) SDL_DestroyWindow(win);
+    SDL_Quit();
+    sph_sim_destroy(w.sim);
+    return rc;
+}

@@ -1,0 +1,127 @@
+/* Legacy VTK writer (see vtk.h). Binary legacy VTK is big-endian by
+ * definition, whatever the machine. */
+#include "vtk.h"
+
+#include <errno.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static void put_be32(FILE *f, uint32_t v)
+{
+    unsigned char b[4] = {(unsigned char)(v >> 24), (unsigned char)(v >> 16), (unsigned char)(v >> 8), (unsigned char)v};
+    fwrite(b, 1, 4, f);
+}
+
+static void put_float(FILE *f, float x)
+{
+    uint32_t v;
+    memcpy(&v, &x, sizeof v);
+    put_be32(f, v);
+}
+
+/* Components of a field, padded to 3 for vectors (VTK vectors are 3D). */
+static void put_field(FILE *f, const sph_sim *sim, const sph_field *fd, int ncomp)
+{
+    for (uint32_t i = 0; i < sim->n; i++)
+        for (int c = 0; c < ncomp; c++) put_float(f, c < fd->ncomp && fd->c[c] ? fd->c[c][i] : 0.0f);
+    fputc('\n', f);
+}
+
+bool sph_vtk_write(const sph_sim *sim, const char *path, char *err, size_t n)
+{
+    char tmp[1100];
+    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp) {
+        snprintf(err, n, "%s: path too long", path);
+        return false;
+    }
+    FILE *f = fopen(tmp, "wb");
+    if (!f) {
+        snprintf(err, n, "%s: cannot write: %s", path, strerror(errno));
+        return false;
+    }
+    const uint32_t np = sim->n;
+    fprintf(f, "# vtk DataFile Version 3.0\n");
+    fprintf(f, "sphlab %.60s %dD step %llu t %.9g s\n", sim->def.name[0] ? sim->def.name : "scene", sim->dim,
+            (unsigned long long)sim->step, sim->t);
+    fprintf(f, "BINARY\nDATASET POLYDATA\nPOINTS %u float\n", np);
+    sph_field pos;
+    sph_sim_field(sim, SPH_FIELD_POS, &pos);
+    put_field(f, sim, &pos, 3);
+    fprintf(f, "VERTICES %u %llu\n", np, 2ull * np);
+    for (uint32_t i = 0; i < np; i++) {
+        put_be32(f, 1);
+        put_be32(f, i);
+    }
+    fputc('\n', f);
+    fprintf(f, "POINT_DATA %u\n", np);
+    fprintf(f, "SCALARS id unsigned_int 1\nLOOKUP_TABLE default\n");
+    for (uint32_t i = 0; i < np; i++) put_be32(f, sim->P.id[i]);
+    fputc('\n', f);
+    for (int id = 0; id < SPH_FIELD_COUNT; id++) {
+        sph_field fd;
+        if (id == SPH_FIELD_POS || !sph_sim_field(sim, (sph_field_id)id, &fd)) continue;
+        bool vec = fd.ncomp > 1 || fd.c[1];
+        if (vec) {
+            fprintf(f, "VECTORS %s float\n", fd.name);
+            put_field(f, sim, &fd, 3);
+        } else {
+            fprintf(f, "SCALARS %s float 1\nLOOKUP_TABLE default\n", fd.name);
+            put_field(f, sim, &fd, 1);
+        }
+    }
+    bool bad = ferror(f) != 0;
+    bad |= fclose(f) != 0;
+    if (bad || rename(tmp, path) != 0) {
+        snprintf(err, n, "%s: write failed: %s", path, strerror(errno));
+        remove(tmp);
+        return false;
+    }
+    return true;
+}
+
+bool sph_vtk_write_frame(const sph_sim *sim, const char *dir, unsigned frame, char *err, size_t n)
+{
+    char path[1024];
+    if (snprintf(path, sizeof path, "%s/particles_%05u.vtk", dir, frame) >= (int)sizeof path) {
+        snprintf(err, n, "%s: path too long", dir);
+        return false;
+    }
+    return sph_vtk_write(sim, path, err, n);
+}
+
+bool sph_output_dir(const char *dir, char *err, size_t n)
+{
+    char p[1024];
+    if (!*dir || snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) {
+        snprintf(err, n, "'%s': not a usable directory name", dir);
+        return false;
+    }
+    /* mkdir -p */
+    for (char *s = p + 1; *s; s++) {
+        if (*s != '/') continue;
+        *s = '\0';
+        if (mkdir(p, 0777) != 0 && errno != EEXIST) {
+            snprintf(err, n, "%s: cannot create the directory: %s", p, strerror(errno));
+            return false;
+        }
+        *s = '/';
+    }
+    if (mkdir(p, 0777) != 0 && errno != EEXIST) {
+        snprintf(err, n, "%s: cannot create the directory: %s", p, strerror(errno));
+        return false;
+    }
+    struct stat st;
+    if (stat(p, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        snprintf(err, n, "%s: not a directory", p);
+        return false;
+    }
+    if (access(p, W_OK | X_OK) != 0) {
+        snprintf(err, n, "%s: cannot write there: %s", p, strerror(errno));
+        return false;
+    }
+    return true;
+}
