@@ -42,7 +42,11 @@ bool app_load_scene(const app_scene_opts *o, sph_scene_def *def)
     if (sph_scene_load(o->path, def, &err) == SPH_ERR_OK) {
         for (int i = 0; i < o->n_sets; i++)
             if (sph_scene_set(def, o->sets[i], &err) != SPH_ERR_OK) goto fail;
-        if (sph_scene_validate(def, &err) == SPH_ERR_OK) return true;
+        if (sph_scene_validate(def, &err) == SPH_ERR_OK) {
+            char warning[512];
+            if (sph_scene_warning(def, warning, sizeof warning)) fprintf(stderr, "sphlab: warning: %s\n", warning);
+            return true;
+        }
     }
 fail:
     fprintf(stderr, "sphlab: %s\n", err.msg);

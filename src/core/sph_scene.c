@@ -592,6 +592,38 @@ int64_t sph_block_nodes(const sph_scene_def *def, int b, int axis)
     return n > 9e15 ? (int64_t)9e15 : (int64_t)n;
 }
 
+double sph_scene_neighbour_estimate(const sph_scene_def *def)
+{
+    double s = INFINITY;
+    for (int b = 0; b < def->n_blocks; b++) s = fmin(s, def->blocks[b].spacing);
+    if (!isfinite(s) || !(s > 0)) return 0;
+    double q = def->h / s, pi = 3.14159265358979323846;
+    return def->dim == 3 ? 4.0 / 3.0 * pi * q * q * q : pi * q * q;
+}
+
+const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n)
+{
+    double nb = sph_scene_neighbour_estimate(def);
+    double count = sph_scene_particle_count(def);
+    if (def->n_blocks == 0 || !(def->effects & (SPH_EFFECT(DENSITY) | SPH_EFFECT(PRESSURE) | SPH_EFFECT(VISCOSITY))))
+        return NULL;
+    if (nb > 400) {
+        snprintf(buf, n,
+                 "h = %g m is %.3g spacings: each particle will have about %.0f neighbours (usually 20 to 60); steps "
+                 "will be slow, about %.3g pair evaluations each",
+                 def->h, def->h / def->blocks[0].spacing, fmin(nb, count), count * fmin(nb, count));
+        return buf;
+    }
+    if (nb < 6) {
+        snprintf(buf, n,
+                 "h = %g m gives about %.1f neighbours per particle: too few for a smooth estimate (use h of about 2 "
+                 "spacings)",
+                 def->h, nb);
+        return buf;
+    }
+    return NULL;
+}
+
 double sph_scene_particle_count(const sph_scene_def *def)
 {
     double total = 0;

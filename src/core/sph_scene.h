@@ -7,6 +7,7 @@
 #define SPH_SCENE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "sph_error.h"
@@ -143,6 +144,12 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err);
 
 /* Number of particles the blocks make (a double: counts can be absurd before validation). */
 double sph_scene_particle_count(const sph_scene_def *def);
+/* Neighbours a particle of the finest block has inside its support:
+ * pi (h/s)^2 in 2D, 4/3 pi (h/s)^3 in 3D (about 12 and 33 at h = 2s). */
+double sph_scene_neighbour_estimate(const sph_scene_def *def);
+/* A warning for a scene that is valid but will be slow or poor (NULL if none). */
+const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n);
+
 /* Positions of block b's lattice along axis a: count of nodes. */
 int64_t sph_block_nodes(const sph_scene_def *def, int b, int axis);
 
