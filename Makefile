@@ -13,7 +13,7 @@ CORE_LIBS   := $(shell pkg-config --libs $(PKGS_CORE) 2>/dev/null || echo -linih
 
 BUILD   := build
 CORE    := sph_error sph_kernel sph_scene sph_sim sph_watchdog
-PASSES  := external hash sort offsets neighbours density pressure pressure_force viscosity interaction integrate walls
+PASSES  := external hash sort reorder offsets neighbours density pressure pressure_force viscosity interaction integrate walls
 APP     := main cmd_run cmd_check cmd_hardcases
 TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 

@@ -208,9 +208,16 @@ static bool run_case(const hardcase *c, int steps, outcome *o)
             return false;
         }
         while (ref->step < sim->step && !ref->alarm.raised) sph_sim_step(ref);
-        for (int d = 0; d < sim->dim; d++)
-            for (uint32_t i = 0; i < sim->n; i++)
-                o->compare_diff = fmax(o->compare_diff, fabs((double)sim->P.pos[d][i] - ref->P.pos[d][i]));
+        /* match particles by id: a reordering search stores them in cell order */
+        uint32_t *at = malloc((size_t)ref->n * sizeof *at);
+        if (at) {
+            for (uint32_t i = 0; i < ref->n; i++) at[ref->P.id[i]] = i;
+            for (int d = 0; d < sim->dim; d++)
+                for (uint32_t i = 0; i < sim->n; i++)
+                    o->compare_diff =
+                        fmax(o->compare_diff, fabs((double)sim->P.pos[d][i] - ref->P.pos[d][at[sim->P.id[i]]]));
+            free(at);
+        }
         sph_sim_destroy(ref);
     }
     sph_sim_destroy(sim);

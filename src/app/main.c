@@ -11,7 +11,7 @@
 static void usage(FILE *f)
 {
     fputs("usage: sphlab COMMAND [options]\n\ncommands:\n", f);
-#define SPH_COMMAND_HELP(name, args, about) fprintf(f, "  %-7s %-10s %s\n", #name, args, about);
+#define SPH_COMMAND_HELP(name, args, about) fprintf(f, "  %-10s %-10s %s\n", #name, args, about);
     SPH_COMMANDS(SPH_COMMAND_HELP)
 #undef SPH_COMMAND_HELP
     fputs("\n`sphlab COMMAND --help` describes a command's options.\n", f);

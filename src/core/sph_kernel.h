@@ -56,17 +56,19 @@ typedef struct sph_kernel {
 
 sph_kernel sph_kernel_make(sph_kernel_kind kind, int dim, float h);
 
-/* The per-pair functions are static inline so that a pass's loop, which
- * calls them with a loop-invariant kind, gets them inlined and unswitched. */
+/* The per-pair functions are forced inline so that a pass's loop, which
+ * calls them with a loop-invariant kind, gets them inlined (gcc -O2 keeps
+ * the switch out of line otherwise: a call per neighbour pair). */
+#define SPH_INLINE static inline __attribute__((always_inline))
 
 /* Value W(r) [1/m^dim]. The viscosity kernel is singular at r = 0 (its h/2r
  * term); there it returns its value at r = 1e-3 h: it is meant for its Laplacian. */
-static inline float sph_kernel_w(const sph_kernel *k, float r);
+SPH_INLINE float sph_kernel_w(const sph_kernel *k, float r);
 /* dW/dr [1/m^(dim+1)]: the gradient is dW/dr * (r_vec / r); 0 at r = 0. */
-static inline float sph_kernel_dw(const sph_kernel *k, float r);
+SPH_INLINE float sph_kernel_dw(const sph_kernel *k, float r);
 /* Laplacian W'' + (d-1) W'/r [1/m^(dim+2)]; at r = 0 its limit where one
- * exists (poly6, cubic, Wendland), else its value at r = 1e-3 h. */
-static inline float sph_kernel_lap(const sph_kernel *k, float r);
+ * exists (poly6, cubic, Wendland, viscosity), else its value at r = 1e-3 h. */
+SPH_INLINE float sph_kernel_lap(const sph_kernel *k, float r);
 
 /* Looks a kernel up by name; returns -1 if there is none. */
 int sph_kernel_find(const char *name);
@@ -75,7 +77,7 @@ int sph_kernel_find(const char *name);
 
 /* psi(d) and, in *area, the plane integral at distance d from a wall (linear
  * interpolation in the tables); both 0 for d >= h, and d < 0 counts as 0. */
-static inline float sph_kernel_wall(const sph_kernel *k, float d, float *area)
+SPH_INLINE float sph_kernel_wall(const sph_kernel *k, float d, float *area)
 {
     float t = d * k->inv_h * (float)SPH_WALL_TABLE;
     if (!(t < (float)SPH_WALL_TABLE)) {
@@ -89,7 +91,7 @@ static inline float sph_kernel_wall(const sph_kernel *k, float d, float *area)
     return k->wall_psi[i] + f * (k->wall_psi[i + 1] - k->wall_psi[i]);
 }
 
-static inline float sph_kernel_w(const sph_kernel *k, float r)
+SPH_INLINE float sph_kernel_w(const sph_kernel *k, float r)
 {
     if (r >= k->h) return 0.0f;
     float s = k->sigma;
@@ -122,7 +124,7 @@ static inline float sph_kernel_w(const sph_kernel *k, float r)
     }
 }
 
-static inline float sph_kernel_dw(const sph_kernel *k, float r)
+SPH_INLINE float sph_kernel_dw(const sph_kernel *k, float r)
 {
     if (r >= k->h || r <= 0.0f) return 0.0f;
     float s = k->sigma, ih = k->inv_h;
@@ -154,7 +156,7 @@ static inline float sph_kernel_dw(const sph_kernel *k, float r)
     }
 }
 
-static inline float sph_kernel_lap(const sph_kernel *k, float r)
+SPH_INLINE float sph_kernel_lap(const sph_kernel *k, float r)
 {
     if (r >= k->h) return 0.0f;
     float s = k->sigma, ih = k->inv_h, ih2 = ih * ih, dm1 = (float)(k->dim - 1);
@@ -170,12 +172,10 @@ static inline float sph_kernel_lap(const sph_kernel *k, float r)
     }
     case SPH_KERNEL_VISCOSITY: { /* 45/(pi h^6) (h - r) in 3D, 40/(pi h^5) (h - r) in 2D */
         float q = r * ih;
-        if (k->dim == 2) return s * ih2 * (1.0f - q);
-        if (r < SPH_KERNEL_R_MIN * k->h) r = SPH_KERNEL_R_MIN * k->h;
-        q = r * ih;
-        float d2 = -3.0f * q + 2.0f + 1.0f / (q * q * q);
-        float d1_over_q = -1.5f * q + 2.0f - 0.5f / (q * q * q);
-        return s * ih2 * (d2 + dm1 * d1_over_q);
+        /* W'' + 2 W'/r: the 1/q^3 terms cancel exactly, leaving 6 (1 - q);
+         * written out, they would cancel in float and lose every digit near 0 */
+        (void)dm1;
+        return k->dim == 2 ? s * ih2 * (1.0f - q) : s * ih2 * 6.0f * (1.0f - q);
     }
     case SPH_KERNEL_CUBIC: {
         float q = r * ih;

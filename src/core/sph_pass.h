@@ -16,6 +16,7 @@
     X(EXTERNAL, external)  \
     X(HASH, hash)          \
     X(SORT, sort)          \
+    X(REORDER, reorder)    \
     X(OFFSETS, offsets)    \
     X(NEIGHBOURS, neighbours) \
     X(DENSITY, density)    \

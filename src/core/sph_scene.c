@@ -22,6 +22,9 @@ const char *const sph_sort_names[SPH_SORT_COUNT] = {SPH_SORT_CHOICES(NAMES)};
 const char *const sph_negative_pressure_names[SPH_NEGP_COUNT] = {SPH_NEGP_CHOICES(NAMES)};
 const char *const sph_wall_model_names[SPH_WALL_COUNT] = {SPH_WALL_CHOICES(NAMES)};
 const char *const sph_axis_names[3] = {"x", "y", "z"};
+const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICES(NAMES)};
+const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
+const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
 #undef NAMES
 #define EFFECT_NAME(id, name, about) name,
 const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
@@ -81,6 +84,8 @@ const sph_key sph_scene_keys[] = {
     {"physics", "viscosity_form", SPH_KEY_CHOICE, S(viscosity_form), 0, 0, 0, 0, CH(sph_viscosity_form_names), "",
      "laplacian",
      "laplacian: Mueller's nu m_j (v_j - v_i)/rho_j lap W; smoothing: the seed's kernel-weighted velocity average"},
+    {"physics", "accumulate", SPH_KEY_CHOICE, S(accumulate), 0, 0, 0, 0, CH(sph_accumulate_names), "", "float",
+     "precision of the density and force sums: float, or double (slower; shows what round-off costs)"},
     {"physics", "gravity", SPH_KEY_VEC, S(gravity), -1e4, 1e4, 0, 0, NULL, 0, "m/s^2", "0 -9.81 0", "g"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 0, BIG, 1, 0, NULL, 0, "m", "0.04",
@@ -111,11 +116,19 @@ const sph_key sph_scene_keys[] = {
     {"interaction", "strength", SPH_KEY_FLOAT, S(interaction_strength), -1e6, 1e6, 0, 0, NULL, 0, "m/s^2", "40",
      "acceleration at the point, fading to 0 at the radius; > 0 pulls, < 0 pushes"},
 
+    {"search", "reorder", SPH_KEY_CHOICE, S(reorder), 0, 0, 0, 0, CH(sph_onoff_names), "", "on",
+     "on: after the sort, store the particle data in cell order, so neighbours sit close in memory and the search "
+     "scans contiguous runs; off: keep the creation order (the seed)"},
+
     {"fluid", "min", SPH_KEY_VEC, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_VEC, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
     {"fluid", "spacing", SPH_KEY_FLOAT, B(spacing), 0, BIG, 1, 0, NULL, 0, "m", "0.02",
      "lattice spacing; particles sit at the centres of the lattice cells"},
-    {"fluid", "velocity", SPH_KEY_VEC, B(velocity), -BIG, BIG, 0, 0, NULL, 0, "m/s", "0 0 0", "initial velocity"},
+    {"fluid", "velocity", SPH_KEY_VEC, B(velocity), -BIG, BIG, 0, 0, NULL, 0, "m/s", "0 0 0",
+     "initial velocity; with field = taylor-green, its x component is the vortex's amplitude U"},
+    {"fluid", "field", SPH_KEY_CHOICE, B(field), 0, 0, 0, 0, CH(sph_velocity_field_names), "", "uniform",
+     "initial velocity field: uniform, or the Taylor-Green vortex u = U sin(kx) cos(ky), v = -U cos(kx) sin(ky), "
+     "k = 2 pi / L with L the domain's x length (it decays as exp(-2 nu k^2 t))"},
 };
 const int sph_scene_key_count = (int)(sizeof sph_scene_keys / sizeof sph_scene_keys[0]);
 

@@ -43,6 +43,9 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_SORT_CHOICES(X) X(BITONIC, "bitonic") X(COUNTING, "counting") X(QSORT, "qsort")
 #define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")
 #define SPH_WALL_CHOICES(X) X(VOLUME, "volume") X(REFLECT, "reflect")
+#define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
+#define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")
+#define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
 
 #define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
     typedef enum type { LIST(SPH_CHOICE_ITEM_##PREFIX) PREFIX##_COUNT } type;
@@ -53,6 +56,9 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_SORT(id, name) SPH_SORT_##id,
 #define SPH_CHOICE_ITEM_SPH_NEGP(id, name) SPH_NEGP_##id,
 #define SPH_CHOICE_ITEM_SPH_WALL(id, name) SPH_WALL_##id,
+#define SPH_CHOICE_ITEM_SPH_VFIELD(id, name) SPH_VFIELD_##id,
+#define SPH_CHOICE_ITEM_SPH_ACC(id, name) SPH_ACC_##id,
+#define SPH_CHOICE_ITEM_SPH_ONOFF(id, name) SPH_##id,
 SPH_DECLARE_CHOICES(sph_eos, SPH_EOS, SPH_EOS_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_form, SPH_PFORM, SPH_PFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_viscosity_form, SPH_VFORM, SPH_VFORM_CHOICES)
@@ -60,6 +66,9 @@ SPH_DECLARE_CHOICES(sph_search, SPH_SEARCH, SPH_SEARCH_CHOICES)
 SPH_DECLARE_CHOICES(sph_sort, SPH_SORT, SPH_SORT_CHOICES)
 SPH_DECLARE_CHOICES(sph_negative_pressure, SPH_NEGP, SPH_NEGP_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_model, SPH_WALL, SPH_WALL_CHOICES)
+SPH_DECLARE_CHOICES(sph_velocity_field, SPH_VFIELD, SPH_FIELD_CHOICES)
+SPH_DECLARE_CHOICES(sph_accumulate, SPH_ACC, SPH_ACC_CHOICES)
+SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
 
 extern const char *const sph_eos_names[SPH_EOS_COUNT];
 extern const char *const sph_pressure_form_names[SPH_PFORM_COUNT];
@@ -69,6 +78,9 @@ extern const char *const sph_sort_names[SPH_SORT_COUNT];
 extern const char *const sph_negative_pressure_names[SPH_NEGP_COUNT];
 extern const char *const sph_wall_model_names[SPH_WALL_COUNT];
 extern const char *const sph_axis_names[3];
+extern const char *const sph_velocity_field_names[SPH_VFIELD_COUNT];
+extern const char *const sph_accumulate_names[SPH_ACC_COUNT];
+extern const char *const sph_onoff_names[SPH_ONOFF_COUNT];
 
 /* Where a value came from, for messages: the file's line, or 0 for the default. */
 typedef struct sph_origin {
@@ -82,7 +94,8 @@ typedef struct sph_block_def {
     float min[3];      /* [m] lower corner of the box */
     float max[3];      /* [m] upper corner of the box */
     float spacing;     /* [m] lattice spacing; each particle carries rest_density * spacing^dim of mass */
-    float velocity[3]; /* [m/s] initial velocity */
+    float velocity[3]; /* [m/s] initial velocity (uniform); amplitude U = velocity.x (taylor-green) */
+    sph_velocity_field field; /* uniform, or the Taylor-Green vortex of the domain's size */
     int line;          /* line of the [fluid ...] section header, for messages */
     sph_origin origin[8];
 } sph_block_def;
@@ -108,6 +121,7 @@ typedef struct sph_scene_def {
     sph_pressure_form pressure_form;
     float viscosity;    /* [m^2/s] kinematic viscosity nu */
     sph_viscosity_form viscosity_form;
+    sph_accumulate accumulate;  /* sums in float (fast) or double (accurate) */
     float gravity[3];   /* [m/s^2] */
     sph_kernel_kind kernel_density, kernel_pressure, kernel_viscosity;
 
@@ -120,6 +134,7 @@ typedef struct sph_scene_def {
     sph_search search;
     sph_sort sort;
     uint32_t table_size; /* [1] hash table size; 0: the particle count, as in the seed */
+    sph_onoff reorder;   /* store the particles in cell order after the sort (for memory locality) */
     float jitter;        /* [1] random offset of each particle, in spacings */
     uint32_t seed;       /* [1] random seed of the jitter */
     float interaction_radius;   /* [m] reach of the push/pull around the point */

@@ -92,6 +92,15 @@ static void place_particles(sph_sim *sim)
                         P->pos[d][i] = v;
                         P->vel[d][i] = blk->velocity[d];
                     }
+                    if (blk->field == SPH_VFIELD_TAYLOR_GREEN) {
+                        const double two_pi = 6.283185307179586;
+                        double k = two_pi / ((double)def->domain_max[0] - def->domain_min[0]), U = blk->velocity[0];
+                        double px = (double)P->pos[0][i] - def->domain_min[0];
+                        double py = (double)P->pos[1][i] - def->domain_min[1];
+                        P->vel[0][i] = (float)(U * sin(k * px) * cos(k * py));
+                        P->vel[1][i] = (float)(-U * cos(k * px) * sin(k * py));
+                        if (sim->dim == 3) P->vel[2][i] = 0.0f;
+                    }
                 }
     }
 }
@@ -206,6 +215,11 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
         S->entries = alloc_zero(n, sizeof *S->entries, &ok);
         S->start = alloc_zero(S->table_size, sizeof *S->start, &ok);
         S->spos = alloc_zero(4 * (size_t)n, sizeof *S->spos, &ok);
+        if (sim->in_pipeline[SPH_PASS_REORDER]) {
+            S->cell_hash = alloc_zero(n, sizeof *S->cell_hash, &ok);
+            S->spare_f = alloc_zero(n, sizeof *S->spare_f, &ok);
+            S->spare_u = alloc_zero(n, sizeof *S->spare_u, &ok);
+        }
         if (def->sort == SPH_SORT_COUNTING) {
             S->scratch = alloc_zero(n, sizeof *S->scratch, &ok);
             S->count = alloc_zero((size_t)S->table_size + 1, sizeof *S->count, &ok);
@@ -248,6 +262,9 @@ void sph_sim_destroy(sph_sim *sim)
     free(S->scratch);
     free(S->start);
     free(S->spos);
+    free(S->cell_hash);
+    free(S->spare_f);
+    free(S->spare_u);
     free(S->count);
     free(S->nbr_start);
     free(S->nbr);

@@ -71,6 +71,10 @@ typedef struct sph_search_data {
     uint32_t *start;      /* [table_size] offsets: first sorted entry of each key, or SPH_EMPTY */
     uint32_t *count;      /* [table_size + 1] counting sort's histogram */
     float *spos;          /* [4 n] [m] predicted positions in sorted order (x, y, z, 0), for the scan */
+    bool reordered;       /* this step's reorder pass ran: particle e is sorted entry e */
+    uint32_t *cell_hash;  /* [n] hash of each particle's cell, in particle order, after a reorder */
+    float *spare_f;       /* [n] the reorder pass gathers into these and swaps */
+    uint32_t *spare_u;    /* [n] */
     int32_t grid_dims[3]; /* grid variant: cells per axis over the domain */
     /* Neighbour lists (compressed rows): neighbours of i, itself excluded,
      * are nbr[nbr_start[i] .. nbr_start[i+1]). */
@@ -202,6 +206,14 @@ void sph_sim_reset_timings(sph_sim *sim);
 
 /* Time-step choice (integrate.c): fixed, or the CFL conditions. */
 float sph_time_step_choose(const sph_sim *sim);
+
+/* Calls fn(args..., dim, dbl) with the dimension and the accumulation
+ * precision as constants, so that an inlined per-particle function is
+ * compiled once per combination: loops over axes unrolled, sums in float or
+ * double ([physics] accumulate) without a test in the inner loop. */
+#define SPH_SPECIALISE(dim, dbl, fn, ...)                                                \
+    ((dim) == 2 ? ((dbl) ? fn(__VA_ARGS__, 2, true) : fn(__VA_ARGS__, 2, false))         \
+                : ((dbl) ? fn(__VA_ARGS__, 3, true) : fn(__VA_ARGS__, 3, false)))
 
 /* The watchdog (sph_watchdog.c), run by the pipeline after each pass. */
 unsigned sph_watchdog_fields(const char *writes); /* field bits of a pass's `writes` list */

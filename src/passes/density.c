@@ -54,32 +54,39 @@ float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad
     return 1.0f - all;
 }
 
-static void run(sph_sim *sim)
+/* The sum for one particle; dim and dbl are constants (SPH_SPECIALISE). */
+static inline void density_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl)
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
+    const float *per = sim->period, *iper = sim->inv_period;
+    float xi[3];
+    for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
+    float sf = P->mass[i] * sph_kernel_w(k, 0.0f);
+    double sd = sf;
+    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+        uint32_t j = S->nbr[e];
+        float r2 = 0;
+        for (int d = 0; d < dim; d++) {
+            float dx = sph_min_image(xi[d] - P->pred[d][j], per[d], iper[d]);
+            r2 += dx * dx;
+        }
+        float w = P->mass[j] * sph_kernel_w(k, sqrtf(r2));
+        if (dbl) sd += w;
+        else sf += w;
+    }
+    float sum = dbl ? (float)sd : sf;
+    if (sph_sim_wall_volume(sim)) sum += sim->def.rest_density * sph_wall_hidden(sim, k, i, NULL);
+    P->rho[i] = sum;
+}
+
+static void run(sph_sim *sim)
+{
     const sph_kernel k = sim->k_density;
     const int n = (int)sim->n, dim = sim->dim;
-    const float w0 = sph_kernel_w(&k, 0.0f);
-    const float *per = sim->period, *iper = sim->inv_period;
-    float *restrict rho = P->rho;
-    const bool walls = sph_sim_wall_volume(sim);
-    const float rho0 = sim->def.rest_density;
+    const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) {
-        float sum = P->mass[i] * w0;
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-            uint32_t j = S->nbr[e];
-            float r2 = 0;
-            for (int d = 0; d < dim; d++) {
-                float dx = sph_min_image(P->pred[d][i] - P->pred[d][j], per[d], iper[d]);
-                r2 += dx * dx;
-            }
-            sum += P->mass[j] * sph_kernel_w(&k, sqrtf(r2));
-        }
-        if (walls) sum += rho0 * sph_wall_hidden(sim, &k, i, NULL);
-        rho[i] = sum;
-    }
+    for (int i = 0; i < n; i++) SPH_SPECIALISE(dim, dbl, density_one, sim, &k, i);
 }
 
 const sph_pass sph_pass_density = {

@@ -23,56 +23,67 @@ static void describe(const sph_scene_def *def, char *out, int n)
              sph_kernel_names[def->kernel_pressure], sph_scene_wall_volume(def) ? ", walls push back" : "");
 }
 
-static void run(sph_sim *sim)
+/* The force on one particle; dim and dbl are constants (SPH_SPECIALISE). */
+static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl)
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
+    const bool symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
+    const float r_min = SPH_KERNEL_R_MIN * k->h; /* below this, particles count as coincident */
+    const float *per = sim->period, *iper = sim->inv_period;
+    const float rho_i = P->rho[i], p_i = P->p[i];
+    const float pi_over = p_i / (rho_i * rho_i);
+    float xi[3], af[3] = {0, 0, 0};
+    double ad[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
+    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+        uint32_t j = S->nbr[e];
+        float dx[3], r2 = 0;
+        for (int d = 0; d < dim; d++) {
+            dx[d] = sph_min_image(xi[d] - P->pred[d][j], per[d], iper[d]);
+            r2 += dx[d] * dx[d];
+        }
+        float r;
+        if (r2 < r_min * r_min) {
+            /* Coincident (or nearly): the gradient has no direction. Push the
+             * pair apart along x, in opposite senses for i and j so the pair
+             * force stays equal and opposite (momentum kept). */
+            dx[0] = (uint32_t)i < j ? -r_min : r_min;
+            for (int d = 1; d < dim; d++) dx[d] = 0.0f;
+            r = r_min;
+        } else {
+            r = sqrtf(r2);
+        }
+        float dw_over_r = sph_kernel_dw(k, r) / r;
+        float rho_j = P->rho[j];
+        float coef = symmetric ? P->mass[j] * (pi_over + P->p[j] / (rho_j * rho_j))
+                               : P->mass[j] / rho_j * 0.5f * (p_i + P->p[j]) / rho_i;
+        for (int d = 0; d < dim; d++) {
+            float t = coef * dw_over_r * dx[d];
+            if (dbl) ad[d] -= t;
+            else af[d] -= t;
+        }
+    }
+    float a[3];
+    for (int d = 0; d < dim; d++) a[d] = dbl ? (float)ad[d] : af[d];
+    if (sph_sim_wall_volume(sim)) {
+        /* The force that makes the walls' density term conservative:
+         * a = -(p_i / rho_i^2) grad(rho0 * hidden share), with the density
+         * kernel, so walls neither add nor remove energy. */
+        float grad[3];
+        sph_wall_hidden(sim, &sim->k_density, i, grad);
+        for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * pi_over * grad[d];
+    }
+    for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
+}
+
+static void run(sph_sim *sim)
+{
     const sph_kernel k = sim->k_pressure;
     const int n = (int)sim->n, dim = sim->dim;
-    const int symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
-    const float r_min = SPH_KERNEL_R_MIN * k.h; /* below this, particles count as coincident */
-    const bool walls = sph_sim_wall_volume(sim);
-    const float *per = sim->period, *iper = sim->inv_period;
-    const float rho0 = sim->def.rest_density;
+    const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) {
-        const float rho_i = P->rho[i], p_i = P->p[i];
-        const float pi_over = p_i / (rho_i * rho_i);
-        float a[3] = {0, 0, 0};
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-            uint32_t j = S->nbr[e];
-            float dx[3] = {0, 0, 0}, r2 = 0;
-            for (int d = 0; d < dim; d++) {
-                dx[d] = sph_min_image(P->pred[d][i] - P->pred[d][j], per[d], iper[d]);
-                r2 += dx[d] * dx[d];
-            }
-            float r;
-            if (r2 < r_min * r_min) {
-                /* Coincident (or nearly): the gradient has no direction. Push
-                 * the pair apart along x, in opposite senses for i and j so
-                 * the pair force stays equal and opposite (momentum kept). */
-                dx[0] = (uint32_t)i < j ? -r_min : r_min;
-                for (int d = 1; d < dim; d++) dx[d] = 0.0f;
-                r = r_min;
-            } else {
-                r = sqrtf(r2);
-            }
-            float dw_over_r = sph_kernel_dw(&k, r) / r;
-            float rho_j = P->rho[j];
-            float coef = symmetric ? P->mass[j] * (pi_over + P->p[j] / (rho_j * rho_j))
-                                   : P->mass[j] / rho_j * 0.5f * (p_i + P->p[j]) / rho_i;
-            for (int d = 0; d < dim; d++) a[d] -= coef * dw_over_r * dx[d];
-        }
-        if (walls) {
-            /* The force that makes the walls' density term conservative:
-             * a = -(p_i / rho_i^2) grad(rho0 * hidden share), with the
-             * density kernel, so walls neither add nor remove energy. */
-            float grad[3];
-            sph_wall_hidden(sim, &sim->k_density, i, grad);
-            for (int d = 0; d < dim; d++) a[d] -= rho0 * pi_over * grad[d];
-        }
-        for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
-    }
+    for (int i = 0; i < n; i++) SPH_SPECIALISE(dim, dbl, pressure_one, sim, &k, i);
 }
 
 const sph_pass sph_pass_pressure_force = {

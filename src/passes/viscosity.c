@@ -24,34 +24,47 @@ static void describe(const sph_scene_def *def, char *out, int n)
              sph_kernel_names[def->kernel_viscosity], def->viscosity);
 }
 
-static void run(sph_sim *sim)
+/* The viscous acceleration of one particle; dim and dbl are constants. */
+static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl)
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
-    const sph_kernel k = sim->k_viscosity;
-    const int n = (int)sim->n, dim = sim->dim;
-    const int laplacian = sim->def.viscosity_form == SPH_VFORM_LAPLACIAN;
+    const bool laplacian = sim->def.viscosity_form == SPH_VFORM_LAPLACIAN;
     const float nu = sim->def.viscosity;
     const float *per = sim->period, *iper = sim->inv_period;
-    const float scale = laplacian ? nu * sim->def.rest_density : nu * 2.0f * (float)dim / k.m2;
-#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) {
-        float a[3] = {0, 0, 0};
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-            uint32_t j = S->nbr[e];
-            float r2 = 0;
-            for (int d = 0; d < dim; d++) {
-                float dx = sph_min_image(P->pred[d][i] - P->pred[d][j], per[d], iper[d]);
-                r2 += dx * dx;
-            }
-            float r = sqrtf(r2);
-            float w = laplacian ? sph_kernel_lap(&k, r) : sph_kernel_w(&k, r);
-            float coef = P->mass[j] / P->rho[j] * w;
-            for (int d = 0; d < dim; d++) a[d] += coef * (P->vel[d][j] - P->vel[d][i]);
-        }
-        float s = laplacian ? scale / P->rho[i] : scale;
-        for (int d = 0; d < dim; d++) P->acc_v[d][i] = s * a[d];
+    float xi[3], vi[3], af[3] = {0, 0, 0};
+    double ad[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++) {
+        xi[d] = P->pred[d][i];
+        vi[d] = P->vel[d][i];
     }
+    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+        uint32_t j = S->nbr[e];
+        float r2 = 0;
+        for (int d = 0; d < dim; d++) {
+            float dx = sph_min_image(xi[d] - P->pred[d][j], per[d], iper[d]);
+            r2 += dx * dx;
+        }
+        float r = sqrtf(r2);
+        float w = laplacian ? sph_kernel_lap(k, r) : sph_kernel_w(k, r);
+        float coef = P->mass[j] / P->rho[j] * w;
+        for (int d = 0; d < dim; d++) {
+            float t = coef * (P->vel[d][j] - vi[d]);
+            if (dbl) ad[d] += t;
+            else af[d] += t;
+        }
+    }
+    float s = laplacian ? nu * sim->def.rest_density / P->rho[i] : nu * 2.0f * (float)dim / k->m2;
+    for (int d = 0; d < dim; d++) P->acc_v[d][i] = s * (dbl ? (float)ad[d] : af[d]);
+}
+
+static void run(sph_sim *sim)
+{
+    const sph_kernel k = sim->k_viscosity;
+    const int n = (int)sim->n, dim = sim->dim;
+    const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) SPH_SPECIALISE(dim, dbl, viscosity_one, sim, &k, i);
 }
 
 const sph_pass sph_pass_viscosity = {

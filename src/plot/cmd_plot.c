@@ -365,6 +365,7 @@ static int plot_series_cmd(const plot_opts *o, const char *dir)
 
     plot_lines L = {0};
     char axis[PLOT_MAX_SERIES][128];
+    const char *axis_of_panel[PLOT_MAX_PANELS] = {NULL};
     for (int k = 0; k < ny; k++) {
         column_axis(t.names[yc[k]], o->dim, axis[k], sizeof axis[k]);
         int p = 0;
@@ -374,6 +375,7 @@ static int plot_series_cmd(const plot_opts *o, const char *dir)
                 fprintf(stderr, "sphlab plot: --y: the columns have more than %d different units\n", PLOT_MAX_PANELS);
                 goto out;
             }
+            axis_of_panel[L.np] = axis[k];
             snprintf(L.p[L.np++].ylabel, sizeof L.p[0].ylabel, "%s", axis[k]);
         }
         plot_series *s = &L.p[p].s[L.p[p].n++];
@@ -396,16 +398,17 @@ static int plot_series_cmd(const plot_opts *o, const char *dir)
     }
     plot_escape(src, sizeof src, base_of(t.path));
     /* title: the quantities, without their units */
+    char title[sizeof L.title];
     size_t m = 0;
-    for (int p = 0; p < L.np; p++) {
-        const char *lab = L.p[p].ylabel, *br = strstr(lab, " [");
+    for (int p = 0; p < L.np && m < sizeof title; p++) {
+        const char *lab = axis_of_panel[p], *br = strstr(lab, " [");
         int len = br ? (int)(br - lab) : (int)strlen(lab);
-        m += (size_t)snprintf(L.title + m, sizeof L.title - m, "%s%.*s", p == 0 ? "" : p == L.np - 1 ? " and " : ", ",
+        m += (size_t)snprintf(title + m, sizeof title - m, "%s%.*s", p == 0 ? "" : p == L.np - 1 ? " and " : ", ",
                               len, lab);
-        if (m >= sizeof L.title) break;
     }
-    if (m < sizeof L.title) snprintf(L.title + m, sizeof L.title - m, " over %s", xname[0] == 't' ? "time" : "steps");
-    if (L.title[0] >= 'a' && L.title[0] <= 'z') L.title[0] = (char)(L.title[0] - 'a' + 'A');
+    if (m < sizeof title) snprintf(title + m, sizeof title - m, " over %s", xname[0] == 't' ? "time" : "steps");
+    if (title[0] >= 'a' && title[0] <= 'z') title[0] = (char)(title[0] - 'a' + 'A');
+    memcpy(L.title, title, sizeof title);
     snprintf(L.subtitle, sizeof L.subtitle, "%zu step%s from %s", t.nrows, t.nrows == 1 ? "" : "s", src);
     column_axis(xname, o->dim, L.xlabel, sizeof L.xlabel);
 

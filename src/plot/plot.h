@@ -1,7 +1,7 @@
 /* sphlab plot: charts for a report, drawn with PLplot (cairo driver) as PNG
  * and PDF, each beside the CSV that holds the data it shows.
  *
- * Three layers:
+ * Four files:
  *   plot_csv.c   reads a CSV with a header line into columns of doubles;
  *   plot_out.c   stages output files (written to DIR/.NAME.PID.tmp.EXT and
  *                renamed only when every file of the command is complete);

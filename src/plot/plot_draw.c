@@ -102,7 +102,7 @@ static void set_pattern(int pattern)
         {1, {-300, 0}, {2000, 0}}, {2, {0, 900}, {2000, 2000}}, {2, {450, -450}, {2000, 2000}},
     };
     if (pattern <= 0 || pattern > 8) {
-        set_pattern(0);
+        plpsty(0);
         return;
     }
     PLINT del[2] = {(PLINT)(pat[pattern].del[0] * g_scale), (PLINT)(pat[pattern].del[1] * g_scale)};
@@ -672,4 +672,14 @@ bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *
         return false;
     }
     return true;
+}
+
+/* Under LeakSanitizer (`make asan`): fontconfig keeps its font cache, and
+ * libltdl the PLplot driver it loaded, to the end of the process; neither is
+ * a leak of sphlab's. LeakSanitizer calls this hook, if the binary defines
+ * it, for its default suppressions; without the sanitizer it is never called. */
+const char *__lsan_default_suppressions(void);
+const char *__lsan_default_suppressions(void)
+{
+    return "leak:libfontconfig.so\nleak:libltdl.so\nleak:libcairo.so\nleak:libpango\nleak:libplplot.so\n";
 }

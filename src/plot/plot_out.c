@@ -62,6 +62,11 @@ const char *plot_out_stage(const char *dir, const char *file)
         fprintf(stderr, "sphlab plot: %s/%s: path too long\n", dir, file);
         return NULL;
     }
+    for (int i = 0; i < g_n; i++)
+        if (strcmp(g_staged[i].final, s->final) == 0) {
+            fprintf(stderr, "sphlab plot: %s: two outputs of this command have this name (see --name)\n", s->final);
+            return NULL;
+        }
     FILE *f = fopen(s->tmp, "wb");
     if (!f) {
         fprintf(stderr, "sphlab plot: %s: cannot write in %s: %s\n", s->final, dir, strerror(errno));

@@ -1,0 +1,69 @@
+/* Pass: reorder. After the sort, the particle data are stored in the sorted
+ * order of their cells: particle e becomes the one of sorted entry e. The
+ * particles of a cell then sit side by side, a cell's run in the index is a
+ * run in the arrays too, and a particle's neighbours are near it in memory,
+ * so the search scans contiguous arrays and the force passes stop jumping
+ * across memory. Each field is gathered into a spare array and the two are
+ * swapped. `id` keeps each particle's creation number for outputs. The
+ * fields rewritten later in the step (density, pressure, accelerations) need
+ * no moving. */
+#include "sph_search.h"
+
+#include <stdio.h>
+
+static const char *skip_reason(const sph_scene_def *def)
+{
+    const char *why = sph_pass_hash.skip_reason(def);
+    if (why) return why;
+    return def->reorder == SPH_ON ? NULL : "search.reorder = off: particles keep their creation order";
+}
+
+static void describe(const sph_scene_def *def, char *out, int n)
+{
+    (void)def;
+    snprintf(out, (size_t)n, "particle data stored in cell order (id keeps creation order)");
+}
+
+static void gather_f(float **field, float **spare, const sph_entry *e, int n)
+{
+    const float *restrict src = *field;
+    float *restrict dst = *spare;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int k = 0; k < n; k++) dst[k] = src[e[k].index];
+    float *t = *field;
+    *field = *spare;
+    *spare = t;
+}
+
+static void run(sph_sim *sim)
+{
+    sph_particles *P = &sim->P;
+    sph_search_data *S = &sim->S;
+    const int n = (int)sim->n;
+    sph_entry *e = S->entries;
+    {
+        const uint32_t *restrict src = P->id;
+        uint32_t *restrict dst = S->spare_u;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+        for (int k = 0; k < n; k++) dst[k] = src[e[k].index];
+        S->spare_u = P->id;
+        P->id = dst;
+    }
+    gather_f(&P->mass, &S->spare_f, e, n);
+    for (int d = 0; d < sim->dim; d++) {
+        gather_f(&P->pos[d], &S->spare_f, e, n);
+        gather_f(&P->vel[d], &S->spare_f, e, n);
+        gather_f(&P->pred[d], &S->spare_f, e, n);
+    }
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int k = 0; k < n; k++) {
+        e[k].index = (uint32_t)k;
+        S->cell_hash[k] = e[k].hash;
+    }
+    S->reordered = true;
+}
+
+const sph_pass sph_pass_reorder = {
+    "reorder", "store particles in cell order", "entries id mass pos vel pred", "id mass pos vel pred entries",
+    skip_reason, describe, run,
+};
