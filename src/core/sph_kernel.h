@@ -107,8 +107,10 @@ SPH_INLINE float sph_kernel_w(const sph_kernel *k, float r)
     case SPH_KERNEL_VISCOSITY: {
         if (r < SPH_KERNEL_R_MIN * k->h) r = SPH_KERNEL_R_MIN * k->h;
         float q = r * k->inv_h;
-        if (k->dim == 2) return s * (0.25f * q * q - q * q * q / 9.0f - logf(q) / 6.0f - 5.0f / 36.0f);
-        return s * (-0.5f * q * q * q + q * q + 0.5f / q - 1.0f);
+        /* both shapes are >= 0 but vanish near h through cancellation, which
+         * float arithmetic can overshoot by an ulp: clamp at 0 */
+        if (k->dim == 2) return s * fmaxf(0.0f, 0.25f * q * q - q * q * q / 9.0f - logf(q) / 6.0f - 5.0f / 36.0f);
+        return s * fmaxf(0.0f, -0.5f * q * q * q + q * q + 0.5f / q - 1.0f);
     }
     case SPH_KERNEL_CUBIC: {
         float q = r * k->inv_h;

@@ -12,16 +12,19 @@
 /* Cells stay within +-2^30 so that a neighbour cell (c +- 1) never overflows int32. */
 #define SPH_CELL_LIMIT 1073741823
 
-/* Cell index along one axis: floor(x / h), computed as floor(x * (1/h)).
- * floor, not truncation: truncation puts x = -0.5h and x = +0.5h in the same
- * cell 0, making cell 0 twice as wide and losing neighbours across it (the
- * seed's int(x / h) does this). Saturates far away, and maps NaN to 0, so the
- * float-to-int conversion is always defined. */
+/* Cell index along one axis: floor(x * inv_size). floor, not truncation:
+ * truncation (the seed's int(x / h)) sends everything in (-h, h) to cell 0,
+ * a cell twice as wide as the others, and numbers every negative cell one
+ * off from floor. The search still finds every pair (cells stay adjacent),
+ * but cell 0 holds twice the candidates and the cell numbers no longer say
+ * where a particle is. Saturates at +-SPH_CELL_LIMIT and maps NaN to 0, so
+ * the float-to-int conversion is always defined. */
 static inline int32_t sph_cell_coord(float x, float inv_h)
 {
     float q = floorf(x * inv_h);
-    if (!(q >= -(float)SPH_CELL_LIMIT)) return q != q ? 0 : -SPH_CELL_LIMIT;
-    if (q > (float)SPH_CELL_LIMIT) return SPH_CELL_LIMIT;
+    /* (float)SPH_CELL_LIMIT rounds to 2^30, so compare with 2^30 itself */
+    if (!(q > -1073741824.0f)) return q != q ? 0 : -SPH_CELL_LIMIT;
+    if (q >= 1073741824.0f) return SPH_CELL_LIMIT;
     return (int32_t)q;
 }
 
