@@ -223,9 +223,10 @@ Test(physics, search_variants_give_the_same_flow)
     sph_sim *ref, *other;
     run_variant("[search]\nmethod=brute\n", 2, 30, &ref);
     const char *variants[] = {"[search]\nmethod=hash\n", "[search]\nmethod=grid\n",
-                              "[search]\nmethod=hash\ntable_size=7\n"};
+                              "[search]\nmethod=hash\ntable_size=7\n", "[search]\nmethod=hash\nsort=none\n",
+                              "[search]\nmethod=hash\nvector=off\n", "[search]\nmethod=grid\nreorder=off\n"};
     uint32_t *ref_at = index_of_ids(ref);
-    for (int v = 0; v < 3; v++) {
+    for (int v = 0; v < 6; v++) {
         run_variant(variants[v], 2, 30, &other);
         uint32_t *at = index_of_ids(other);
         for (int d = 0; d < 2; d++)

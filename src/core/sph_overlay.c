@@ -200,7 +200,8 @@ uint32_t sph_colormap_category(uint32_t key)
 uint32_t sph_color_of(sph_color_field f, float v, float lo, float hi)
 {
     if (sph_color_field_categorical(f)) return sph_colormap_category(v >= 0 && v < 4294967040.0f ? (uint32_t)v : 0);
-    float t = hi > lo ? (v - lo) / (hi - lo) : 0.5f;
+    /* a range within rounding of one value is one value: the middle colour */
+    float t = hi - lo > 1e-6f * fmaxf(fabsf(hi), fabsf(lo)) ? (v - lo) / (hi - lo) : 0.5f;
     return sph_colormap_viridis(t);
 }
 
@@ -292,32 +293,44 @@ static void note(sph_overlay *ov, const char *text)
     snprintf(ov->note + len, sizeof ov->note - len, "%s%s", len ? "; " : "", text);
 }
 
+/* The search's cells (sph_sim_create sets them up when the scene has a hash
+ * pass); without one (search = brute), cells of h from 0, for the picture. */
+static sph_cells cells_of(const sph_sim *sim)
+{
+    if (sim->S.cells.dim) return sim->S.cells;
+    sph_cells g;
+    memset(&g, 0, sizeof g);
+    g.dim = sim->dim;
+    for (int d = 0; d < 3; d++) {
+        g.size[d] = sim->def.h;
+        g.inv_size[d] = 1.0f / sim->def.h;
+    }
+    return g;
+}
+
 float sph_grid_origin(const sph_sim *sim, int d)
 {
-    return sim->def.search == SPH_SEARCH_GRID ? sim->def.domain_min[d] : 0.0f;
+    return cells_of(sim).origin[d];
+}
+
+float sph_grid_size(const sph_sim *sim, int d)
+{
+    return cells_of(sim).size[d];
 }
 
 void sph_overlay_cell_of(const sph_sim *sim, uint32_t i, int32_t c[3])
 {
-    const float inv_h = 1.0f / sim->def.h;
+    const sph_cells g = cells_of(sim);
     float *const *x = sim->P.pred[0] ? sim->P.pred : sim->P.pos;
     c[0] = c[1] = c[2] = 0;
-    for (int d = 0; d < sim->dim; d++) {
-        if (sim->def.search == SPH_SEARCH_GRID && sim->S.grid_dims[d] > 0)
-            c[d] = sph_grid_coord(x[d][i], sim->def.domain_min[d], inv_h, sim->S.grid_dims[d]);
-        else
-            c[d] = sph_cell_coord(x[d][i], inv_h);
-    }
+    for (int d = 0; d < sim->dim; d++) c[d] = sph_cells_coord(&g, d, x[d][i]);
 }
 
 /* The hash the hash pass gives a cell (the dense cell number for the grid search). */
 static uint32_t cell_hash(const sph_sim *sim, const int32_t c[3])
 {
-    if (sim->def.search == SPH_SEARCH_GRID) {
-        const int32_t *g = sim->S.grid_dims;
-        return (uint32_t)c[0] + (uint32_t)g[0] * ((uint32_t)c[1] + (uint32_t)g[1] * (uint32_t)c[2]);
-    }
-    return sph_hash_cell(sim->dim, c[0], c[1], c[2]);
+    const sph_cells g = cells_of(sim);
+    return sph_cells_hash(&g, c);
 }
 
 static int cmp_cell(const void *pa, const void *pb)
@@ -390,15 +403,16 @@ static int digits(uint32_t v)
 static void build_grid(builder *b, const sph_sim *sim, const sph_overlay_opts *o, float z)
 {
     sph_overlay *ov = b->ov;
-    const float h = sim->def.h;
+    const sph_cells g = cells_of(sim);
     const float *lo = sim->def.domain_min, *hi = sim->def.domain_max;
-    if (o->px_per_m > 0 && h * o->px_per_m < 3.0f) {
+    if (o->px_per_m > 0 && fminf(g.size[0], g.size[1]) * o->px_per_m < 3.0f) {
         note(ov, "grid hidden: cells are under 3 px");
         return;
     }
     for (int d = 0; d < 2; d++) {
-        float org = sph_grid_origin(sim, d);
-        double k0 = ceil((lo[d] - org) / h), k1 = floor((hi[d] - org) / h);
+        const float org = g.origin[d], h = g.size[d];
+        /* a hair of slack: a border that rounds just outside the domain is still drawn */
+        double k0 = ceil((lo[d] - org) / h - 1e-4), k1 = floor((hi[d] - org) / h + 1e-4);
         if (k1 - k0 > 4000) {
             note(ov, "grid hidden: over 4000 lines");
             return;
@@ -419,11 +433,10 @@ static void build_grid(builder *b, const sph_sim *sim, const sph_overlay_opts *o
 
 static void cell_rect(const sph_sim *sim, const int32_t c[3], float r[4])
 {
-    const float h = sim->def.h;
+    const sph_cells g = cells_of(sim);
     for (int d = 0; d < 2; d++) {
-        float org = sph_grid_origin(sim, d);
-        r[d] = org + (float)c[d] * h;
-        r[d + 2] = org + (float)(c[d] + 1) * h;
+        r[d] = g.origin[d] + (float)c[d] * g.size[d];
+        r[d + 2] = g.origin[d] + (float)(c[d] + 1) * g.size[d];
     }
 }
 
@@ -476,11 +489,15 @@ static void build_neighbours(builder *b, const sph_sim *sim, const sph_overlay_o
     ov->sel_key = 0;
     bool hashed = sim->in_pipeline[SPH_PASS_HASH];
     if (hashed) ov->sel_key = cell_hash(sim, c) % (sim->S.table_size ? sim->S.table_size : 1);
-    /* the 3^d cells it visits (in 3D: the 9 of its own layer are drawn) */
+    /* the 3^d cells it visits (in 3D: the 9 of its own layer are drawn);
+     * at the edge of a bounded grid there are fewer, across a periodic edge
+     * they wrap to the other side */
+    const sph_cells g = cells_of(sim);
     if (sim->def.search != SPH_SEARCH_BRUTE)
         for (int dy = -1; dy <= 1; dy++)
             for (int dx = -1; dx <= 1; dx++) {
-                int32_t v[3] = {c[0] + dx, c[1] + dy, c[2]};
+                int32_t v[3] = {c[0], c[1], c[2]};
+                if (!sph_cells_step(&g, 0, c[0], dx, &v[0]) || !sph_cells_step(&g, 1, c[1], dy, &v[1])) continue;
                 float r[4];
                 cell_rect(sim, v, r);
                 bool own = dx == 0 && dy == 0;
@@ -613,7 +630,7 @@ static void build_strip(builder *b, const sph_sim *sim, const sph_overlay_opts *
     const uint32_t edge = SPH_RGBA(20, 20, 26, 255), hl = SPH_RGBA(255, 220, 60, 255);
     const float t = STRIP_TITLE;
     add_label(b, t - 0.2f, 0.5f, 0, grey, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "entry");
-    add_label(b, t - 0.2f, 1.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "index");
+    add_label(b, t - 0.2f, 1.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "particle");
     add_label(b, t - 0.2f, 2.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "key");
     add_label(b, t - 0.2f, 4.5f, 0, grey, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "key");
     add_label(b, t - 0.2f, 5.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_RIGHT, SPH_SPACE_STRIP, "start");
@@ -623,7 +640,9 @@ static void build_strip(builder *b, const sph_sim *sim, const sph_overlay_opts *
         bool sel = s == s_sel;
         add_label(b, x + 0.5f, 0.5f, 0, grey, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "%u", s);
         add_box(b, x, 1, x + 1, 2, 0, SPH_RGBA(60, 62, 72, 255), sel ? hl : edge, SPH_SPACE_STRIP);
-        add_label(b, x + 0.5f, 1.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "%u", en[s].index);
+        /* the particle's id: with the reorder pass, the index itself is just s */
+        add_label(b, x + 0.5f, 1.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "%u",
+                  en[s].index < n ? sim->P.id[en[s].index] : en[s].index);
         add_box(b, x, 2, x + 1, 3, 0, SPH_RGBA_ALPHA(sph_colormap_category(en[s].key), 200), sel ? hl : edge,
                 SPH_SPACE_STRIP);
         add_label(b, x + 0.5f, 2.5f, 0, white, SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_STRIP, "%u", en[s].key);
@@ -659,14 +678,13 @@ bool sph_overlay_build(const sph_sim *sim, const sph_overlay_opts *o, sph_overla
     ov->arrow_m_per_acc = 0;
     ov->note[0] = '\0';
     const unsigned L = o->layers;
-    const float h = sim->def.h;
     /* the slice: in 3D the plane z = slice_z; in 2D everything is at z = 0 */
     float z = sim->dim == 3 ? o->slice_z : 0.0f;
     int32_t slice = 0;
-    if (sim->dim == 3)
-        slice = sim->def.search == SPH_SEARCH_GRID && sim->S.grid_dims[2] > 0
-                    ? sph_grid_coord(z, sim->def.domain_min[2], 1.0f / h, sim->S.grid_dims[2])
-                    : sph_cell_coord(z, 1.0f / h);
+    if (sim->dim == 3) {
+        const sph_cells g = cells_of(sim);
+        slice = sph_cells_coord(&g, 2, z);
+    }
     if (L & SPH_OV_BIT(GRID)) build_grid(&b, sim, o, z);
     bool want_cells = L & (SPH_OV_BIT(KEYS) | SPH_OV_BIT(COLLISIONS));
     if (want_cells) {
@@ -710,7 +728,7 @@ void sph_overlay_free(sph_overlay *ov)
 
 double sph_density_error(const sph_sim *sim)
 {
-    if (!sim->P.rho || !sim->n || !(sim->def.rest_density > 0)) return NAN;
+    if (!sim->P.rho || !sim->n || !(sim->def.rest_density > 0) || !sim->timing[SPH_PASS_DENSITY].calls) return NAN;
     float mx = -INFINITY;
     for (uint32_t i = 0; i < sim->n; i++)
         if (sim->P.rho[i] > mx) mx = sim->P.rho[i];
@@ -728,8 +746,10 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
     double e = sph_density_error(sim);
     if (e == e) {
         HUD_LINE("density error (rho_max - rho0)/rho0 = %+.2f %%", 100 * e);
+    } else if (sim->P.rho) {
+        HUD_LINE("density error: not computed yet");
     } else {
-        HUD_LINE("density not computed");
+        HUD_LINE("density not computed (no effect needs it)");
     }
     char off[100] = "";
     int on = 0, total = 0;

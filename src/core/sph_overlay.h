@@ -28,7 +28,7 @@
     X(COLLISIONS, "collisions", "cells that share a key with another cell, marked red")          \
     X(NEIGHBOURS, "neighbours", "selected particle: its 3^d cells, neighbours, kernel weights")  \
     X(FORCES, "forces", "acceleration arrows: pressure (red), viscosity (blue), gravity (green)") \
-    X(INDEX, "index", "sorted entries (index, key) and offsets (start) as boxes under the view") \
+    X(INDEX, "index", "sorted entries (particle, key) and offsets (start) as boxes under the view") \
     X(HUD, "hud", "particles, step, time, passes on, density error")                            \
     X(TIMINGS, "timings", "ms per pass as bars, steps per second (changes from run to run)")     \
     X(LEGEND, "legend", "colour bar: field, unit, min and max")
@@ -129,7 +129,7 @@ typedef struct sph_ov_label {
 
 /* An occupied cell, as the hash pass filed it. */
 typedef struct sph_ov_cell {
-    int32_t c[3];    /* cell coordinates: floor(x / h) (grid search: from the domain's corner) */
+    int32_t c[3];    /* cell coordinates, as the hash pass computes them (sph_cells_coord) */
     uint32_t hash, key;
     uint32_t count;  /* particles in it */
     bool collides;   /* another occupied cell has the same key */
@@ -154,7 +154,7 @@ typedef struct sph_overlay {
 
     /* What was built, for the inspector and the tests. */
     int grid_lines[2];      /* lines across x and across y */
-    float grid_origin[3];   /* [m] cell borders are at grid_origin + k h */
+    float grid_origin[3];   /* [m] cell borders are at grid_origin + k (cell size) */
     sph_ov_cell *cells;     /* occupied cells (all of them, also in 3D) */
     int n_cells, cap_cells;
     int n_colliding;        /* cells with collides set */
@@ -178,13 +178,16 @@ void sph_overlay_free(sph_overlay *ov);
 
 /* Cell of particle i as the hash pass sees it (from pred if allocated, else pos). */
 void sph_overlay_cell_of(const sph_sim *sim, uint32_t i, int32_t c[3]);
-/* Cell borders: the first grid line along axis d is at sph_grid_origin(sim, d) + k h. */
+/* Cell borders along axis d are at sph_grid_origin(sim, d) + k sph_grid_size(sim, d):
+ * the search's cells (sim->S.cells), a hair above h wide. */
 float sph_grid_origin(const sph_sim *sim, int d);
+float sph_grid_size(const sph_sim *sim, int d);
 
 /* ---- HUD ----------------------------------------------------------------- */
 
 /* Density error shown in the HUD: (rho_max - rho0) / rho0, the largest
- * compression (what incompressible solvers bound); NaN without density. */
+ * compression (what incompressible solvers bound); NaN without density, or
+ * before the density pass has run. */
 double sph_density_error(const sph_sim *sim);
 
 typedef struct sph_hud_info {

@@ -107,7 +107,8 @@ const sph_key sph_scene_keys[] = {
     {"search", "method", SPH_KEY_CHOICE, S(search), 0, 0, 0, 0, CH(sph_search_names), "", "hash",
      "hash: the seed's spatial hash; grid: a dense grid over the domain; brute: all pairs, O(N^2)"},
     {"search", "sort", SPH_KEY_CHOICE, S(sort), 0, 0, 0, 0, CH(sph_sort_names), "", "counting",
-     "how hash entries are sorted by key: bitonic (the seed), counting, qsort (reference)"},
+     "how hash entries are sorted by key: bitonic (the seed), counting, qsort (reference); none: no sort, each key "
+     "chains its particles in a linked list (the unsorted hash)"},
     {"search", "table_size", SPH_KEY_UINT, S(table_size), 0, 2147483648.0, 0, 0, NULL, 0, "", "0",
      "number of hash keys; 0: the particle count, as in the seed"},
 
@@ -119,6 +120,10 @@ const sph_key sph_scene_keys[] = {
     {"search", "reorder", SPH_KEY_CHOICE, S(reorder), 0, 0, 0, 0, CH(sph_onoff_names), "", "on",
      "on: after the sort, store the particle data in cell order, so neighbours sit close in memory and the search "
      "scans contiguous runs; off: keep the creation order (the seed)"},
+
+    {"search", "vector", SPH_KEY_CHOICE, S(vector), 0, 0, 0, 0, CH(sph_onoff_names), "", "on",
+     "on: inner loops written with the CPU's vector instructions (AVX-512, 16 floats at a time) use them, where the "
+     "build has them; off: plain scalar loops"},
 
     {"fluid", "min", SPH_KEY_VEC, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_VEC, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},

@@ -40,7 +40,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_PFORM_CHOICES(X) X(SYMMETRIC, "symmetric") X(SHARED, "shared")
 #define SPH_VFORM_CHOICES(X) X(LAPLACIAN, "laplacian") X(SMOOTHING, "smoothing")
 #define SPH_SEARCH_CHOICES(X) X(HASH, "hash") X(GRID, "grid") X(BRUTE, "brute")
-#define SPH_SORT_CHOICES(X) X(BITONIC, "bitonic") X(COUNTING, "counting") X(QSORT, "qsort")
+#define SPH_SORT_CHOICES(X) X(BITONIC, "bitonic") X(COUNTING, "counting") X(QSORT, "qsort") X(NONE, "none")
 #define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")
 #define SPH_WALL_CHOICES(X) X(VOLUME, "volume") X(REFLECT, "reflect")
 #define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
@@ -135,6 +135,7 @@ typedef struct sph_scene_def {
     sph_sort sort;
     uint32_t table_size; /* [1] hash table size; 0: the particle count, as in the seed */
     sph_onoff reorder;   /* store the particles in cell order after the sort (for memory locality) */
+    sph_onoff vector;    /* use the CPU's vector instructions (AVX-512) in the inner loops where written */
     float jitter;        /* [1] random offset of each particle, in spacings */
     uint32_t seed;       /* [1] random seed of the jitter */
     float interaction_radius;   /* [m] reach of the push/pull around the point */

@@ -215,6 +215,7 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
         S->entries = alloc_zero(n, sizeof *S->entries, &ok);
         S->start = alloc_zero(S->table_size, sizeof *S->start, &ok);
         S->spos = alloc_zero(4 * (size_t)n, sizeof *S->spos, &ok);
+        if (def->sort == SPH_SORT_NONE) S->next = alloc_zero(n, sizeof *S->next, &ok);
         if (sim->in_pipeline[SPH_PASS_REORDER]) {
             S->cell_hash = alloc_zero(n, sizeof *S->cell_hash, &ok);
             S->spare_f = alloc_zero(n, sizeof *S->spare_f, &ok);
@@ -263,6 +264,7 @@ void sph_sim_destroy(sph_sim *sim)
     free(S->start);
     free(S->spos);
     free(S->cell_hash);
+    free(S->next);
     free(S->spare_f);
     free(S->spare_u);
     free(S->count);

@@ -72,6 +72,7 @@ typedef struct sph_search_data {
     uint32_t *count;      /* [table_size + 1] counting sort's histogram */
     float *spos;          /* [4 n] [m] predicted positions in sorted order (x, y, z, 0), for the scan */
     bool reordered;       /* this step's reorder pass ran: particle e is sorted entry e */
+    uint32_t *next;       /* [n] sort = none: next particle of the same key, or SPH_EMPTY */
     uint32_t *cell_hash;  /* [n] hash of each particle's cell, in particle order, after a reorder */
     float *spare_f;       /* [n] the reorder pass gathers into these and swaps */
     uint32_t *spare_u;    /* [n] */

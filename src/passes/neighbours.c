@@ -69,6 +69,22 @@ static inline void scan_cell(const sph_sim *sim, const float *spos, list *out, u
     const uint32_t key = hash % S->table_size;
     uint32_t e = S->start[key];
     if (e == SPH_EMPTY) return;
+    if (S->next) { /* unsorted: walk the key's chain, particle by particle */
+        const int dim = sim->dim;
+        for (uint32_t j = e; j != SPH_EMPTY; j = S->next[j]) {
+            if (S->entries[j].hash != hash || j == i) continue;
+            float r2 = 0;
+            for (int d = 0; d < dim; d++) {
+                float dx = sph_min_image(sim->P.pred[d][j] - xi[d], per[d], iper[d]);
+                r2 += dx * dx;
+            }
+            if (r2 < h2) {
+                list_reserve(out, 1);
+                out->buf[out->len++] = j;
+            }
+        }
+        return;
+    }
     const sph_entry *en = S->entries;
     uint32_t end = e;
     while (end < sim->n && en[end].key == key) end++;
@@ -172,7 +188,7 @@ static inline size_t scan_run(const sph_sim *sim, const run_range *r, uint32_t i
     const uint32_t *chash = sim->S.cell_hash;
     uint32_t j = r->start;
 #ifdef __AVX512F__
-    if (!periodic) {
+    if (!periodic && sim->def.vector == SPH_ON) {
         const __m512 vx = _mm512_set1_ps(xi[0]), vy = _mm512_set1_ps(xi[1]), vz = _mm512_set1_ps(xi[2]);
         const __m512 vh2 = _mm512_set1_ps(h2);
         const __m512i vhash = _mm512_set1_epi32((int)r->hash), vi = _mm512_set1_epi32((int)i);
@@ -253,7 +269,7 @@ static void run(sph_sim *sim)
     const int T = S->n_threads;
     size_t base[SPH_MAX_THREADS + 1];
     float *spos = S->spos;
-    if (spos && !S->reordered) { /* positions in sorted order, padded to 4 floats (z = 0 in 2D) */
+    if (spos && !S->reordered && !S->next) { /* positions in sorted order, padded to 4 floats (z = 0 in 2D) */
         const int dim = sim->dim;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int64_t e = 0; e < (int64_t)n; e++) {

@@ -12,8 +12,22 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    (void)def;
-    snprintf(out, (size_t)n, "first sorted entry of each key, empty keys marked");
+    if (def->sort == SPH_SORT_NONE)
+        snprintf(out, (size_t)n, "unsorted: a linked list per key (head of each key, next of each particle)");
+    else
+        snprintf(out, (size_t)n, "first sorted entry of each key, empty keys marked");
+}
+
+/* The unsorted hash: start[k] is the last particle with key k and next[i]
+ * the particle before i with the same key, SPH_EMPTY ending the chain. O(N)
+ * with no sort, but a chain jumps across memory at every step. */
+static void build_chains(const sph_entry *e, uint32_t n, uint32_t *head, uint32_t *next, uint32_t table_size)
+{
+    for (uint32_t k = 0; k < table_size; k++) head[k] = SPH_EMPTY;
+    for (uint32_t i = 0; i < n; i++) {
+        next[i] = head[e[i].key];
+        head[e[i].key] = i;
+    }
 }
 
 void sph_offsets_build(const sph_entry *e, uint32_t n, uint32_t *start, uint32_t table_size)
@@ -32,7 +46,10 @@ void sph_offsets_build(const sph_entry *e, uint32_t n, uint32_t *start, uint32_t
 
 static void run(sph_sim *sim)
 {
-    sph_offsets_build(sim->S.entries, sim->n, sim->S.start, sim->S.table_size);
+    if (sim->def.sort == SPH_SORT_NONE)
+        build_chains(sim->S.entries, sim->n, sim->S.start, sim->S.next, sim->S.table_size);
+    else
+        sph_offsets_build(sim->S.entries, sim->n, sim->S.start, sim->S.table_size);
 }
 
 const sph_pass sph_pass_offsets = {

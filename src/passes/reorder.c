@@ -13,7 +13,7 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    const char *why = sph_pass_hash.skip_reason(def);
+    const char *why = sph_pass_sort.skip_reason(def);
     if (why) return why;
     return def->reorder == SPH_ON ? NULL : "search.reorder = off: particles keep their creation order";
 }

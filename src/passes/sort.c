@@ -12,13 +12,16 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    return sph_pass_hash.skip_reason(def);
+    const char *why = sph_pass_hash.skip_reason(def);
+    if (why) return why;
+    return def->sort == SPH_SORT_NONE ? "search.sort = none: each key chains its particles instead" : NULL;
 }
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
     static const char *const about[SPH_SORT_COUNT] = {
-        "bitonic network (the seed), O(N log^2 N)", "counting sort, O(N + keys)", "C library qsort (reference)"};
+        "bitonic network (the seed), O(N log^2 N)", "counting sort, O(N + keys)", "C library qsort (reference)",
+        "none"};
     snprintf(out, (size_t)n, "%s", about[def->sort]);
 }
 
