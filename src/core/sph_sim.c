@@ -175,8 +175,14 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
     alloc_vec(P->pos, dim, n, &ok);
     alloc_vec(P->vel, dim, n, &ok);
     if (sim->in_pipeline[SPH_PASS_NEIGHBOURS]) alloc_vec(P->pred, dim, n, &ok);
-    if (sim->in_pipeline[SPH_PASS_DENSITY]) P->rho = alloc_zero(n, sizeof(float), &ok);
-    if (sim->in_pipeline[SPH_PASS_PRESSURE]) P->p = alloc_zero(n, sizeof(float), &ok);
+    if (sim->in_pipeline[SPH_PASS_DENSITY]) {
+        P->rho = alloc_zero(n, sizeof(float), &ok);
+        P->vol = alloc_zero(n, sizeof(float), &ok);
+    }
+    if (sim->in_pipeline[SPH_PASS_PRESSURE]) {
+        P->p = alloc_zero(n, sizeof(float), &ok);
+        P->p_rho2 = alloc_zero(n, sizeof(float), &ok);
+    }
     if (sim->in_pipeline[SPH_PASS_PRESSURE_FORCE]) alloc_vec(P->acc_p, dim, n, &ok);
     if (sim->in_pipeline[SPH_PASS_VISCOSITY]) alloc_vec(P->acc_v, dim, n, &ok);
     if (sim->in_pipeline[SPH_PASS_INTERACTION]) alloc_vec(P->acc_i, dim, n, &ok);
@@ -257,7 +263,9 @@ void sph_sim_destroy(sph_sim *sim)
         free(P->acc_i[d]);
     }
     free(P->rho);
+    free(P->vol);
     free(P->p);
+    free(P->p_rho2);
     sph_search_data *S = &sim->S;
     free(S->entries);
     free(S->scratch);

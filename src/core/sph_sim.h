@@ -22,7 +22,9 @@ typedef struct sph_particles {
     float *vel[3];   /* [m/s] velocity */
     float *pred[3];  /* [m] predicted position x + v dt: where neighbours and forces are evaluated */
     float *rho;      /* [kg/m^dim] density */
+    float *vol;      /* [m^dim] volume m / rho, written with the density (the force sums use it per pair) */
     float *p;        /* [Pa] (3D) or [N/m] (2D) pressure */
+    float *p_rho2;   /* [Pa m^(2 dim)/kg^2] p / rho^2, written with the pressure (saves a division per pair) */
     float *acc_p[3]; /* [m/s^2] acceleration from the pressure force */
     float *acc_v[3]; /* [m/s^2] acceleration from viscosity */
     float *acc_i[3]; /* [m/s^2] acceleration from the interaction (mouse) */
@@ -94,7 +96,9 @@ typedef struct sph_search_data {
     X(VEL, "vel", "m/s", 3, "velocity")                               \
     X(PRED, "pred", "m", 3, "predicted position")                     \
     X(RHO, "rho", "kg/m^dim", 1, "density")                           \
+    X(VOL, "vol", "m^dim", 1, "volume m/rho")                         \
     X(P, "p", "Pa", 1, "pressure")                                    \
+    X(PRHO2, "p_rho2", "Pa m^6/kg^2", 1, "p / rho^2")                 \
     X(ACC_P, "acc_p", "m/s^2", 3, "pressure acceleration")            \
     X(ACC_V, "acc_v", "m/s^2", 3, "viscous acceleration")             \
     X(ACC_I, "acc_i", "m/s^2", 3, "interaction acceleration")         \
@@ -215,6 +219,15 @@ float sph_time_step_choose(const sph_sim *sim);
 #define SPH_SPECIALISE(dim, dbl, fn, ...)                                                \
     ((dim) == 2 ? ((dbl) ? fn(__VA_ARGS__, 2, true) : fn(__VA_ARGS__, 2, false))         \
                 : ((dbl) ? fn(__VA_ARGS__, 3, true) : fn(__VA_ARGS__, 3, false)))
+/* The same with a third constant, fn(args..., dim, dbl, periodic): whether
+ * any axis is periodic (the minimum image costs a rounding per axis and pair;
+ * most scenes need none). */
+#define SPH_SPECIALISE_P(dim, dbl, per, fn, ...)                                               \
+    ((per) ? ((dim) == 2 ? ((dbl) ? fn(__VA_ARGS__, 2, true, true) : fn(__VA_ARGS__, 2, false, true))   \
+                         : ((dbl) ? fn(__VA_ARGS__, 3, true, true) : fn(__VA_ARGS__, 3, false, true)))  \
+           : ((dim) == 2 ? ((dbl) ? fn(__VA_ARGS__, 2, true, false) : fn(__VA_ARGS__, 2, false, false)) \
+                         : ((dbl) ? fn(__VA_ARGS__, 3, true, false) : fn(__VA_ARGS__, 3, false, false))))
+#define sph_sim_periodic(sim) ((sim)->period[0] > 0 || (sim)->period[1] > 0 || (sim)->period[2] > 0)
 
 /* The watchdog (sph_watchdog.c), run by the pipeline after each pass. */
 unsigned sph_watchdog_fields(const char *writes); /* field bits of a pass's `writes` list */

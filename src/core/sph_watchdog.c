@@ -48,6 +48,8 @@ bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out)
     case SPH_FIELD_PRED: vec = P->pred; break;
     case SPH_FIELD_RHO: scalar = P->rho; break;
     case SPH_FIELD_P: scalar = P->p; break;
+    case SPH_FIELD_VOL: scalar = P->vol; break;
+    case SPH_FIELD_PRHO2: scalar = P->p_rho2; break;
     case SPH_FIELD_ACC_P: vec = P->acc_p; break;
     case SPH_FIELD_ACC_V: vec = P->acc_v; break;
     case SPH_FIELD_ACC_I: vec = P->acc_i; break;

@@ -3,6 +3,7 @@
  * neighbour counts). With walls of the volume model, rho0 times the share of
  * the kernel hidden behind the walls is added (sph_wall_hidden): a particle at
  * a wall is not missing half its neighbours. */
+#include "simd.h"
 #include "sph_search.h"
 
 #include <math.h>
@@ -55,7 +56,8 @@ float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad
 }
 
 /* The sum for one particle; dim and dbl are constants (SPH_SPECIALISE). */
-static inline void density_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl)
+static inline void density_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl,
+                               const bool periodic)
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
@@ -68,7 +70,8 @@ static inline void density_one(const sph_sim *sim, const sph_kernel *k, int i, c
         uint32_t j = S->nbr[e];
         float r2 = 0;
         for (int d = 0; d < dim; d++) {
-            float dx = sph_min_image(xi[d] - P->pred[d][j], per[d], iper[d]);
+            float dx = xi[d] - P->pred[d][j];
+            if (periodic) dx = sph_min_image(dx, per[d], iper[d]);
             r2 += dx * dx;
         }
         float w = P->mass[j] * sph_kernel_w(k, sqrtf(r2));
@@ -78,17 +81,57 @@ static inline void density_one(const sph_sim *sim, const sph_kernel *k, int i, c
     float sum = dbl ? (float)sd : sf;
     if (sph_sim_wall_volume(sim)) sum += sim->def.rest_density * sph_wall_hidden(sim, k, i, NULL);
     P->rho[i] = sum;
+    P->vol[i] = P->mass[i] / sum;
 }
+
+#if SPH_HAVE_AVX512
+/* Poly6 needs no square root: W = sigma (h^2 - r^2)^3. */
+static inline void density_one_avx512(const sph_sim *sim, const sph_kernel *k, int i, const int dim)
+{
+    const sph_particles *P = &sim->P;
+    const sph_search_data *S = &sim->S;
+    const __m512 xi = _mm512_set1_ps(P->pred[0][i]), yi = _mm512_set1_ps(P->pred[1][i]);
+    const __m512 zi = _mm512_set1_ps(dim == 3 ? P->pred[2][i] : 0.0f), h2 = _mm512_set1_ps(k->h2);
+    __m512 acc = _mm512_setzero_ps();
+    const uint32_t end = S->nbr_start[i + 1];
+    for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
+        __mmask16 live = sph_simd_live(e, end);
+        __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
+        __m512 dx = _mm512_sub_ps(xi, sph_simd_gather(live, idx, P->pred[0]));
+        __m512 dy = _mm512_sub_ps(yi, sph_simd_gather(live, idx, P->pred[1]));
+        __m512 r2 = _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy));
+        if (dim == 3) {
+            __m512 dz = _mm512_sub_ps(zi, sph_simd_gather(live, idx, P->pred[2]));
+            r2 = _mm512_add_ps(r2, _mm512_mul_ps(dz, dz));
+        }
+        __m512 d = _mm512_max_ps(_mm512_sub_ps(h2, r2), _mm512_setzero_ps());
+        __m512 w = _mm512_mul_ps(_mm512_mul_ps(d, d), d);
+        acc = _mm512_mask3_fmadd_ps(w, sph_simd_gather(live, idx, P->mass), acc, live); /* dead lanes keep acc */
+    }
+    float sum = P->mass[i] * sph_kernel_w(k, 0.0f) + k->sigma * _mm512_reduce_add_ps(acc);
+    if (sph_sim_wall_volume(sim)) sum += sim->def.rest_density * sph_wall_hidden(sim, k, i, NULL);
+    P->rho[i] = sum;
+    P->vol[i] = P->mass[i] / sum;
+}
+#endif
 
 static void run(sph_sim *sim)
 {
     const sph_kernel k = sim->k_density;
     const int n = (int)sim->n, dim = sim->dim;
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
+    const bool periodic = sph_sim_periodic(sim);
+#if SPH_HAVE_AVX512
+    if (sph_simd_on(sim) && k.kind == SPH_KERNEL_POLY6) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) SPH_SPECIALISE(dim, dbl, density_one, sim, &k, i);
+        for (int i = 0; i < n; i++) dim == 3 ? density_one_avx512(sim, &k, i, 3) : density_one_avx512(sim, &k, i, 2);
+        return;
+    }
+#endif
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, density_one, sim, &k, i);
 }
 
 const sph_pass sph_pass_density = {
-    "density", "density by kernel summation", "pred mass nbr", "rho", skip_reason, describe, run,
+    "density", "density by kernel summation", "pred mass nbr", "rho vol", skip_reason, describe, run,
 };

@@ -40,8 +40,11 @@ static void run(sph_sim *sim)
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) p[i] = fmaxf(clamp, k * (rho[i] - rho0));
     }
+    float *restrict q = sim->P.p_rho2;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) q[i] = p[i] / (rho[i] * rho[i]);
 }
 
 const sph_pass sph_pass_pressure = {
-    "pressure", "pressure from the equation of state", "rho", "p", skip_reason, describe, run,
+    "pressure", "pressure from the equation of state", "rho", "p p_rho2", skip_reason, describe, run,
 };

@@ -7,6 +7,7 @@
  *              densities differ, so momentum drifts)
  * grad W_ij = W'(r) (x_i - x_j) / r. Coincident particles get a direction
  * (see below), else they would never separate. */
+#include "simd.h"
 #include "sph_search.h"
 
 #include <math.h>
@@ -24,7 +25,8 @@ static void describe(const sph_scene_def *def, char *out, int n)
 }
 
 /* The force on one particle; dim and dbl are constants (SPH_SPECIALISE). */
-static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl)
+static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl,
+                                const bool periodic)
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
@@ -32,7 +34,7 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
     const float r_min = SPH_KERNEL_R_MIN * k->h; /* below this, particles count as coincident */
     const float *per = sim->period, *iper = sim->inv_period;
     const float rho_i = P->rho[i], p_i = P->p[i];
-    const float pi_over = p_i / (rho_i * rho_i);
+    const float pi_over = P->p_rho2[i];
     float xi[3], af[3] = {0, 0, 0};
     double ad[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
@@ -40,7 +42,8 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
         uint32_t j = S->nbr[e];
         float dx[3], r2 = 0;
         for (int d = 0; d < dim; d++) {
-            dx[d] = sph_min_image(xi[d] - P->pred[d][j], per[d], iper[d]);
+            dx[d] = xi[d] - P->pred[d][j];
+            if (periodic) dx[d] = sph_min_image(dx[d], per[d], iper[d]);
             r2 += dx[d] * dx[d];
         }
         float r;
@@ -55,9 +58,7 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
             r = sqrtf(r2);
         }
         float dw_over_r = sph_kernel_dw(k, r) / r;
-        float rho_j = P->rho[j];
-        float coef = symmetric ? P->mass[j] * (pi_over + P->p[j] / (rho_j * rho_j))
-                               : P->mass[j] / rho_j * 0.5f * (p_i + P->p[j]) / rho_i;
+        float coef = symmetric ? P->mass[j] * (pi_over + P->p_rho2[j]) : P->vol[j] * 0.5f * (p_i + P->p[j]) / rho_i;
         for (int d = 0; d < dim; d++) {
             float t = coef * dw_over_r * dx[d];
             if (dbl) ad[d] -= t;
@@ -77,15 +78,79 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
     for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
 }
 
+#if SPH_HAVE_AVX512
+/* Spiky: dW/dr = -3 sigma (h - r)^2. */
+static inline void pressure_one_avx512(const sph_sim *sim, const sph_kernel *k, int i, const int dim)
+{
+    const sph_particles *P = &sim->P;
+    const sph_search_data *S = &sim->S;
+    const bool symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
+    const float rmin = SPH_KERNEL_R_MIN * k->h;
+    const __m512 xi = _mm512_set1_ps(P->pred[0][i]), yi = _mm512_set1_ps(P->pred[1][i]);
+    const __m512 zi = _mm512_set1_ps(dim == 3 ? P->pred[2][i] : 0.0f);
+    const __m512 h = _mm512_set1_ps(k->h), m3s = _mm512_set1_ps(-3.0f * k->sigma);
+    const __m512 rmin2 = _mm512_set1_ps(rmin * rmin), vrmin = _mm512_set1_ps(rmin);
+    const __m512 pi_over = _mm512_set1_ps(P->p_rho2[i]), pi = _mm512_set1_ps(P->p[i]);
+    const __m512 half_over_rho = _mm512_set1_ps(0.5f / P->rho[i]), zero = _mm512_setzero_ps();
+    const __m512i vi = _mm512_set1_epi32(i);
+    __m512 ax = zero, ay = zero, az = zero;
+    const uint32_t end = S->nbr_start[i + 1];
+    for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
+        __mmask16 live = sph_simd_live(e, end);
+        __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
+        __m512 dx = _mm512_sub_ps(xi, sph_simd_gather(live, idx, P->pred[0]));
+        __m512 dy = _mm512_sub_ps(yi, sph_simd_gather(live, idx, P->pred[1]));
+        __m512 dz = dim == 3 ? _mm512_sub_ps(zi, sph_simd_gather(live, idx, P->pred[2])) : zero;
+        __m512 r2 = _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy));
+        if (dim == 3) r2 = _mm512_add_ps(r2, _mm512_mul_ps(dz, dz));
+        __mmask16 close = _mm512_mask_cmp_ps_mask(live, r2, rmin2, _CMP_LT_OQ);
+        if (close) { /* coincident pairs: pushed apart along x, as in the scalar loop */
+            __mmask16 before = _mm512_mask_cmplt_epu32_mask(close, vi, idx); /* i < j */
+            __m512 along = _mm512_mask_mov_ps(vrmin, before, _mm512_sub_ps(zero, vrmin));
+            dx = _mm512_mask_mov_ps(dx, close, along);
+            dy = _mm512_mask_mov_ps(dy, close, zero);
+            dz = _mm512_mask_mov_ps(dz, close, zero);
+            r2 = _mm512_mask_mov_ps(r2, close, rmin2);
+        }
+        __m512 r = _mm512_sqrt_ps(r2);
+        __m512 t = _mm512_max_ps(_mm512_sub_ps(h, r), zero);
+        __m512 dw_over_r = _mm512_maskz_div_ps(live, _mm512_mul_ps(m3s, _mm512_mul_ps(t, t)), r);
+        __m512 coef = symmetric ? _mm512_mul_ps(sph_simd_gather(live, idx, P->mass),
+                                                _mm512_add_ps(pi_over, sph_simd_gather(live, idx, P->p_rho2)))
+                                : _mm512_mul_ps(_mm512_mul_ps(sph_simd_gather(live, idx, P->vol), half_over_rho),
+                                                _mm512_add_ps(pi, sph_simd_gather(live, idx, P->p)));
+        __m512 f = _mm512_mul_ps(coef, dw_over_r);
+        ax = _mm512_mask3_fnmadd_ps(f, dx, ax, live);
+        ay = _mm512_mask3_fnmadd_ps(f, dy, ay, live);
+        if (dim == 3) az = _mm512_mask3_fnmadd_ps(f, dz, az, live);
+    }
+    float a[3] = {_mm512_reduce_add_ps(ax), _mm512_reduce_add_ps(ay), _mm512_reduce_add_ps(az)};
+    if (sph_sim_wall_volume(sim)) {
+        float grad[3];
+        sph_wall_hidden(sim, &sim->k_density, i, grad);
+        for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * P->p_rho2[i] * grad[d];
+    }
+    for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
+}
+#endif
+
 static void run(sph_sim *sim)
 {
     const sph_kernel k = sim->k_pressure;
     const int n = (int)sim->n, dim = sim->dim;
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
+    const bool periodic = sph_sim_periodic(sim);
+#if SPH_HAVE_AVX512
+    if (sph_simd_on(sim) && k.kind == SPH_KERNEL_SPIKY) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) SPH_SPECIALISE(dim, dbl, pressure_one, sim, &k, i);
+        for (int i = 0; i < n; i++) dim == 3 ? pressure_one_avx512(sim, &k, i, 3) : pressure_one_avx512(sim, &k, i, 2);
+        return;
+    }
+#endif
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, pressure_one, sim, &k, i);
 }
 
 const sph_pass sph_pass_pressure_force = {
-    "pressure_force", "pressure force (acceleration)", "pred mass rho p nbr", "acc_p", skip_reason, describe, run,
+    "pressure_force", "pressure force (acceleration)", "pred mass rho vol p p_rho2 nbr", "acc_p", skip_reason, describe, run,
 };

@@ -8,6 +8,7 @@
  * It reads vel and writes acc_v only: the seed's shader added the result to
  * the velocities it was still reading for other particles, so its outcome
  * depended on the order threads ran in. */
+#include "simd.h"
 #include "sph_search.h"
 
 #include <math.h>
@@ -25,7 +26,8 @@ static void describe(const sph_scene_def *def, char *out, int n)
 }
 
 /* The viscous acceleration of one particle; dim and dbl are constants. */
-static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl)
+static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl,
+                                 const bool periodic)
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
@@ -42,12 +44,13 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
         uint32_t j = S->nbr[e];
         float r2 = 0;
         for (int d = 0; d < dim; d++) {
-            float dx = sph_min_image(xi[d] - P->pred[d][j], per[d], iper[d]);
+            float dx = xi[d] - P->pred[d][j];
+            if (periodic) dx = sph_min_image(dx, per[d], iper[d]);
             r2 += dx * dx;
         }
         float r = sqrtf(r2);
         float w = laplacian ? sph_kernel_lap(k, r) : sph_kernel_w(k, r);
-        float coef = P->mass[j] / P->rho[j] * w;
+        float coef = P->vol[j] * w;
         for (int d = 0; d < dim; d++) {
             float t = coef * (P->vel[d][j] - vi[d]);
             if (dbl) ad[d] += t;
@@ -58,15 +61,63 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
     for (int d = 0; d < dim; d++) P->acc_v[d][i] = s * (dbl ? (float)ad[d] : af[d]);
 }
 
+#if SPH_HAVE_AVX512
+/* The viscosity kernel's Laplacian is linear: c (1 - r/h), c = 6 sigma/h^2
+ * in 3D, sigma/h^2 in 2D (see sph_kernel_lap). */
+static inline void viscosity_one_avx512(const sph_sim *sim, const sph_kernel *k, int i, const int dim)
+{
+    const sph_particles *P = &sim->P;
+    const sph_search_data *S = &sim->S;
+    const __m512 xi = _mm512_set1_ps(P->pred[0][i]), yi = _mm512_set1_ps(P->pred[1][i]);
+    const __m512 zi = _mm512_set1_ps(dim == 3 ? P->pred[2][i] : 0.0f);
+    const __m512 vxi = _mm512_set1_ps(P->vel[0][i]), vyi = _mm512_set1_ps(P->vel[1][i]);
+    const __m512 vzi = _mm512_set1_ps(dim == 3 ? P->vel[2][i] : 0.0f);
+    const __m512 inv_h = _mm512_set1_ps(k->inv_h), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
+    __m512 ax = zero, ay = zero, az = zero;
+    const uint32_t end = S->nbr_start[i + 1];
+    for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
+        __mmask16 live = sph_simd_live(e, end);
+        __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
+        __m512 dx = _mm512_sub_ps(xi, sph_simd_gather(live, idx, P->pred[0]));
+        __m512 dy = _mm512_sub_ps(yi, sph_simd_gather(live, idx, P->pred[1]));
+        __m512 r2 = _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy));
+        if (dim == 3) {
+            __m512 dz = _mm512_sub_ps(zi, sph_simd_gather(live, idx, P->pred[2]));
+            r2 = _mm512_add_ps(r2, _mm512_mul_ps(dz, dz));
+        }
+        __m512 lap = _mm512_max_ps(_mm512_fnmadd_ps(_mm512_sqrt_ps(r2), inv_h, one), zero); /* 1 - r/h */
+        __m512 coef = _mm512_mul_ps(sph_simd_gather(live, idx, P->vol), lap);
+        ax = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, P->vel[0]), vxi), ax, live);
+        ay = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, P->vel[1]), vyi), ay, live);
+        if (dim == 3)
+            az = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, P->vel[2]), vzi), az, live);
+    }
+    const float c = k->sigma * k->inv_h * k->inv_h * (dim == 3 ? 6.0f : 1.0f);
+    const float s = c * sim->def.viscosity * sim->def.rest_density / P->rho[i];
+    P->acc_v[0][i] = s * _mm512_reduce_add_ps(ax);
+    P->acc_v[1][i] = s * _mm512_reduce_add_ps(ay);
+    if (dim == 3) P->acc_v[2][i] = s * _mm512_reduce_add_ps(az);
+}
+#endif
+
 static void run(sph_sim *sim)
 {
     const sph_kernel k = sim->k_viscosity;
     const int n = (int)sim->n, dim = sim->dim;
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
+    const bool periodic = sph_sim_periodic(sim);
+#if SPH_HAVE_AVX512
+    if (sph_simd_on(sim) && k.kind == SPH_KERNEL_VISCOSITY && sim->def.viscosity_form == SPH_VFORM_LAPLACIAN) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) SPH_SPECIALISE(dim, dbl, viscosity_one, sim, &k, i);
+        for (int i = 0; i < n; i++)
+            dim == 3 ? viscosity_one_avx512(sim, &k, i, 3) : viscosity_one_avx512(sim, &k, i, 2);
+        return;
+    }
+#endif
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, viscosity_one, sim, &k, i);
 }
 
 const sph_pass sph_pass_viscosity = {
-    "viscosity", "viscous force (acceleration)", "pred mass rho vel nbr", "acc_v", skip_reason, describe, run,
+    "viscosity", "viscous force (acceleration)", "pred vol rho vel nbr", "acc_v", skip_reason, describe, run,
 };
