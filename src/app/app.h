@@ -19,6 +19,8 @@ typedef struct app_scene_opts {
 /* Loads the scene, applies the --set overrides, validates; prints the error
  * and returns false on failure. */
 bool app_load_scene(const app_scene_opts *o, sph_scene_def *def);
+/* The same, returning the exit status: 0 loaded, 1 a bad scene, 2 a bad --set. */
+int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def);
 
 /* Parses a whole number / a number for option `opt`; prints the error and returns false on failure. */
 bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out);

@@ -64,7 +64,8 @@ int cmd_check(int argc, char **argv)
         return 2;
     }
     sph_scene_def def;
-    if (!app_load_scene(&o, &def)) return 1;
+    int status = app_load_scene_status(&o, &def);
+    if (status) return status;
     sph_sim *sim;
     sph_error err;
     if (sph_sim_create(&def, 1, &sim, &err) != SPH_ERR_OK) {

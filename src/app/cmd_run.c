@@ -176,7 +176,12 @@ int cmd_run(int argc, char **argv)
         return 2;
     }
     sph_scene_def def;
-    if (!app_load_scene(&o, &def)) return 1;
+    int status = app_load_scene_status(&o, &def);
+    if (status) return status;
+    if (stats_path && dump_path && strcmp(stats_path, dump_path) == 0) {
+        fprintf(stderr, "sphlab run: --stats and --dump name the same file (%s)\n", stats_path);
+        return 2;
+    }
     if (steps < 0 && until < 0) {
         if (def.duration > 0)
             until = def.duration;

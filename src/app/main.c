@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "app.h"
@@ -35,7 +36,7 @@ int cmd_keys(int argc, char **argv)
     return 0;
 }
 
-bool app_load_scene(const app_scene_opts *o, sph_scene_def *def)
+int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def)
 {
     sph_error err;
     *def = sph_default_scene_def();
@@ -45,12 +46,17 @@ bool app_load_scene(const app_scene_opts *o, sph_scene_def *def)
         if (sph_scene_validate(def, &err) == SPH_ERR_OK) {
             char warning[512];
             if (sph_scene_warning(def, warning, sizeof warning)) fprintf(stderr, "sphlab: warning: %s\n", warning);
-            return true;
+            return 0;
         }
     }
 fail:
     fprintf(stderr, "sphlab: %s\n", err.msg);
-    return false;
+    return err.code == SPH_ERR_USAGE ? 2 : 1; /* a malformed --set is a command-line error */
+}
+
+bool app_load_scene(const app_scene_opts *o, sph_scene_def *def)
+{
+    return app_load_scene_status(o, def) == 0;
 }
 
 bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out)
@@ -89,6 +95,11 @@ bool app_parse_double(const char *opt, const char *s, double lo, double hi, doub
 bool app_out_open(app_out *o, const char *path)
 {
     memset(o, 0, sizeof *o);
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "sphlab: %s: is a directory, not a file to write\n", path);
+        return false;
+    }
     if (strlen(path) >= sizeof o->path) {
         fprintf(stderr, "sphlab: %s: path too long\n", path);
         return false;

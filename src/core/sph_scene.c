@@ -238,7 +238,9 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
     case SPH_KEY_FLOAT: {
         double v;
         if (!parse_double(value, &v)) return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a number");
-        if (!in_range(k, v)) return bad_value(err, SPH_ERR_RANGE, w, k, value, "out of range");
+        if (!in_range(k, v) || !in_range(k, (double)(float)v))
+            return bad_value(err, SPH_ERR_RANGE, w, k, value,
+                             in_range(k, v) ? "out of range once stored as a float" : "out of range");
         *(float *)field = (float)v;
         return SPH_ERR_OK;
     }
@@ -266,7 +268,8 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
             double d = strtod(p, &end);
             if (end == p || (*end && !isspace((unsigned char)*end) && *end != ','))
                 return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a list of numbers");
-            if (!in_range(k, d)) return bad_value(err, SPH_ERR_RANGE, w, k, value, "a component is out of range");
+            if (!in_range(k, d) || !in_range(k, (double)(float)d))
+                return bad_value(err, SPH_ERR_RANGE, w, k, value, "a component is out of range");
             v[n++] = (float)d;
             p = end;
         }
@@ -336,12 +339,18 @@ static sph_block_def default_block(void)
 
 /* ---- parsing ------------------------------------------------------------ */
 
+#define MAX_SECTIONS 64
+
 typedef struct parse_ctx {
     sph_scene_def *def;
     const char *file;
     const char *text; /* whole file, NUL-terminated */
     size_t len, pos;
     int line;         /* line the reader handed out last */
+    int header_line;  /* line of the latest section header */
+    char sections[MAX_SECTIONS][64]; /* headers seen, to refuse a section given twice */
+    int section_lines[MAX_SECTIONS];
+    int n_sections;
     sph_error *err;
     sph_error_code code;
 } parse_ctx;
@@ -390,8 +399,8 @@ static sph_block_def *find_block(sph_scene_def *def, const char *name)
 }
 
 /* Applies one key = value; line > 0 for a file line, -1 for --set. */
-static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, const char *section,
-                                const char *name, const char *value, sph_error *err)
+static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, int header_line,
+                                const char *section, const char *name, const char *value, sph_error *err)
 {
     where w = {file, line, section};
     char loc[320];
@@ -427,8 +436,17 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
         } else {
             sph_block_def *b = find_block(def, bname);
             if (!b) {
-                if (line < 0)
-                    return sph_fail(err, SPH_ERR_SCENE, "--set: no fluid block named '%.40s'", bname);
+                if (line < 0) {
+                    char names[256];
+                    size_t used = 0;
+                    names[0] = '\0';
+                    for (int k2 = 0; k2 < def->n_blocks && used < sizeof names; k2++)
+                        used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", k2 ? ", " : "",
+                                                 *def->blocks[k2].name ? def->blocks[k2].name : "(unnamed)");
+                    return sph_fail(err, SPH_ERR_SCENE,
+                                    "--set fluid.%.40s.%.40s: no fluid block named '%.40s' (the scene has: %s)", bname,
+                                    name, bname, def->n_blocks ? names : "none");
+                }
                 if (def->n_blocks == SPH_MAX_BLOCKS)
                     return sph_fail(err, SPH_ERR_RANGE, "%s: [%.60s]: more than %d fluid blocks", loc, section,
                                     SPH_MAX_BLOCKS);
@@ -438,7 +456,7 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
                 b = &def->blocks[def->n_blocks++];
                 *b = default_block();
                 snprintf(b->name, sizeof b->name, "%s", bname);
-                b->line = line;
+                b->line = header_line > 0 ? header_line : line;
             }
             targets[nt++] = b;
         }
@@ -470,13 +488,16 @@ static int on_key(void *user, const char *section, const char *name, const char 
 {
     parse_ctx *ctx = user;
     if (ctx->code) return 0;
-    ctx->code = apply_key(ctx->def, ctx->file, ctx->line, section, name, value, ctx->err);
+    ctx->code = apply_key(ctx->def, ctx->file, ctx->line, ctx->header_line, section, name, value, ctx->err);
     return ctx->code == SPH_ERR_OK;
 }
 
 /* Hands inih one line at a time so that the handler knows the line number
- * (Debian's libinih is built without INI_HANDLER_LINENO), and catches what
- * inih would pass over silently: overlong lines, NUL bytes, unknown empty sections. */
+ * (Debian's libinih is built without INI_HANDLER_LINENO), and catches here,
+ * in line order, what inih would pass over or report late: overlong lines,
+ * NUL bytes, lines that are neither a section, a key nor a comment, unknown
+ * or repeated sections. Leading blanks are removed: inih would take an
+ * indented key for the continuation of the previous value. */
 static char *ini_reader_fn(char *str, int num, void *stream)
 {
     parse_ctx *ctx = stream;
@@ -485,44 +506,75 @@ static char *ini_reader_fn(char *str, int num, void *stream)
     const char *nl = memchr(start, '\n', ctx->len - ctx->pos);
     size_t n = nl ? (size_t)(nl - start) + 1 : ctx->len - ctx->pos;
     ctx->line++;
+    ctx->pos += n;
     if (memchr(start, '\0', n)) {
         ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX, "%s:%d: binary data (a NUL byte): not a scene file",
                              ctx->file, ctx->line);
         return NULL;
     }
-    if (n + 1 > (size_t)num) {
+    while (n > 0 && (*start == ' ' || *start == '\t')) start++, n--;
+    size_t text_len = n - (n > 0 && start[n - 1] == '\n');
+    if (text_len > 0 && start[text_len - 1] == '\r') text_len--;
+    if (text_len + 2 > (size_t)num) {
         ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX, "%s:%d: line longer than %d characters", ctx->file,
                              ctx->line, num - 2);
         return NULL;
     }
     memcpy(str, start, n);
     str[n] = '\0';
-    ctx->pos += n;
-    /* A section header: check its name now, as inih calls us only for keys. */
     const char *p = str;
-    while (*p == ' ' || *p == '\t') p++;
+    if (*p == '\0' || *p == '\n' || *p == '\r' || *p == ';' || *p == '#') return str; /* blank or comment */
     if (*p == '[') {
         const char *close = strchr(p, ']');
-        if (close) {
-            char name[200];
-            const char *a = p + 1, *b = close;
-            while (a < b && isspace((unsigned char)*a)) a++;
-            while (b > a && isspace((unsigned char)b[-1])) b--;
-            snprintf(name, sizeof name, "%.*s", (int)(b - a), a);
-            if (!known_section(name)) {
-                ctx->code = sph_fail(ctx->err, SPH_ERR_UNKNOWN_SECTION,
-                                     "%s:%d: unknown section [%.60s] (accepted: %s)", ctx->file, ctx->line, name,
-                                     section_list());
+        if (!close) {
+            ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX, "%s:%d: section header without its closing ']'",
+                                 ctx->file, ctx->line);
+            return NULL;
+        }
+        char name[200];
+        const char *a = p + 1, *b = close;
+        while (a < b && isspace((unsigned char)*a)) a++;
+        while (b > a && isspace((unsigned char)b[-1])) b--;
+        snprintf(name, sizeof name, "%.*s", (int)(b - a), a);
+        if (!known_section(name)) {
+            ctx->code = sph_fail(ctx->err, SPH_ERR_UNKNOWN_SECTION, "%s:%d: unknown section [%.60s] (accepted: %s)",
+                                 ctx->file, ctx->line, name, section_list());
+            return NULL;
+        }
+        /* A section given again continues it (its keys still may not repeat),
+         * except a fluid block: two [fluid a] would merge two blocks into one. */
+        for (int k = 0; k < ctx->n_sections && is_fluid_section(name); k++)
+            if (strcmp(ctx->sections[k], name) == 0) {
+                ctx->code = sph_fail(ctx->err, SPH_ERR_DUPLICATE_KEY,
+                                     "%s:%d: section [%.60s] appears twice (first on line %d); give each fluid block "
+                                     "its own name, e.g. [fluid pool]",
+                                     ctx->file, ctx->line, name, ctx->section_lines[k]);
                 return NULL;
             }
+        if (ctx->n_sections < MAX_SECTIONS) {
+            snprintf(ctx->sections[ctx->n_sections], sizeof ctx->sections[0], "%.63s", name);
+            ctx->section_lines[ctx->n_sections++] = ctx->line;
         }
+        ctx->header_line = ctx->line;
+        return str;
+    }
+    if (!strchr(p, '=') && !strchr(p, ':')) {
+        ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX, "%s:%d: syntax error: expected '[section]' or 'key = value'",
+                             ctx->file, ctx->line);
+        return NULL;
     }
     return str;
 }
 
 sph_error_code sph_scene_load_string(const char *text, const char *name, sph_scene_def *def, sph_error *err)
 {
-    parse_ctx ctx = {def, name, text, strlen(text), 0, 0, err, SPH_ERR_OK};
+    parse_ctx ctx;
+    memset(&ctx, 0, sizeof ctx);
+    ctx.def = def;
+    ctx.file = name;
+    ctx.text = text;
+    ctx.len = strlen(text);
+    ctx.err = err;
     snprintf(def->file, sizeof def->file, "%s", name);
     int rc = ini_parse_stream(ini_reader_fn, &ctx, on_key, &ctx);
     if (ctx.code) return ctx.code;
@@ -589,7 +641,14 @@ sph_error_code sph_scene_set(sph_scene_def *def, const char *assignment, sph_err
     *dot = '\0';
     const char *value = eq + 1;
     while (isspace((unsigned char)*value)) value++;
-    return apply_key(def, def->file, -1, left, dot + 1, value, err);
+    /* trim: "kernels.h = 0.05" means the same as "kernels.h=0.05" */
+    char *key = dot + 1;
+    while (isspace((unsigned char)*key)) key++;
+    size_t kl = strlen(key);
+    while (kl > 0 && isspace((unsigned char)key[kl - 1])) key[--kl] = '\0';
+    size_t sl = strlen(left);
+    while (sl > 0 && isspace((unsigned char)left[sl - 1])) left[--sl] = '\0';
+    return apply_key(def, def->file, -1, 0, left, key, value, err);
 }
 
 /* ---- validation --------------------------------------------------------- */
@@ -657,6 +716,18 @@ double sph_scene_particle_count(const sph_scene_def *def)
 #define SPH_BYTES_PER_PARTICLE 512.0
 #define SPH_MAX_PARTICLES 200000000.0
 
+/* "file:line" for a value set in the file, "--set" for one set on the command line. */
+static const char *origin_text(const sph_scene_def *def, int line, char *buf, size_t n)
+{
+    if (line > 0)
+        snprintf(buf, n, "%s:%d", def->file, line);
+    else if (line < 0)
+        snprintf(buf, n, "--set");
+    else
+        snprintf(buf, n, "%s", def->file);
+    return buf;
+}
+
 static sph_error_code block_error(sph_error *err, const sph_scene_def *def, int b, const char *fmt, const char *what)
 {
     return sph_fail(err, SPH_ERR_SCENE, fmt, def->file, def->blocks[b].line, def->blocks[b].name, what);
@@ -674,23 +745,31 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
             if (strcmp(k->section, "fluid") == 0) {
                 int slot = fluid_slot(i);
                 for (int b = 0; b < def->n_blocks; b++)
-                    if (def->blocks[b].origin[slot].line != 0 && def->blocks[b].origin[slot].ncomp < 3)
+                    if (def->blocks[b].origin[slot].line != 0 && def->blocks[b].origin[slot].ncomp < 3) {
+                        char loc[300];
                         return sph_fail(err, SPH_ERR_RANGE,
-                                        "%s:%d: [fluid %s] %s has 2 components but the scene is 3D (accepted: 3 "
+                                        "%s: [fluid %s] %s has 2 components but the scene is 3D (accepted: 3 "
                                         "numbers)",
-                                        def->file, def->blocks[b].origin[slot].line, def->blocks[b].name, k->name);
+                                        origin_text(def, def->blocks[b].origin[slot].line, loc, sizeof loc),
+                                        def->blocks[b].name, k->name);
+                    }
             } else if (def->origin[i].line != 0 && def->origin[i].ncomp < 3) {
-                return sph_fail(err, SPH_ERR_RANGE,
-                                "%s:%d: [%s] %s has 2 components but the scene is 3D (accepted: 3 numbers)",
-                                def->file, def->origin[i].line, k->section, k->name);
+                char loc[300];
+                return sph_fail(err, SPH_ERR_RANGE, "%s: [%s] %s has 2 components but the scene is 3D (accepted: 3 numbers)",
+                                origin_text(def, def->origin[i].line, loc, sizeof loc), k->section, k->name);
             }
         }
     }
     for (int a = 0; a < dim; a++) {
         if (!(def->domain_min[a] < def->domain_max[a])) {
-            int li = key_index("domain", "max");
-            return sph_fail(err, SPH_ERR_RANGE, "%s:%d: [domain] max.%c = %g is not above min.%c = %g", def->file,
-                            def->origin[li].line, axes[a], def->domain_max[a], axes[a], def->domain_min[a]);
+            /* name the key the user wrote: max if given, else min (max is then its default) */
+            int li = key_index("domain", "max"), lo = key_index("domain", "min");
+            int line = def->origin[li].line ? def->origin[li].line : def->origin[lo].line;
+            char loc[300];
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s: [domain] max.%c = %g%s is not above min.%c = %g (accepted: max above min on each axis)",
+                            origin_text(def, line, loc, sizeof loc), axes[a], def->domain_max[a],
+                            def->origin[li].line ? "" : " (the default)", axes[a], def->domain_min[a]);
         }
     }
     for (int a = 0; a < 3; a++) {
@@ -721,7 +800,10 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                 char what[160];
                 snprintf(what, sizeof what, "%c from %g to %g leaves the domain, %g to %g", axes[a], blk->min[a],
                          blk->max[a], def->domain_min[a], def->domain_max[a]);
-                return block_error(err, def, b, "%s:%d: [fluid %s]: block outside the domain: %s", what);
+                return block_error(err, def, b,
+                                   "%s:%d: [fluid %s]: block outside the domain: %s (accepted: min and max within "
+                                   "[domain])",
+                                   what);
             }
             if (sph_block_nodes(def, b, a) == 0) {
                 char what[128];
