@@ -107,6 +107,14 @@ int view_opts_parse(view_opts *o, const char *cmd, int argc, char **argv, int *i
         if (!(v = opt_val(cmd, argc, argv, i, "--slice")) || !app_parse_double("--slice", v, -1e6, 1e6, &o->slice))
             return -1;
         o->has_slice = true;
+    } else if (opt_is(a, "--center")) {
+        if (!(v = opt_val(cmd, argc, argv, i, "--center"))) return -1;
+        o->center[2] = 0;
+        if (!parse_pair(v, &o->center[0], &o->center[1], &o->center[2], ':')) {
+            fprintf(stderr, "sphlab %s: --center '%s': want X:Y or X:Y:Z in metres\n", cmd, v);
+            return -1;
+        }
+        o->n_center = 3;
     } else if (opt_is(a, "--camera")) {
         if (!(v = opt_val(cmd, argc, argv, i, "--camera"))) return -1;
         o->zoom = 1;
@@ -120,6 +128,14 @@ int view_opts_parse(view_opts *o, const char *cmd, int argc, char **argv, int *i
         return 0;
     }
     return 1;
+}
+
+int32_t sim_index_of_id(const sph_sim *sim, long id)
+{
+    if (id < 0) return -1;
+    for (uint32_t i = 0; i < sim->n; i++)
+        if (sim->P.id[i] == (uint32_t)id) return (int32_t)i;
+    return -1;
 }
 
 bool view_opts_apply(const view_opts *o, const char *cmd, const sph_sim *sim, sph_view *v)
@@ -136,9 +152,7 @@ bool view_opts_apply(const view_opts *o, const char *cmd, const sph_sim *sim, sp
     if (o->ov_none) v->overlays = 0;
     v->overlays = (v->overlays | o->ov_on) & ~o->ov_off;
     if (o->select_id >= 0) {
-        v->selected = -1;
-        for (uint32_t i = 0; i < sim->n; i++)
-            if (sim->P.id[i] == (uint32_t)o->select_id) v->selected = (int32_t)i;
+        v->selected = sim_index_of_id(sim, o->select_id);
         if (v->selected < 0) {
             fprintf(stderr, "sphlab %s: --select %ld: no such particle (the scene has %u, ids 0 to %u)\n", cmd,
                     o->select_id, sim->n, sim->n ? sim->n - 1 : 0);
@@ -151,6 +165,9 @@ bool view_opts_apply(const view_opts *o, const char *cmd, const sph_sim *sim, sp
         v->orbit.pitch = o->pitch;
         v->orbit.zoom = o->zoom;
     }
+    if (o->n_center)
+        for (int d = 0; d < 3; d++)
+            v->orbit.pan[d] = d < sim->dim ? o->center[d] - 0.5f * (sim->def.domain_min[d] + sim->def.domain_max[d]) : 0.0f;
     if (o->has_range) {
         v->fixed_range = true;
         v->range[0] = o->range[0];

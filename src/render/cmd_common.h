@@ -16,6 +16,8 @@ typedef struct view_opts {
     double slice;             /* --slice Z [m] */
     bool has_orbit;
     float yaw, pitch, zoom;   /* --camera YAW:PITCH[:ZOOM] */
+    int n_center;
+    float center[3];          /* --center X:Y[:Z] [m] */
     bool has_range;
     float range[2];           /* --range LO:HI */
     int w, h;                 /* --size WxH */
@@ -28,8 +30,9 @@ typedef struct view_opts {
     "  --overlay NAME,...  switch overlays on (repeatable; 'all', 'none'); default: hud,legend\n"  \
     "  --no-overlay NAME   switch one off\n"                                                        \
     "  --select ID         the particle the neighbours overlay and the index strip follow\n"       \
-    "  --slice Z           3D: height [m] of the plane the grid, keys and collisions show on\n"     \
-    "  --camera Y:P[:Z]    3D: orbit yaw and pitch [deg] and zoom (default 30:25:1)\n"
+    "  --slice Z           3D: the plane z = Z [m] the grid, keys and collisions show on\n"     \
+    "  --camera Y:P[:Z]    orbit yaw and pitch [deg] (3D) and zoom (default 30:25:1)\n"         \
+    "  --center X:Y[:Z]    the point [m] the view centres on (default: the domain's centre)\n"
 
 void view_opts_init(view_opts *o, int w, int h);
 /* Parses argv[*i] if it is one of these options (advancing *i over its
@@ -38,6 +41,9 @@ void view_opts_init(view_opts *o, int w, int h);
 int view_opts_parse(view_opts *o, const char *cmd, int argc, char **argv, int *i);
 /* The view for a simulation from the options; false (message) on a bad field or particle. */
 bool view_opts_apply(const view_opts *o, const char *cmd, const sph_sim *sim, sph_view *v);
+/* The index a particle is stored at now (the reorder pass moves particles
+ * in memory; their id stays), or -1. */
+int32_t sim_index_of_id(const sph_sim *sim, long id);
 /* Option helpers in the style of cmd_run.c. */
 bool opt_is(const char *a, const char *name);
 const char *opt_val(const char *cmd, int argc, char **argv, int *i, const char *name);

@@ -147,6 +147,7 @@ int cmd_render(int argc, char **argv)
     double t0 = sph_now_ms(), shown = t0;
     unsigned frame = 0;
     for (;;) {
+        view.selected = sim_index_of_id(sim, vo.select_id); /* the reorder pass moves particles */
         if (!sph_render(r, sim, &view, err, sizeof err)) {
             fprintf(stderr, "sphlab render: %s\n", err);
             ok = false;

@@ -80,6 +80,7 @@ typedef struct viewer {
     int threads;
     bool paused, help, quit;
     sph_color_field user_field; /* the field chosen by the user, restored after pass stepping */
+    long sel_id;         /* the selected particle's id (its index changes when particles are reordered), or -1 */
     int last_pass;
     char msg[200];
     double msg_until;
@@ -140,7 +141,6 @@ static void reset(viewer *w)
     sph_sim_destroy(w->sim);
     w->sim = fresh;
     w->last_pass = -1;
-    if (w->v.selected >= (int32_t)fresh->n) w->v.selected = -1;
     say(w, "reset to t = 0");
 }
 
@@ -207,8 +207,11 @@ static void step_pass(viewer *w)
     w->paused = true;
     int f = sph_color_field_of_pass(w->sim, p);
     if (f >= 0) w->v.field = (sph_color_field)f;
-    say(w, "pass %s wrote %s%s%s", sph_passes[p]->name, sph_passes[p]->writes, f >= 0 ? "; colour: " : "",
-        f >= 0 ? sph_color_field_names[f] : "");
+    /* the index passes write the arrays the strip shows */
+    bool strip = (p == SPH_PASS_HASH || p == SPH_PASS_SORT || p == SPH_PASS_OFFSETS) && !(w->v.overlays & SPH_OV_BIT(INDEX));
+    if (strip) w->v.overlays |= SPH_OV_BIT(INDEX);
+    say(w, "pass %s wrote %s%s%s%s", sph_passes[p]->name, sph_passes[p]->writes, f >= 0 ? "; colour: " : "",
+        f >= 0 ? sph_color_field_names[f] : "", strip ? "; index strip on" : "");
 }
 
 static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
@@ -335,7 +338,7 @@ static void handle_event(viewer *w, const SDL_Event *e, float scale)
         if (!w->dragging && b < 2) {
             float px[2] = {(float)e->button.x * scale, (float)e->button.y * scale};
             int32_t i = b == 0 ? sph_renderer_pick(w->r, w->sim, px, 12.0f * scale) : -1;
-            w->v.selected = i;
+            w->sel_id = i >= 0 ? (long)w->sim->P.id[i] : -1;
             if (i >= 0) {
                 w->v.overlays |= SPH_OV_BIT(NEIGHBOURS);
                 say(w, "picked particle %u", w->sim->P.id[i]);
@@ -484,6 +487,7 @@ int cmd_view(int argc, char **argv)
     bool chose = vo.ov_on || vo.ov_off || vo.ov_none;
     if (!chose) w.v.overlays |= SPH_OV_BIT(TIMINGS);
     w.user_field = w.v.field;
+    w.sel_id = vo.select_id;
 
     int rc = 1;
     SDL_Window *win = NULL;
@@ -505,6 +509,7 @@ int cmd_view(int argc, char **argv)
                 SDL_GetError());
         goto out;
     }
+    SDL_SetWindowMinimumSize(win, 160, 120);
     ctx = SDL_GL_CreateContext(win);
     if (!ctx) {
         fprintf(stderr, "sphlab view: no usable OpenGL: SDL (%s driver) cannot make an OpenGL 3.3 core context: %s\n",
@@ -533,6 +538,10 @@ int cmd_view(int argc, char **argv)
         while (SDL_PollEvent(&e)) handle_event(&w, &e, scale);
         if (w.scripted && frame < (long)strlen(keys)) press_char(&w, keys[frame]);
         if (w.quit) break;
+        if (dw < 64 || dh < 64) { /* minimised: nothing to draw */
+            SDL_Delay(20);
+            continue;
+        }
         if (!sph_renderer_resize(w.r, dw, dh, err, sizeof err)) {
             fprintf(stderr, "sphlab view: %s\n", err);
             goto out;
@@ -565,6 +574,7 @@ int cmd_view(int argc, char **argv)
         w.v.hud.paused = w.paused;
         w.v.hud.last_pass = w.last_pass;
         w.v.hud.message = now < w.msg_until ? w.msg : NULL;
+        w.v.selected = sim_index_of_id(w.sim, w.sel_id);
         fill_panel(&w);
         if (!sph_render(w.r, w.sim, &w.v, err, sizeof err)) {
             fprintf(stderr, "sphlab view: %s\n", err);

@@ -47,7 +47,7 @@ struct sph_renderer {
     int w, h;
     GLuint fbo, rb_color, rb_depth;
     GLuint prog_p, prog_c;
-    GLint up_view, up_proj, up_radius, up_sphere, up_cut, uc_size, uc_atlas;
+    GLint up_view, up_proj, up_radius, up_sphere, up_cut, up_rim, uc_size, uc_atlas;
     GLuint vao_p, vbo_corner, vbo_inst, vao_c, vbo_c, tex;
     sph_font font;
     bool have_font;
@@ -222,6 +222,7 @@ sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *er
     r->up_radius = gl->GetUniformLocation(r->prog_p, "u_radius");
     r->up_sphere = gl->GetUniformLocation(r->prog_p, "u_sphere");
     r->up_cut = gl->GetUniformLocation(r->prog_p, "u_cut");
+    r->up_rim = gl->GetUniformLocation(r->prog_p, "u_rim");
     r->uc_size = gl->GetUniformLocation(r->prog_c, "u_size");
     r->uc_atlas = gl->GetUniformLocation(r->prog_c, "u_atlas");
 
@@ -490,11 +491,13 @@ static float scale_at(const sph_renderer *r, const float x[3])
     return sqrtf((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]));
 }
 
-static void draw_overlay(sph_renderer *r)
+/* The primitives of one space: the world's (clipped to the view) or the strip's. */
+static void draw_overlay(sph_renderer *r, sph_space space)
 {
     const sph_overlay *ov = &r->ov;
     for (int i = 0; i < ov->n_boxes; i++) {
         const sph_ov_box *b = &ov->boxes[i];
+        if (b->space != space) continue;
         float c[4][3] = {{b->min[0], b->min[1], b->z}, {b->max[0], b->min[1], b->z},
                          {b->max[0], b->max[1], b->z}, {b->min[0], b->max[1], b->z}};
         float p[4][2];
@@ -515,6 +518,7 @@ static void draw_overlay(sph_renderer *r)
     }
     for (int i = 0; i < ov->n_lines; i++) {
         const sph_ov_line *l = &ov->lines[i];
+        if (l->space != space) continue;
         float a[2], b[2];
         if (!to_px(r, l->a, (sph_space)l->space, a) || !to_px(r, l->b, (sph_space)l->space, b)) continue;
         line(r, a[0], a[1], b[0], b[1], l->width, l->rgba);
@@ -522,6 +526,7 @@ static void draw_overlay(sph_renderer *r)
     }
     for (int i = 0; i < ov->n_discs; i++) {
         const sph_ov_disc *d = &ov->discs[i];
+        if (d->space != space) continue;
         float c[2];
         if (!to_px(r, d->c, (sph_space)d->space, c)) continue;
         float rad = fmaxf(d->r * scale_at(r, d->c), d->r_min_px);
@@ -529,6 +534,7 @@ static void draw_overlay(sph_renderer *r)
     }
     for (int i = 0; i < ov->n_labels; i++) {
         const sph_ov_label *l = &ov->labels[i];
+        if (l->space != space) continue;
         float p[2];
         if (!to_px(r, l->pos, (sph_space)l->space, p)) continue;
         text_at(r, l->size, p[0], p[1], (sph_align)l->align, l->rgba, l->text, l->space == SPH_SPACE_WORLD);
@@ -664,6 +670,21 @@ static int digits_of(uint32_t v)
     return d;
 }
 
+/* Clips drawing to the view's rectangle (the world's things: the domain,
+ * particles, world overlays), so a zoomed view stays out of the legend and
+ * the strip. */
+static void clip_to_view(sph_renderer *r, bool on)
+{
+    sph_gl *gl = &r->gl;
+    if (!on) {
+        gl->Disable(GL_SCISSOR_TEST);
+        return;
+    }
+    const int *rc = r->cam.rect;
+    gl->Enable(GL_SCISSOR_TEST);
+    gl->Scissor(rc[0], r->h - rc[1] - rc[3], rc[2], rc[3]); /* GL counts rows from the bottom */
+}
+
 bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *err, size_t n)
 {
     sph_gl *gl = &r->gl;
@@ -713,25 +734,13 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         lo = v->range[0];
         hi = v->range[1];
     }
-    uint32_t lut[256];
-    for (int k = 0; k < 256; k++) lut[k] = sph_colormap_viridis((float)k / 255.0f);
-    const bool cat = sph_color_field_categorical(f);
-    const float inv = hi > lo ? 1.0f / (hi - lo) : 0.0f;
+    /* the same function the legend and the tests use */
     for (uint32_t i = 0; i < sim->n; i++) {
         inst *p = &r->inst[i];
         p->x = sim->P.pos[0][i];
         p->y = sim->P.pos[1][i];
         p->z = sim->dim == 3 ? sim->P.pos[2][i] : 0.0f;
-        float val = r->vals[i];
-        if (cat) {
-            p->rgba = sph_colormap_category(val >= 0 ? (uint32_t)val : 0);
-        } else if (val != val) {
-            p->rgba = SPH_RGBA(128, 128, 128, 255);
-        } else {
-            float t = inv > 0 ? (val - lo) * inv : 0.5f;
-            t = t < 0 ? 0 : t > 1 ? 1 : t;
-            p->rgba = lut[(int)(t * 255.0f + 0.5f)];
-        }
+        p->rgba = sph_color_of(f, r->vals[i], lo, hi);
     }
 
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
@@ -741,6 +750,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     gl->ClearDepth(1.0);
     gl->DepthMask(GL_TRUE);
     gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    clip_to_view(r, true);
 
     /* canvas under: the domain */
     const float *dl = sim->def.domain_min, *dh = sim->def.domain_max;
@@ -787,6 +797,8 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         gl->UniformMatrix4fv(r->up_view, 1, GL_FALSE, r->cam.view);
         gl->UniformMatrix4fv(r->up_proj, 1, GL_FALSE, r->cam.proj);
         gl->Uniform1f(r->up_radius, rad);
+        /* a rim keeps touching discs apart; on discs of a few pixels it would be all there is */
+        gl->Uniform1f(r->up_rim, r->radius_px >= 4.0f ? 0.35f : 0.0f);
         gl->Uniform1i(r->up_sphere, sim->dim == 3);
         /* 3D with the slice's overlays: cut the fluid open at the slice, the
          * camera's side removed, so the slice's cells are seen, not hidden */
@@ -805,8 +817,11 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         gl->Disable(GL_DEPTH_TEST);
     }
 
-    /* canvas over: overlays, notes, HUD, legend */
-    draw_overlay(r);
+    /* canvas over: world overlays (clipped), then the strip, notes, HUD, legend */
+    draw_overlay(r, SPH_SPACE_WORLD);
+    if (!flush(r)) goto oom;
+    clip_to_view(r, false);
+    draw_overlay(r, SPH_SPACE_STRIP);
     if (r->ov.note[0] && (L & ~(SPH_OV_BIT(HUD) | SPH_OV_BIT(LEGEND) | SPH_OV_BIT(TIMINGS)))) {
         /* the builder joins its notes with "; ": one line each, upwards from the view's bottom */
         char notes[sizeof r->ov.note];
@@ -831,6 +846,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     }
     return true;
 oom:
+    clip_to_view(r, false);
     r->oom = false;
     r->nv = 0;
     snprintf(err, n, "out of memory for the overlays");

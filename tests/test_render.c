@@ -1,0 +1,410 @@
+/* Headless rendering, checked by its pixels: particles are drawn where they
+ * are, grid lines lie on cell borders, an overlay switched off leaves no
+ * pixel, renders are reproducible to the byte, the two GL backends agree,
+ * and with no usable GL the tool says so. Needs no GPU and no display. */
+#define _GNU_SOURCE /* setenv, mkdtemp */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <stb_image.h>
+
+#include "render.h"
+#include "test_util.h"
+
+#define W 320
+#define H 240
+
+/* 100 particles in the lower-left corner of a 0.4 x 0.3 m box; the upper
+ * right is empty, which is where background and grid lines are checked. */
+static const char *scene_2d = "[scene]\nname=render test\neffects=gravity pressure viscosity walls\nsteps=4\n"
+                              "[domain]\nmin=0 0\nmax=0.4 0.3\n[fluid a]\nmin=0 0\nmax=0.2 0.2\nspacing=0.02\n"
+                              "[kernels]\nh=0.04\n[time]\ndt=0.0002\ncfl=0\n[search]\ntable_size=37\n";
+
+static const uint32_t DOMAIN_BG = SPH_RGBA(42, 45, 54, 255);
+
+static sph_renderer *renderer(sph_gl_backend b)
+{
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
+    char err[512];
+    sph_renderer *r = sph_renderer_create(b, W, H, err, sizeof err);
+    cr_assert_not_null(r, "no renderer: %s", err);
+    return r;
+}
+
+static uint8_t *draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
+{
+    char err[512];
+    cr_assert(sph_render(r, sim, v, err, sizeof err), "render failed: %s", err);
+    uint8_t *rgb = malloc(W * H * 3);
+    cr_assert_not_null(rgb);
+    sph_renderer_read_rgb(r, rgb);
+    return rgb;
+}
+
+static uint32_t pixel(const uint8_t *rgb, int x, int y)
+{
+    cr_assert(x >= 0 && x < W && y >= 0 && y < H, "pixel (%d, %d) outside", x, y);
+    const uint8_t *p = rgb + 3 * ((size_t)y * W + x);
+    return SPH_RGBA(p[0], p[1], p[2], 255);
+}
+
+static void world_px(sph_renderer *r, float x, float y, float px[2])
+{
+    float w[3] = {x, y, 0};
+    cr_assert(sph_camera_project(sph_renderer_camera(r), w, px, NULL));
+}
+
+Test(render, particles_appear_where_they_are)
+{
+    sph_sim *sim = test_sim(scene_2d, 1);
+    for (int k = 0; k < 3; k++) sph_sim_step(sim);
+    sph_renderer *r = renderer(SPH_GL_EGL);
+    sph_view v = sph_view_default(sim);
+    v.overlays = 0;
+    uint8_t *img = draw(r, sim, &v);
+    /* each particle's centre pixel has its own colour from the colour map */
+    float *val = malloc(sim->n * sizeof *val), lo, hi;
+    cr_assert(sph_color_field_values(sim, v.field, val, &lo, &hi));
+    int checked = 0;
+    for (uint32_t i = 0; i < sim->n; i += 7) {
+        float px[2];
+        world_px(r, sim->P.pos[0][i], sim->P.pos[1][i], px);
+        uint32_t got = pixel(img, (int)px[0], (int)px[1]), want = sph_color_of(v.field, val[i], lo, hi);
+        for (int c = 0; c < 3; c++)
+            cr_expect_leq(abs((int)((got >> (8 * c)) & 255) - (int)((want >> (8 * c)) & 255)), 1,
+                          "particle %u at (%g, %g) px: colour %06x, want %06x", i, px[0], px[1], got & 0xFFFFFF,
+                          want & 0xFFFFFF);
+        checked++;
+    }
+    cr_expect_gt(checked, 10);
+    /* the empty part of the domain is background */
+    float px[2];
+    world_px(r, 0.33f, 0.25f, px);
+    cr_expect_eq(pixel(img, (int)px[0], (int)px[1]), DOMAIN_BG);
+    free(val);
+    free(img);
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+}
+
+/* The column a 1-pixel line at x_px covers: [x - 0.5, x + 0.5) holds the
+ * centre p + 0.5 of pixel p = ceil(x) - 1. */
+static int line_column(float x)
+{
+    return (int)ceilf(x) - 1;
+}
+
+Test(render, grid_lines_lie_on_cell_borders)
+{
+    sph_sim *sim = test_sim(scene_2d, 1);
+    sph_renderer *r = renderer(SPH_GL_EGL);
+    sph_view v = sph_view_default(sim);
+    v.overlays = SPH_OV_BIT(GRID);
+    uint8_t *img = draw(r, sim, &v);
+    const float h = sim->S.cells.size[0]; /* a hair above sim->def.h */
+    float py[2];
+    world_px(r, 0.3f, 6.5f * h, py); /* a row in the empty upper part, between horizontal lines */
+    int y = (int)py[1];
+    for (int k = 6; k <= 9; k++) {
+        float on[2], mid[2];
+        world_px(r, (float)k * h, 0.27f, on);
+        world_px(r, ((float)k + 0.5f) * h, 0.27f, mid);
+        cr_expect_neq(pixel(img, line_column(on[0]), y), DOMAIN_BG, "no line at x = %d h (column %d)", k,
+                      line_column(on[0]));
+        cr_expect_eq(pixel(img, (int)mid[0], y), DOMAIN_BG, "a mark between lines at x = %g h", k + 0.5);
+    }
+    free(img);
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+}
+
+Test(render, an_overlay_switched_off_leaves_no_pixel)
+{
+    sph_sim *sim = test_sim(scene_2d, 1);
+    sph_sim_step(sim);
+    sph_renderer *r = renderer(SPH_GL_EGL);
+    sph_view v = sph_view_default(sim);
+    v.overlays = 0;
+    uint8_t *plain = draw(r, sim, &v);
+    const unsigned each[] = {SPH_OV_BIT(GRID), SPH_OV_BIT(KEYS), SPH_OV_BIT(COLLISIONS), SPH_OV_BIT(FORCES),
+                             SPH_OV_BIT(HUD), SPH_OV_BIT(LEGEND)};
+    for (size_t k = 0; k < sizeof each / sizeof *each; k++) {
+        v.overlays = each[k];
+        uint8_t *on = draw(r, sim, &v);
+        size_t differ = 0;
+        for (size_t i = 0; i < W * H * 3; i++) differ += on[i] != plain[i];
+        cr_expect_gt(differ, 20u, "overlay %#x draws nothing", each[k]);
+        free(on);
+        v.overlays = 0;
+        uint8_t *off = draw(r, sim, &v);
+        cr_expect_eq(memcmp(off, plain, W * H * 3), 0, "overlay %#x left pixels after it was switched off", each[k]);
+        free(off);
+    }
+    free(plain);
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+}
+
+Test(render, the_same_state_renders_to_the_same_bytes)
+{
+    sph_sim *sim = test_sim(scene_2d, 1);
+    sph_sim_step(sim);
+    sph_renderer *r = renderer(SPH_GL_EGL);
+    sph_view v = sph_view_default(sim);
+    v.overlays = SPH_OV_BIT(GRID) | SPH_OV_BIT(KEYS) | SPH_OV_BIT(HUD) | SPH_OV_BIT(LEGEND) | SPH_OV_BIT(NEIGHBOURS);
+    v.selected = 40;
+    uint8_t *a = draw(r, sim, &v), *b = draw(r, sim, &v);
+    cr_expect_eq(memcmp(a, b, W * H * 3), 0);
+    free(a);
+    free(b);
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+}
+
+Test(render, a_3d_scene_draws_spheres_inside_the_view)
+{
+    sph_sim *sim = test_sim("[scene]\ndimension=3\neffects=gravity walls\n[domain]\nmax=0.4 0.3 0.2\n"
+                            "[fluid a]\nmax=0.1 0.1 0.1\nspacing=0.02\n[physics]\ngravity=0 -9.81 0\n",
+                            1);
+    sph_renderer *r = renderer(SPH_GL_EGL);
+    sph_view v = sph_view_default(sim);
+    v.overlays = 0;
+    uint8_t *img = draw(r, sim, &v);
+    /* the default orbit shows the whole domain: every particle projects inside the view */
+    const sph_camera *cam = sph_renderer_camera(r);
+    int lit = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        float x[3] = {sim->P.pos[0][i], sim->P.pos[1][i], sim->P.pos[2][i]}, px[2];
+        cr_assert(sph_camera_project(cam, x, px, NULL));
+        cr_assert(px[0] >= cam->rect[0] && px[0] < cam->rect[0] + cam->rect[2] && px[1] >= cam->rect[1] &&
+                  px[1] < cam->rect[1] + cam->rect[3]);
+        uint32_t c = pixel(img, (int)px[0], (int)px[1]);
+        lit += c != SPH_RGBA(30, 32, 38, 255);
+    }
+    cr_expect_eq(lit, (int)sim->n, "a particle's pixel is background");
+    free(img);
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+}
+
+/* ---- through the command line -------------------------------------------- */
+
+static unsigned char *read_all(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    unsigned char *b = malloc((size_t)n + 1);
+    *len = fread(b, 1, (size_t)n, f);
+    fclose(f);
+    return b;
+}
+
+/* Like test_sphlab, with environment assignments before the binary. */
+static int sphlab_env(const char *env, const char *args, char *out, size_t cap)
+{
+    const char *bin = getenv("SPHLAB");
+    char cmd[4096];
+    snprintf(cmd, sizeof cmd, "env %s %s %s 2>&1", env, bin && *bin ? bin : "./sphlab", args);
+    FILE *p = popen(cmd, "r");
+    cr_assert_not_null(p, "cannot run %s", cmd);
+    size_t n = fread(out, 1, cap - 1, p);
+    out[n] = '\0';
+    char sink[4096];
+    while (fread(sink, 1, sizeof sink, p) > 0) {}
+    int st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+}
+
+static const char *temp_dir(void)
+{
+    static char paths[4][64];
+    static int slot;
+    char *p = paths[slot++ % 4];
+    snprintf(p, 64, "/tmp/sphlab-render-XXXXXX");
+    cr_assert_not_null(mkdtemp(p));
+    return p;
+}
+
+static void remove_dir(const char *dir)
+{
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    cr_expect_eq(system(cmd), 0);
+}
+
+Test(render, cli_frames_are_byte_identical_run_to_run)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    const char *d1 = temp_dir(), *d2 = temp_dir();
+    char args[1024], out[4096];
+    const char *opts = "--steps 4 --every 2 --size 200x150 --overlay grid,keys,index,forces --select 30 --quiet";
+    snprintf(args, sizeof args, "render %s --out %s %s", scene, d1, opts);
+    cr_assert_eq(test_sphlab(args, out, sizeof out), 0, "%s", out);
+    snprintf(args, sizeof args, "render %s --out %s %s --threads 2", scene, d2, opts);
+    cr_assert_eq(test_sphlab(args, out, sizeof out), 0, "%s", out);
+    for (int f = 0; f < 3; f++) {
+        char p1[128], p2[128];
+        snprintf(p1, sizeof p1, "%s/frame_%05d.png", d1, f);
+        snprintf(p2, sizeof p2, "%s/frame_%05d.png", d2, f);
+        size_t n1 = 0, n2 = 0;
+        unsigned char *a = read_all(p1, &n1), *b = read_all(p2, &n2);
+        cr_assert(a && b, "frame %d missing", f);
+        cr_expect(n1 == n2 && memcmp(a, b, n1) == 0, "frame %d differs between runs", f);
+        free(a);
+        free(b);
+    }
+    char p3[128];
+    snprintf(p3, sizeof p3, "%s/frame_00003.png", d1);
+    cr_expect(access(p3, F_OK) != 0, "4 steps every 2: frames 0, 1, 2 only");
+    remove_dir(d1);
+    remove_dir(d2);
+    remove(scene);
+}
+
+Test(render, egl_and_osmesa_render_the_same_picture)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    const char *d[2] = {temp_dir(), temp_dir()};
+    const char *gl[2] = {"egl", "osmesa"};
+    unsigned char *img[2];
+    int w = 0, h = 0;
+    for (int k = 0; k < 2; k++) {
+        char args[1024], out[4096];
+        snprintf(args, sizeof args,
+                 "render %s --out %s --gl %s --steps 2 --every 2 --size 240x180 --overlay grid,keys,collisions,hud,legend --quiet",
+                 scene, d[k], gl[k]);
+        cr_assert_eq(test_sphlab(args, out, sizeof out), 0, "%s: %s", gl[k], out);
+        char p[128];
+        snprintf(p, sizeof p, "%s/frame_00001.png", d[k]);
+        int n;
+        img[k] = stbi_load(p, &w, &h, &n, 3);
+        cr_assert_not_null(img[k], "%s: cannot read %s", gl[k], p);
+        cr_assert(w == 240 && h == 180);
+    }
+    size_t off = 0;
+    int worst = 0;
+    for (size_t i = 0; i < (size_t)w * h * 3; i++) {
+        int dd = abs((int)img[0][i] - (int)img[1][i]);
+        if (dd > worst) worst = dd;
+        off += dd > 8;
+    }
+    cr_expect_leq(off, (size_t)w * h * 3 / 200, "%zu of %d channel values differ by more than 8 (worst %d)", off,
+                  w * h * 3, worst);
+    stbi_image_free(img[0]);
+    stbi_image_free(img[1]);
+    remove_dir(d[0]);
+    remove_dir(d[1]);
+    remove(scene);
+}
+
+Test(render, without_usable_gl_it_says_so_and_exits_non_zero)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    const char *d = temp_dir();
+    char args[1024], out[4096];
+    /* an EGL with no vendor library: what a machine without Mesa's EGL looks like */
+    snprintf(args, sizeof args, "render %s --out %s --steps 0 --quiet", scene, d);
+    int rc = sphlab_env("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json", args, out, sizeof out);
+    cr_expect_eq(rc, 1, "exit %d: %s", rc, out);
+    cr_expect(strstr(out, "no usable OpenGL") && strstr(out, "EGL"), "message: %s", out);
+    remove_dir(d);
+    remove(scene);
+}
+
+Test(render, an_unwritable_output_directory_is_a_clear_error)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    char args[1024], out[4096];
+    snprintf(args, sizeof args, "render %s --out /proc/sphlab-no/frames --steps 0 --quiet", scene);
+    int rc = test_sphlab(args, out, sizeof out);
+    cr_expect_eq(rc, 1, "exit %d: %s", rc, out);
+    cr_expect(strstr(out, "/proc/sphlab-no") && strstr(out, "cannot create"), "message: %s", out);
+    remove(scene);
+}
+
+/* ---- the window, through SDL's offscreen video driver --------------------- */
+
+static unsigned char *load_png(const char *path, int *w, int *h)
+{
+    int n;
+    unsigned char *img = stbi_load(path, w, h, &n, 3);
+    cr_assert_not_null(img, "cannot read %s", path);
+    return img;
+}
+
+Test(render, window_screenshot_is_what_render_draws)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    const char *d = temp_dir();
+    char args[1024], out[4096];
+    const char *draw_opts = "--size 240x180 --overlay none --overlay grid,keys,legend";
+    snprintf(args, sizeof args, "view %s --frames 3 --steps-per-frame 2 --screenshot %s/shot.png %s", scene, d,
+             draw_opts);
+    int rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "render %s --out %s --steps 6 --every 6 --quiet %s", scene, d, draw_opts);
+    cr_assert_eq(test_sphlab(args, out, sizeof out), 0, "%s", out);
+    char p1[128], p2[128];
+    snprintf(p1, sizeof p1, "%s/shot.png", d);
+    snprintf(p2, sizeof p2, "%s/frame_00001.png", d);
+    int w1, h1, w2, h2;
+    unsigned char *a = load_png(p1, &w1, &h1), *b = load_png(p2, &w2, &h2);
+    cr_assert(w1 == 240 && h1 == 180 && w2 == 240 && h2 == 180);
+    /* 3 frames of 2 steps in the window = the render's frame at step 6 */
+    size_t off = 0;
+    for (size_t i = 0; i < (size_t)w1 * h1 * 3; i++) off += abs((int)a[i] - (int)b[i]) > 8;
+    cr_expect_leq(off, (size_t)w1 * h1 * 3 / 200, "%zu channel values differ", off);
+    stbi_image_free(a);
+    stbi_image_free(b);
+    remove_dir(d);
+    remove(scene);
+}
+
+Test(render, window_keys_step_pass_by_pass_and_switch_overlays)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    const char *d = temp_dir();
+    char args[1024], out[8192];
+    /* paused; one pass at a time: the first two of the pipeline (external, hash),
+     * overlay 1 (grid), the next pass */
+    snprintf(args, sizeof args, "view %s --paused --frames 5 --keys '..1.' --size 240x180 --screenshot %s/k.png", scene,
+             d);
+    int rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    const char *want[] = {"pass external wrote vel pred", "pass hash wrote entries; colour: key; index strip on",
+                          "overlay grid on", "pass ", "saved"};
+    const char *at = out;
+    for (size_t k = 0; k < sizeof want / sizeof *want; k++) {
+        const char *p = strstr(at, want[k]);
+        cr_expect_not_null(p, "no '%s' (in order) in: %s", want[k], out);
+        if (p) at = p;
+    }
+    char p1[128];
+    snprintf(p1, sizeof p1, "%s/k.png", d);
+    cr_expect_eq(access(p1, F_OK), 0);
+    remove_dir(d);
+    remove(scene);
+}
+
+Test(render, window_without_a_display_says_so_and_exits_non_zero)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    char args[1024], out[4096];
+    snprintf(args, sizeof args, "view %s", scene);
+    int rc = sphlab_env("-u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER", args, out, sizeof out);
+    cr_expect_eq(rc, 1, "exit %d: %s", rc, out);
+    cr_expect(strstr(out, "no display") != NULL, "message: %s", out);
+    /* a display that is not there */
+    rc = sphlab_env("SDL_VIDEODRIVER=x11 DISPLAY=:97", args, out, sizeof out);
+    cr_expect_eq(rc, 1, "exit %d: %s", rc, out);
+    cr_expect(strstr(out, "sphlab view: SDL") != NULL, "message: %s", out);
+    remove(scene);
+}
