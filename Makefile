@@ -60,9 +60,18 @@ $(BUILD)/sphlab-tests: $(TEST_OBJ) $(BUILD)/libsphcore.a
 deps:
 	@sh tests/install-deps.sh $(DEB_PKGS)
 
+# The main job: the 2D dam break headless. Prints the timing table; writes to
+# out/demo/ the per-step stats, the final particles, charts (PNG + PDF) of the
+# time per pass and of energy and density, and rendered frames.
+DEMO_SCENE ?= lessons/scenes/dam-break-2d.ini
 demo: deps
 	$(MAKE) sphlab
-	./sphlab run lessons/scenes/dam-break-2d.ini --stats $(BUILD)/demo-stats.csv --dump $(BUILD)/demo-particles.csv
+	mkdir -p out/demo
+	./sphlab run $(DEMO_SCENE) --stats out/demo/stats.csv --dump out/demo/particles.csv
+	./sphlab plot passes out/demo/stats.csv --out out/demo
+	./sphlab plot series out/demo/stats.csv --y ekin,rho_max,max_speed --out out/demo
+	./sphlab render $(DEMO_SCENE) --out out/demo/frames --every 400 --steps 2400 --overlay grid --quiet
+	@echo "demo: figures and tables in out/demo/"
 
 test: deps
 	$(MAKE) sphlab $(BUILD)/sphlab-tests

@@ -32,7 +32,7 @@ static void build_chains(const sph_entry *e, uint32_t n, uint32_t *head, uint32_
 
 void sph_offsets_build(const sph_entry *e, uint32_t n, uint32_t *start, uint32_t table_size)
 {
-#pragma omp parallel if ((size_t)n + table_size > SPH_PARALLEL_MIN)
+#pragma omp parallel if (n > SPH_PARALLEL_MIN)
     {
 #pragma omp for schedule(static)
         for (int64_t k = 0; k < (int64_t)table_size; k++) start[k] = SPH_EMPTY;
