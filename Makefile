@@ -30,7 +30,7 @@ CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
 APP_OBJ  := $(APP:%=$(BUILD)/app/%.o) $(MOD_OBJ)
 TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
 
-.PHONY: all demo test check-tests check-clang asan fuzz deps clean
+.PHONY: all demo test check-tests check-clang asan asan-run fuzz deps clean
 
 all: sphlab
 
@@ -73,10 +73,13 @@ demo: deps
 	./sphlab render $(DEMO_SCENE) --out out/demo/frames --every 400 --steps 2400 --overlay grid --quiet
 	@echo "demo: figures and tables in out/demo/"
 
+# The whole suite, the clang build, then the whole suite again under
+# AddressSanitizer and UndefinedBehaviorSanitizer (what CI runs).
 test: deps
 	$(MAKE) sphlab $(BUILD)/sphlab-tests
 	$(MAKE) check-tests
 	$(MAKE) check-clang
+	$(MAKE) asan-run
 
 # Warnings are errors under both compilers: compile everything with clang too.
 check-clang:
@@ -89,6 +92,9 @@ check-tests:
 	sh tests/cli.sh ./sphlab
 
 asan: deps
+	$(MAKE) asan-run
+
+asan-run:
 	$(MAKE) BUILD=build-asan OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
 	    sphlab-asan build-asan/sphlab-tests
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
