@@ -90,20 +90,15 @@ static inline void density_one_avx512(const sph_sim *sim, const sph_kernel *k, i
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
-    const __m512 xi = _mm512_set1_ps(P->pred[0][i]), yi = _mm512_set1_ps(P->pred[1][i]);
-    const __m512 zi = _mm512_set1_ps(dim == 3 ? P->pred[2][i] : 0.0f), h2 = _mm512_set1_ps(k->h2);
+    const __m512 h2 = _mm512_set1_ps(k->h2);
+    __m512 xi[3], d3[3];
+    sph_simd_centre(P, i, dim, xi);
     __m512 acc = _mm512_setzero_ps();
     const uint32_t end = S->nbr_start[i + 1];
     for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
         __mmask16 live = sph_simd_live(e, end);
         __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
-        __m512 dx = _mm512_sub_ps(xi, sph_simd_gather(live, idx, P->pred[0]));
-        __m512 dy = _mm512_sub_ps(yi, sph_simd_gather(live, idx, P->pred[1]));
-        __m512 r2 = _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy));
-        if (dim == 3) {
-            __m512 dz = _mm512_sub_ps(zi, sph_simd_gather(live, idx, P->pred[2]));
-            r2 = _mm512_add_ps(r2, _mm512_mul_ps(dz, dz));
-        }
+        __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
         __m512 d = _mm512_max_ps(_mm512_sub_ps(h2, r2), _mm512_setzero_ps());
         __m512 w = _mm512_mul_ps(_mm512_mul_ps(d, d), d);
         acc = _mm512_mask3_fmadd_ps(w, sph_simd_gather(live, idx, P->mass), acc, live); /* dead lanes keep acc */

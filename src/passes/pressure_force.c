@@ -86,8 +86,8 @@ static inline void pressure_one_avx512(const sph_sim *sim, const sph_kernel *k, 
     const sph_search_data *S = &sim->S;
     const bool symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
     const float rmin = SPH_KERNEL_R_MIN * k->h;
-    const __m512 xi = _mm512_set1_ps(P->pred[0][i]), yi = _mm512_set1_ps(P->pred[1][i]);
-    const __m512 zi = _mm512_set1_ps(dim == 3 ? P->pred[2][i] : 0.0f);
+    __m512 xi[3], d3[3];
+    sph_simd_centre(P, i, dim, xi);
     const __m512 h = _mm512_set1_ps(k->h), m3s = _mm512_set1_ps(-3.0f * k->sigma);
     const __m512 rmin2 = _mm512_set1_ps(rmin * rmin), vrmin = _mm512_set1_ps(rmin);
     const __m512 pi_over = _mm512_set1_ps(P->p_rho2[i]), pi = _mm512_set1_ps(P->p[i]);
@@ -98,11 +98,8 @@ static inline void pressure_one_avx512(const sph_sim *sim, const sph_kernel *k, 
     for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
         __mmask16 live = sph_simd_live(e, end);
         __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
-        __m512 dx = _mm512_sub_ps(xi, sph_simd_gather(live, idx, P->pred[0]));
-        __m512 dy = _mm512_sub_ps(yi, sph_simd_gather(live, idx, P->pred[1]));
-        __m512 dz = dim == 3 ? _mm512_sub_ps(zi, sph_simd_gather(live, idx, P->pred[2])) : zero;
-        __m512 r2 = _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy));
-        if (dim == 3) r2 = _mm512_add_ps(r2, _mm512_mul_ps(dz, dz));
+        __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
+        __m512 dx = d3[0], dy = d3[1], dz = d3[2];
         __mmask16 close = _mm512_mask_cmp_ps_mask(live, r2, rmin2, _CMP_LT_OQ);
         if (close) { /* coincident pairs: pushed apart along x, as in the scalar loop */
             __mmask16 before = _mm512_mask_cmplt_epu32_mask(close, vi, idx); /* i < j */

@@ -27,6 +27,24 @@ static inline __m512 sph_simd_gather(__mmask16 live, __m512i idx, const float *a
 {
     return _mm512_mask_i32gather_ps(_mm512_setzero_ps(), live, idx, a, 4);
 }
+
+/* The offsets d = x_i - x_j (predicted positions; d[2] = 0 in 2D) of 16
+ * neighbours and their squared length, summed in the scalar loops' order. */
+static inline __m512 sph_simd_offsets(const sph_particles *P, __mmask16 live, __m512i idx, const __m512 xi[3],
+                                      const int dim, __m512 d[3])
+{
+    d[0] = _mm512_sub_ps(xi[0], sph_simd_gather(live, idx, P->pred[0]));
+    d[1] = _mm512_sub_ps(xi[1], sph_simd_gather(live, idx, P->pred[1]));
+    d[2] = dim == 3 ? _mm512_sub_ps(xi[2], sph_simd_gather(live, idx, P->pred[2])) : _mm512_setzero_ps();
+    __m512 r2 = _mm512_add_ps(_mm512_mul_ps(d[0], d[0]), _mm512_mul_ps(d[1], d[1]));
+    return dim == 3 ? _mm512_add_ps(r2, _mm512_mul_ps(d[2], d[2])) : r2;
+}
+
+/* A particle's position broadcast to every lane (z = 0 in 2D). */
+static inline void sph_simd_centre(const sph_particles *P, int i, const int dim, __m512 xi[3])
+{
+    for (int d = 0; d < 3; d++) xi[d] = _mm512_set1_ps(d < dim ? P->pred[d][i] : 0.0f);
+}
 #else
 #define SPH_HAVE_AVX512 0
 #endif

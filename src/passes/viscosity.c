@@ -68,8 +68,8 @@ static inline void viscosity_one_avx512(const sph_sim *sim, const sph_kernel *k,
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
-    const __m512 xi = _mm512_set1_ps(P->pred[0][i]), yi = _mm512_set1_ps(P->pred[1][i]);
-    const __m512 zi = _mm512_set1_ps(dim == 3 ? P->pred[2][i] : 0.0f);
+    __m512 xi[3], d3[3];
+    sph_simd_centre(P, i, dim, xi);
     const __m512 vxi = _mm512_set1_ps(P->vel[0][i]), vyi = _mm512_set1_ps(P->vel[1][i]);
     const __m512 vzi = _mm512_set1_ps(dim == 3 ? P->vel[2][i] : 0.0f);
     const __m512 inv_h = _mm512_set1_ps(k->inv_h), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
@@ -78,13 +78,7 @@ static inline void viscosity_one_avx512(const sph_sim *sim, const sph_kernel *k,
     for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
         __mmask16 live = sph_simd_live(e, end);
         __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
-        __m512 dx = _mm512_sub_ps(xi, sph_simd_gather(live, idx, P->pred[0]));
-        __m512 dy = _mm512_sub_ps(yi, sph_simd_gather(live, idx, P->pred[1]));
-        __m512 r2 = _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy));
-        if (dim == 3) {
-            __m512 dz = _mm512_sub_ps(zi, sph_simd_gather(live, idx, P->pred[2]));
-            r2 = _mm512_add_ps(r2, _mm512_mul_ps(dz, dz));
-        }
+        __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
         __m512 lap = _mm512_max_ps(_mm512_fnmadd_ps(_mm512_sqrt_ps(r2), inv_h, one), zero); /* 1 - r/h */
         __m512 coef = _mm512_mul_ps(sph_simd_gather(live, idx, P->vol), lap);
         ax = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, P->vel[0]), vxi), ax, live);
