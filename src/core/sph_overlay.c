@@ -751,6 +751,8 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
     } else {
         HUD_LINE("density not computed (no effect needs it)");
     }
+    double drift = sph_sim_energy_drift(sim);
+    if (drift == drift) HUD_LINE("energy drift since step 1 = %+.2f %%", 100 * drift);
     char off[100] = "";
     int on = 0, total = 0;
     for (int p = 0; p < SPH_PASS_COUNT; p++) {

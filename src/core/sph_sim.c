@@ -306,6 +306,7 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     next->step = sim->step;
     next->max_speed = sim->max_speed;
     next->max_acc = sim->max_acc;
+    next->energy_ref = sim->energy_ref;
     next->interaction_active = sim->interaction_active;
     memcpy(next->interaction_point, sim->interaction_point, sizeof next->interaction_point);
     next->interaction_sign = sim->interaction_sign;
@@ -348,6 +349,11 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
         sim->t += sim->dt;
         sim->step++;
         next = 0;
+        if (sim->step == 1) {
+            sph_stats s;
+            sph_sim_stats(sim, &s);
+            sim->energy_ref = sph_stats_energy(&s);
+        }
     }
     sim->next_pass = next;
     return (sph_pass_id)(p < SPH_PASS_COUNT ? p : SPH_PASS_COUNT);
@@ -387,6 +393,20 @@ static double eos_energy(const sph_scene_def *def, double rho)
         return B * ((pow(rho, g - 1) - pow(r0, g - 1)) / ((g - 1) * pow(r0, g)) + 1.0 / rho - 1.0 / r0);
     }
     return k * (log(rho / r0) + r0 / rho - 1.0);
+}
+
+double sph_stats_energy(const sph_stats *s)
+{
+    return s->ekin + s->epot + s->eint;
+}
+
+double sph_sim_energy_drift(const sph_sim *sim)
+{
+    if (sim->step < 1) return NAN;
+    sph_stats s;
+    sph_sim_stats(sim, &s);
+    double scale = fmax(fabs(sim->energy_ref), s.ekin);
+    return scale > 0 ? (sph_stats_energy(&s) - sim->energy_ref) / scale : 0.0;
 }
 
 void sph_sim_stats(const sph_sim *sim, sph_stats *out)

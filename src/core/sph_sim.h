@@ -157,6 +157,8 @@ struct sph_sim {
     uint64_t step;        /* steps completed */
     float max_speed;      /* [m/s] after the latest integration, for the CFL condition */
     float max_acc;        /* [m/s^2] likewise */
+    double energy_ref;    /* [J] or [J/m] total energy after the first step (when density, and so the
+                             internal energy, first exists): what the HUD's energy drift is measured from */
     float period[3];      /* [m] domain length on periodic axes, 0 on others */
     float inv_period[3];  /* [1/m] 1 / period, 0 on non-periodic axes */
 
@@ -194,6 +196,11 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim);
 sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err);
 
 void sph_sim_stats(const sph_sim *sim, sph_stats *out);
+/* Total energy: kinetic + gravitational + internal (the equation of state's). */
+double sph_stats_energy(const sph_stats *s);
+/* (E - E_ref) / scale with scale = max(|E_ref|, E_kin): the energy drift since
+ * the first step, as a fraction; NaN before the first step. */
+double sph_sim_energy_drift(const sph_sim *sim);
 
 /* A field of the particles; false if the scene does not allocate it. */
 bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out);
