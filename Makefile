@@ -25,6 +25,7 @@ MOD_OBJ  :=
 MOD_LIBS :=
 MOD_TEST_LIBS :=
 -include $(wildcard src/*/module.mk)
+.DEFAULT_GOAL := all
 
 CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
 APP_OBJ  := $(APP:%=$(BUILD)/app/%.o) $(MOD_OBJ)
@@ -60,7 +61,7 @@ $(BUILD)/sphlab-tests: $(TEST_OBJ) $(BUILD)/libsphcore.a
 deps:
 	@sh tests/install-deps.sh $(DEB_PKGS)
 
-# The main job: the 2D dam break headless. Prints the timing table; writes to
+# The main job: the 2D dam break headless, then the full-simulation lesson's export. Prints the timing table; writes to
 # out/demo/ the per-step stats, the final particles, charts (PNG + PDF) of the
 # time per pass and of energy and density, and rendered frames.
 DEMO_SCENE ?= lessons/scenes/dam-break-2d.ini
@@ -71,7 +72,8 @@ demo: deps
 	./sphlab plot passes out/demo/stats.csv --out out/demo
 	./sphlab plot series out/demo/stats.csv --y ekin,rho_max,max_speed --out out/demo
 	./sphlab render $(DEMO_SCENE) --out out/demo/frames --every 400 --steps 2400 --overlay grid --quiet
-	@echo "demo: figures and tables in out/demo/"
+	./sphlab lesson 7 --export out/demo/lesson-7
+	@echo "demo: figures and tables in out/demo/, the full-simulation lesson's report in out/demo/lesson-7/report.md"
 
 # The whole suite, the clang build, then the whole suite again under
 # AddressSanitizer and UndefinedBehaviorSanitizer (what CI runs).

@@ -252,9 +252,10 @@ Test(render_overlay, hud_reports_the_density_error)
     cr_assert_geq(n, 4);
     cr_expect(strstr(lines[1], "step 1") != NULL, "%s", lines[1]);
     cr_expect(strstr(lines[2], "(rho_max - rho0)/rho0") != NULL, "%s", lines[2]);
+    cr_expect(strstr(lines[3], "energy drift since step 1 = +0.00 %") != NULL, "%s", lines[3]);
     sim->enabled[SPH_PASS_VISCOSITY] = false;
     n = sph_hud_lines(sim, &info, lines, 8);
-    cr_expect(strstr(lines[3], "off: viscosity") != NULL, "%s", lines[3]);
+    cr_expect(strstr(lines[4], "off: viscosity") != NULL, "%s", lines[4]);
     sph_sim_destroy(sim);
 }
 

@@ -11,7 +11,11 @@
     X(keys, "", "list every scene key with its default, unit and meaning") \
     X(render, "SCENE.ini", "simulate headless and write PNG frames (and VTK files)") \
     X(view, "SCENE.ini", "open a window and run the scene live, with overlays") \
-    X(hardcases, "", "run the hard cases (odd parameters) and print a verdict for each")
+    X(hardcases, "", "run the hard cases (odd parameters) and print a verdict for each") \
+    X(study, "SCENE.ini", "error against wall time over combinations of knobs (CSV, Pareto chart)") \
+    X(estimate, "", "kernel estimate of a known function: error against h and sample count") \
+    X(lesson, "N", "the course: list the lessons, open one in the window, or export its figures and report") \
+    X(bench, "WHAT", "the optimisation ladder: largest N at 60 steps/s per level, checks, scaling (CSV, JSON, charts)")
 
 #define SPH_COMMAND_DECL(name, args, about) int cmd_##name(int argc, char **argv);
 SPH_COMMANDS(SPH_COMMAND_DECL)

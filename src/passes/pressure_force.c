@@ -3,8 +3,10 @@
  *              (from the Lagrangian; the pair terms are equal and opposite,
  *              so total momentum is conserved exactly up to round-off)
  *   shared:    a_i = - (1 / rho_i) sum_j (m_j / rho_j) (p_i + p_j) / 2 grad W_ij
- *              (the seed's form, Mueller 2003; m_i a_i != -m_j a_j when the
- *              densities differ, so momentum drifts)
+ *              (the seed's form, Mueller 2003). It conserves momentum too:
+ *              m_i a_i = -V_i V_j (p_i + p_j) / 2 grad W_ij with V = m / rho is
+ *              antisymmetric in i, j. What it lacks is the link to the
+ *              internal energy that the symmetric form has.
  * grad W_ij = W'(r) (x_i - x_j) / r. Coincident particles get a direction
  * (see below), else they would never separate. */
 #include "simd.h"

@@ -1,0 +1,220 @@
+/* sphlab bench: the seed's optimisation ladder, rebuilt live on this machine.
+ *
+ * Each level of the ladder is one line of bench_levels[] (bench_levels.c):
+ * the scene keys that select it and the thread count. The benchmark scene is
+ * a block of water falling in a box, made in code at any size (bench_scene).
+ *
+ *   bench_levels.c   the level table, the scene, making simulations
+ *   bench_measure.c  timing (median steps/s, ms per pass) and the checks
+ *                    (neighbour sets and state against a reference level)
+ *   bench_machine.c  the machine's limits: streaming bandwidth, FMA throughput
+ *   bench_chart.c    the charts (PLplot: log axes, stacked bars), PNG + PDF
+ *   cmd_bench.c      the subcommands: ladder, scaling, machine, levels */
+#ifndef SPH_BENCH_H
+#define SPH_BENCH_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "sph_sim.h"
+
+/* ---- the ladder ------------------------------------------------------------ */
+
+/* One level: what it adds, the scene overrides that select it, its threads. */
+typedef struct bench_level {
+    const char *name;  /* short name, e.g. "L3" */
+    const char *about; /* what it is, in a few words (no commas: it goes into CSV files) */
+    const char *sets;  /* scene overrides "section.key=value", separated by spaces */
+    int threads;       /* 1, or 0: one per core */
+} bench_level;
+
+extern const bench_level bench_levels[];
+extern const int bench_level_count;
+enum { BENCH_MAX_LEVELS = 32 };
+
+/* Reference levels of the checks: brute force where it is affordable, the
+ * seed's final design (hash + bitonic sort + offsets) at larger N. */
+#define BENCH_REF_SMALL "L0"
+#define BENCH_REF_LARGE "L2"
+/* Index of the level named `name` in bench_levels[], or -1. */
+int bench_level_find(const char *name);
+int bench_levels_cores(void); /* what threads = 0 means */
+
+/* Overrides from the command line (--set [LEVEL:]section.key=value). */
+enum { BENCH_MAX_SETS = 32 };
+typedef struct bench_config {
+    int dim;
+    bool watchdog;        /* keep the watchdog on while timing (off by default) */
+    int n_sets;
+    const char *set_level[BENCH_MAX_SETS]; /* NULL: every level */
+    const char *set[BENCH_MAX_SETS];
+} bench_config;
+
+/* ---- the scene ------------------------------------------------------------- */
+
+/* A block of n_x x n_y (x n_z) particles on a lattice of spacing s falling in a
+ * box twice its size; h = 2 s (about 33 neighbours in 3D, 12 in 2D). Sizes
+ * are numbered by k: in 3D n = k / 3 and k % 3 of the horizontal sides are
+ * n + 1, so the count n^3, n^2 (n+1), n (n+1)^2, (n+1)^3 grows by steps of
+ * about 1/n (2D likewise with k / 2). */
+#define BENCH_SPACING 0.02
+#define BENCH_JITTER 0.1 /* spacings: no pair sits exactly at r = h, as on a perfect lattice */
+#define BENCH_CHECK_STEPS 10
+
+int bench_k_min(int dim);
+void bench_sides(int dim, int k, int side[3]);
+double bench_count(int dim, int k);
+int bench_k_at_least(int dim, double n); /* smallest k whose count is >= n */
+int bench_k_near(int dim, double n);     /* k whose count is closest to n (ties: the smaller) */
+/* The scene's INI text. */
+void bench_scene_ini(int dim, int k, char *out, size_t cap);
+/* The scene of size k for a level, the level's and the command line's
+ * overrides applied; false with a message in why. */
+bool bench_scene_def(const bench_config *cfg, const bench_level *L, int k, sph_scene_def *def, char *why, size_t n);
+bool bench_make_sim(const bench_config *cfg, const bench_level *L, int k, sph_sim **out, char *why, size_t n);
+
+/* ---- timing ---------------------------------------------------------------- */
+
+typedef struct bench_plan {
+    int repeats;       /* repeats of `steps` steps; the median is kept */
+    int steps;         /* steps per repeat */
+    double budget_ms;  /* stop repeating once this much was spent (at least one repeat) */
+    double decide_fps; /* > 0: stop after one repeat if clearly above (x1.5) or below (/3) it */
+} bench_plan;
+
+typedef struct bench_meas {
+    uint32_t n;
+    int threads;
+    int repeats;                    /* done */
+    double steps_per_s;             /* median over repeats */
+    double ms_step;                 /* median over steps of sph_sim_step's wall time */
+    double pass_ms[SPH_PASS_COUNT]; /* median over steps of each pass's time; NAN if not in the pipeline */
+    double pairs;                   /* neighbour-list entries (i->j and j->i) of the last step */
+    double create_ms;               /* making the simulation (not timed in steps/s) */
+    double others;                  /* cores other processes kept busy meanwhile (NAN if unknown) */
+    int attempts;                   /* measurements made (bench_measure_retry) */
+} bench_meas;
+
+/* Makes the simulation of size k, runs one warm-up step, then times
+ * repeats of steps (only sph_sim_step, with sph_now_ms). */
+bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const bench_plan *plan, bench_meas *out,
+                   char *why, size_t n);
+
+/* Measures again, up to `attempts` times in all, while other processes kept
+ * more than BENCH_BUSY cores busy during the measurement, and keeps the least
+ * disturbed one; with fps > 0 it stops at the first that reaches fps (load
+ * only slows a run down: a pass is never the noise's doing). */
+#define BENCH_BUSY 0.25
+bool bench_measure_retry(const bench_config *cfg, const bench_level *L, int k, const bench_plan *plan, double fps,
+                         int attempts, bench_meas *out, char *why, size_t n);
+
+/* ---- checks ---------------------------------------------------------------- */
+
+/* Tolerances of the state after BENCH_CHECK_STEPS steps, particles matched by id. */
+#define BENCH_TOL_X 1e-4    /* [m] position */
+#define BENCH_TOL_V 1e-3    /* [m/s] velocity */
+#define BENCH_TOL_RHO 1e-3  /* [1] relative density (one missing neighbour moves it by about 3%) */
+
+/* What a run leaves to compare, indexed by particle id. */
+typedef struct bench_state {
+    uint32_t n;
+    int dim;
+    uint32_t *nbr_start, *nbr; /* neighbour sets after the first step, as sorted ids */
+    float *pos[3], *vel[3], *rho;
+    double moved;              /* [m] largest displacement over the run (the scale of the check) */
+    bool stopped;              /* the watchdog stopped it */
+    char report[512];
+} bench_state;
+
+bool bench_state_run(const bench_config *cfg, const bench_level *L, int k, bench_state *out, char *why, size_t n);
+void bench_state_free(bench_state *s);
+
+typedef struct bench_diff {
+    bool done, pass;
+    int ref;                /* level index of the reference */
+    uint32_t n;
+    uint32_t sets_differ;   /* particles whose neighbour set differs */
+    double pairs, ref_pairs;
+    double dx, dv, drho;    /* largest differences (drho relative) */
+    char why[160];          /* the first failure in words */
+} bench_diff;
+
+void bench_compare(const bench_state *ref, const bench_state *s, bench_diff *d);
+
+/* ---- the machine ----------------------------------------------------------- */
+
+typedef struct bench_machine {
+    int cores;
+    double mhz_cpuinfo;       /* "cpu MHz" of /proc/cpuinfo (0 if unknown) */
+    double clock_ghz;         /* measured: a chain of dependent integer adds, one per cycle */
+    int lanes;                /* floats per vector register the build uses (16 with AVX-512) */
+    double fma_gflops[2];     /* measured: independent FMA chains, 1 thread and all cores */
+    double peak_gflops_core;  /* clock x lanes x 2 (FMA) x FMA pipes (from the measurement, rounded) */
+    int fma_pipes;
+    double triad_gbs[2];      /* a[i] = b[i] + s c[i], 3 x 4 bytes per element, 1 thread and all cores */
+    double read_gbs[2];       /* sum of a[i], 4 bytes per element */
+    double array_mb;          /* size of each array */
+} bench_machine;
+
+void bench_machine_measure(bench_machine *m, bool quick);
+void bench_machine_print(FILE *f, const bench_machine *m);
+void bench_machine_json(FILE *f, const bench_machine *m, const char *indent);
+
+/* ---- charts ---------------------------------------------------------------- */
+
+enum { BENCH_CHART_PASSES = SPH_PASS_COUNT };
+
+typedef struct bench_ladder_chart {
+    char title[160], subtitle[200];
+    int nl;
+    char level[BENCH_MAX_LEVELS][56];     /* bar labels */
+    double max_n[BENCH_MAX_LEVELS];       /* 0: none */
+    char note[BENCH_MAX_LEVELS][48];      /* written at the end of the max-N bar */
+    int np;                               /* passes in the stacked bars */
+    char pass[BENCH_CHART_PASSES][24];
+    double ms[BENCH_MAX_LEVELS][BENCH_CHART_PASSES]; /* NAN or 0: not run */
+    char bars_title[120], stack_title[120];
+    double target_n;                      /* a dashed line at this N (0: none) */
+    char target_label[64];
+} bench_ladder_chart;
+
+typedef struct bench_scaling_series {
+    char label[64];
+    const double *n, *ms;
+    size_t count;
+} bench_scaling_series;
+
+typedef struct bench_scaling_chart {
+    char title[160], subtitle[200];
+    int ns;
+    bench_scaling_series s[BENCH_MAX_LEVELS];
+    double fps; /* a dashed line at ms = 1000 / fps; 0: none */
+} bench_scaling_chart;
+
+/* Each writes DIR/BASE.png and DIR/BASE.pdf, staged through the plot
+ * module's output files (renamed on plot_out_commit). */
+bool bench_chart_ladder(const bench_ladder_chart *c, const char *dir, const char *base);
+bool bench_chart_scaling(const bench_scaling_chart *c, const char *dir, const char *base);
+
+/* ---- small helpers ---------------------------------------------------------- */
+
+double bench_median(double *v, int n); /* sorts v; NAN if n == 0 */
+/* CPU time on the machine and in this process, to tell how much of the
+ * machine other processes took while we measured (the load average lags a
+ * minute behind and counts us too). */
+typedef struct bench_cpu {
+    double busy_s; /* all cores' non-idle time, from /proc/stat (negative if unknown) */
+    double self_s; /* this process's user + system time, all threads */
+    double wall_ms;
+} bench_cpu;
+void bench_cpu_now(bench_cpu *c);
+/* Cores that other processes kept busy on average between a and b (NAN if unknown). */
+double bench_cpu_others(const bench_cpu *a, const bench_cpu *b);
+void bench_loadavg(double out[3]);     /* /proc/loadavg, or -1s */
+void bench_now_iso(char *out, size_t cap); /* local date and time, ISO 8601 */
+void bench_json_string(FILE *f, const char *s);
+void bench_fmt_count(char *out, size_t cap, double v); /* 12345 -> "12,345" */
+
+#endif

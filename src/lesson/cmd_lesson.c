@@ -1,0 +1,377 @@
+/* sphlab lesson: the course. Lists the lessons, opens one in the window (by
+ * running this binary's `view` with the lesson's scene and overlays), or
+ * exports its figures and report headless. */
+#define _DEFAULT_SOURCE /* realpath */
+#include <dirent.h>
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "app.h"
+#include "commands.h"
+#include "lesson.h"
+
+int lx_lesson1(lx *x);
+int lx_lesson2(lx *x);
+int lx_lesson3(lx *x);
+int lx_lesson4(lx *x);
+int lx_lesson5(lx *x);
+int lx_lesson6(lx *x);
+int lx_lesson7(lx *x);
+int lx_lesson8(lx *x);
+int lx_lesson9(lx *x);
+
+/* The window's options: the starting state (paused at step 0: space runs,
+ * `.` steps one pass) and the overlays the lesson is about. */
+const lesson sph_lessons[] = {
+    {1, "01-kernel-estimation", "Kernel estimation", "beginner",
+     "the SPH sum as a kernel estimate; what h does: noise against smoothing; W, grad W, lap W",
+     "--paused --color density --range 600:1400 --overlay neighbours,hud,legend --select 625", lx_lesson1},
+    {2, "02-density-summation", "Density summation", "beginner",
+     "rho_i = sum_j m_j W_ij on a lattice; the deficiency at the free surface; walls that count",
+     "--paused --color density --overlay grid,neighbours,hud,legend --select 585", lx_lesson2},
+    {3, "03-pressure-gradient", "The pressure gradient", "intermediate",
+     "equation of state; symmetric against the seed's shared form; momentum and energy",
+     "--paused --color pressure --overlay forces,hud,legend", lx_lesson3},
+    {4, "04-viscosity", "The viscosity Laplacian", "intermediate",
+     "velocity diffusion; the 2D viscosity kernel; Taylor-Green decay against exp(-2 nu k^2 t)",
+     "--paused --color speed --overlay forces,hud,legend", lx_lesson4},
+    {5, "05-spatial-hash", "The spatial hash", "intermediate",
+     "cells, hash, keys, collisions; the seed's worked example: particle 7, cell (4,1)",
+     "--paused --color key --overlay grid,keys,collisions,neighbours,index,hud,legend --select 7 --size 1100x760",
+     lx_lesson5},
+    {6, "06-sorting-offsets", "Sorting and offsets", "intermediate",
+     "the bitonic network step by step, the counting sort, the start-offset table",
+     "--paused --color key --overlay grid,keys,index,hud,legend --select 7 --size 1100x760", lx_lesson6},
+    {7, "07-full-simulation", "The full simulation", "beginner",
+     "a dam break, stepped pass by pass; where the time goes",
+     "--paused --color speed --overlay hud,timings,legend", lx_lesson7},
+    {8, "08-optimisation-ladder", "The optimisation ladder", "advanced",
+     "switch each optimisation, read the speedup, rebuild the seed's table (350, 5,000, 20,000, 60,000)",
+     "--paused --color neighbours --overlay grid,hud,timings,legend", lx_lesson8},
+    {9, "09-accuracy", "What accuracy costs", "advanced",
+     "error against time: resolution, h, kernel; the cheapest run for a given error",
+     "--paused --color speed --overlay hud,timings,legend", lx_lesson9},
+};
+const int sph_lesson_count = (int)(sizeof sph_lessons / sizeof sph_lessons[0]);
+
+/* The commands of this build, from the one list in commands.h. */
+static bool have_command(const char *name)
+{
+#define LX_CMD_NAME(name, args, about) #name,
+    static const char *const names[] = {SPH_COMMANDS(LX_CMD_NAME)};
+#undef LX_CMD_NAME
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (strcmp(names[i], name) == 0) return true;
+    return false;
+}
+
+bool lx_has_command(lx *x, const char *cmd)
+{
+    (void)x;
+    return have_command(cmd);
+}
+
+static void usage(FILE *f)
+{
+    fputs("usage: sphlab lesson --list\n"
+          "       sphlab lesson N [VIEW OPTIONS ...]   open lesson N in the window\n"
+          "       sphlab lesson N --export DIR [--quick] [--quiet]\n"
+          "       sphlab lesson N --dry-run            print the window's command instead of running it\n"
+          "The course: one lesson per folder in lessons/ (README.md, README.fr.md, lesson.ini).\n"
+          "  --list          the lessons, their level and what each is about\n"
+          "  N               opens the lesson's scene with `sphlab view` at its starting state, with\n"
+          "                  its overlays on; further options go to `sphlab view` (see its --help)\n"
+          "  --export DIR    without a display: runs the lesson's experiments with this binary's own\n"
+          "                  commands, writes its figures (PNG; charts also as PDF, each beside its\n"
+          "                  CSV) and DIR/report.md with the parameters and the measured numbers;\n"
+          "                  the commands' outputs go to DIR/logs/\n"
+          "  --quick         fewer steps and variants (for tests: a few seconds a lesson)\n"
+          "  --quiet         do not print the commands as they run\n"
+          "The lessons are found in ./lessons, in $SPHLAB_LESSONS, or beside this binary.\n"
+          "exit status: 0 done; 1 a command of the lesson failed, or no display; 2 bad command line\n",
+          f);
+}
+
+static bool is_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+static bool self_exe(char *out, size_t cap)
+{
+    ssize_t n = readlink("/proc/self/exe", out, cap - 1);
+    if (n <= 0) return false;
+    out[n] = '\0';
+    return true;
+}
+
+/* lessons/NN-slug of the lesson: ./lessons, $SPHLAB_LESSONS, or beside the binary. */
+static bool find_folder(const lesson *L, char *out, size_t cap)
+{
+    char bases[3][1024];
+    int nb = 0;
+    const char *env = getenv("SPHLAB_LESSONS");
+    if (env && *env) snprintf(bases[nb++], sizeof bases[0], "%s", env);
+    snprintf(bases[nb++], sizeof bases[0], "lessons");
+    char exe[1024];
+    if (self_exe(exe, sizeof exe)) {
+        char *slash = strrchr(exe, '/');
+        if (slash) {
+            *slash = '\0';
+            snprintf(bases[nb++], sizeof bases[0], "%.1000s/lessons", exe);
+        }
+    }
+    for (int b = 0; b < nb; b++) {
+        char dir[1200], ini[1300];
+        snprintf(dir, sizeof dir, "%.1000s/%.100s", bases[b], L->slug);
+        snprintf(ini, sizeof ini, "%.1200s/lesson.ini", dir);
+        if (is_file(ini)) {
+            snprintf(out, cap, "%s", dir);
+            return true;
+        }
+    }
+    fprintf(stderr, "sphlab lesson: cannot find lessons/%s/lesson.ini (looked in", L->slug);
+    for (int b = 0; b < nb; b++) fprintf(stderr, "%s %s", b ? "," : "", bases[b]);
+    fprintf(stderr, "); run sphlab from the repository's root or set SPHLAB_LESSONS\n");
+    return false;
+}
+
+static int list(void)
+{
+    printf("%-3s %-24s %-13s %s\n", "N", "lesson", "level", "about");
+    for (int i = 0; i < sph_lesson_count; i++) {
+        const lesson *L = &sph_lessons[i];
+        printf("%-3d %-24s %-13s %s\n", L->num, L->title, L->level, L->about);
+    }
+    printf("\nsphlab lesson N opens one in the window; sphlab lesson N --export DIR writes its figures\n"
+           "and report; the texts are lessons/NN-NAME/README.md (English) and README.fr.md (French).\n");
+    return 0;
+}
+
+/* ---- the window ---------------------------------------------------------------- */
+
+static int open_window(const lesson *L, int argc, char **argv, bool dry_run)
+{
+    char folder[1200], scene[1300], exe[1024];
+    if (!find_folder(L, folder, sizeof folder)) return 1;
+    snprintf(scene, sizeof scene, "%s/lesson.ini", folder);
+    if (!self_exe(exe, sizeof exe)) {
+        fprintf(stderr, "sphlab lesson: cannot find this program (/proc/self/exe): %s\n", strerror(errno));
+        return 1;
+    }
+    const char *args[128];
+    int n = 0;
+    char opts[512];
+    snprintf(opts, sizeof opts, "%s", L->view_args);
+    args[n++] = "sphlab";
+    args[n++] = "view";
+    args[n++] = scene;
+    for (char *tok = strtok(opts, " "); tok && n < 100; tok = strtok(NULL, " ")) args[n++] = tok;
+    for (int i = 0; i < argc && n < 126; i++) args[n++] = argv[i];
+    args[n] = NULL;
+    if (dry_run) {
+        for (int i = 0; args[i]; i++) printf("%s%s", i ? " " : "", i == 0 ? exe : args[i]);
+        printf("\n");
+        return 0;
+    }
+    if (!have_command("view")) {
+        fprintf(stderr, "sphlab lesson %d: this build has no `view` command (the window), so the lesson cannot\n"
+                        "open; export its figures instead: sphlab lesson %d --export DIR\n",
+                L->num, L->num);
+        return 1;
+    }
+    const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY"), *drv = getenv("SDL_VIDEODRIVER");
+    if ((!display || !*display) && (!wayland || !*wayland) && (!drv || !*drv)) {
+        fprintf(stderr,
+                "sphlab lesson %d: no display: DISPLAY and WAYLAND_DISPLAY are not set, so the window cannot open.\n"
+                "Export the lesson's figures and report instead:  sphlab lesson %d --export DIR\n"
+                "(or run the window's scripted mode headless: SDL_VIDEODRIVER=offscreen sphlab lesson %d --frames N "
+                "--screenshot FILE)\n",
+                L->num, L->num, L->num);
+        return 1;
+    }
+    printf("sphlab lesson %d: %s (%s); the text is %s/README.md\n", L->num, L->title, L->level, folder);
+    fflush(stdout);
+    execv(exe, (char *const *)args);
+    fprintf(stderr, "sphlab lesson: cannot run %s view: %s\n", exe, strerror(errno));
+    return 1;
+}
+
+/* ---- the export ------------------------------------------------------------------ */
+
+static void remove_tree(const char *path, int depth)
+{
+    DIR *d = depth < 4 ? opendir(path) : NULL;
+    if (d) {
+        for (struct dirent *e; (e = readdir(d));) {
+            if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+            char sub[2400];
+            snprintf(sub, sizeof sub, "%s/%s", path, e->d_name);
+            struct stat st;
+            if (lstat(sub, &st) == 0 && S_ISDIR(st.st_mode)) remove_tree(sub, depth + 1);
+            else unlink(sub);
+        }
+        closedir(d);
+    }
+    rmdir(path);
+}
+
+static void loadavg(char *out, size_t cap)
+{
+    snprintf(out, cap, "unknown");
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (!f) return;
+    double a, b, c;
+    if (fscanf(f, "%lf %lf %lf", &a, &b, &c) == 3) snprintf(out, cap, "%.2f %.2f %.2f", a, b, c);
+    fclose(f);
+}
+
+static int export_lesson(const lesson *L, const char *dir, bool quick, bool quiet)
+{
+    static lx x; /* large: the figure list */
+    memset(&x, 0, sizeof x);
+    x.L = L;
+    x.quick = quick;
+    x.quiet = quiet;
+    char folder[1000];
+    if (!find_folder(L, folder, sizeof folder)) return 1;
+    if (!self_exe(x.exe, sizeof x.exe)) {
+        fprintf(stderr, "sphlab lesson: cannot find this program (/proc/self/exe): %s\n", strerror(errno));
+        return 1;
+    }
+    if (!plot_out_dir(dir)) return 1;
+    /* paths as given (they show in the commands and the logs); absolute
+     * ones only where a command runs in another directory (lx_abs) */
+    snprintf(x.dir, sizeof x.dir, "%s", dir);
+    for (size_t n = strlen(x.dir); n > 1 && x.dir[n - 1] == '/';) x.dir[--n] = '\0';
+    snprintf(x.folder, sizeof x.folder, "%s", folder);
+    char logs[1100];
+    snprintf(logs, sizeof logs, "%s/logs", x.dir);
+    snprintf(x.scratch, sizeof x.scratch, "%s/.work", x.dir);
+    remove_tree(x.scratch, 0);
+    if (!plot_out_dir(logs) || !plot_out_dir(x.scratch)) return 1;
+    /* a report from an earlier export must not survive a failed one */
+    char report[1200];
+    snprintf(report, sizeof report, "%s/report.md", x.dir);
+    unlink(report);
+
+    x.mdf = open_memstream(&x.md, &x.md_len);
+    if (!x.mdf) {
+        fprintf(stderr, "sphlab lesson: out of memory\n");
+        return 1;
+    }
+    char load0[64], load1[64];
+    loadavg(load0, sizeof load0);
+    double t0 = sph_now_ms();
+    int rc = L->export_fn(&x);
+    double secs = (sph_now_ms() - t0) / 1e3;
+    loadavg(load1, sizeof load1);
+    fclose(x.mdf);
+    if (rc != 0 && !x.failed) x.failed = 1;
+
+    app_out out;
+    if (!app_out_open(&out, report)) {
+        free(x.md);
+        remove_tree(x.scratch, 0);
+        return 1;
+    }
+    FILE *f = out.f;
+    fprintf(f, "# Lesson %d: %s\n\n", L->num, L->title);
+    fprintf(f, "Level: %s. About: %s.\n\n", L->level, L->about);
+    fprintf(f, "Text: `lessons/%s/README.md` (English), `README.fr.md` (French). Scene: `lessons/%s/lesson.ini`.\n\n",
+            L->slug, L->slug);
+    fprintf(f, "Exported by `sphlab lesson %d --export DIR%s` in %.1f s on %ld cores (load average %s before, "
+               "%s after). Every command it ran, with its output, is in `logs/`.%s\n\n",
+            L->num, quick ? " --quick" : "", secs, sysconf(_SC_NPROCESSORS_ONLN), load0, load1,
+            quick ? " With --quick, runs are shorter and fewer: the numbers below are those of the short runs; "
+                    "export without --quick for the ones the lesson's text quotes."
+                  : "");
+    fwrite(x.md, 1, x.md_len, f);
+    fprintf(f, "\n## Figures\n\n");
+    for (int i = 0; i < x.nfig; i++) fprintf(f, "- %s\n", x.figs[i]);
+    if (x.nmissing) {
+        fprintf(f, "\n## Missing\n\n");
+        for (int i = 0; i < x.nmissing; i++) fprintf(f, "- %s\n", x.missing[i]);
+    }
+    if (x.failed) fprintf(f, "\n**%d command(s) or file(s) failed: the figures above are incomplete.**\n", x.failed);
+    free(x.md);
+    x.md = NULL;
+    bool ok = app_out_commit(&out);
+    remove_tree(x.scratch, 0);
+    if (!ok) return 1;
+    if (x.failed) {
+        fprintf(stderr, "sphlab lesson %d: %d command(s) or file(s) failed; see %s and %s/logs/\n", L->num, x.failed,
+                report, x.dir);
+        return 1;
+    }
+    printf("lesson %d (%s): %d files and %s in %s (%.1f s)\n", L->num, L->title, x.nfig, "report.md", dir, secs);
+    for (int i = 0; i < x.nmissing; i++) printf("missing: %s\n", x.missing[i]);
+    return 0;
+}
+
+int cmd_lesson(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    if (strcmp(argv[1], "--list") == 0) {
+        if (argc > 2) {
+            fprintf(stderr, "sphlab lesson: --list takes no argument ('%s')\n", argv[2]);
+            return 2;
+        }
+        return list();
+    }
+    long num;
+    if (!app_parse_int("lesson", argv[1], 1, sph_lesson_count, &num)) {
+        fprintf(stderr, "sphlab lesson: want a lesson number from 1 to %d (sphlab lesson --list)\n",
+                sph_lesson_count);
+        return 2;
+    }
+    const lesson *L = &sph_lessons[num - 1];
+    const char *dir = NULL;
+    bool quick = false, quiet = false, dry = false, has_export_opts = false;
+    for (int i = 2; i < argc; i++) {
+        if (strcmp(argv[i], "--export") == 0) {
+            if (i + 1 >= argc || !*argv[i + 1]) {
+                fprintf(stderr, "sphlab lesson: --export needs a directory\n");
+                return 2;
+            }
+            dir = argv[++i];
+        } else if (strcmp(argv[i], "--quick") == 0) {
+            quick = has_export_opts = true;
+        } else if (strcmp(argv[i], "--quiet") == 0) {
+            quiet = has_export_opts = true;
+        } else if (strcmp(argv[i], "--dry-run") == 0) {
+            dry = true;
+        } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else {
+            if (dir) {
+                fprintf(stderr, "sphlab lesson: unknown option '%s' with --export\n", argv[i]);
+                return 2;
+            }
+            continue; /* goes to view */
+        }
+    }
+    if (dir) return export_lesson(L, dir, quick, quiet);
+    if (has_export_opts) {
+        fprintf(stderr, "sphlab lesson: --quick and --quiet go with --export DIR\n");
+        return 2;
+    }
+    /* the view options: every argument but --dry-run */
+    char *vargs[128];
+    int nv = 0;
+    for (int i = 2; i < argc && nv < 127; i++)
+        if (strcmp(argv[i], "--dry-run") != 0) vargs[nv++] = argv[i];
+    return open_window(L, nv, vargs, dry);
+}

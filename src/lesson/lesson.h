@@ -1,0 +1,158 @@
+/* sphlab lesson: the course in lessons/, one folder per lesson.
+ *
+ *   sphlab lesson --list              the lessons
+ *   sphlab lesson N [VIEW OPTIONS]    opens lesson N in the window (runs this
+ *                                     binary's `view` with the lesson's scene
+ *                                     and overlays)
+ *   sphlab lesson N --export DIR      writes the lesson's figures and
+ *                                     DIR/report.md, headless, by running this
+ *                                     binary's own commands (run, render,
+ *                                     plot, view in SDL's offscreen mode,
+ *                                     hardcases, bench, study) as subprocesses
+ *
+ * Four files:
+ *   cmd_lesson.c      the command, the table of lessons, the window
+ *   lesson_export.c   the export framework: subprocesses, logs, parsing of
+ *                     their outputs, charts, the report
+ *   lesson_lab.c      the small experiments computed here with the core's
+ *                     own functions (the seed's worked example of the hash,
+ *                     the bitonic network step by step)
+ *   lesson_steps.c    what each lesson exports */
+#ifndef SPH_LESSON_H
+#define SPH_LESSON_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "plot.h"
+
+typedef struct lx lx;
+
+typedef struct lesson {
+    int num;
+    const char *slug;      /* folder lessons/NN-slug */
+    const char *title;
+    const char *level;     /* beginner, intermediate, advanced */
+    const char *about;     /* one line for --list */
+    const char *view_args; /* options for `sphlab view` with the lesson's scene */
+    int (*export_fn)(lx *x);
+} lesson;
+
+extern const lesson sph_lessons[];
+extern const int sph_lesson_count;
+
+/* The result of one `sphlab run`, parsed from its printed tables. */
+typedef struct lx_run {
+    int npass;
+    char pass[16][24];
+    double ms_step[16]; /* [ms] per step, per pass */
+    double share[16];   /* [%] */
+    double total_ms_step;
+    long steps;
+    double t_sim, wall_s, steps_per_s;
+    double ekin;
+    double rho_min, rho_mean, rho_max;
+    int threads;
+    long particles;
+} lx_run;
+
+/* The state of one export. */
+struct lx {
+    const lesson *L;
+    char dir[1024];    /* output directory */
+    char folder[1024]; /* lessons/NN-slug */
+    char exe[1024];    /* this binary */
+    bool quick;        /* fewer steps and variants (tests, CI) */
+    bool quiet;
+    char *md;          /* the report's measured part, built in memory */
+    size_t md_len;
+    FILE *mdf;
+    char figs[96][256]; /* figures written: "file: what it shows" */
+    int nfig;
+    char missing[8][256];
+    int nmissing;
+    int failed;        /* commands that failed */
+    char scratch[1100]; /* DIR/.work */
+    int nlog;
+    char srcs[16][1024]; /* lx_src's paths */
+    int nsrc;
+};
+
+/* ---- export helpers (lesson_export.c) ------------------------------------- */
+
+/* A path in the lesson's folder (stable during the export) / in the output
+ * directory (rotating static buffers). */
+const char *lx_src(lx *x, const char *file);
+const char *lx_out(lx *x, const char *file);
+/* The absolute path of an existing file or directory (rotating static buffers). */
+const char *lx_abs(const char *path);
+/* printf into a rotating static buffer (for numeric arguments). */
+const char *lx_fmt(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* Runs this binary with the arguments (NULL-terminated), stdout and stderr
+ * into DIR/logs/NN-LOG.txt; cwd: where to run it (NULL: here); env: one
+ * NAME=VALUE to set, or NULL. Returns the exit status (a failure is counted,
+ * named in the report and on stderr). The log's path goes to *log_path. */
+int lx_sphlab(lx *x, const char *log, const char *cwd, const char *env, const char **log_path, ...);
+#define LX_END ((const char *)NULL)
+/* The same with the arguments in a NULL-terminated array. */
+int lx_sphlab_v(lx *x, const char *log, const char *cwd, const char *env, const char **log_path,
+                const char *const *args);
+/* Whether this build has a command (its --help exits 0). */
+bool lx_has_command(lx *x, const char *cmd);
+/* Records a command or figure that this build cannot make. */
+void lx_missing(lx *x, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Reads a whole file (NUL-terminated, caller frees); NULL if it cannot. */
+char *lx_read_file(const char *path);
+/* Parses the tables `sphlab run` prints. */
+bool lx_parse_run(const char *log_path, lx_run *r);
+/* ms per step of a pass in a parsed run, or -1. */
+double lx_run_pass(const lx_run *r, const char *pass);
+/* The passes `sphlab check` lists, in order; returns their count. */
+int lx_parse_pipeline(const char *log_path, char names[][24], int cap);
+
+/* Appends to the report (Markdown). */
+void lx_md(lx *x, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Appends a file's text to the report as a code block. */
+void lx_md_file(lx *x, const char *path, int max_lines);
+/* Registers a figure (a file in DIR) for the report's list. */
+void lx_fig(lx *x, const char *file, const char *what);
+
+/* Moves DIR/.work/SUB/FRAME to DIR/NAME; false (and a failure) if it is missing. */
+bool lx_take(lx *x, const char *sub, const char *frame, const char *name);
+/* Draws a line chart or bar chart into DIR/BASE.png and .pdf. */
+bool lx_chart(lx *x, plot_kind kind, const void *chart, const char *base, int w, int h, const char *what);
+/* Opens DIR/NAME for a CSV (written to a temporary, renamed by lx_csv_close). */
+FILE *lx_csv_open(lx *x, const char *name);
+bool lx_csv_close(lx *x, FILE *f, const char *name, const char *what);
+
+/* Reads a CSV (header line, numbers) into t; false (and a failure) if not. */
+bool lx_table(lx *x, plot_table *t, const char *path);
+/* Column of t by name (the export fails if it is missing). */
+const double *lx_col(lx *x, const plot_table *t, const char *name);
+
+/* ---- experiments computed in process (lesson_lab.c) ----------------------- */
+
+/* One particle of the seed's worked example, as the hash pass computes it. */
+typedef struct lx_hash_row {
+    uint32_t id;
+    float x, y;
+    int32_t cx, cy;
+    uint32_t hash, key;
+} lx_hash_row;
+/* Loads the scene, runs passes up to and including the hash, and returns the
+ * entries in particle-id order (n at most cap); -1 with a message on error.
+ * Also counts occupied cells and cells that share a key with another. */
+int lx_hash_example(const char *scene, const char **sets, int nsets, lx_hash_row *rows, int cap, int *cells,
+                    int *colliding_cells, uint32_t *table_size);
+
+/* The bitonic network on n keys, step by step: calls step_cb after each
+ * step with the array of keys (and original indices). Returns steps run. */
+typedef void (*lx_bitonic_cb)(void *ctx, int stage, int step, uint32_t w, int flip, const uint32_t *keys,
+                              const uint32_t *index, uint32_t n, int swaps);
+int lx_bitonic_steps(const uint32_t *keys, uint32_t n, lx_bitonic_cb cb, void *ctx);
+
+#endif

@@ -1,0 +1,33 @@
+# src/lesson: `sphlab lesson`, the course in lessons/ (list, open in the
+# window, export figures and a report). Included by the Makefile
+# (-include src/*/module.mk). The export runs this binary's own commands
+# (run, render, view, plot, hardcases, bench, study) as subprocesses and draws
+# its comparison charts with the plot module (src/plot/plot.h), so it needs
+# no package of its own beyond the plot module's.
+
+# This fragment is read before the Makefile's `all`: keep whatever default
+# goal was set so far, so that a rule below never becomes it.
+LESSON_SAVED_GOAL := $(.DEFAULT_GOAL)
+
+LESSON_SRC    := cmd_lesson lesson_export lesson_lab lesson_steps
+LESSON_CFLAGS := $(shell pkg-config --cflags plplot 2>/dev/null || echo -I/usr/include/plplot)
+LESSON_STB    := $(shell pkg-config --cflags stb 2>/dev/null || echo -I/usr/include/stb)
+MOD_OBJ       += $(LESSON_SRC:%=$(BUILD)/lesson/%.o)
+
+$(BUILD)/lesson/%.o: src/lesson/%.c src/lesson/*.h src/plot/plot.h src/app/*.h src/core/*.h | $(BUILD)/lesson
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app -Isrc/plot $(LESSON_CFLAGS) -c -o $@ $<
+
+$(BUILD)/lesson:
+	mkdir -p $@
+
+# The lesson tests (tests/test_lesson*.c) decode the exported PNGs with
+# stb_image (linked through the plot module's MOD_TEST_LIBS, -lstb).
+$(BUILD)/tests/test_lesson.o $(BUILD)/tests/test_lesson%.o: CFLAGS += $(LESSON_STB)
+
+# `make test` compiles the library, app and tests with clang as well; this module's objects too.
+check-clang: check-clang-lesson
+.PHONY: check-clang-lesson
+check-clang-lesson:
+	$(MAKE) CC=clang BUILD=build-clang $(LESSON_SRC:%=build-clang/lesson/%.o)
+
+.DEFAULT_GOAL := $(LESSON_SAVED_GOAL)

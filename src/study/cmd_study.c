@@ -1,0 +1,453 @@
+/* sphlab study SCENE --vary KEY=V1,V2,... --out DIR: what each accuracy
+ * choice buys and what it costs. Runs every combination of the knobs on one
+ * of the reference problems, measures its error (docs/accuracy.md) and its
+ * wall time (median of repeats), and writes DIR/study.csv, a log-log chart
+ * of error against time with the Pareto front (DIR/study.png, .pdf) and a
+ * table on stdout. */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "app.h"
+#include "plot.h"
+#include "study.h"
+#include "study_plot.h"
+
+static void usage(FILE *f)
+{
+    fputs("usage: sphlab study SCENE.ini --vary KEY=V1,V2,... [--vary ...] --out DIR [options]\n"
+          "Runs every combination of the --vary lists on a reference problem, measures its error and its\n"
+          "wall time, and writes DIR/study.csv, DIR/study.png and DIR/study.pdf (error against time, log-log,\n"
+          "Pareto front marked) and a table. docs/accuracy.md defines each error.\n"
+          "  --vary KEY=V1,V2,...  a knob and its values (repeatable, up to 8): any scene key as for --set\n"
+          "                        (fluid.spacing, kernels.h, kernels.density, time.cfl, time.dt,\n"
+          "                        physics.stiffness, physics.accumulate, ...), or\n"
+          "                          h_over_spacing  kernels.h = value x the (finest) fluid spacing\n"
+          "                          kernel          one kernel for density, pressure and viscosity\n"
+          "  --out DIR             where to write (made if missing)\n"
+          "  --metric NAME         density | density-surface | hydrostatic | taylor-green\n"
+          "                        (default: guessed from the scene)\n"
+          "  --repeats N           runs per combination; the time is their median (default 3)\n"
+          "  --steps N | --time T  run length (default: the scene's duration or steps)\n"
+          "  --set S.K=V           override a scene key before the knobs (repeatable)\n"
+          "  --threads N           worker threads (default: one per core)\n"
+          "  --name BASE           file names BASE.csv, BASE.png, BASE.pdf (default study)\n"
+          "  --quiet               no progress line, no table, no list of files\n"
+          "exit status: 0 done; 1 bad scene, knob value or output directory; 2 bad command line\n",
+          f);
+}
+
+static bool is_opt(const char *a, const char *name)
+{
+    size_t n = strlen(name);
+    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
+}
+
+static const char *opt_value(int argc, char **argv, int *i, const char *name)
+{
+    const char *a = argv[*i];
+    size_t n = strlen(name);
+    if (a[n] == '=') return a + n + 1;
+    if (*i + 1 < argc) return argv[++*i];
+    fprintf(stderr, "sphlab study: %s needs a value\n", name);
+    return NULL;
+}
+
+/* mkdir -p DIR, then check that a file can be made in it. */
+static bool prepare_dir(const char *dir)
+{
+    char path[1024];
+    if (!*dir || strlen(dir) >= sizeof path - 64) {
+        fprintf(stderr, "sphlab study: --out '%s': not a usable directory name\n", dir);
+        return false;
+    }
+    snprintf(path, sizeof path, "%s", dir);
+    for (char *p = path + 1;; p++) {
+        if (*p == '/' || *p == '\0') {
+            char keep = *p;
+            *p = '\0';
+            if (mkdir(path, 0777) != 0 && errno != EEXIST) {
+                fprintf(stderr, "sphlab study: --out %s: cannot make directory %s: %s\n", dir, path, strerror(errno));
+                return false;
+            }
+            *p = keep;
+            if (!keep) break;
+        }
+    }
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "sphlab study: --out %s: not a directory\n", dir);
+        return false;
+    }
+    snprintf(path, sizeof path, "%s/.study-probe.%ld", dir, (long)getpid());
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "sphlab study: --out %s: cannot write there: %s\n", dir, strerror(errno));
+        return false;
+    }
+    fclose(f);
+    remove(path);
+    return true;
+}
+
+typedef struct progress_ctx {
+    bool on;
+    long combo, combos;
+    int repeat, repeats;
+    char what[120];
+    double t0;
+} progress_ctx;
+
+static void show_progress(void *vctx, const sph_sim *sim, double done)
+{
+    progress_ctx *c = vctx;
+    if (!c->on) return;
+    (void)sim;
+    fprintf(stderr, "\r  [%ld/%ld] %-46.46s run %d/%d %3.0f%%  %4.0f s elapsed ", c->combo + 1, c->combos, c->what,
+            c->repeat + 1, c->repeats, 100 * fmin(done, 1.0), (sph_now_ms() - c->t0) / 1e3);
+}
+
+static void combo_text(const study_plan *p, const int *idx, char *out, size_t n, const char *sep)
+{
+    size_t len = 0;
+    out[0] = '\0';
+    for (int k = 0; k < p->n_knobs && len < n; k++)
+        len += (size_t)snprintf(out + len, n - len, "%s%s=%s", k ? sep : "", p->knob[k].key, p->knob[k].value[idx[k]]);
+    if (p->n_knobs == 0) snprintf(out, n, "(the scene as it is)");
+}
+
+static const char *error_label(study_metric m)
+{
+    switch (m) {
+    case STUDY_METRIC_DENSITY: return "interior density error, RMS of #gr/#gr#d0#u - 1 [-]";
+    case STUDY_METRIC_DENSITY_SURFACE: return "free-surface density error, RMS [-]";
+    case STUDY_METRIC_HYDROSTATIC: return "pressure profile error, RMS / #gr#d0#u g H [-]";
+    default: return "decay rate error |#gl/#gl#dexact#u - 1| [-]";
+    }
+}
+
+static void print_table(const study_plan *p, const study_row *rows, int n)
+{
+    int w[STUDY_MAX_KNOBS];
+    printf("%4s", "#");
+    for (int k = 0; k < p->n_knobs; k++) {
+        w[k] = (int)strlen(p->knob[k].key);
+        for (int v = 0; v < p->knob[k].n; v++)
+            if ((int)strlen(p->knob[k].value[v]) > w[k]) w[k] = (int)strlen(p->knob[k].value[v]);
+        printf("  %-*s", w[k], p->knob[k].key);
+    }
+    printf("  %9s %8s %11s %10s %9s  %s\n", "particles", "steps", "error", "ms/step", "run s", "front");
+    for (int i = 0; i < n; i++) {
+        const study_row *r = &rows[i];
+        printf("%4d", i + 1);
+        for (int k = 0; k < p->n_knobs; k++) printf("  %-*s", w[k], p->knob[k].value[r->idx[k]]);
+        char err[32];
+        if (r->r.stopped)
+            snprintf(err, sizeof err, "stopped");
+        else
+            snprintf(err, sizeof err, "%.4g", r->r.error);
+        printf("  %9u %8llu %11s %10.4g %9.4g  %s\n", r->r.particles, (unsigned long long)r->r.steps, err,
+               r->ms_per_step, r->total_s, r->front ? "*" : "");
+    }
+}
+
+int cmd_study(int argc, char **argv)
+{
+    app_scene_opts o = {0};
+    study_plan plan;
+    memset(&plan, 0, sizeof plan);
+    const char *out = NULL, *metric_name = NULL, *base = "study";
+    long repeats = 3, steps = -1, threads = 0;
+    double until = -1;
+    bool quiet = false;
+    char why[1024];
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
+            quiet = true;
+        } else if (is_opt(a, "--vary")) {
+            if (!(v = opt_value(argc, argv, &i, "--vary"))) return 2;
+            if (!study_plan_add(&plan, v, why, sizeof why)) {
+                fprintf(stderr, "sphlab study: %s\n", why);
+                return 2;
+            }
+        } else if (is_opt(a, "--out")) {
+            if (!(out = opt_value(argc, argv, &i, "--out"))) return 2;
+        } else if (is_opt(a, "--metric")) {
+            if (!(metric_name = opt_value(argc, argv, &i, "--metric"))) return 2;
+        } else if (is_opt(a, "--name")) {
+            if (!(base = opt_value(argc, argv, &i, "--name"))) return 2;
+            if (!*base || strchr(base, '/') || strlen(base) > 200) {
+                fprintf(stderr, "sphlab study: --name '%s': want a file name without '/' (up to 200 characters)\n",
+                        base);
+                return 2;
+            }
+        } else if (is_opt(a, "--repeats")) {
+            if (!(v = opt_value(argc, argv, &i, "--repeats")) || !app_parse_int("--repeats", v, 1, 100, &repeats))
+                return 2;
+        } else if (is_opt(a, "--steps")) {
+            if (!(v = opt_value(argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 1, 2000000000L, &steps))
+                return 2;
+        } else if (is_opt(a, "--time")) {
+            if (!(v = opt_value(argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
+                return 2;
+            if (!(until > 0)) {
+                fprintf(stderr, "sphlab study: --time %s: must be above 0 s\n", v);
+                return 2;
+            }
+        } else if (is_opt(a, "--threads")) {
+            if (!(v = opt_value(argc, argv, &i, "--threads")) ||
+                !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
+                return 2;
+        } else if (is_opt(a, "--set")) {
+            if (!(v = opt_value(argc, argv, &i, "--set"))) return 2;
+            if (o.n_sets == APP_MAX_SETS) {
+                fprintf(stderr, "sphlab study: more than %d --set options\n", APP_MAX_SETS);
+                return 2;
+            }
+            o.sets[o.n_sets++] = v;
+        } else if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "sphlab study: unknown option '%s'\n", a);
+            usage(stderr);
+            return 2;
+        } else if (!o.path) {
+            o.path = a;
+        } else {
+            fprintf(stderr, "sphlab study: more than one scene file ('%s')\n", a);
+            return 2;
+        }
+    }
+    if (!o.path) {
+        fprintf(stderr, "sphlab study: no scene file\n");
+        usage(stderr);
+        return 2;
+    }
+    if (!out) {
+        fprintf(stderr, "sphlab study: no --out DIR: say where to write study.csv and the chart\n");
+        return 2;
+    }
+    if (steps >= 0 && until >= 0) {
+        fprintf(stderr, "sphlab study: give --steps or --time, not both\n");
+        return 2;
+    }
+    int metric = -1;
+    if (metric_name && (metric = study_metric_find(metric_name)) < 0) {
+        fprintf(stderr, "sphlab study: --metric '%s': unknown (accepted: density, density-surface, hydrostatic, "
+                        "taylor-green)\n",
+                metric_name);
+        return 2;
+    }
+    long combos = study_plan_count(&plan);
+    if (combos > STUDY_MAX_COMBOS) {
+        fprintf(stderr, "sphlab study: more than %d combinations: shorten the --vary lists\n", STUDY_MAX_COMBOS);
+        return 2;
+    }
+
+    sph_scene_def scene;
+    if (!app_load_scene(&o, &scene)) return 1;
+    if (metric < 0 && (metric = study_metric_guess(&scene)) < 0) {
+        fprintf(stderr,
+                "sphlab study: %s is none of the reference problems this command recognises (a Taylor-Green block, "
+                "a tank, a block whose density is computed): give --metric density|density-surface|hydrostatic|"
+                "taylor-green\n",
+                o.path);
+        return 1;
+    }
+    /* every combination must be a valid scene the metric applies to, before anything runs */
+    for (long c = 0; c < combos; c++) {
+        sph_scene_def def = scene;
+        if (!study_plan_apply(&plan, c, &def, why, sizeof why) ||
+            !study_metric_check((study_metric)metric, &def, why, sizeof why)) {
+            fprintf(stderr, "sphlab study: %s\n", why);
+            return 1;
+        }
+    }
+    if (!prepare_dir(out)) return 1;
+
+    study_row *rows = calloc((size_t)combos, sizeof *rows);
+    double *walls = calloc((size_t)repeats, sizeof *walls);
+    if (!rows || !walls) {
+        fprintf(stderr, "sphlab study: out of memory\n");
+        free(rows);
+        free(walls);
+        return 1;
+    }
+    progress_ctx pc = {!quiet && isatty(STDERR_FILENO), 0, combos, 0, (int)repeats, "", sph_now_ms()};
+    int code = 0, stopped = 0;
+    for (long c = 0; c < combos && code == 0; c++) {
+        sph_scene_def def = scene;
+        study_plan_apply(&plan, c, &def, why, sizeof why); /* checked above */
+        study_row *row = &rows[c];
+        study_plan_combo(&plan, c, row->idx);
+        combo_text(&plan, row->idx, pc.what, sizeof pc.what, " ");
+        long n_steps = steps;
+        double t_end = until;
+        if (n_steps < 0 && t_end < 0) {
+            if (def.duration > 0)
+                t_end = def.duration;
+            else
+                n_steps = def.steps;
+        }
+        pc.combo = c;
+        for (int r = 0; r < repeats; r++) {
+            pc.repeat = r;
+            study_result res;
+            show_progress(&pc, NULL, 0);
+            if (!study_run(&def, (study_metric)metric, n_steps, t_end, (int)threads, show_progress, &pc, &res, why,
+                           sizeof why)) {
+                fprintf(stderr, "%ssphlab study: combination %ld (%s): %s\n", pc.on ? "\r" : "", c + 1, pc.what, why);
+                code = 1;
+                break;
+            }
+            walls[r] = res.wall_ms;
+            if (r == 0) row->r = res;
+            if (res.stopped) break; /* the same run would stop again */
+        }
+        if (code) break;
+        double med = study_median(walls, row->r.stopped ? 1 : (int)repeats);
+        row->r.wall_ms = med;
+        row->total_s = med / 1e3;
+        row->ms_per_step = row->r.steps ? med / (double)row->r.steps : NAN;
+        if (row->r.stopped) {
+            stopped++;
+            fprintf(stderr, "%ssphlab study: warning: combination %ld (%s): %s\n", pc.on ? "\r" : "", c + 1, pc.what,
+                    row->r.note);
+        } else if (row->r.note[0]) {
+            fprintf(stderr, "%ssphlab study: warning: combination %ld (%s): %s\n", pc.on ? "\r" : "", c + 1, pc.what,
+                    row->r.note);
+        }
+    }
+    if (pc.on) fprintf(stderr, "\r%100s\r", "");
+    if (code) {
+        free(rows);
+        free(walls);
+        return code;
+    }
+
+    /* the Pareto front of (time, error) */
+    double *tx = malloc((size_t)combos * sizeof *tx), *ey = malloc((size_t)combos * sizeof *ey);
+    bool *front = malloc((size_t)combos * sizeof *front);
+    int *num = malloc((size_t)combos * sizeof *num);
+    double *fx = malloc((size_t)combos * sizeof *fx), *fy = malloc((size_t)combos * sizeof *fy);
+    int *fnum = malloc((size_t)combos * sizeof *fnum);
+    if (!tx || !ey || !front || !num || !fx || !fy || !fnum) {
+        fprintf(stderr, "sphlab study: out of memory\n");
+        code = 1;
+        goto out;
+    }
+    for (long c = 0; c < combos; c++) {
+        tx[c] = rows[c].total_s;
+        ey[c] = rows[c].r.error;
+        num[c] = (int)c + 1;
+    }
+    int nf = study_pareto(tx, ey, (int)combos, front);
+    for (long c = 0; c < combos; c++) rows[c].front = front[c];
+    /* front points by time, for the line */
+    int m = 0;
+    for (long c = 0; c < combos; c++)
+        if (front[c]) {
+            int j = m++;
+            while (j > 0 && fx[j - 1] > tx[c]) {
+                fx[j] = fx[j - 1], fy[j] = fy[j - 1], fnum[j] = fnum[j - 1];
+                j--;
+            }
+            fx[j] = tx[c], fy[j] = ey[c], fnum[j] = (int)c + 1;
+        }
+
+    char csv_name[256];
+    snprintf(csv_name, sizeof csv_name, "%s.csv", base);
+    FILE *f = plot_out_stage_csv(out, csv_name);
+    if (!f) {
+        code = 1;
+        goto out;
+    }
+    bool ok = study_write_csv(f, &plan, (study_metric)metric, rows, (int)combos);
+    if (!plot_out_close_csv(f, out, csv_name) || !ok) {
+        plot_out_abort();
+        code = 1;
+        goto out;
+    }
+
+    study_chart ch;
+    memset(&ch, 0, sizeof ch);
+    char scene_name[200];
+    plot_escape(scene_name, sizeof scene_name, scene.name[0] ? scene.name : o.path);
+    snprintf(ch.title, sizeof ch.title, "Error against time: %.100s (%s)", scene_name, study_metric_names[metric]);
+    /* the run length, if all combinations share it */
+    char len_text[64] = "runs of different lengths";
+    bool same_steps = true, same_time = true;
+    for (long c = 1; c < combos; c++) {
+        same_steps &= rows[c].r.steps == rows[0].r.steps;
+        same_time &= fabs(rows[c].r.t_end - rows[0].r.t_end) <= 0.01 * rows[0].r.t_end;
+    }
+    if (until >= 0 || (steps < 0 && !same_steps && same_time))
+        snprintf(len_text, sizeof len_text, "%.3g s simulated", rows[0].r.t_end);
+    else if (same_steps)
+        snprintf(len_text, sizeof len_text, "%llu step%s", (unsigned long long)rows[0].r.steps,
+                 rows[0].r.steps == 1 ? "" : "s");
+    snprintf(ch.subtitle, sizeof ch.subtitle, "%ld combination%s, %.40s, time: median of %ld run%s; numbers: rows of %.40s",
+             combos, combos == 1 ? "" : "s", len_text, repeats, repeats == 1 ? "" : "s", csv_name);
+    snprintf(ch.xlabel, sizeof ch.xlabel, "wall time of a run [s]");
+    snprintf(ch.ylabel, sizeof ch.ylabel, "%s", error_label((study_metric)metric));
+    study_curve *all = &ch.c[ch.nc++];
+    snprintf(all->label, sizeof all->label, "combination");
+    all->x = tx, all->y = ey, all->n = (int)combos, all->style = 1, all->markers = true, all->numbers = num;
+    if (nf > 0) {
+        study_curve *pf = &ch.c[ch.nc++];
+        snprintf(pf->label, sizeof pf->label, "Pareto front");
+        pf->x = fx, pf->y = fy, pf->n = m, pf->style = 2, pf->line = true, pf->solid = true, pf->markers = true, pf->filled = true;
+    }
+    snprintf(ch.note[ch.nn++], sizeof ch.note[0], "On the front (no other run is both");
+    snprintf(ch.note[ch.nn++], sizeof ch.note[0], "faster and more accurate):");
+    if (plan.n_knobs > 0) {
+        char keys[400], esc[400];
+        size_t len = 0;
+        for (int k = 0; k < plan.n_knobs && len < sizeof keys; k++)
+            len += (size_t)snprintf(keys + len, sizeof keys - len, "%s%s", k ? ", " : "", plan.knob[k].key);
+        plot_escape(esc, sizeof esc, keys);
+        snprintf(ch.note[ch.nn++], sizeof ch.note[0], "#: %.110s", esc);
+    }
+    for (int j = 0; j < m && ch.nn < STUDY_MAX_NOTES; j++) {
+        int idx[STUDY_MAX_KNOBS];
+        study_plan_combo(&plan, fnum[j] - 1, idx);
+        char text[400] = "", esc[400];
+        size_t len = 0;
+        for (int k = 0; k < plan.n_knobs && len < sizeof text; k++)
+            len += (size_t)snprintf(text + len, sizeof text - len, "%s%s", k ? ", " : "", plan.knob[k].value[idx[k]]);
+        plot_escape(esc, sizeof esc, text);
+        if (ch.nn == STUDY_MAX_NOTES - 1 && j < m - 1)
+            snprintf(ch.note[ch.nn++], sizeof ch.note[0], "... and %d more (see %.60s)", m - j, csv_name);
+        else
+            snprintf(ch.note[ch.nn++], sizeof ch.note[0], "%d: %.100s", fnum[j], esc);
+    }
+    if (nf == 0) snprintf(ch.note[ch.nn++], sizeof ch.note[0], "(none: no run has a finite error)");
+    if (!study_chart_loglog(&ch, out, base, 1000, 700) || !plot_out_commit(quiet)) {
+        plot_out_abort();
+        code = 1;
+        goto out;
+    }
+    if (!quiet) {
+        printf("study of %s: %ld combination%s x %ld run%s, metric %s:\n  %s\n", o.path, combos, combos == 1 ? "" : "s",
+               repeats, repeats == 1 ? "" : "s", study_metric_names[metric], study_metric_about[metric]);
+        print_table(&plan, rows, (int)combos);
+        printf("front: the %d run%s no other run beats in both error and time (*)\n", nf, nf == 1 ? "" : "s");
+        if (stopped) printf("%d combination%s stopped by the watchdog (error nan)\n", stopped, stopped == 1 ? "" : "s");
+    }
+out:
+    free(tx);
+    free(ey);
+    free(front);
+    free(num);
+    free(fx);
+    free(fy);
+    free(fnum);
+    free(rows);
+    free(walls);
+    return code;
+}

@@ -1,0 +1,36 @@
+/* Live accuracy figures: density error and energy drift, updated after each
+ * step for a view that shows them beside the timings (study.h). */
+#include <math.h>
+#include <string.h>
+
+#include "study.h"
+
+void study_live_reset(study_live *l)
+{
+    memset(l, 0, sizeof *l);
+}
+
+void study_live_update(study_live *l, const sph_sim *sim)
+{
+    sph_stats s;
+    sph_sim_stats(sim, &s);
+    double e = s.ekin + s.epot + s.eint, rho0 = sim->def.rest_density;
+    if (!l->started) {
+        l->started = true;
+        l->e0 = e;
+        l->scale = fabs(e);
+    }
+    l->scale = fmax(l->scale, s.ekin);
+    l->energy_drift = l->scale > 0 ? (e - l->e0) / l->scale : 0.0;
+    l->density_error = 0;
+    l->density_rms = 0;
+    if (sim->P.rho && sim->n) {
+        double sum = 0;
+        for (uint32_t i = 0; i < sim->n; i++) {
+            double d = sim->P.rho[i] / rho0 - 1.0;
+            sum += d * d;
+        }
+        l->density_rms = sqrt(sum / sim->n);
+        l->density_error = (s.rho_max - rho0) / rho0;
+    }
+}

@@ -1,0 +1,258 @@
+/* The study's knobs (--vary KEY=V1,V2,...), their combinations, the Pareto
+ * front of error against time, and study.csv. */
+#include <ctype.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "study.h"
+
+static bool is_derived(const char *key)
+{
+    return strcmp(key, "h_over_spacing") == 0 || strcmp(key, "kernel") == 0;
+}
+
+bool study_plan_add(study_plan *p, const char *arg, char *why, size_t n)
+{
+    const char *eq = strchr(arg, '=');
+    if (!eq || eq == arg) {
+        snprintf(why, n, "--vary '%.100s': expected KEY=V1,V2,... (e.g. fluid.spacing=0.04,0.02)", arg);
+        return false;
+    }
+    if (p->n_knobs == STUDY_MAX_KNOBS) {
+        snprintf(why, n, "--vary '%.100s': at most %d knobs", arg, STUDY_MAX_KNOBS);
+        return false;
+    }
+    study_knob *k = &p->knob[p->n_knobs];
+    memset(k, 0, sizeof *k);
+    size_t kl = (size_t)(eq - arg);
+    while (kl > 0 && isspace((unsigned char)arg[kl - 1])) kl--;
+    const char *ks = arg;
+    while (isspace((unsigned char)*ks)) ks++, kl--;
+    if (kl == 0 || kl >= sizeof k->key) {
+        snprintf(why, n, "--vary '%.100s': expected KEY=V1,V2,... with a key of 1 to %zu characters", arg,
+                 sizeof k->key - 1);
+        return false;
+    }
+    memcpy(k->key, ks, kl);
+    k->key[kl] = '\0';
+    if (!is_derived(k->key) && !strchr(k->key, '.')) {
+        snprintf(why, n,
+                 "--vary %s: unknown knob (accepted: a scene key as section.key, e.g. kernels.h, fluid.spacing, "
+                 "time.cfl; or h_over_spacing, kernel)",
+                 k->key);
+        return false;
+    }
+    for (int i = 0; i < p->n_knobs; i++)
+        if (strcmp(p->knob[i].key, k->key) == 0) {
+            snprintf(why, n, "--vary %s: given twice (put all its values in one list)", k->key);
+            return false;
+        }
+    const char *v = eq + 1;
+    for (;;) {
+        const char *end = strchr(v, ',');
+        size_t len = end ? (size_t)(end - v) : strlen(v);
+        while (len > 0 && isspace((unsigned char)*v)) v++, len--;
+        while (len > 0 && isspace((unsigned char)v[len - 1])) len--;
+        if (len == 0) {
+            snprintf(why, n, "--vary %s: %s (want a comma-separated list of values, e.g. %s=A,B)", k->key,
+                     k->n == 0 && !end ? "empty list" : "empty value in the list", k->key);
+            return false;
+        }
+        if (k->n == STUDY_MAX_VALUES) {
+            snprintf(why, n, "--vary %s: more than %d values", k->key, STUDY_MAX_VALUES);
+            return false;
+        }
+        if (len >= sizeof k->value[0]) {
+            snprintf(why, n, "--vary %s: value '%.*s...' longer than %zu characters", k->key, 20, v,
+                     sizeof k->value[0] - 1);
+            return false;
+        }
+        memcpy(k->value[k->n], v, len);
+        k->value[k->n][len] = '\0';
+        for (int i = 0; i < k->n; i++)
+            if (strcmp(k->value[i], k->value[k->n]) == 0) {
+                snprintf(why, n, "--vary %s: value '%s' given twice", k->key, k->value[i]);
+                return false;
+            }
+        k->n++;
+        if (!end) break;
+        v = end + 1;
+    }
+    p->n_knobs++;
+    return true;
+}
+
+long study_plan_count(const study_plan *p)
+{
+    long c = 1;
+    for (int k = 0; k < p->n_knobs; k++) {
+        c *= p->knob[k].n;
+        if (c > STUDY_MAX_COMBOS) return STUDY_MAX_COMBOS + 1;
+    }
+    return c;
+}
+
+void study_plan_combo(const study_plan *p, long c, int idx[STUDY_MAX_KNOBS])
+{
+    for (int k = p->n_knobs - 1; k >= 0; k--) {
+        idx[k] = (int)(c % p->knob[k].n);
+        c /= p->knob[k].n;
+    }
+    for (int k = p->n_knobs; k < STUDY_MAX_KNOBS; k++) idx[k] = 0;
+}
+
+/* The core's message names the option --set; here the value came from --vary. */
+static void core_message(char *why, size_t n, const char *key, const char *value, const sph_error *err)
+{
+    const char *msg = err->msg;
+    if (strncmp(msg, "--set: ", 7) == 0) msg += 7;
+    snprintf(why, n, "--vary %s=%s: %s", key, value, msg);
+}
+
+bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why, size_t n)
+{
+    int idx[STUDY_MAX_KNOBS];
+    study_plan_combo(p, c, idx);
+    sph_error err;
+    for (int k = 0; k < p->n_knobs; k++) {
+        const study_knob *kn = &p->knob[k];
+        if (is_derived(kn->key)) continue;
+        char assign[200];
+        snprintf(assign, sizeof assign, "%s=%s", kn->key, kn->value[idx[k]]);
+        if (sph_scene_set(def, assign, &err) != SPH_ERR_OK) {
+            core_message(why, n, kn->key, kn->value[idx[k]], &err);
+            return false;
+        }
+    }
+    for (int k = 0; k < p->n_knobs; k++) {
+        const study_knob *kn = &p->knob[k];
+        const char *v = kn->value[idx[k]];
+        if (strcmp(kn->key, "kernel") == 0) {
+            const char *which[3] = {"kernels.density", "kernels.pressure", "kernels.viscosity"};
+            for (int w = 0; w < 3; w++) {
+                char assign[200];
+                snprintf(assign, sizeof assign, "%s=%s", which[w], v);
+                if (sph_scene_set(def, assign, &err) != SPH_ERR_OK) {
+                    core_message(why, n, kn->key, v, &err);
+                    return false;
+                }
+            }
+        }
+    }
+    for (int k = 0; k < p->n_knobs; k++) {
+        const study_knob *kn = &p->knob[k];
+        const char *v = kn->value[idx[k]];
+        if (strcmp(kn->key, "h_over_spacing") == 0) {
+            char *end;
+            double r = strtod(v, &end);
+            if (end == v || *end || !isfinite(r) || r <= 0 || r > 100) {
+                snprintf(why, n, "--vary h_over_spacing=%s: want a number above 0 and up to 100 (h = value x spacing)",
+                         v);
+                return false;
+            }
+            if (def->n_blocks == 0) {
+                snprintf(why, n, "--vary h_over_spacing: the scene has no fluid block, so no spacing");
+                return false;
+            }
+            double s = INFINITY;
+            for (int b = 0; b < def->n_blocks; b++) s = fmin(s, def->blocks[b].spacing);
+            char assign[200];
+            snprintf(assign, sizeof assign, "kernels.h=%.9g", r * s);
+            if (sph_scene_set(def, assign, &err) != SPH_ERR_OK) {
+                core_message(why, n, kn->key, v, &err);
+                return false;
+            }
+        }
+    }
+    if (sph_scene_validate(def, &err) != SPH_ERR_OK) {
+        char combo[400] = "";
+        size_t len = 0;
+        for (int k = 0; k < p->n_knobs && len < sizeof combo; k++)
+            len += (size_t)snprintf(combo + len, sizeof combo - len, "%s%s=%s", k ? " " : "", p->knob[k].key,
+                                    p->knob[k].value[idx[k]]);
+        snprintf(why, n, "combination %s: %s", combo, err.msg);
+        return false;
+    }
+    return true;
+}
+
+int study_pareto(const double *time, const double *error, int n, bool *front)
+{
+    int count = 0;
+    for (int i = 0; i < n; i++) {
+        front[i] = isfinite(time[i]) && isfinite(error[i]) && time[i] > 0 && error[i] >= 0;
+        if (!front[i]) continue;
+        for (int j = 0; j < n && front[i]; j++) {
+            if (j == i || !(isfinite(time[j]) && isfinite(error[j]) && time[j] > 0 && error[j] >= 0)) continue;
+            if (time[j] <= time[i] && error[j] <= error[i] && (time[j] < time[i] || error[j] < error[i]))
+                front[i] = false;
+        }
+        count += front[i];
+    }
+    return count;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double study_median(const double *v, int n)
+{
+    double *s = malloc((size_t)(n > 0 ? n : 1) * sizeof *s);
+    if (!s) return NAN;
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (isfinite(v[i])) s[m++] = v[i];
+    double r = NAN;
+    if (m) {
+        qsort(s, (size_t)m, sizeof *s, cmp_double);
+        r = m % 2 ? s[m / 2] : 0.5 * (s[m / 2 - 1] + s[m / 2]);
+    }
+    free(s);
+    return r;
+}
+
+/* A value for the CSV: quoted if it holds a comma, a quote or a space. */
+static void csv_text(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\" \t")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"') fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+bool study_write_csv(FILE *f, const study_plan *p, study_metric m, const study_row *rows, int n)
+{
+    const char *extra[STUDY_MAX_EXTRA];
+    int ne = study_metric_extras(m, extra);
+    fputs("combo", f);
+    for (int k = 0; k < p->n_knobs; k++) {
+        fputc(',', f);
+        csv_text(f, p->knob[k].key);
+    }
+    fputs(",particles,steps,t_end,error,ms_per_step,total_s,pareto,stopped", f);
+    for (int e = 0; e < ne; e++) fprintf(f, ",%s", extra[e]);
+    fputc('\n', f);
+    for (int i = 0; i < n; i++) {
+        const study_row *r = &rows[i];
+        fprintf(f, "%d", i + 1);
+        for (int k = 0; k < p->n_knobs; k++) {
+            fputc(',', f);
+            csv_text(f, p->knob[k].value[r->idx[k]]);
+        }
+        fprintf(f, ",%u,%llu,%.9g,%.9g,%.9g,%.9g,%d,%d", r->r.particles, (unsigned long long)r->r.steps, r->r.t_end,
+                r->r.error, r->ms_per_step, r->total_s, r->front ? 1 : 0, r->r.stopped ? 1 : 0);
+        for (int e = 0; e < ne; e++) fprintf(f, ",%.9g", r->r.extra[e]);
+        fputc('\n', f);
+    }
+    return !ferror(f);
+}

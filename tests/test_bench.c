@@ -1,0 +1,280 @@
+/* sphlab bench, through the binary: the quick ladder's CSV and JSON (every
+ * level present and checked, max N positive, a hash beating brute force),
+ * a level that computes something else failing its check, the scaling and
+ * machine outputs, and bad command lines.
+ *
+ * No assertion depends on timings except one that survives any load: the
+ * spatial hash (O(N)) reaches a larger N than brute force (O(N^2)). */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "test_util.h"
+
+static char g_out[1 << 16];
+
+static void make_dir(char *path, size_t cap)
+{
+    snprintf(path, cap, "/tmp/sphlab-bench-XXXXXX");
+    cr_assert(mkdtemp(path) != NULL, "cannot make a temporary directory");
+}
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    cr_assert(f != NULL, "%s was not written", path);
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = malloc((size_t)n + 1);
+    cr_assert(buf != NULL);
+    cr_assert_eq(fread(buf, 1, (size_t)n, f), (size_t)n);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+static long file_size(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 ? (long)st.st_size : -1;
+}
+
+/* The level names, from `sphlab bench levels`. */
+static int level_names(char names[][16], int cap)
+{
+    static char out[8192];
+    int rc = test_sphlab("bench levels", out, sizeof out);
+    cr_assert_eq(rc, 0, "bench levels: exit %d\n%s", rc, out);
+    int n = 0;
+    char *save = NULL;
+    bool header = true;
+    for (char *line = strtok_r(out, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+        if (header) { /* "level description threads scene keys" */
+            header = false;
+            continue;
+        }
+        if (line[0] != 'L' || n == cap) break;
+        sscanf(line, "%15s", names[n++]);
+    }
+    cr_assert(n >= 3, "bench levels lists %d levels", n);
+    return n;
+}
+
+/* A CSV without quoted fields: rows of cells. */
+typedef struct csv {
+    char *text;
+    int nrows, ncols;
+    char *cell[64][80];
+} csv;
+
+static void csv_read(csv *c, const char *path)
+{
+    memset(c, 0, sizeof *c);
+    c->text = slurp(path);
+    char *save = NULL;
+    for (char *line = strtok_r(c->text, "\n", &save); line && c->nrows < 64; line = strtok_r(NULL, "\n", &save)) {
+        int k = 0;
+        char *p = line;
+        for (;;) {
+            char *comma = strchr(p, ',');
+            if (k < 80) c->cell[c->nrows][k++] = p;
+            if (!comma) break;
+            *comma = '\0';
+            p = comma + 1;
+        }
+        if (c->nrows == 0) c->ncols = k;
+        cr_assert_eq(k, c->ncols, "%s: row %d has %d cells, the header %d", path, c->nrows, k, c->ncols);
+        c->nrows++;
+    }
+}
+
+static int csv_col(const csv *c, const char *name)
+{
+    for (int k = 0; k < c->ncols; k++)
+        if (strcmp(c->cell[0][k], name) == 0) return k;
+    cr_assert_fail("no column '%s'", name);
+    return -1;
+}
+
+static int csv_row(const csv *c, const char *level)
+{
+    for (int r = 1; r < c->nrows; r++)
+        if (strcmp(c->cell[r][0], level) == 0) return r;
+    return -1;
+}
+
+Test(bench, quick_ladder_every_level_checked_and_a_hash_beats_brute_force, .timeout = 600)
+{
+    char dir[64], args[256], path[256];
+    make_dir(dir, sizeof dir);
+    snprintf(args, sizeof args, "bench ladder --quick --quiet --out %s", dir);
+    int rc = test_sphlab(args, g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
+
+    char names[32][16];
+    int nl = level_names(names, 32);
+    csv c;
+    snprintf(path, sizeof path, "%s/ladder-3d.csv", dir);
+    csv_read(&c, path);
+    cr_assert_eq(c.nrows - 1, nl, "%d rows for %d levels", c.nrows - 1, nl);
+    int cmax = csv_col(&c, "max_n"), ccheck = csv_col(&c, "check"), cref = csv_col(&c, "check_ref");
+    int cms = csv_col(&c, "ms_per_step"), cdx = csv_col(&c, "max_dx_m"), csets = csv_col(&c, "sets_differ");
+    csv_col(&c, "neighbours_ms");
+    csv_col(&c, "search_pairs_per_s_core");
+    double max_n[32];
+    for (int i = 0; i < nl; i++) {
+        int r = csv_row(&c, names[i]);
+        cr_assert(r == i + 1, "level %s: row %d, want %d (in ladder order)", names[i], r, i + 1);
+        cr_assert_str_eq(c.cell[r][ccheck], "PASS", "level %s: check %s", names[i], c.cell[r][ccheck]);
+        cr_assert(c.cell[r][cref][0] == 'L', "level %s: no reference named", names[i]);
+        cr_assert_str_eq(c.cell[r][csets], "0", "level %s: neighbour sets differ", names[i]);
+        cr_assert(atof(c.cell[r][cdx]) <= 1e-4, "level %s: dx %s", names[i], c.cell[r][cdx]);
+        max_n[i] = atof(c.cell[r][cmax]);
+        cr_assert(max_n[i] > 0, "level %s: max N %s", names[i], c.cell[r][cmax]);
+        cr_assert(atof(c.cell[r][cms]) > 0, "level %s: ms per step %s", names[i], c.cell[r][cms]);
+    }
+    /* the one timing assertion: O(N) against O(N^2), a factor of several at 60 steps/s */
+    cr_assert_str_eq(names[0], "L0");
+    cr_assert(max_n[1] >= max_n[0] && max_n[2] >= max_n[0],
+              "max N: L0 %g, L1 %g, L2 %g: the hash should reach at least brute force's N", max_n[0], max_n[1],
+              max_n[2]);
+    free(c.text);
+
+    snprintf(path, sizeof path, "%s/ladder-3d.json", dir);
+    char *json = slurp(path);
+    cr_assert(strstr(json, "\"all_checks_pass\": true"), "%s", json);
+    cr_assert(strstr(json, "\"dim\": 3"));
+    for (int i = 0; i < nl; i++) {
+        char key[64];
+        snprintf(key, sizeof key, "\"level\": \"%.15s\"", names[i]);
+        char *at = strstr(json, key);
+        cr_assert(at != NULL, "JSON: no %s", key);
+        char *check = strstr(at, "\"check\": ");
+        cr_assert(check && strncmp(check, "\"check\": \"PASS\"", 15) == 0, "JSON: %s not PASS", names[i]);
+        char *mx = strstr(at, "\"max_n\": ");
+        cr_assert(mx && atof(mx + 9) == max_n[i], "JSON: %s max_n differs from the CSV's %g", names[i], max_n[i]);
+    }
+    free(json);
+
+    const char *ext[2] = {"png", "pdf"};
+    for (int e = 0; e < 2; e++) {
+        snprintf(path, sizeof path, "%s/ladder-3d.%s", dir, ext[e]);
+        cr_assert(file_size(path) > 1000, "%s: missing or empty", path);
+        char *head = slurp(path);
+        cr_assert(memcmp(head, e ? "%PDF" : "\x89PNG", 4) == 0, "%s: not a %s", path, ext[e]);
+        free(head);
+    }
+}
+
+/* A level that computes something else (a larger h) is caught and flagged,
+ * and the command exits non-zero. */
+Test(bench, a_level_with_other_physics_fails_its_check, .timeout = 300)
+{
+    char dir[64], args[256], path[256];
+    make_dir(dir, sizeof dir);
+    snprintf(args, sizeof args,
+             "bench ladder --quick --quiet --fps 2000 --at 500 --levels L0,L3 --set L3:kernels.h=0.0404 --out %s", dir);
+    int rc = test_sphlab(args, g_out, sizeof g_out);
+    cr_assert_eq(rc, 1, "%s: exit %d, want 1\n%s", args, rc, g_out);
+    csv c;
+    snprintf(path, sizeof path, "%s/ladder-3d.csv", dir);
+    csv_read(&c, path);
+    cr_assert_eq(c.nrows, 3);
+    int ccheck = csv_col(&c, "check"), csets = csv_col(&c, "sets_differ");
+    cr_assert_str_eq(c.cell[csv_row(&c, "L0")][ccheck], "PASS");
+    int r = csv_row(&c, "L3");
+    cr_assert_str_eq(c.cell[r][ccheck], "FAIL");
+    cr_assert(atoi(c.cell[r][csets]) > 0, "L3 with a larger h: neighbour sets should differ");
+    free(c.text);
+    snprintf(path, sizeof path, "%s/ladder-3d.json", dir);
+    char *json = slurp(path);
+    cr_assert(strstr(json, "\"all_checks_pass\": false"));
+    free(json);
+}
+
+Test(bench, quick_scaling_has_every_level_in_2d, .timeout = 300)
+{
+    char dir[64], args[256], path[256];
+    make_dir(dir, sizeof dir);
+    snprintf(args, sizeof args, "bench scaling --quick --quiet --dim 2 --out %s", dir);
+    int rc = test_sphlab(args, g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
+    char names[32][16];
+    int nl = level_names(names, 32);
+    csv c;
+    snprintf(path, sizeof path, "%s/scaling-2d.csv", dir);
+    csv_read(&c, path);
+    int cn = csv_col(&c, "n"), cms = csv_col(&c, "ms_per_step");
+    for (int i = 0; i < nl; i++) {
+        int rows = 0;
+        double last_n = 0;
+        for (int r = 1; r < c.nrows; r++) {
+            if (strcmp(c.cell[r][0], names[i]) != 0) continue;
+            rows++;
+            double n = atof(c.cell[r][cn]);
+            cr_assert(n > last_n, "level %s: N not increasing", names[i]);
+            cr_assert(atof(c.cell[r][cms]) > 0);
+            last_n = n;
+        }
+        cr_assert(rows >= 3, "level %s: %d sizes", names[i], rows);
+    }
+    free(c.text);
+    snprintf(path, sizeof path, "%s/scaling-2d.png", dir);
+    cr_assert(file_size(path) > 1000);
+    snprintf(path, sizeof path, "%s/scaling-2d.pdf", dir);
+    cr_assert(file_size(path) > 1000);
+}
+
+Test(bench, machine_limits_are_written, .timeout = 120)
+{
+    char dir[64], args[256], path[256];
+    make_dir(dir, sizeof dir);
+    snprintf(args, sizeof args, "bench machine --quick --quiet --out %s", dir);
+    int rc = test_sphlab(args, g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
+    snprintf(path, sizeof path, "%s/machine.json", dir);
+    char *json = slurp(path);
+    const char *keys[] = {"\"triad_gbs_1_core\": ", "\"fma_gflops_1_core\": ", "\"peak_gflops_per_core\": "};
+    for (int k = 0; k < 3; k++) {
+        char *at = strstr(json, keys[k]);
+        cr_assert(at && atof(at + strlen(keys[k])) > 0, "machine.json: %s missing or not positive", keys[k]);
+    }
+    free(json);
+}
+
+Test(bench, bad_command_lines_exit_2)
+{
+    const char *bad[] = {
+        "bench",
+        "bench nonsense",
+        "bench ladder --dim 4",
+        "bench ladder --dim",
+        "bench ladder --fps 0",
+        "bench ladder --fps abc",
+        "bench ladder --at 0",
+        "bench ladder --at 1e9",
+        "bench ladder --levels L0,L99",
+        "bench ladder --levels L0,L0",
+        "bench ladder --set L99:search.sort=none",
+        "bench ladder --set search.bogus=1",
+        "bench ladder --set search.sort=sideways",
+        "bench ladder --bogus",
+        "bench scaling extra",
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        int rc = test_sphlab(bad[i], g_out, sizeof g_out);
+        cr_assert_eq(rc, 2, "'%s': exit %d, want 2\n%s", bad[i], rc, g_out);
+    }
+    int rc = test_sphlab("bench --help", g_out, sizeof g_out);
+    cr_assert_eq(rc, 0);
+    cr_assert(strstr(g_out, "ladder") && strstr(g_out, "--quick"));
+}
+
+Test(bench, unwritable_output_fails_before_measuring, .timeout = 30)
+{
+    int rc = test_sphlab("bench ladder --quick --quiet --out /proc/sphlab-bench", g_out, sizeof g_out);
+    cr_assert_eq(rc, 1, "exit %d, want 1\n%s", rc, g_out);
+}

@@ -1,0 +1,442 @@
+/* sphlab lesson: every lesson exports its figures headless (--quick), and each
+ * figure is checked for its content, not only its existence: a PNG decodes at
+ * its size and is not a uniform image, a PDF is a PDF, a CSV has its header
+ * and its rows (and the numbers the lesson is about: particle 7's cell, hash
+ * and key; the start table of the seed's keys; density lower at the free
+ * surface than inside; ...), and report.md names the lesson and holds
+ * numbers. Also: --list, bad numbers, the window without a display, the
+ * window through SDL's offscreen driver, an unwritable output directory. */
+#define _DEFAULT_SOURCE /* mkdtemp, setenv */
+#include <criterion/criterion.h>
+#include <ctype.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "stb_image.h"
+#include "test_util.h"
+
+static char out[65536];
+
+static const char *temp_dir(void)
+{
+    static char path[64];
+    snprintf(path, sizeof path, "/tmp/sphlab-lesson-XXXXXX");
+    cr_assert(mkdtemp(path), "cannot make a temporary directory");
+    return path;
+}
+
+static void remove_dir(const char *dir)
+{
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    cr_assert(system(cmd) == 0);
+}
+
+static char *read_all(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = malloc((size_t)n + 1);
+    cr_assert(buf && fread(buf, 1, (size_t)n, f) == (size_t)n);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+/* Whether this build has a command (`sphlab --help` lists it). */
+static bool has_command(const char *name)
+{
+    static char help[8192];
+    if (!help[0]) test_sphlab("--help", help, sizeof help);
+    char pat[64];
+    snprintf(pat, sizeof pat, "\n  %s ", name);
+    return strstr(help, pat) != NULL;
+}
+
+/* ---- content checks ------------------------------------------------------------ */
+
+/* A PNG that decodes (at w x h if given) and is not one colour: at least 2%
+ * of its pixels differ clearly from its most common corner colour. */
+static void check_png(const char *dir, const char *file, int w, int h)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    int iw, ih, n;
+    unsigned char *px = stbi_load(path, &iw, &ih, &n, 3);
+    cr_assert(px, "%s does not decode as a PNG: %s", file, stbi_failure_reason());
+    if (w) cr_expect(iw == w && ih == h, "%s is %dx%d, expected %dx%d", file, iw, ih, w, h);
+    cr_expect(iw >= 64 && ih >= 64, "%s is only %dx%d", file, iw, ih);
+    const unsigned char *c = px; /* top-left corner: the background */
+    long differ = 0, total = (long)iw * ih;
+    for (long i = 0; i < total; i++) {
+        const unsigned char *p = px + 3 * i;
+        if (abs(p[0] - c[0]) + abs(p[1] - c[1]) + abs(p[2] - c[2]) > 60) differ++;
+    }
+    cr_expect(differ > total / 50, "%s is (nearly) uniform: %ld of %ld pixels differ from the background", file,
+              differ, total);
+    stbi_image_free(px);
+}
+
+static void check_pdf(const char *dir, const char *file)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    char *text = read_all(path);
+    cr_assert(text, "%s is missing", file);
+    cr_expect(strncmp(text, "%PDF-", 5) == 0, "%s is not a PDF", file);
+    free(text);
+}
+
+typedef struct csv {
+    char *text;
+    char *line[4096];
+    int nlines;
+} csv;
+
+/* A CSV whose header starts with `header` and that has at least min_rows rows,
+ * each with as many fields as the header. */
+static void check_csv(const char *dir, const char *file, const char *header, int min_rows, csv *keep)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    csv c = {0};
+    c.text = read_all(path);
+    cr_assert(c.text, "%s is missing", file);
+    for (char *l = strtok(c.text, "\n"); l && c.nlines < 4096; l = strtok(NULL, "\n")) c.line[c.nlines++] = l;
+    cr_assert(c.nlines > 0, "%s is empty", file);
+    cr_expect(strncmp(c.line[0], header, strlen(header)) == 0, "%s: header '%s', expected it to start with '%s'",
+              file, c.line[0], header);
+    cr_expect(c.nlines - 1 >= min_rows, "%s has %d rows, expected at least %d", file, c.nlines - 1, min_rows);
+    int fields = 1;
+    for (const char *p = c.line[0]; *p; p++) fields += *p == ',';
+    for (int i = 1; i < c.nlines; i++) {
+        int f = 1;
+        for (const char *p = c.line[i]; *p; p++) f += *p == ',';
+        cr_expect(f == fields, "%s line %d has %d fields, the header %d", file, i + 1, f, fields);
+    }
+    if (keep) *keep = c;
+    else free(c.text);
+}
+
+/* Field k of a CSV line, as a number. */
+static double field(const char *line, int k)
+{
+    const char *p = line;
+    for (int i = 0; i < k && p; i++) {
+        p = strchr(p, ',');
+        if (p) p++;
+    }
+    cr_assert(p, "no field %d in '%s'", k, line);
+    return strtod(p, NULL);
+}
+
+/* report.md names the lesson and holds measured numbers (a decimal with digits
+ * on both sides of the point, in a table row). */
+static char *check_report(const char *dir, int num, const char *title)
+{
+    char path[512], want[128];
+    snprintf(path, sizeof path, "%s/report.md", dir);
+    char *text = read_all(path);
+    cr_assert(text, "report.md is missing");
+    snprintf(want, sizeof want, "# Lesson %d: %s", num, title);
+    cr_expect(strstr(text, want), "report.md does not start with '%s'", want);
+    cr_expect(strstr(text, "## Figures"), "report.md has no list of figures");
+    int numbers = 0;
+    for (const char *p = text; *p; p++)
+        if (*p == '.' && p > text && isdigit((unsigned char)p[-1]) && isdigit((unsigned char)p[1])) numbers++;
+    cr_expect(numbers >= 5, "report.md holds %d decimal numbers", numbers);
+    cr_expect(strstr(text, "| ") != NULL, "report.md has no table");
+    cr_expect(!strstr(text, "A command failed") && !strstr(text, "command(s) or file(s) failed"),
+              "report.md says something failed");
+    return text;
+}
+
+static const char *export_lesson(int num)
+{
+    const char *dir = temp_dir();
+    char args[256];
+    snprintf(args, sizeof args, "lesson %d --export %s --quick --quiet", num, dir);
+    int rc = test_sphlab(args, out, sizeof out);
+    cr_assert(rc == 0, "sphlab %s exited %d:\n%s", args, rc, out);
+    return dir;
+}
+
+/* ---- the command ------------------------------------------------------------------ */
+
+Test(lesson, list)
+{
+    int rc = test_sphlab("lesson --list", out, sizeof out);
+    cr_assert(rc == 0, "exit %d: %s", rc, out);
+    const char *titles[] = {"Kernel estimation",     "Density summation", "The pressure gradient",
+                            "The viscosity Laplacian", "The spatial hash",  "Sorting and offsets",
+                            "The full simulation",   "The optimisation ladder", "What accuracy costs"};
+    for (int i = 0; i < 9; i++) {
+        char line[64];
+        snprintf(line, sizeof line, "\n%-3d %s", i + 1, titles[i]);
+        cr_expect(strstr(out, line), "--list lacks '%s':\n%s", line + 1, out);
+    }
+}
+
+Test(lesson, bad_arguments)
+{
+    cr_expect(test_sphlab("lesson 0", out, sizeof out) == 2, "lesson 0: %s", out);
+    cr_expect(strstr(out, "1 to 9"), "lesson 0 does not say the range: %s", out);
+    cr_expect(test_sphlab("lesson 10", out, sizeof out) == 2, "lesson 10: %s", out);
+    cr_expect(test_sphlab("lesson abc", out, sizeof out) == 2, "lesson abc: %s", out);
+    cr_expect(test_sphlab("lesson", out, sizeof out) == 2, "lesson alone: %s", out);
+    cr_expect(test_sphlab("lesson 3 --export", out, sizeof out) == 2, "--export without a directory: %s", out);
+    cr_expect(test_sphlab("lesson 3 --quick", out, sizeof out) == 2, "--quick without --export: %s", out);
+}
+
+Test(lesson, no_display)
+{
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    unsetenv("SDL_VIDEODRIVER");
+    int rc = test_sphlab("lesson 5", out, sizeof out);
+    cr_expect(rc == 1, "exit %d without a display: %s", rc, out);
+    cr_expect(strstr(out, "no display"), "no clear message: %s", out);
+    cr_expect(strstr(out, "--export"), "the message does not point to --export: %s", out);
+}
+
+Test(lesson, dry_run_names_the_view_command)
+{
+    int rc = test_sphlab("lesson 7 --dry-run", out, sizeof out);
+    cr_assert(rc == 0, "exit %d: %s", rc, out);
+    cr_expect(strstr(out, " view ") && strstr(out, "07-full-simulation/lesson.ini") && strstr(out, "--paused"),
+              "dry run: %s", out);
+}
+
+/* The window, through SDL's offscreen driver: `lesson 5` runs `view` with the
+ * lesson's scene and overlays; extra options go to `view`. */
+Test(lesson, window_offscreen)
+{
+    if (!has_command("view")) cr_skip_test("no view command in this build");
+    setenv("SDL_VIDEODRIVER", "offscreen", 1);
+    const char *dir = temp_dir();
+    char args[256];
+    snprintf(args, sizeof args, "lesson 5 --frames 2 --keys . --threads 1 --screenshot %s/shot.png", dir);
+    int rc = test_sphlab(args, out, sizeof out);
+    cr_assert(rc == 0, "exit %d: %s", rc, out);
+    check_png(dir, "shot.png", 1100, 760);
+    remove_dir(dir);
+}
+
+Test(lesson, unwritable_output)
+{
+    int rc = test_sphlab("lesson 2 --export /proc/sphlab-no/such --quick --quiet", out, sizeof out);
+    cr_expect(rc != 0, "exporting into /proc succeeded: %s", out);
+    cr_expect(strstr(out, "/proc/sphlab-no/such"), "the message does not name the directory: %s", out);
+}
+
+/* ---- each lesson's export -------------------------------------------------------------- */
+
+Test(lesson, export_1_kernel_estimation)
+{
+    const char *dir = export_lesson(1);
+    free(check_report(dir, 1, "Kernel estimation"));
+    check_png(dir, "kernels-2d.png", 0, 0);
+    check_pdf(dir, "kernels-2d.pdf");
+    check_csv(dir, "kernels-2d.csv", "r_over_h,r,w_poly6", 100, NULL);
+    check_png(dir, "kernels-3d.png", 0, 0);
+    check_png(dir, "kernel-viscosity-2d.png", 0, 0);
+    if (has_command("estimate")) {
+        check_png(dir, "estimate-1d.png", 0, 0);
+        check_pdf(dir, "estimate-1d.pdf");
+        check_csv(dir, "estimate-1d.csv", "dim,n,", 6, NULL);
+        check_png(dir, "estimate-2d.png", 0, 0);
+        check_csv(dir, "estimate-2d.csv", "dim,n,", 6, NULL);
+        check_png(dir, "estimate-2d-lattice.png", 0, 0);
+    }
+    csv c;
+    check_csv(dir, "density-vs-h.csv",
+              "h_over_spacing,h,neighbours,interior_mean,interior_rms_percent,surface_mean,surface_deficit_percent", 3, &c);
+    /* a larger h: less noise inside, a deeper deficit at the surface */
+    cr_expect(field(c.line[1], 4) > field(c.line[c.nlines - 1], 4), "interior noise does not fall with h");
+    cr_expect(field(c.line[1], 6) < field(c.line[c.nlines - 1], 6), "surface deficit does not grow with h");
+    free(c.text);
+    check_png(dir, "density-vs-h.png", 1000, 650);
+    check_pdf(dir, "density-vs-h.pdf");
+    check_png(dir, "density-h1.5.png", 900, 650);
+    check_png(dir, "density-h4.png", 900, 650);
+    remove_dir(dir);
+}
+
+Test(lesson, export_2_density_summation)
+{
+    const char *dir = export_lesson(2);
+    free(check_report(dir, 2, "Density summation"));
+    csv c;
+    check_csv(dir, "density-profile.csv", "y,rho_volume,rho_reflect", 20, &c);
+    /* floor row: the volume walls make up the missing support, reflect does not */
+    cr_expect(field(c.line[1], 1) > field(c.line[1], 2) + 100, "floor: %s", c.line[1]);
+    /* the top row lacks neighbours with either walls */
+    cr_expect(field(c.line[c.nlines - 1], 1) < 900 && field(c.line[c.nlines - 1], 2) < 900, "top: %s",
+              c.line[c.nlines - 1]);
+    /* the interior reads a little above rho0 on a lattice */
+    double mid = field(c.line[c.nlines / 2], 1);
+    cr_expect(mid > 1000 && mid < 1030, "interior density %g", mid);
+    free(c.text);
+    check_csv(dir, "density-points.csv", "wall_model,h_over_spacing,particle,rho,error_percent", 18, NULL);
+    check_png(dir, "density-profile.png", 1000, 650);
+    check_pdf(dir, "density-profile.pdf");
+    check_png(dir, "pool-walls.png", 1000, 600);
+    check_pdf(dir, "pool-walls.pdf");
+    check_png(dir, "density.png", 1000, 640);
+    check_png(dir, "density-reflect.png", 1000, 640);
+    remove_dir(dir);
+}
+
+Test(lesson, export_3_pressure_gradient)
+{
+    const char *dir = export_lesson(3);
+    free(check_report(dir, 3, "The pressure gradient"));
+    check_csv(dir, "pool-stats.csv", "step,t,dt,n,ekin", 300, NULL);
+    csv c;
+    check_csv(dir, "pressure-depth.csv", "y,p_sph,p_hydrostatic", 10, &c);
+    cr_expect(field(c.line[2], 1) > field(c.line[c.nlines - 1], 1), "pressure does not fall with height");
+    free(c.text);
+    check_png(dir, "pressure-depth.png", 1000, 650);
+    check_csv(dir, "eos.csv", "rho_linear,p_linear,rho_tait,p_tait", 700, NULL);
+    check_png(dir, "eos.png", 1000, 650);
+    check_png(dir, "pool-energy.png", 1000, 600);
+    check_pdf(dir, "pool-energy.pdf");
+    check_csv(dir, "energy.csv", "density_kernel,pressure_kernel,form,steps,e_start,e_end,change_percent", 4, NULL);
+    check_csv(dir, "momentum.csv", "form,steps,sum_m_abs_v,abs_sum_m_v,ratio", 2, &c);
+    for (int i = 1; i < c.nlines; i++) /* pair forces equal and opposite: momentum stays at round-off */
+        cr_expect(field(c.line[i], 4) < 1e-5, "momentum not conserved: %s", c.line[i]);
+    free(c.text);
+    check_png(dir, "pressure.png", 1000, 560);
+    remove_dir(dir);
+}
+
+Test(lesson, export_4_viscosity)
+{
+    const char *dir = export_lesson(4);
+    free(check_report(dir, 4, "The viscosity Laplacian"));
+    csv c;
+    check_csv(dir, "taylor-green.csv", "run,t,ekin_over_ekin0,analytic", 200, &c);
+    double last = field(c.line[100], 2), an = field(c.line[100], 3); /* the first run's last row */
+    cr_expect(last > 0.8 && last < 0.98, "E/E0 after 100 steps: %g", last);
+    cr_expect(an > 0.8 && an < 0.9, "analytic E/E0 after 0.1 s: %g", an);
+    free(c.text);
+    check_png(dir, "taylor-green.png", 1000, 650);
+    check_pdf(dir, "taylor-green.pdf");
+    check_png(dir, "kernel-viscosity-2d.png", 0, 0);
+    check_csv(dir, "kernel-viscosity-2d.csv", "r_over_h,r,w,dw_dr,lap", 100, NULL);
+    check_png(dir, "kernel-viscosity-3d.png", 0, 0);
+    check_png(dir, "speed.png", 800, 700);
+    remove_dir(dir);
+}
+
+Test(lesson, export_5_spatial_hash)
+{
+    const char *dir = export_lesson(5);
+    char *report = check_report(dir, 5, "The spatial hash");
+    cr_expect(strstr(report, "Particle 7: cell (4, 1), hash 9800625, key 5"), "report lacks particle 7's numbers");
+    free(report);
+    csv c;
+    check_csv(dir, "hash-example.csv", "particle,x,y,cell_x,cell_y,hash,key", 10, &c);
+    /* particle 7, as on the seed's slide: cell (4, 1); the seed's primes: 4 * 15823 + 9737333 */
+    cr_expect(field(c.line[8], 0) == 7 && field(c.line[8], 3) == 4 && field(c.line[8], 4) == 1, "%s", c.line[8]);
+    cr_expect(field(c.line[8], 5) == 9800625 && field(c.line[8], 6) == 5, "%s", c.line[8]);
+    free(c.text);
+    check_png(dir, "hash.png", 1100, 760);
+    check_csv(dir, "collisions.csv", "table_size,keys,occupied_cells,colliding_cells,neighbours_ms", 2, &c);
+    /* 16 keys for a few hundred cells: every occupied cell shares its key */
+    cr_expect(field(c.line[2], 1) == 16 && field(c.line[2], 3) == field(c.line[2], 2), "%s", c.line[2]);
+    free(c.text);
+    check_png(dir, "collisions.png", 1000, 640);
+    remove_dir(dir);
+}
+
+Test(lesson, export_6_sorting_offsets)
+{
+    const char *dir = export_lesson(6);
+    free(check_report(dir, 6, "Sorting and offsets"));
+    csv c;
+    check_csv(dir, "bitonic-steps.csv", "stage,step,w,kind,swaps,k0", 10, &c);
+    cr_expect(strstr(c.line[c.nlines - 1], ",0,1,1,2,2,2,4,6,7,9"), "not sorted after the last step: %s",
+              c.line[c.nlines - 1]);
+    free(c.text);
+    check_csv(dir, "offsets-slide.csv", "key,count,start", 10, &c);
+    /* the seed's keys: start of key 6 is entry 7, key 8 is empty */
+    cr_expect(field(c.line[7], 0) == 6 && field(c.line[7], 2) == 7, "%s", c.line[7]);
+    cr_expect(strstr(c.line[9], "8,0,inf"), "%s", c.line[9]);
+    free(c.text);
+    check_csv(dir, "offsets.csv", "key,count,start", 10, NULL);
+    if (has_command("view")) {
+        const char *shots[] = {"pass-1-external.png", "pass-2-hash.png", "pass-3-sort.png",
+                               "pass-4-reorder.png",  "pass-5-offsets.png", "pass-6-neighbours.png"};
+        for (int i = 0; i < 6; i++) check_png(dir, shots[i], 1100, 760);
+    }
+    check_csv(dir, "sort-time.csv", "particles,bitonic_ms,counting_ms,qsort_ms", 2, &c);
+    cr_expect(field(c.line[2], 1) > field(c.line[2], 2), "bitonic not slower than counting: %s", c.line[2]);
+    free(c.text);
+    check_png(dir, "sort-time.png", 1000, 650);
+    remove_dir(dir);
+}
+
+Test(lesson, export_7_full_simulation)
+{
+    const char *dir = export_lesson(7);
+    char *report = check_report(dir, 7, "The full simulation");
+    cr_expect(strstr(report, "| neighbours |") && strstr(report, "| all passes |"), "no timing table in the report");
+    free(report);
+    check_csv(dir, "stats.csv", "step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed", 200, NULL);
+    check_csv(dir, "final.csv", "id,x,y,z,vx,vy,vz,rho,p", 1000, NULL);
+    check_png(dir, "passes.png", 0, 0);
+    check_pdf(dir, "passes.pdf");
+    check_png(dir, "passes-time.png", 0, 0);
+    check_png(dir, "energy-density.png", 0, 0);
+    for (int i = 0; i < 3; i++) check_png(dir, i == 0 ? "frames/frame_00000.png" : i == 1 ? "frames/frame_00001.png"
+                                                                                      : "frames/frame_00002.png",
+                                          960, 520);
+    if (has_command("view")) {
+        const char *shots[] = {"pass-01-external.png", "pass-06-neighbours.png", "pass-07-density.png",
+                               "pass-09-pressure_force.png", "pass-12-walls.png"};
+        for (int i = 0; i < 5; i++) check_png(dir, shots[i], 960, 560);
+    }
+    remove_dir(dir);
+}
+
+Test(lesson, export_8_optimisation_ladder)
+{
+    const char *dir = export_lesson(8);
+    free(check_report(dir, 8, "The optimisation ladder"));
+    if (has_command("bench")) {
+        csv c;
+        check_csv(dir, "levels.csv", "level,threads,particles,ms_per_step,neighbours_ms,speedup,steps_per_s", 7, &c);
+        /* brute force is the slowest level */
+        double l0 = field(c.line[1], 3);
+        for (int i = 2; i < c.nlines; i++) cr_expect(field(c.line[i], 3) < l0, "%s not faster than L0", c.line[i]);
+        free(c.text);
+        check_png(dir, "levels.png", 1000, 600);
+        check_pdf(dir, "levels.pdf");
+    }
+    check_png(dir, "block.png", 900, 700);
+    remove_dir(dir);
+}
+
+Test(lesson, export_9_accuracy)
+{
+    const char *dir = export_lesson(9);
+    free(check_report(dir, 9, "What accuracy costs"));
+    csv c;
+    if (has_command("study")) {
+        check_csv(dir, "accuracy.csv", "combo,", 4, NULL);
+        check_csv(dir, "accuracy-precision.csv", "combo,", 2, NULL);
+        check_png(dir, "accuracy-precision.png", 0, 0);
+    } else {
+        check_csv(dir, "accuracy.csv", "spacing,h_over_spacing,accumulate,particles,steps,wall_s", 4, &c);
+        free(c.text);
+    }
+    check_png(dir, "accuracy.png", 0, 0);
+    check_pdf(dir, "accuracy.pdf");
+    remove_dir(dir);
+}
