@@ -46,8 +46,7 @@ $(BUILD)/tests/test_render.o: CORE_CFLAGS += -Isrc/render $(RENDER_CFLAGS)
 $(BUILD)/tests/test_render_%.o: CORE_CFLAGS += -Isrc/render $(RENDER_CFLAGS)
 
 # `make asan`: Mesa (LLVM's JIT, the drivers) keeps allocations until exit
-# by design; LeakSanitizer is told not to report those, only ours.
-check-tests-asan: export LSAN_OPTIONS = suppressions=$(CURDIR)/tests/render/lsan.supp:print_suppressions=0
+# by design; tests/lsan.supp (set by the Makefile) tells LeakSanitizer so.
 
 # Warnings are errors under clang too: `make check-clang` also compiles this module.
 .PHONY: check-clang-render
