@@ -159,6 +159,10 @@ typedef struct bench_machine {
 } bench_machine;
 
 void bench_machine_measure(bench_machine *m, bool quick);
+/* The clock one core gets now [GHz], in about 20 ms (0 if unknown): below
+ * the machine's usual figure when the host is busy, which the other-process
+ * count cannot see (another virtual machine on the same cores). */
+double bench_clock_probe(void);
 void bench_machine_print(FILE *f, const bench_machine *m);
 void bench_machine_json(FILE *f, const bench_machine *m, const char *indent);
 

@@ -34,14 +34,11 @@ static double cpuinfo_mhz(void)
     return mhz;
 }
 
-static double measure_clock_ghz(bool quick)
+static double clock_runs(long iters, int reps)
 {
 #if defined(__x86_64__)
-    /* many short runs (about 5 ms each), the fastest kept: a run that another
-     * process interrupts only comes out slower */
-    const long iters = 2000000;
     double best = 0;
-    for (int rep = 0; rep < (quick ? 10 : 40); rep++) {
+    for (int rep = 0; rep < reps; rep++) {
         uint64_t x = 0;
         double t0 = sph_now_ms();
         for (long i = 0; i < iters; i++)
@@ -54,10 +51,17 @@ static double measure_clock_ghz(bool quick)
     }
     return best;
 #else
-    (void)quick;
+    (void)iters;
+    (void)reps;
     return 0;
 #endif
 }
+
+/* many short runs (about 5 ms each), the fastest kept: a run that another
+ * process interrupts only comes out slower */
+static double measure_clock_ghz(bool quick) { return clock_runs(2000000, quick ? 10 : 40); }
+
+double bench_clock_probe(void) { return clock_runs(1000000, 6); }
 
 static int vector_lanes(void)
 {

@@ -123,7 +123,23 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The neighbour sets of the last step, by particle id, each sorted. */
+/* Whether j is within h of i at the predicted positions, r^2 summed as the
+ * search sums it (one product per statement: never fused into an FMA). */
+static bool within_h(const sph_sim *sim, uint32_t i, uint32_t j)
+{
+    float r2 = 0;
+    for (int d = 0; d < sim->dim; d++) {
+        float dx = sim->P.pred[d][i] - sim->P.pred[d][j];
+        if (sim->period[d] > 0) dx -= sim->period[d] * rintf(dx * sim->inv_period[d]);
+        float sq = dx * dx;
+        r2 += sq;
+    }
+    return r2 < sim->def.h * sim->def.h;
+}
+
+/* The neighbour sets of the last step, by particle id, each sorted. Only
+ * entries within h count: a list built with a margin (a Verlet skin, kept
+ * for several steps) has the same effective set as an exact one. */
 static bool sets_by_id(const sph_sim *sim, bench_state *s)
 {
     const uint32_t n = sim->n;
@@ -132,13 +148,17 @@ static bool sets_by_id(const sph_sim *sim, bench_state *s)
     size_t total = S->nbr_start ? S->nbr_start[n] : 0;
     s->nbr = malloc((total ? total : 1) * sizeof *s->nbr);
     if (!s->nbr_start || !s->nbr) return false;
-    if (!S->nbr_start) return true; /* no neighbour lists: nothing to compare */
-    for (uint32_t i = 0; i < n; i++) s->nbr_start[sim->P.id[i] + 1] = S->nbr_start[i + 1] - S->nbr_start[i];
+    if (!S->nbr_start || !sim->P.pred[0]) return true; /* no neighbour lists: nothing to compare */
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t len = 0;
+        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) len += within_h(sim, i, S->nbr[e]);
+        s->nbr_start[sim->P.id[i] + 1] = len;
+    }
     for (uint32_t id = 0; id < n; id++) s->nbr_start[id + 1] += s->nbr_start[id];
     for (uint32_t i = 0; i < n; i++) {
-        uint32_t *row = s->nbr + s->nbr_start[sim->P.id[i]];
-        uint32_t len = S->nbr_start[i + 1] - S->nbr_start[i];
-        for (uint32_t e = 0; e < len; e++) row[e] = sim->P.id[S->nbr[S->nbr_start[i] + e]];
+        uint32_t *row = s->nbr + s->nbr_start[sim->P.id[i]], len = 0;
+        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++)
+            if (within_h(sim, i, S->nbr[e])) row[len++] = sim->P.id[S->nbr[e]];
         qsort(row, len, sizeof *row, cmp_u32);
     }
     return true;

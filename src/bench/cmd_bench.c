@@ -432,6 +432,7 @@ typedef struct ladder_meta {
     double load0[3], load1[3];
     double n_at, n_check, seconds;
     double others; /* cores other processes kept busy during the run, on average */
+    double ghz0, ghz1; /* clock probe at the start and the end */
     int best;       /* index into res of the level with the largest max N, -1 if none */
     bool target_evaluated, target_met;
     bool all_pass;
@@ -456,7 +457,9 @@ static void write_ladder_json(FILE *f, const bench_opts *o, const level_result *
     fputs(",\n  \"load_end\": ", f);
     write_load(f, m->load1);
     fprintf(f, ",\n  \"seconds\": %.1f,\n  ", m->seconds);
-    json_num(f, "other_processes_cores", m->others, "%.3f", false);
+    json_num(f, "other_processes_cores", m->others, "%.3f", true);
+    json_num(f, "clock_ghz_start", m->ghz0, "%.3f", true);
+    json_num(f, "clock_ghz_end", m->ghz1, "%.3f", false);
     fputs(",\n", f);
     fprintf(f, "  \"scene\": {\"what\": \"a block of water falling in a box twice its size\", \"spacing_m\": %g, "
                "\"h_m\": %g, \"jitter_spacings\": %g, \"stiffness\": 1000, \"viscosity\": 0.002, \"cfl\": 0.4},\n",
@@ -574,6 +577,7 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
     double t_start = sph_now_ms();
     bench_cpu cpu0, cpu1;
     bench_cpu_now(&cpu0);
+    meta.ghz0 = bench_clock_probe();
 
     int ref_small = bench_level_find(BENCH_REF_SMALL), ref_large = bench_level_find(BENCH_REF_LARGE);
     if (ref_small < 0 || ref_large < 0) {
@@ -646,6 +650,7 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
     progress_done();
     bench_cpu_now(&cpu1);
     meta.others = bench_cpu_others(&cpu0, &cpu1);
+    meta.ghz1 = bench_clock_probe();
     bench_state_free(&ref_s.st);
     bench_state_free(&ref_l.st);
     bench_state_free(&ref_l_small.st);
@@ -671,8 +676,9 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
                fps, o->quick ? " (--quick)" : "");
         printf("%s, load %.2f at the start, %.2f at the end, %.0f s\n", meta.date, meta.load0[0], meta.load1[0],
                meta.seconds);
-        printf("other processes kept %.2f of the %d cores busy on average while it ran\n", meta.others,
-               bench_levels_cores());
+        printf("other processes kept %.2f of the %d cores busy on average while it ran; one core's clock %.2f GHz\n"
+               "at the start, %.2f at the end (lower when the host is busy)\n",
+               meta.others, bench_levels_cores(), meta.ghz0, meta.ghz1);
         double worst = 0;
         for (int s = 0; s < o->nsel; s++) worst = fmax(worst, res[s].others);
         if (worst > 0.2)
@@ -811,7 +817,7 @@ static int cmd_scaling(bench_opts *o)
     double load0[3], load1[3];
     bench_now_iso(date, sizeof date);
     bench_loadavg(load0);
-    double t_start = sph_now_ms();
+    double t_start = sph_now_ms(), ghz0 = bench_clock_probe();
     /* N = 128, 256, ... : the quick run stops at 8192 */
     const double n_max = o->quick ? 8192 : (dim == 3 ? 262144 : 524288);
     const double max_ms = o->quick ? 150 : 1000; /* a level stops after a size this slow */
@@ -858,7 +864,7 @@ static int cmd_scaling(bench_opts *o)
     }
     progress_done();
     bench_loadavg(load1);
-    double seconds = (sph_now_ms() - t_start) / 1e3;
+    double seconds = (sph_now_ms() - t_start) / 1e3, ghz1 = bench_clock_probe();
     /* slope of log(ms) against log(N) over the upper half of each level's sizes */
     double slope[BENCH_MAX_LEVELS];
     for (int s = 0; s < o->nsel; s++) {
@@ -876,6 +882,7 @@ static int cmd_scaling(bench_opts *o)
         printf("sphlab bench scaling: %dD, ms per step (median) against N%s\n%s, load %.2f at the start, %.2f at the "
                "end, %.0f s\n",
                dim, o->quick ? " (--quick)" : "", date, load0[0], load1[0], seconds);
+        printf("one core's clock %.2f GHz at the start, %.2f at the end (lower when the host is busy)\n", ghz0, ghz1);
         if (worst > 0.2)
             printf("warning: the machine was busy (others: up to %.2f cores during a level): timings are low and\n"
                    "noisy, the threaded levels worst; re-run when quiet\n",
