@@ -26,6 +26,8 @@ const bench_level bench_levels[] = {
     {"L5", "OpenMP on all cores", "search.method=hash search.sort=counting search.reorder=on search.vector=off", 0},
     {"L6", "vectorised inner loops (AVX-512)",
      "search.method=hash search.sort=counting search.reorder=on search.vector=on", 0},
+    {"L7", "dense grid: a stencil row is one run",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on", 0},
 };
 const int bench_level_count = (int)(sizeof bench_levels / sizeof bench_levels[0]);
 
@@ -83,7 +85,7 @@ int bench_k_near(int dim, double n)
 
 /* ---- the scene ----------------------------------------------------------------- */
 
-void bench_scene_ini(int dim, int k, char *out, size_t cap)
+void bench_scene_ini(int dim, int k, double jitter, char *out, size_t cap)
 {
     int side[3];
     bench_sides(dim, k, side);
@@ -100,13 +102,13 @@ void bench_scene_ini(int dim, int k, char *out, size_t cap)
                  "[scene]\nname = bench block 2D\ndimension = 2\neffects = gravity pressure viscosity walls\n"
                  "jitter = %g\n[domain]\nmin = 0 0\nmax = %.9g %.9g\n"
                  "[fluid block]\nmin = %.9g %.9g\nmax = %.9g %.9g\nspacing = %.9g\n",
-                 BENCH_JITTER, box[0], box[1], lo[0], lo[1], hi[0], hi[1], s);
+                 jitter, box[0], box[1], lo[0], lo[1], hi[0], hi[1], s);
     else
         snprintf(out, cap,
                  "[scene]\nname = bench block 3D\ndimension = 3\neffects = gravity pressure viscosity walls\n"
                  "jitter = %g\n[domain]\nmin = 0 0 0\nmax = %.9g %.9g %.9g\n"
                  "[fluid block]\nmin = %.9g %.9g %.9g\nmax = %.9g %.9g %.9g\nspacing = %.9g\n",
-                 BENCH_JITTER, box[0], box[1], box[2], lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], s);
+                 jitter, box[0], box[1], box[2], lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], s);
     size_t len = strlen(out);
     snprintf(out + len, cap > len ? cap - len : 0,
              "[physics]\nrest_density = 1000\nstiffness = 1000\nviscosity = 0.002\nnegative_pressure = clamp\n"
@@ -130,10 +132,11 @@ static bool apply_sets(sph_scene_def *def, const char *sets, char *why, size_t n
     return true;
 }
 
-bool bench_scene_def(const bench_config *cfg, const bench_level *L, int k, sph_scene_def *def, char *why, size_t n)
+bool bench_scene_def(const bench_config *cfg, const bench_level *L, int k, bool check, sph_scene_def *def, char *why,
+                     size_t n)
 {
     char ini[2048];
-    bench_scene_ini(cfg->dim, k, ini, sizeof ini);
+    bench_scene_ini(cfg->dim, k, check ? BENCH_CHECK_JITTER : BENCH_JITTER, ini, sizeof ini);
     sph_error err;
     *def = sph_default_scene_def();
     if (sph_scene_load_string(ini, "bench scene", def, &err) != SPH_ERR_OK) {
@@ -157,10 +160,11 @@ bool bench_scene_def(const bench_config *cfg, const bench_level *L, int k, sph_s
     return true;
 }
 
-bool bench_make_sim(const bench_config *cfg, const bench_level *L, int k, sph_sim **out, char *why, size_t n)
+bool bench_make_sim(const bench_config *cfg, const bench_level *L, int k, bool check, sph_sim **out, char *why,
+                    size_t n)
 {
     sph_scene_def def;
-    if (!bench_scene_def(cfg, L, k, &def, why, n)) return false;
+    if (!bench_scene_def(cfg, L, k, check, &def, why, n)) return false;
     sph_error err;
     if (sph_sim_create(&def, L ? L->threads : 0, out, &err) != SPH_ERR_OK) {
         snprintf(why, n, "%s", err.msg);

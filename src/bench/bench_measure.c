@@ -17,7 +17,7 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
     out->attempts = 1;
     double t0 = sph_now_ms();
     sph_sim *sim;
-    if (!bench_make_sim(cfg, L, k, &sim, why, n)) return false;
+    if (!bench_make_sim(cfg, L, k, false, &sim, why, n)) return false;
     out->create_ms = sph_now_ms() - t0;
     sim->watchdog = cfg->watchdog;
     out->n = sim->n;
@@ -98,7 +98,10 @@ bool bench_measure_retry(const bench_config *cfg, const bench_level *L, int k, c
             out->attempts = a + 1;
             break;
         }
-        if (!(m.others > BENCH_BUSY)) break;
+        /* again if others were busy, or if it missed the rate by less than 10%: a
+         * short burst of load that the average does not show can do that */
+        bool near_miss = fps > 0 && m.steps_per_s >= fps / 1.1;
+        if (!(m.others > BENCH_BUSY) && !near_miss) break;
     }
     return true;
 }
@@ -112,6 +115,7 @@ void bench_state_free(bench_state *s)
     for (int d = 0; d < 3; d++) {
         free(s->pos[d]);
         free(s->vel[d]);
+        free(s->pred1[d]);
     }
     free(s->rho);
     memset(s, 0, sizeof *s);
@@ -168,19 +172,21 @@ bool bench_state_run(const bench_config *cfg, const bench_level *L, int k, bench
 {
     memset(out, 0, sizeof *out);
     sph_sim *sim;
-    if (!bench_make_sim(cfg, L, k, &sim, why, n)) return false;
+    if (!bench_make_sim(cfg, L, k, true, &sim, why, n)) return false;
     sim->watchdog = true;
     const uint32_t N = sim->n;
     const int dim = sim->dim;
     out->n = N;
     out->dim = dim;
+    out->h = sim->def.h;
     bool ok = true;
     float *start[3] = {NULL, NULL, NULL};
     for (int d = 0; d < dim; d++) {
         start[d] = malloc((size_t)N * sizeof(float));
         out->pos[d] = malloc((size_t)N * sizeof(float));
         out->vel[d] = malloc((size_t)N * sizeof(float));
-        ok &= start[d] && out->pos[d] && out->vel[d];
+        out->pred1[d] = malloc((size_t)N * sizeof(float));
+        ok &= start[d] && out->pos[d] && out->vel[d] && out->pred1[d];
     }
     out->rho = malloc((size_t)N * sizeof(float));
     ok &= out->rho != NULL;
@@ -193,6 +199,9 @@ bool bench_state_run(const bench_config *cfg, const bench_level *L, int k, bench
             snprintf(why, n, "out of memory");
             ok = false;
         }
+        for (int d = 0; ok && d < dim; d++)
+            for (uint32_t i = 0; i < N; i++)
+                out->pred1[d][sim->P.id[i]] = sim->P.pred[d] ? sim->P.pred[d][i] : sim->P.pos[d][i];
     }
     while (ok && sim->step < BENCH_CHECK_STEPS && !sim->alarm.raised) sph_sim_step(sim);
     if (ok && sim->alarm.raised) {
@@ -234,10 +243,35 @@ void bench_compare(const bench_state *ref, const bench_state *s, bench_diff *d)
     const uint32_t n = s->n;
     d->pairs = s->nbr_start[n];
     d->ref_pairs = ref->nbr_start[n];
+    d->edge_pairs = 0;
     for (uint32_t id = 0; id < n; id++) {
         uint32_t a0 = s->nbr_start[id], a1 = s->nbr_start[id + 1], b0 = ref->nbr_start[id], b1 = ref->nbr_start[id + 1];
-        if (a1 - a0 != b1 - b0 || memcmp(s->nbr + a0, ref->nbr + b0, (size_t)(a1 - a0) * sizeof *s->nbr) != 0)
-            d->sets_differ++;
+        if (a1 - a0 == b1 - b0 && memcmp(s->nbr + a0, ref->nbr + b0, (size_t)(a1 - a0) * sizeof *s->nbr) == 0)
+            continue;
+        /* walk both sorted sets; a pair in only one of them is forgiven at the support's edge */
+        bool differs = false;
+        uint32_t a = a0, b = b0;
+        while (a < a1 || b < b1) {
+            uint32_t j;
+            if (b >= b1 || (a < a1 && s->nbr[a] < ref->nbr[b]))
+                j = s->nbr[a++];
+            else if (a >= a1 || ref->nbr[b] < s->nbr[a])
+                j = ref->nbr[b++];
+            else {
+                a++, b++;
+                continue;
+            }
+            double r2 = 0;
+            for (int k = 0; k < s->dim; k++) {
+                double x = (double)ref->pred1[k][id] - ref->pred1[k][j];
+                r2 += x * x;
+            }
+            if (fabs(sqrt(r2) - ref->h) <= BENCH_EDGE * ref->h)
+                d->edge_pairs++;
+            else
+                differs = true;
+        }
+        d->sets_differ += differs;
     }
     for (int a = 0; a < s->dim; a++)
         for (uint32_t id = 0; id < n; id++) {
@@ -250,7 +284,8 @@ void bench_compare(const bench_state *ref, const bench_state *s, bench_diff *d)
     if (s->stopped || ref->stopped)
         snprintf(d->why, sizeof d->why, "the watchdog stopped the %s run", s->stopped ? "level's" : "reference");
     else if (d->sets_differ)
-        snprintf(d->why, sizeof d->why, "%u of %u neighbour sets differ after 1 step", d->sets_differ, n);
+        snprintf(d->why, sizeof d->why, "%u of %u neighbour sets differ after 1 step (beyond pairs at r = h)",
+                 d->sets_differ, n);
     else if (!(d->dx <= BENCH_TOL_X))
         snprintf(d->why, sizeof d->why, "positions differ by %.3g m after %d steps (tolerance %g m)", d->dx,
                  BENCH_CHECK_STEPS, BENCH_TOL_X);

@@ -32,6 +32,7 @@ static void usage(FILE *f)
           "  --levels L0,L3,...    only these levels (default: all)\n"
           "  --set [LEVEL:]S.K=V   override scene key K of section S, for one level or all (repeatable)\n"
           "  --watchdog            keep the watchdog's checks on while timing (default off: a debugging aid)\n"
+          "  --trace               one line per measurement on stderr (size, steps/s, repeats, others)\n"
           "  --quiet               no progress line, no table (files are still written)\n"
           "Files: DIR/ladder-3d.{csv,json,png,pdf}, DIR/scaling-3d.{csv,png,pdf}, DIR/machine.json (2d likewise).\n"
           "Exit status: 0 done; 1 a level failed its check, or an output could not be written; 2 bad command line.\n",
@@ -41,7 +42,7 @@ static void usage(FILE *f)
 typedef struct bench_opts {
     const char *what, *out, *levels;
     double fps, at;
-    bool quick, quiet, at_given;
+    bool quick, quiet, at_given, trace;
     bench_config cfg;
     int sel[BENCH_MAX_LEVELS], nsel;
     bool progress;
@@ -153,6 +154,8 @@ static int parse_args(int argc, char **argv, bench_opts *o)
             o->quiet = true;
         } else if (strcmp(a, "--watchdog") == 0) {
             o->cfg.watchdog = true;
+        } else if (strcmp(a, "--trace") == 0) {
+            o->trace = true;
         } else if (is_opt(a, "--dim")) {
             if (!(v = opt_value(argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 2, 3, &n)) return 2;
             o->cfg.dim = (int)n;
@@ -214,6 +217,14 @@ static void progress_done(void)
     if (g_opts && g_opts->progress) fprintf(stderr, "\r%80s\r", "");
 }
 
+static void trace(const bench_level *L, const bench_meas *m, const char *what)
+{
+    if (!g_opts || !g_opts->trace) return;
+    progress_done();
+    fprintf(stderr, "trace %s %-6s N %8u  %8.2f steps/s  %8.3f ms/step  repeats %d  attempts %d  others %.2f\n", L->name,
+            what, m->n, m->steps_per_s, m->ms_step, m->repeats, m->attempts, m->others);
+}
+
 static const char *dim_tag(int dim) { return dim == 2 ? "2d" : "3d"; }
 
 static void write_load(FILE *f, const double l[3])
@@ -266,6 +277,7 @@ static bool search_max(const bench_opts *o, const bench_level *L, int Li, const 
             return false;
         }
         r->measurements += m.attempts;
+        trace(L, &m, "grow");
         progress("%s %s: N = %.0f: %.1f steps/s", L->name, L->about, bench_count(dim, k), m.steps_per_s);
         if (m.steps_per_s >= o->fps) {
             lo = k, lo_rate = m.steps_per_s;
@@ -293,6 +305,7 @@ static bool search_max(const bench_opts *o, const bench_level *L, int Li, const 
             return false;
         }
         r->measurements += m.attempts;
+        trace(L, &m, "bisect");
         if (m.steps_per_s >= o->fps)
             lo = mid, lo_rate = m.steps_per_s;
         else
@@ -352,8 +365,8 @@ static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *r
 {
     fprintf(f, "level,description,threads,max_n,capped,steps_per_s_at_max,speedup,n_at,ms_per_step,pairs_per_step,"
                "search_ms,force_ms,search_pairs_per_s_core,force_pairs_per_s_core,check,check_ref,check_n,sets_differ,"
-               "max_dx_m,max_dv_m_s,max_drho,check_at_ref,check_at_n,sets_differ_at,max_dx_at_m,max_dv_at_m_s,"
-               "max_drho_at,others_cores");
+               "edge_pairs,max_dx_m,max_dv_m_s,max_drho,check_at_ref,check_at_n,sets_differ_at,edge_pairs_at,"
+               "max_dx_at_m,max_dv_at_m_s,max_drho_at,others_cores");
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (pass_used[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
     fputc('\n', f);
@@ -382,12 +395,14 @@ static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *r
         fprintf(f, ",%s", r->small.done ? bench_levels[r->small.ref].name : "");
         csv_num(f, r->small.done ? n_check : NAN, "%.0f");
         csv_num(f, r->small.done ? (double)r->small.sets_differ : NAN, "%.0f");
+        csv_num(f, r->small.done ? (double)r->small.edge_pairs : NAN, "%.0f");
         csv_num(f, r->small.done ? r->small.dx : NAN, "%.3g");
         csv_num(f, r->small.done ? r->small.dv : NAN, "%.3g");
         csv_num(f, r->small.done ? r->small.drho : NAN, "%.3g");
         fprintf(f, ",%s", r->large.done ? bench_levels[r->large.ref].name : "");
         csv_num(f, r->large.done ? n_at : NAN, "%.0f");
         csv_num(f, r->large.done ? (double)r->large.sets_differ : NAN, "%.0f");
+        csv_num(f, r->large.done ? (double)r->large.edge_pairs : NAN, "%.0f");
         csv_num(f, r->large.done ? r->large.dx : NAN, "%.3g");
         csv_num(f, r->large.done ? r->large.dv : NAN, "%.3g");
         csv_num(f, r->large.done ? r->large.drho : NAN, "%.3g");
@@ -415,8 +430,8 @@ static void json_diff(FILE *f, const char *key, const bench_diff *d, double n)
         fputs("null,\n", f);
         return;
     }
-    fprintf(f, "{\"reference\": \"%s\", \"n\": %.0f, \"pass\": %s, \"sets_differ\": %u, ", bench_levels[d->ref].name, n,
-            d->pass ? "true" : "false", d->sets_differ);
+    fprintf(f, "{\"reference\": \"%s\", \"n\": %.0f, \"pass\": %s, \"sets_differ\": %u, \"edge_pairs\": %u, ",
+            bench_levels[d->ref].name, n, d->pass ? "true" : "false", d->sets_differ, d->edge_pairs);
     json_num(f, "pairs", d->pairs, "%.0f", true);
     json_num(f, "reference_pairs", d->ref_pairs, "%.0f", true);
     json_num(f, "max_dx_m", d->dx, "%.3g", true);
@@ -461,13 +476,28 @@ static void write_ladder_json(FILE *f, const bench_opts *o, const level_result *
     json_num(f, "clock_ghz_start", m->ghz0, "%.3f", true);
     json_num(f, "clock_ghz_end", m->ghz1, "%.3f", false);
     fputs(",\n", f);
-    fprintf(f, "  \"scene\": {\"what\": \"a block of water falling in a box twice its size\", \"spacing_m\": %g, "
-               "\"h_m\": %g, \"jitter_spacings\": %g, \"stiffness\": 1000, \"viscosity\": 0.002, \"cfl\": 0.4},\n",
-            BENCH_SPACING, 2 * BENCH_SPACING, BENCH_JITTER);
+    sph_scene_def def;
+    char why[256];
+    sph_scene_def cdef;
+    if (bench_scene_def(&o->cfg, NULL, bench_k_near(o->cfg.dim, m->n_at), false, &def, why, sizeof why) &&
+        bench_scene_def(&o->cfg, NULL, bench_k_near(o->cfg.dim, m->n_at), true, &cdef, why, sizeof why))
+        fprintf(f, "  \"scene\": {\"what\": \"a block of water falling in a box twice its size\", \"spacing_m\": %g, "
+                   "\"h_m\": %g, \"jitter_spacings\": %g, \"check_jitter_spacings\": %g, \"stiffness\": %g, "
+                   "\"viscosity\": %g, \"cfl\": %g},\n",
+                def.blocks[0].spacing, def.h, def.jitter, cdef.jitter, def.stiffness, def.viscosity, def.cfl);
+    fputs("  \"sets\": [", f);
+    for (int i = 0; i < o->cfg.n_sets; i++) {
+        char set[300];
+        snprintf(set, sizeof set, "%s%s%s", o->cfg.set_level[i] ? o->cfg.set_level[i] : "",
+                 o->cfg.set_level[i] ? ":" : "", o->cfg.set[i]);
+        fputs(i ? ", " : "", f);
+        bench_json_string(f, set);
+    }
+    fputs("],\n", f);
     fprintf(f, "  \"n_at\": %.0f,\n  \"n_check\": %.0f,\n", m->n_at, m->n_check);
     fprintf(f, "  \"tolerances\": {\"steps\": %d, \"dx_m\": %g, \"dv_m_s\": %g, \"drho\": %g, \"neighbour_sets\": "
-               "\"identical after 1 step\"},\n",
-            BENCH_CHECK_STEPS, BENCH_TOL_X, BENCH_TOL_V, BENCH_TOL_RHO);
+               "\"identical after 1 step\", \"edge_pairs_within_h_times\": %g},\n",
+            BENCH_CHECK_STEPS, BENCH_TOL_X, BENCH_TOL_V, BENCH_TOL_RHO, BENCH_EDGE);
     fputs("  \"target\": {\"dim\": 3, \"fps\": 60, \"n\": 60000, ", f);
     if (m->best >= 0) {
         fputs("\"best_level\": ", f);
@@ -720,9 +750,10 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
                    r->search_rate, r->force_ms, r->force_rate);
         }
         printf("search: hash, sort, reorder, offsets, neighbours; forces: density, pressure_force, viscosity\n");
-        printf("\nchecks: neighbour sets identical after 1 step, and after %d steps positions within %g m, velocities "
-               "within %g m/s,\ndensities within %g (relative), particles matched by id; against %s at N = %s",
-               BENCH_CHECK_STEPS, BENCH_TOL_X, BENCH_TOL_V, BENCH_TOL_RHO, BENCH_REF_SMALL, nchk);
+        printf("\nchecks: neighbour sets identical after 1 step (a pair within %g h of r = h is rounding's call and\n"
+               "counted apart: edge pairs), and after %d steps positions within %g m, velocities within %g m/s,\n"
+               "densities within %g (relative), particles matched by id; against %s at N = %s",
+               BENCH_EDGE, BENCH_CHECK_STEPS, BENCH_TOL_X, BENCH_TOL_V, BENCH_TOL_RHO, BENCH_REF_SMALL, nchk);
         if (k_at > k_check) printf(" and against %s at N = %s", BENCH_REF_LARGE, nat);
         printf(" (%s itself against %s).\n", BENCH_REF_SMALL, BENCH_REF_LARGE);
         for (int s = 0; s < o->nsel; s++) {
@@ -730,10 +761,11 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
             const bench_diff *d[2] = {&r->small, &r->large};
             for (int j = 0; j < 2; j++)
                 if (d[j]->done)
-                    printf("  %-4s vs %-3s N = %-7.0f %s  sets differ %u, dx %.2g m, dv %.2g m/s, drho %.2g%s%s\n",
+                    printf("  %-4s vs %-3s N = %-7.0f %s  sets differ %u (edge pairs %u), dx %.2g m, dv %.2g m/s, "
+                           "drho %.2g%s%s\n",
                            bench_levels[o->sel[s]].name, bench_levels[d[j]->ref].name, j ? meta.n_at : meta.n_check,
-                           d[j]->pass ? "PASS" : "FAIL", d[j]->sets_differ, d[j]->dx, d[j]->dv, d[j]->drho,
-                           d[j]->why[0] ? ": " : "", d[j]->why);
+                           d[j]->pass ? "PASS" : "FAIL", d[j]->sets_differ, d[j]->edge_pairs, d[j]->dx, d[j]->dv,
+                           d[j]->drho, d[j]->why[0] ? ": " : "", d[j]->why);
             if (r->error[0] && !r->check_ok) printf("  %-4s error: %s\n", bench_levels[o->sel[s]].name, r->error);
         }
         if (meta.target_evaluated) {
@@ -1006,9 +1038,10 @@ static int cmd_levels(const bench_opts *o)
         printf("%-5s %-42s %-8s %s\n", L->name, L->about, L->threads > 0 ? t : "cores", L->sets);
     }
     char ini[2048];
-    bench_scene_ini(o->cfg.dim, bench_k_near(o->cfg.dim, 1000), ini, sizeof ini);
-    printf("\nThe scene (here N = %.0f; the benchmark changes the block's size and the box with it):\n\n%s",
-           bench_count(o->cfg.dim, bench_k_near(o->cfg.dim, 1000)), ini);
+    bench_scene_ini(o->cfg.dim, bench_k_near(o->cfg.dim, 1000), BENCH_JITTER, ini, sizeof ini);
+    printf("\nThe scene (here N = %.0f; the benchmark changes the block's size and the box with it; the checks\n"
+           "run it with jitter = %g, so that no pair sits exactly at r = h):\n\n%s",
+           bench_count(o->cfg.dim, bench_k_near(o->cfg.dim, 1000)), BENCH_CHECK_JITTER, ini);
     return 0;
 }
 
