@@ -12,6 +12,8 @@ CORE_CFLAGS := $(WARN) $(OMP) -Isrc/core $(shell pkg-config --cflags $(PKGS_CORE
 CORE_LIBS   := $(shell pkg-config --libs $(PKGS_CORE) 2>/dev/null || echo -linih) -lm
 
 BUILD   := build
+# The binary's path: `make BUILD=build-gl BIN=build-gl/sphlab` builds beside its objects.
+BIN     ?= sphlab
 CORE    := sph_error sph_kernel sph_scene sph_sim sph_watchdog
 PASSES  := external hash sort reorder offsets neighbours density pressure pressure_force viscosity interaction integrate walls
 APP     := main cmd_run cmd_check cmd_hardcases
@@ -33,9 +35,9 @@ TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
 
 .PHONY: all demo test check-tests check-clang asan asan-run fuzz deps clean
 
-all: sphlab
+all: $(BIN)
 
-sphlab: $(BUILD)/libsphcore.a $(APP_OBJ)
+$(BIN): $(BUILD)/libsphcore.a $(APP_OBJ)
 	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_LIBS)
 
 $(BUILD)/libsphcore.a: $(CORE_OBJ)
@@ -78,7 +80,7 @@ demo: deps
 # The whole suite, the clang build, then the whole suite again under
 # AddressSanitizer and UndefinedBehaviorSanitizer (what CI runs).
 test: deps
-	$(MAKE) sphlab $(BUILD)/sphlab-tests
+	$(MAKE) $(BIN) $(BUILD)/sphlab-tests
 	$(MAKE) check-tests
 	$(MAKE) check-clang
 	$(MAKE) asan-run
@@ -90,8 +92,8 @@ check-clang:
 
 # Runs the suite against the binaries already built (also used by `make asan`).
 check-tests:
-	SPHLAB=./sphlab $(BUILD)/sphlab-tests --jobs 2
-	sh tests/cli.sh ./sphlab
+	SPHLAB=./$(BIN) $(BUILD)/sphlab-tests --jobs 2
+	sh tests/cli.sh ./$(BIN)
 
 asan: deps
 	$(MAKE) asan-run

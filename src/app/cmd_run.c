@@ -19,6 +19,8 @@ static void usage(FILE *f)
           "  --vtk DIR           particles and all their fields as DIR/particles_NNNNN.vtk (ParaView)\n"
           "  --every K           with --vtk: a file every K steps, the first at step 0 (default 10)\n"
           "  --threads N         worker threads (default: one per core)\n"
+          "  --backend cpu|gl    where the passes run (overrides [compute] backend): gl runs them as\n"
+          "                      OpenGL 4.3 compute shaders (the GPU, or Mesa's llvmpipe without one)\n"
           "  --quiet             no progress line, no tables\n"
           "  --help              this text\n"
           "exit status: 0 done; 1 bad scene or output; 2 bad command line; 4 the watchdog stopped the run\n"
@@ -65,6 +67,7 @@ static void write_stats_row(FILE *f, const sph_sim *sim, double dt)
 static void write_dump(FILE *f, const sph_sim *sim)
 {
     const sph_particles *P = &sim->P;
+    sph_sim_sync(sim, SPH_SYNC_ALL);
     /* rows in id order, whatever order the data are stored in */
     uint32_t *order = malloc((size_t)(sim->n ? sim->n : 1) * sizeof *order);
     if (!order) {
@@ -103,7 +106,10 @@ static void print_report(const sph_sim *sim, double wall_ms)
     sph_sim_stats(sim, &s);
     const char *e_unit = sim->dim == 2 ? "J/m" : "J";
     const char *r_unit = sim->dim == 2 ? "kg/m^2" : "kg/m^3";
-    printf("\nparticles       %u (%dD), %d thread%s\n", s.n, sim->dim, sim->threads, sim->threads == 1 ? "" : "s");
+    if (sim->backend)
+        printf("\nparticles       %u (%dD), backend %s: %s\n", s.n, sim->dim, sim->backend->name, sim->backend->device);
+    else
+        printf("\nparticles       %u (%dD), %d thread%s\n", s.n, sim->dim, sim->threads, sim->threads == 1 ? "" : "s");
     printf("steps           %llu\n", (unsigned long long)sim->step);
     printf("simulated time  %.6g s (last dt %.3g s)\n", sim->t, sim->dt);
     printf("kinetic energy  %.6g %s\n", s.ekin, e_unit);
@@ -124,6 +130,7 @@ int cmd_run(int argc, char **argv)
     const char *stats_path = NULL, *dump_path = NULL, *vtk_dir = NULL;
     long vtk_every = 10;
     bool quiet = false;
+    const char *backend = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
@@ -140,6 +147,13 @@ int cmd_run(int argc, char **argv)
         } else if (is_opt(a, "--threads")) {
             if (!(v = opt_value(argc, argv, &i, "--threads")) || !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
                 return 2;
+        } else if (is_opt(a, "--backend")) {
+            if (!(v = opt_value(argc, argv, &i, "--backend"))) return 2;
+            if (strcmp(v, "cpu") != 0 && strcmp(v, "gl") != 0) {
+                fprintf(stderr, "sphlab run: --backend '%s': accepted: cpu, gl\n", v);
+                return 2;
+            }
+            backend = v;
         } else if (is_opt(a, "--set")) {
             if (!(v = opt_value(argc, argv, &i, "--set"))) return 2;
             if (o.n_sets == APP_MAX_SETS) {
@@ -174,6 +188,15 @@ int cmd_run(int argc, char **argv)
     if (steps >= 0 && until >= 0) {
         fprintf(stderr, "sphlab run: give --steps or --time, not both\n");
         return 2;
+    }
+    char backend_set[32];
+    if (backend) { /* after the scene's own --set options, so it wins */
+        if (o.n_sets == APP_MAX_SETS) {
+            fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
+            return 2;
+        }
+        snprintf(backend_set, sizeof backend_set, "compute.backend=%s", backend);
+        o.sets[o.n_sets++] = backend_set;
     }
     sph_scene_def def;
     int status = app_load_scene_status(&o, &def);

@@ -8,6 +8,7 @@
 
 #include "app.h"
 #include "commands.h"
+#include "../gpu/gpu.h"
 
 static void usage(FILE *f)
 {
@@ -142,6 +143,7 @@ int main(int argc, char **argv)
         usage(stderr);
         return 2;
     }
+    sph_gpu_register(); /* scenes may ask for [compute] backend = gl */
     const char *cmd = argv[1];
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
         usage(stdout);

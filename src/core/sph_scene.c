@@ -25,6 +25,7 @@ const char *const sph_axis_names[3] = {"x", "y", "z"};
 const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICES(NAMES)};
 const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
 const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
+const char *const sph_backend_names[SPH_BACKEND_COUNT] = {SPH_BACKEND_CHOICES(NAMES)};
 #undef NAMES
 #define EFFECT_NAME(id, name, about) name,
 const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
@@ -125,6 +126,10 @@ const sph_key sph_scene_keys[] = {
      "on: inner loops written with the CPU's vector instructions (AVX-512, 16 floats at a time) use them, where the "
      "build has them; off: plain scalar loops"},
 
+    {"compute", "backend", SPH_KEY_CHOICE, S(backend), 0, 0, 0, 0, CH(sph_backend_names), "", "cpu",
+     "where the passes run: cpu (C with OpenMP), or gl (GLSL compute shaders, OpenGL 4.3 through EGL: the GPU, or "
+     "Mesa's llvmpipe without one); sphlab run --backend overrides it"},
+
     {"fluid", "min", SPH_KEY_VEC, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_VEC, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
     {"fluid", "spacing", SPH_KEY_FLOAT, B(spacing), 0, BIG, 1, 0, NULL, 0, "m", "0.02",
@@ -137,7 +142,7 @@ const sph_key sph_scene_keys[] = {
 };
 const int sph_scene_key_count = (int)(sizeof sph_scene_keys / sizeof sph_scene_keys[0]);
 
-static const char *const known_sections[] = {"scene", "domain", "physics", "kernels", "time", "search", "interaction"};
+static const char *const known_sections[] = {"scene", "domain", "physics", "kernels", "time", "search", "interaction", "compute"};
 
 /* ---- values ------------------------------------------------------------- */
 

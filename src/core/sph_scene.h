@@ -46,6 +46,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
 #define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
+#define SPH_BACKEND_CHOICES(X) X(CPU, "cpu") X(GL, "gl")
 
 #define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
     typedef enum type { LIST(SPH_CHOICE_ITEM_##PREFIX) PREFIX##_COUNT } type;
@@ -59,6 +60,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_VFIELD(id, name) SPH_VFIELD_##id,
 #define SPH_CHOICE_ITEM_SPH_ACC(id, name) SPH_ACC_##id,
 #define SPH_CHOICE_ITEM_SPH_ONOFF(id, name) SPH_##id,
+#define SPH_CHOICE_ITEM_SPH_BACKEND(id, name) SPH_BACKEND_##id,
 SPH_DECLARE_CHOICES(sph_eos, SPH_EOS, SPH_EOS_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_form, SPH_PFORM, SPH_PFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_viscosity_form, SPH_VFORM, SPH_VFORM_CHOICES)
@@ -69,6 +71,7 @@ SPH_DECLARE_CHOICES(sph_wall_model, SPH_WALL, SPH_WALL_CHOICES)
 SPH_DECLARE_CHOICES(sph_velocity_field, SPH_VFIELD, SPH_FIELD_CHOICES)
 SPH_DECLARE_CHOICES(sph_accumulate, SPH_ACC, SPH_ACC_CHOICES)
 SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
+SPH_DECLARE_CHOICES(sph_backend_kind, SPH_BACKEND, SPH_BACKEND_CHOICES)
 
 extern const char *const sph_eos_names[SPH_EOS_COUNT];
 extern const char *const sph_pressure_form_names[SPH_PFORM_COUNT];
@@ -81,6 +84,7 @@ extern const char *const sph_axis_names[3];
 extern const char *const sph_velocity_field_names[SPH_VFIELD_COUNT];
 extern const char *const sph_accumulate_names[SPH_ACC_COUNT];
 extern const char *const sph_onoff_names[SPH_ONOFF_COUNT];
+extern const char *const sph_backend_names[SPH_BACKEND_COUNT];
 
 /* Where a value came from, for messages: the file's line, or 0 for the default. */
 typedef struct sph_origin {
@@ -136,6 +140,7 @@ typedef struct sph_scene_def {
     uint32_t table_size; /* [1] hash table size; 0: the particle count, as in the seed */
     sph_onoff reorder;   /* store the particles in cell order after the sort (for memory locality) */
     sph_onoff vector;    /* use the CPU's vector instructions (AVX-512) in the inner loops where written */
+    sph_backend_kind backend; /* where the passes run: the CPU, or GL compute shaders (src/gpu/) */
     float jitter;        /* [1] random offset of each particle, in spacings */
     uint32_t seed;       /* [1] random seed of the jitter */
     float interaction_radius;   /* [m] reach of the push/pull around the point */

@@ -37,6 +37,51 @@ double sph_now_ms(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
+/* ---- backends ----------------------------------------------------------- */
+
+static sph_backend_factory backend_factories[SPH_BACKEND_COUNT];
+
+void sph_backend_register(sph_backend_kind kind, sph_backend_factory make)
+{
+    if ((int)kind >= 0 && kind < SPH_BACKEND_COUNT) backend_factories[kind] = make;
+}
+
+void sph_sim_sync(const sph_sim *sim, unsigned what)
+{
+    sph_backend *b = sim->backend;
+    if (!b) return;
+    /* the lists are built on the host from the index and predicted positions */
+    if (what & SPH_SYNC_LISTS) what |= SPH_SYNC_INDEX | SPH_SYNC_FIELD(SPH_FIELD_PRED) | SPH_SYNC_ID;
+    unsigned need = what & b->stale;
+    if (!need) return;
+    /* The host arrays are a cache of the device's state: refreshing them
+     * changes no state of the simulation, so a const sim may be refreshed
+     * (sim points to an object allocated non-const by sph_sim_create). */
+    b->download(b, (sph_sim *)sim, need);
+    b->stale &= ~need;
+}
+
+void sph_sim_upload(sph_sim *sim)
+{
+    if (!sim->backend) return;
+    sim->backend->upload(sim->backend, sim);
+    /* the particles are current on both sides now; the index and lists are
+     * still the device's to make */
+    sim->backend->stale &= SPH_SYNC_INDEX | SPH_SYNC_LISTS;
+}
+
+/* What a backend's pass makes stale in the host copy: the fields it writes,
+ * and the index and lists when it changes them. */
+static unsigned pass_stale_bits(const sph_sim *sim, int p)
+{
+    unsigned w = sim->pass_writes[p];
+    if (p == SPH_PASS_HASH || p == SPH_PASS_SORT || p == SPH_PASS_OFFSETS || p == SPH_PASS_REORDER)
+        w |= SPH_SYNC_INDEX | SPH_SYNC_LISTS;
+    if (p == SPH_PASS_REORDER) w |= SPH_SYNC_ID;
+    if (w & SPH_SYNC_FIELD(SPH_FIELD_PRED)) w |= SPH_SYNC_LISTS;
+    return w;
+}
+
 /* ---- creation ----------------------------------------------------------- */
 
 static void *alloc_zero(size_t count, size_t size, bool *ok)
@@ -244,6 +289,20 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
     }
     place_particles(sim);
     sim->dt = sph_time_step_choose(sim);
+    if (def->backend != SPH_BACKEND_CPU) {
+        sph_backend_factory make = backend_factories[def->backend];
+        if (!make) {
+            sph_sim_destroy(sim);
+            return sph_fail(err, SPH_ERR_SCENE, "%s: [compute] backend = %s: this program was built without it",
+                            def->file, sph_backend_names[def->backend]);
+        }
+        c = make(sim, &sim->backend, err);
+        if (c) {
+            sph_sim_destroy(sim);
+            return c;
+        }
+        sph_sim_upload(sim);
+    }
     *out = sim;
     return SPH_ERR_OK;
 }
@@ -251,6 +310,7 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
 void sph_sim_destroy(sph_sim *sim)
 {
     if (!sim) return;
+    if (sim->backend) sim->backend->destroy(sim->backend);
     sph_particles *P = &sim->P;
     free(P->id);
     free(P->mass);
@@ -297,6 +357,7 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     sph_sim *next;
     sph_error_code c = sph_sim_create(def, sim->threads, &next, err);
     if (c) return c;
+    sph_sim_sync(sim, SPH_SYNC_ALL); /* the particles below are read from the host copy */
     uint32_t n = sim->n;
     memcpy(next->P.id, sim->P.id, (size_t)n * sizeof *next->P.id);
     memcpy(next->P.mass, sim->P.mass, (size_t)n * sizeof *next->P.mass);
@@ -312,6 +373,7 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     next->interaction_sign = sim->interaction_sign;
     memcpy(next->enabled, sim->enabled, sizeof next->enabled);
     next->dt = sph_time_step_choose(next);
+    sph_sim_upload(next);
     /* swap contents so the caller's pointer stays valid */
     sph_sim tmp = *sim;
     *sim = *next;
@@ -322,15 +384,40 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
 
 /* ---- the time step ------------------------------------------------------ */
 
+/* The watchdog on a backend: scanning every field after every pass would
+ * download them all each pass. The integrate pass's reduction already reads
+ * back the largest speed and acceleration; a non-finite or runaway value
+ * there triggers the download and the full scan, which names the field and
+ * particle (the pass it names is the first of the step that wrote a field
+ * with a bad value). A density runaway that leaves speeds finite and bounded
+ * is caught only on the CPU backend. */
+static void watchdog_backend(sph_sim *sim, int p)
+{
+    if (p != SPH_PASS_INTEGRATE) return;
+    if (isfinite(sim->max_speed) && isfinite(sim->max_acc) && sim->max_speed <= sim->speed_bound) return;
+    sph_sim_sync(sim, SPH_SYNC_ALL);
+    for (int q = 0; q < SPH_PASS_COUNT && !sim->alarm.raised; q++)
+        if (sim->in_pipeline[q] && sim->enabled[q]) sph_watchdog_check(sim, q);
+}
+
 static void run_timed(sph_sim *sim, int p)
 {
     double t0 = sph_now_ms();
-    sph_passes[p]->run(sim);
+    if (sim->backend) {
+        sim->backend->run(sim->backend, sim, (sph_pass_id)p);
+        sim->backend->stale |= pass_stale_bits(sim, p);
+    } else {
+        sph_passes[p]->run(sim);
+    }
     double ms = sph_now_ms() - t0;
     sim->timing[p].calls++;
     sim->timing[p].total_ms += ms;
     sim->timing[p].last_ms = ms;
-    if (sim->watchdog) sph_watchdog_check(sim, p); /* its cost is not counted as the pass's */
+    if (!sim->watchdog) return; /* its cost is not counted as the pass's */
+    if (sim->backend)
+        watchdog_backend(sim, p);
+    else
+        sph_watchdog_check(sim, p);
 }
 
 sph_pass_id sph_sim_step_pass(sph_sim *sim)
@@ -412,6 +499,8 @@ double sph_sim_energy_drift(const sph_sim *sim)
 void sph_sim_stats(const sph_sim *sim, sph_stats *out)
 {
     const sph_particles *P = &sim->P;
+    sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_POS) | SPH_SYNC_FIELD(SPH_FIELD_VEL) | SPH_SYNC_FIELD(SPH_FIELD_MASS) |
+                          SPH_SYNC_FIELD(SPH_FIELD_RHO) | SPH_SYNC_FIELD(SPH_FIELD_P));
     memset(out, 0, sizeof *out);
     out->n = sim->n;
     double rmin = INFINITY, rmax = -INFINITY, rsum = 0;

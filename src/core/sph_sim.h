@@ -144,6 +144,41 @@ typedef struct sph_stats {
     double max_speed; /* [m/s] */
 } sph_stats;
 
+/* A compute backend: runs the passes on data kept elsewhere (the GL backend,
+ * src/gpu/: compute shaders on one buffer per field). Then sim->P and sim->S
+ * are host copies of the device's data, refreshed on demand: sph_sim_sync()
+ * downloads what a reader needs (stats, fields, dumps, the window), and
+ * sph_sim_upload() sends particles the CPU changed. The core knows only this
+ * table; the module that implements it registers a factory, so no GL header
+ * reaches the core. */
+typedef struct sph_backend sph_backend;
+struct sph_backend {
+    const char *name;    /* "gl" */
+    char device[200];    /* what it measures on, e.g. "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5" */
+    unsigned stale;      /* SPH_SYNC_* bits whose host copy is older than the device's */
+    /* Runs one pass on the device; sets sim->max_speed and max_acc after integrate. */
+    void (*run)(sph_backend *b, sph_sim *sim, sph_pass_id pass);
+    /* Copies the parts named by `what` (SPH_SYNC_* bits) into sim->P and sim->S. */
+    void (*download)(sph_backend *b, sph_sim *sim, unsigned what);
+    /* Sends every particle field of sim->P to the device. */
+    void (*upload)(sph_backend *b, sph_sim *sim);
+    void (*destroy)(sph_backend *b);
+};
+
+/* What sph_sim_sync can refresh: one bit per particle field (1 << SPH_FIELD_x),
+ * then the ids, the index (entries and start table) and the neighbour lists. */
+#define SPH_SYNC_FIELD(f) (1u << (f))
+#define SPH_SYNC_ID (1u << 16)
+#define SPH_SYNC_INDEX (1u << 17)
+#define SPH_SYNC_LISTS (1u << 18)
+#define SPH_SYNC_ALL 0xFFFFFFFFu
+
+/* Makes a backend for sim (its particles are placed); on failure fills err
+ * with a message naming the key, value and reason. */
+typedef sph_error_code (*sph_backend_factory)(sph_sim *sim, sph_backend **out, sph_error *err);
+/* Registers the factory of a backend kind (the app does this at start-up). */
+void sph_backend_register(sph_backend_kind kind, sph_backend_factory make);
+
 struct sph_sim {
     sph_scene_def def;    /* the scene it was made from; passes read their options here */
     int dim;
@@ -177,6 +212,7 @@ struct sph_sim {
     float interaction_point[3]; /* [m] */
     float interaction_sign;  /* +1 pull, -1 push (times the scene's strength) */
     int threads;
+    sph_backend *backend; /* NULL: the passes run here, on P and S */
 };
 
 /* threads <= 0: one per core; at most SPH_MAX_THREADS. */
@@ -194,6 +230,15 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim);
  * masses), time and step over. `def` must make the same particles (same
  * dimension and blocks); pass toggles are kept. On error sim is unchanged. */
 sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err);
+
+/* With a backend: downloads the parts of `what` (SPH_SYNC_* bits) whose host
+ * copy is stale; nothing to do on the CPU. Only the host copy changes (a cache
+ * of the device's state), so it takes a const sim. Costs a copy from the
+ * device: about 4 bytes per particle and component. */
+void sph_sim_sync(const sph_sim *sim, unsigned what);
+/* With a backend: sends the particles of P to the device after the caller
+ * changed them (sync first, change, then upload). */
+void sph_sim_upload(sph_sim *sim);
 
 void sph_sim_stats(const sph_sim *sim, sph_stats *out);
 /* Total energy: kinetic + gravitational + internal (the equation of state's). */

@@ -40,6 +40,7 @@ int sph_field_find(const char *name)
 bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out)
 {
     const sph_particles *P = &sim->P;
+    if ((int)id >= 0 && id < SPH_FIELD_COUNT) sph_sim_sync(sim, SPH_SYNC_FIELD(id));
     float *const *vec = NULL;
     float *scalar = NULL;
     switch (id) {
@@ -188,6 +189,7 @@ void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n)
     size_t used = 0;
     out[0] = '\0';
     if (!a->raised) return;
+    sph_sim_sync(sim, SPH_SYNC_ALL); /* values and neighbours come from the host copy */
     uint32_t i = a->particle;
     append(out, n, &used, "watchdog: step %llu (t = %.6g s, dt = %.3g s), after pass '%s': particle %u (id %u): %s\n",
            (unsigned long long)a->step, sim->t, sim->dt, sph_passes[a->pass]->name, i, sim->P.id[i], a->what);

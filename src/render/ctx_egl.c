@@ -17,6 +17,11 @@ struct sph_glctx {
     EGLContext ctx;
 };
 
+/* EGL displays are not reference-counted: eglTerminate ends every context on
+ * the display, and the renderer and the GL compute backend share the
+ * surfaceless display. The last context to go terminates it. */
+static int live_contexts;
+
 static const char *egl_error_name(EGLint e)
 {
     switch (e) {
@@ -45,6 +50,11 @@ static bool has_word(const char *list, const char *word)
 
 sph_glctx *sph_glctx_create_egl(sph_gl *gl, char *err, size_t n)
 {
+    return sph_glctx_create_egl_version(gl, 3, 3, err, n);
+}
+
+sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_want, char *err, size_t n)
+{
     const char *ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!ext || !has_word(ext, "EGL_MESA_platform_surfaceless")) {
         snprintf(err, n, "EGL (surfaceless): this EGL has no EGL_MESA_platform_surfaceless "
@@ -59,9 +69,13 @@ sph_glctx *sph_glctx_create_egl(sph_gl *gl, char *err, size_t n)
     c->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
     EGLint major = 0, minor = 0;
     const char *what = NULL;
+    char ask[64];
+    snprintf(ask, sizeof ask, "eglCreateContext (OpenGL %d.%d core)", major_want, minor_want);
+    bool initialised = c->dpy != EGL_NO_DISPLAY && eglInitialize(c->dpy, &major, &minor);
+    if (initialised) live_contexts++; /* sph_glctx_destroy counts it down */
     if (c->dpy == EGL_NO_DISPLAY) {
         what = "eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA)";
-    } else if (!eglInitialize(c->dpy, &major, &minor)) {
+    } else if (!initialised) {
         what = "eglInitialize";
         c->dpy = EGL_NO_DISPLAY;
     } else if (!eglBindAPI(EGL_OPENGL_API)) {
@@ -71,18 +85,19 @@ sph_glctx *sph_glctx_create_egl(sph_gl *gl, char *err, size_t n)
         EGLConfig cfg = NULL;
         EGLint ncfg = 0;
         if (!eglChooseConfig(c->dpy, cfg_attr, &cfg, 1, &ncfg)) ncfg = 0;
-        const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+        const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, major_want, EGL_CONTEXT_MINOR_VERSION, minor_want,
                                    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
         /* surfaceless contexts may have no config (EGL_KHR_no_config_context) */
         c->ctx = eglCreateContext(c->dpy, ncfg ? cfg : (EGLConfig)0, EGL_NO_CONTEXT, ctx_attr);
         if (c->ctx == EGL_NO_CONTEXT)
-            what = "eglCreateContext (OpenGL 3.3 core)";
+            what = ask;
         else if (!eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, c->ctx))
             what = "eglMakeCurrent without a surface";
     }
     if (what) {
-        snprintf(err, n, "EGL (surfaceless): %s failed: %s (no usable OpenGL; try --gl osmesa)", what,
-                 egl_error_name(eglGetError()));
+        snprintf(err, n, "EGL (surfaceless): %s failed: %s (no usable OpenGL %d.%d%s)", what,
+                 egl_error_name(eglGetError()), major_want, minor_want,
+                 major_want * 10 + minor_want <= 33 ? "; try --gl osmesa" : "");
         sph_glctx_destroy(c);
         return NULL;
     }
@@ -90,13 +105,19 @@ sph_glctx *sph_glctx_create_egl(sph_gl *gl, char *err, size_t n)
     return c;
 }
 
+bool sph_glctx_make_current(sph_glctx *c)
+{
+    if (eglGetCurrentContext() == c->ctx) return true;
+    return eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, c->ctx);
+}
+
 void sph_glctx_destroy(sph_glctx *c)
 {
     if (!c) return;
     if (c->dpy != EGL_NO_DISPLAY) {
-        eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (eglGetCurrentContext() == c->ctx) eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (c->ctx != EGL_NO_CONTEXT) eglDestroyContext(c->dpy, c->ctx);
-        eglTerminate(c->dpy);
+        if (--live_contexts == 0) eglTerminate(c->dpy);
     }
     free(c);
 }

@@ -54,6 +54,13 @@ sph_glctx *sph_glctx_create_osmesa(sph_gl *gl, char *err, size_t n)
     return (sph_glctx *)c;
 }
 
+bool sph_glctx_make_current_osmesa(sph_glctx *ctx)
+{
+    osmesa_ctx *c = (osmesa_ctx *)ctx;
+    if (OSMesaGetCurrentContext() == c->ctx) return true;
+    return OSMesaMakeCurrent(c->ctx, c->buf, GL_UNSIGNED_BYTE, 16, 16);
+}
+
 void sph_glctx_destroy_osmesa(sph_glctx *ctx)
 {
     osmesa_ctx *c = (osmesa_ctx *)ctx;

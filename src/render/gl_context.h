@@ -4,13 +4,20 @@
 #ifndef SPH_GL_CONTEXT_H
 #define SPH_GL_CONTEXT_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "gl_table.h"
 
 typedef struct sph_glctx sph_glctx;
 
-sph_glctx *sph_glctx_create_egl(sph_gl *gl, char *err, size_t n);
+sph_glctx *sph_glctx_create_egl(sph_gl *gl, char *err, size_t n); /* OpenGL 3.3 core (the renderer) */
+/* OpenGL major.minor core or later (the GL compute backend asks for 4.3). */
+sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major, int minor, char *err, size_t n);
+/* Makes the context current again after another one was (the renderer and
+ * the GL compute backend each have theirs); false if EGL refuses. */
+bool sph_glctx_make_current(sph_glctx *c);
+bool sph_glctx_make_current_osmesa(sph_glctx *c);
 sph_glctx *sph_glctx_create_osmesa(sph_gl *gl, char *err, size_t n);
 void sph_glctx_destroy(sph_glctx *c);        /* EGL */
 void sph_glctx_destroy_osmesa(sph_glctx *c); /* OSMesa */

@@ -14,6 +14,13 @@ void sph_gl_load_epoxy(sph_gl *gl)
 #undef SPH_GL_FROM_EPOXY
 }
 
+void sph_gl_load_compute_epoxy(sph_gl_compute *gl)
+{
+#define SPH_GL_FROM_EPOXY(ret, name, params) gl->name = gl##name;
+    SPH_GL_COMPUTE_FUNCS(SPH_GL_FROM_EPOXY)
+#undef SPH_GL_FROM_EPOXY
+}
+
 const char *sph_gl_load_by_name(sph_gl *gl, void *(*getproc)(const char *name))
 {
     /* ISO C forbids converting void * to a function pointer; POSIX allows it

@@ -96,6 +96,27 @@ typedef struct sph_gl {
 #undef SPH_GL_MEMBER
 } sph_gl;
 
+/* What the GL compute backend (src/gpu/) needs beyond the renderer's table:
+ * OpenGL 4.3 compute and buffer calls. A table of its own, so the OSMesa
+ * loader (3.3) never asks for them. */
+#define SPH_GL_COMPUTE_FUNCS(X)                                                                          \
+    X(void, DispatchCompute, (GLuint x, GLuint y, GLuint z))                                             \
+    X(void, MemoryBarrier, (GLbitfield barriers))                                                        \
+    X(void, BindBufferBase, (GLenum target, GLuint index, GLuint b))                                     \
+    X(void, BufferSubData, (GLenum target, GLintptr off, GLsizeiptr size, const void *data))             \
+    X(void, GetBufferSubData, (GLenum target, GLintptr off, GLsizeiptr size, void *data))                \
+    X(void, Uniform1ui, (GLint loc, GLuint v))                                                           \
+    X(void, GetIntegeri_v, (GLenum name, GLuint index, GLint *v))
+
+typedef struct sph_gl_compute {
+#define SPH_GL_MEMBER(ret, name, params) ret (*name) params;
+    SPH_GL_COMPUTE_FUNCS(SPH_GL_MEMBER)
+#undef SPH_GL_MEMBER
+} sph_gl_compute;
+
+/* Fills the compute table from libepoxy (a current EGL context). */
+void sph_gl_load_compute_epoxy(sph_gl_compute *gl);
+
 /* Fills the table from libepoxy (a current EGL or GLX context: the EGL and
  * SDL backends). Always succeeds; epoxy resolves each on first call. */
 void sph_gl_load_epoxy(sph_gl *gl);

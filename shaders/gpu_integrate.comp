@@ -1,0 +1,50 @@
+// uses: POS VEL ACC_P ACC_V ACC_I REDUCE
+// Pass integrate (src/passes/integrate.c): symplectic Euler, periodic wrap,
+// and the largest |v|^2 and |a|^2 for the CFL step: reduced per group in
+// shared memory, then one atomicMax per group on the float bits (non-negative
+// floats order as their bits do; a NaN's bits exceed every finite value's, so
+// a NaN shows up in the maximum, as the watchdog needs).
+layout(local_size_x = WG) in;
+uniform float u_dt;
+shared uint sv[WG], sa[WG];
+void main()
+{
+    uint i = gid(), l = gl_LocalInvocationID.x;
+    float v2 = 0.0, a2 = 0.0;
+    if (i < N) {
+        for (int d = 0; d < DIM; d++) {
+            uint k = uint(d) * N + i;
+            float a = 0.0;
+#if HAS_ACC_P
+            a = accp_[k];
+#endif
+#if HAS_ACC_V
+            a = a + accv_[k];
+#endif
+#if HAS_ACC_I
+            a = a + acci_[k];
+#endif
+            precise float v = vel_[k] + u_dt * a;
+            vel_[k] = v;
+            precise float x = pos_[k] + u_dt * v;
+            if (PER[d] > 0.0) x = wrap_coord(x, DOM_MIN[d], PER[d], INV_PER[d]);
+            pos_[k] = x;
+            v2 += v * v;
+            a2 += a * a;
+        }
+    }
+    sv[l] = floatBitsToUint(v2);
+    sa[l] = floatBitsToUint(a2);
+    barrier();
+    for (uint off = uint(WG) / 2u; off > 0u; off >>= 1) {
+        if (l < off) {
+            sv[l] = max(sv[l], sv[l + off]);
+            sa[l] = max(sa[l], sa[l + off]);
+        }
+        barrier();
+    }
+    if (l == 0u) {
+        atomicMax(reduce_[0], sv[0]);
+        atomicMax(reduce_[1], sa[0]);
+    }
+}

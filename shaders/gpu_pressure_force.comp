@@ -1,0 +1,41 @@
+// uses: PRED MASS RHO VOL P PRHO2 ACC_P ENTRIES START WALL
+// Pass pressure_force (src/passes/pressure_force.c): symmetric or shared form,
+// coincident pairs pushed apart along x, walls push back.
+layout(local_size_x = WG) in;
+vec3 acc;
+float pi_over, p_i, rho_i;
+void sph_pair(uint i, uint j, vec3 dx, float r2)
+{
+    float r;
+    if (r2 < R_MIN * R_MIN) {
+        dx = vec3(i < j ? -R_MIN : R_MIN, 0.0, 0.0);
+        r = R_MIN;
+    } else {
+        r = sqrt(r2);
+    }
+    float dw_over_r = kernel_dw(KP, SIG_P, r) / r;
+#if PFORM_SYM
+    float coef = mass_[j] * (pi_over + prho2_[j]);
+#else
+    float coef = vol_[j] * 0.5 * (p_i + p_[j]) / rho_i;
+#endif
+    for (int d = 0; d < DIM; d++) acc[d] -= coef * dw_over_r * dx[d];
+}
+#include_walk
+void main()
+{
+    uint i = gid();
+    if (i >= N) return;
+    vec3 xi = PRED3(i);
+    acc = vec3(0.0);
+    pi_over = prho2_[i];
+    p_i = p_[i];
+    rho_i = rho_[i];
+    sph_walk(i, xi);
+#if WALL_VOLUME
+    vec3 grad;
+    wall_hidden(xi, grad);
+    for (int d = 0; d < DIM; d++) acc[d] -= RHO0 * pi_over * grad[d];
+#endif
+    for (int d = 0; d < DIM; d++) accp_[uint(d) * N + i] = acc[d];
+}
