@@ -232,7 +232,7 @@ static bool compile(gpu *g, int p, const char *pre, char *why, size_t n)
     if (!ok) {
         char log[1024] = "";
         gl->GetShaderInfoLog(sh, sizeof log, NULL, log);
-        snprintf(why, n, "compiling shaders/gpu_%s.comp failed: %s", program_names[p], log);
+        snprintf(why, n, "compiling shaders/gpu_%s.comp failed: %.900s", program_names[p], log);
         gl->DeleteShader(sh);
         return false;
     }
@@ -244,7 +244,7 @@ static bool compile(gpu *g, int p, const char *pre, char *why, size_t n)
     if (!ok) {
         char log[1024] = "";
         gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
-        snprintf(why, n, "linking shaders/gpu_%s.comp failed: %s", program_names[p], log);
+        snprintf(why, n, "linking shaders/gpu_%s.comp failed: %.900s", program_names[p], log);
         gl->DeleteProgram(prog);
         return false;
     }

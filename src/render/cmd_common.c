@@ -133,6 +133,7 @@ int view_opts_parse(view_opts *o, const char *cmd, int argc, char **argv, int *i
 int32_t sim_index_of_id(const sph_sim *sim, long id)
 {
     if (id < 0) return -1;
+    sph_sim_sync(sim, SPH_SYNC_ID);
     for (uint32_t i = 0; i < sim->n; i++)
         if (sim->P.id[i] == (uint32_t)id) return (int32_t)i;
     return -1;

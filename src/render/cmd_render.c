@@ -24,6 +24,7 @@ static void usage(FILE *f)
             "  --gl egl|osmesa     GL backend (default egl: EGL surfaceless; osmesa: Mesa's OSMesa)\n"
             "  --vtk DIR           also write DIR/particles_NNNNN.vtk for each frame (ParaView)\n"
             "  --set S.K=V         override a scene key (repeatable)\n"
+            "  --backend cpu|gl    where the passes run (the scene's [compute] backend otherwise)\n"
             "  --threads N         simulation threads (default: one per core)\n"
             "  --quiet             no progress line, no summary\n" VIEW_OPTS_HELP "  --help              this text\n"
             "Rendering is in software (llvmpipe) unless LIBGL_ALWAYS_SOFTWARE is set to 0.\n",
@@ -77,6 +78,18 @@ int cmd_render(int argc, char **argv)
                 fprintf(stderr, "sphlab render: --gl '%s': accepted: egl, osmesa\n", v);
                 return 2;
             }
+        } else if (opt_is(a, "--backend")) {
+            /* shorthand for --set compute.backend=... */
+            if (!(v = opt_val("render", argc, argv, &i, "--backend"))) return 2;
+            if (strcmp(v, "cpu") != 0 && strcmp(v, "gl") != 0) {
+                fprintf(stderr, "sphlab render: --backend '%s': accepted: cpu, gl\n", v);
+                return 2;
+            }
+            if (so.n_sets == APP_MAX_SETS) {
+                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
+                return 2;
+            }
+            so.sets[so.n_sets++] = strcmp(v, "gl") == 0 ? "compute.backend=gl" : "compute.backend=cpu";
         } else if (opt_is(a, "--set")) {
             if (!(v = opt_val("render", argc, argv, &i, "--set"))) return 2;
             if (so.n_sets == APP_MAX_SETS) {

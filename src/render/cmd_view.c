@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "cmd_common.h"
+#include "gl_context.h"
 #include "commands.h"
 
 /* The key bindings, written once: the help panel, `--help` and
@@ -58,6 +59,7 @@ static void usage(FILE *f)
             "usage: sphlab view SCENE.ini [options]\n"
             "Opens a window and runs the scene live.\n"
             "  --set S.K=V         override a scene key (repeatable)\n"
+            "  --backend cpu|gl    where the passes run (the scene's [compute] backend otherwise)\n"
             "  --threads N         simulation threads (default: one per core)\n"
             "  --paused            start paused\n"
             "  --steps-per-frame K steps between frames (default: as many as fit in 15 ms; 1 when scripted)\n"
@@ -435,6 +437,18 @@ int cmd_view(int argc, char **argv)
             if (!(v = opt_val("view", argc, argv, &i, "--threads")) ||
                 !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
                 return 2;
+        } else if (opt_is(a, "--backend")) {
+            /* shorthand for --set compute.backend=... */
+            if (!(v = opt_val("view", argc, argv, &i, "--backend"))) return 2;
+            if (strcmp(v, "cpu") != 0 && strcmp(v, "gl") != 0) {
+                fprintf(stderr, "sphlab view: --backend '%s': accepted: cpu, gl\n", v);
+                return 2;
+            }
+            if (so.n_sets == APP_MAX_SETS) {
+                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
+                return 2;
+            }
+            so.sets[so.n_sets++] = strcmp(v, "gl") == 0 ? "compute.backend=gl" : "compute.backend=cpu";
         } else if (opt_is(a, "--set")) {
             if (!(v = opt_val("view", argc, argv, &i, "--set"))) return 2;
             if (so.n_sets == APP_MAX_SETS) {
@@ -576,6 +590,8 @@ int cmd_view(int argc, char **argv)
         w.v.hud.message = now < w.msg_until ? w.msg : NULL;
         w.v.selected = sim_index_of_id(w.sim, w.sel_id);
         fill_panel(&w);
+        SDL_GL_MakeCurrent(win, ctx); /* the GL backend's passes made their own context current */
+        sph_glctx_forget_current();
         if (!sph_render(w.r, w.sim, &w.v, err, sizeof err)) {
             fprintf(stderr, "sphlab view: %s\n", err);
             goto out;

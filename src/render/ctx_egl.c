@@ -22,6 +22,16 @@ struct sph_glctx {
  * surfaceless display. The last context to go terminates it. */
 static int live_contexts;
 
+/* The context sphlab made current last. GL calls go to the thread's current
+ * context whichever library made it current, and each library knows only its
+ * own: after OSMesaMakeCurrent, EGL still reports its context as current. */
+sph_glctx *sph_glctx_last_current;
+
+void sph_glctx_forget_current(void)
+{
+    sph_glctx_last_current = NULL;
+}
+
 static const char *egl_error_name(EGLint e)
 {
     switch (e) {
@@ -93,6 +103,8 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
             what = ask;
         else if (!eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, c->ctx))
             what = "eglMakeCurrent without a surface";
+        else
+            sph_glctx_last_current = c;
     }
     if (what) {
         snprintf(err, n, "EGL (surfaceless): %s failed: %s (no usable OpenGL %d.%d%s)", what,
@@ -107,13 +119,18 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
 
 bool sph_glctx_make_current(sph_glctx *c)
 {
-    if (eglGetCurrentContext() == c->ctx) return true;
+    if (sph_glctx_last_current == c && eglGetCurrentContext() == c->ctx) return true;
+    sph_glctx_last_current = c;
+    /* EGL skips a make-current of the context it believes current, though
+     * OSMesa may have taken the thread's GL since: release it first */
+    if (eglGetCurrentContext() == c->ctx) eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     return eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, c->ctx);
 }
 
 void sph_glctx_destroy(sph_glctx *c)
 {
     if (!c) return;
+    if (sph_glctx_last_current == c) sph_glctx_last_current = NULL;
     if (c->dpy != EGL_NO_DISPLAY) {
         if (eglGetCurrentContext() == c->ctx) eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (c->ctx != EGL_NO_CONTEXT) eglDestroyContext(c->dpy, c->ctx);

@@ -38,6 +38,7 @@ sph_glctx *sph_glctx_create_osmesa(sph_gl *gl, char *err, size_t n)
         free(c);
         return NULL;
     }
+    sph_glctx_last_current = (sph_glctx *)c;
     if (!OSMesaMakeCurrent(c->ctx, c->buf, GL_UNSIGNED_BYTE, 16, 16)) {
         snprintf(err, n, "OSMesa: OSMesaMakeCurrent failed");
         OSMesaDestroyContext(c->ctx);
@@ -57,7 +58,8 @@ sph_glctx *sph_glctx_create_osmesa(sph_gl *gl, char *err, size_t n)
 bool sph_glctx_make_current_osmesa(sph_glctx *ctx)
 {
     osmesa_ctx *c = (osmesa_ctx *)ctx;
-    if (OSMesaGetCurrentContext() == c->ctx) return true;
+    if (sph_glctx_last_current == ctx && OSMesaGetCurrentContext() == c->ctx) return true;
+    sph_glctx_last_current = ctx;
     return OSMesaMakeCurrent(c->ctx, c->buf, GL_UNSIGNED_BYTE, 16, 16);
 }
 
@@ -65,6 +67,7 @@ void sph_glctx_destroy_osmesa(sph_glctx *ctx)
 {
     osmesa_ctx *c = (osmesa_ctx *)ctx;
     if (!c) return;
+    if (sph_glctx_last_current == ctx) sph_glctx_last_current = NULL;
     OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
     OSMesaDestroyContext(c->ctx);
     free(c);

@@ -18,6 +18,10 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major, int minor, char *
  * the GL compute backend each have theirs); false if EGL refuses. */
 bool sph_glctx_make_current(sph_glctx *c);
 bool sph_glctx_make_current_osmesa(sph_glctx *c);
+/* The context sphlab made current last (NULL: none or unknown). A window
+ * that makes its own context current calls sph_glctx_forget_current(). */
+extern sph_glctx *sph_glctx_last_current;
+void sph_glctx_forget_current(void);
 sph_glctx *sph_glctx_create_osmesa(sph_gl *gl, char *err, size_t n);
 void sph_glctx_destroy(sph_glctx *c);        /* EGL */
 void sph_glctx_destroy_osmesa(sph_glctx *c); /* OSMesa */

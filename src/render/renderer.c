@@ -263,8 +263,18 @@ sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *er
     return r;
 }
 
+/* The GL compute backend has a context of its own and makes it current for
+ * its passes; the headless contexts are made current again before drawing
+ * (the window's is, by the window: cmd_view.c). */
+static void make_current(sph_renderer *r)
+{
+    if (r->backend == SPH_GL_EGL) sph_glctx_make_current(r->ctx);
+    if (r->backend == SPH_GL_OSMESA) sph_glctx_make_current_osmesa(r->ctx);
+}
+
 bool sph_renderer_resize(sph_renderer *r, int w, int h, char *err, size_t n)
 {
+    make_current(r);
     if (w == r->w && h == r->h) return true;
     if (!check_size(w, h, err, n)) return false;
     r->w = w;
@@ -275,6 +285,7 @@ bool sph_renderer_resize(sph_renderer *r, int w, int h, char *err, size_t n)
 void sph_renderer_destroy(sph_renderer *r)
 {
     if (!r) return;
+    if (r->ctx) make_current(r);
     sph_gl *gl = &r->gl;
     if (gl->DeleteProgram) {
         if (r->prog_p) gl->DeleteProgram(r->prog_p);
@@ -688,6 +699,10 @@ static void clip_to_view(sph_renderer *r, bool on)
 bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *err, size_t n)
 {
     sph_gl *gl = &r->gl;
+    /* With the GL backend, the particles, index and lists are read back from
+     * its buffers here (a copy per frame; nothing to do on the CPU backend). */
+    sph_sim_sync(sim, SPH_SYNC_ALL);
+    make_current(r);
     const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
     const unsigned L = v->overlays;
     /* layout: legend on the right, index strip at the bottom, the view in the rest */
@@ -856,6 +871,7 @@ oom:
 void sph_renderer_read_rgb(sph_renderer *r, uint8_t *rgb)
 {
     sph_gl *gl = &r->gl;
+    make_current(r);
     uint8_t *row = malloc((size_t)r->w * 4);
     if (!row) {
         memset(rgb, 0, (size_t)r->w * r->h * 3);

@@ -1,0 +1,385 @@
+/* The GL compute backend against the CPU passes, on Mesa's llvmpipe through
+ * EGL surfaceless (no GPU, no display). Pass by pass: before each pass the
+ * GL simulation gets the CPU's state, both run the pass, and what the pass
+ * wrote must agree: the index exactly (hash, both sorts, reorder, offsets),
+ * the particle fields within the tolerances below. Also whole runs, the hash
+ * at negative coordinates, stepping pass by pass, and the refusals. */
+#define _GNU_SOURCE /* setenv */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu.h"
+#include "sph_search.h"
+#include "test_util.h"
+
+/* Tolerances, as a fraction of the largest magnitude of the field in the
+ * CPU's result. The density and pressure sums run in another order (cells
+ * walked on the GPU, lists on the CPU): a few float roundings of the sum.
+ * Force sums cancel (a fluid at rest sums to ~0 from terms of ~g), so their
+ * error is measured against the largest force, not each particle's own. */
+#define TOL_EXACT_KINEMATICS 1e-6 /* external, integrate, walls: the same operations in the same order */
+#define TOL_DENSITY 1e-5          /* rho, vol */
+#define TOL_PRESSURE 1e-5         /* p, p / rho^2 (from identical densities) */
+#define TOL_FORCE 1e-5            /* acc_p, acc_v */
+#define TOL_POS_RUN 1e-4          /* [m] positions after a whole run of separate simulations */
+
+/* 2D, 225 particles in a box reaching below zero on both axes (negative
+ * cells), jittered so that no two distances tie. */
+static const char *scene_2d =
+    "[scene]\nname=gl 2d\ndimension=2\neffects=gravity pressure viscosity walls\njitter=0.2\n"
+    "[domain]\nmin=-0.3 -0.2\nmax=0.3 0.4\nwall_damping=0.3\n"
+    "[physics]\nnegative_pressure=clamp\nviscosity=0.005\n"
+    "[kernels]\nh=0.04\n[time]\ndt=0.001\ncfl=0.4\n"
+    "[fluid a]\nmin=-0.3 -0.2\nmax=0.0 0.1\nspacing=0.02\nvelocity=0.5 0\n";
+
+/* 3D, 512 particles, also across zero. */
+static const char *scene_3d =
+    "[scene]\nname=gl 3d\ndimension=3\neffects=gravity pressure viscosity walls\njitter=0.2\n"
+    "[domain]\nmin=-0.2 -0.2 -0.2\nmax=0.2 0.2 0.2\nwall_damping=0.3\n"
+    "[physics]\nnegative_pressure=clamp\nviscosity=0.005\ngravity=0 -9.81 0\n"
+    "[kernels]\nh=0.05\n[time]\ndt=0.001\ncfl=0.4\n"
+    "[fluid a]\nmin=-0.2 -0.2 -0.2\nmax=0.0 0.0 0.0\nspacing=0.025\nvelocity=0 0 0.3\n";
+
+/* No GL at all (no EGL display) is a reason to skip; a display without
+ * OpenGL 4.3 is a failure: CI has Mesa, whose llvmpipe gives 4.5. */
+static void need_gl(void)
+{
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
+    sph_gpu_register();
+    char dev[512];
+    if (sph_gpu_probe(dev, sizeof dev)) return;
+    if (strstr(dev, "eglGetPlatformDisplay") || strstr(dev, "EGL_MESA_platform_surfaceless") ||
+        strstr(dev, "eglInitialize"))
+        cr_skip_test("no EGL display on this machine: %s", dev);
+    cr_assert_fail("an EGL display but no OpenGL 4.3 context: %s", dev);
+}
+
+static sph_sim *make(const char *ini, const char *const *sets, int n_sets, bool gl)
+{
+    sph_scene_def def = test_scene(ini);
+    sph_error err;
+    for (int i = 0; i < n_sets; i++)
+        cr_assert_eq(sph_scene_set(&def, sets[i], &err), SPH_ERR_OK, "--set %s: %s", sets[i], err.msg);
+    def.backend = gl ? SPH_BACKEND_GL : SPH_BACKEND_CPU;
+    sph_sim *sim;
+    cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert(!gl || sim->backend, "the GL simulation has no backend");
+    return sim;
+}
+
+static void copy_f(float *dst, const float *src, uint32_t n)
+{
+    if (dst && src) memcpy(dst, src, (size_t)n * sizeof(float));
+}
+
+/* The GL simulation takes the CPU's particles, time step and CFL maxima. */
+static void copy_state(sph_sim *g, const sph_sim *c)
+{
+    uint32_t n = c->n;
+    memcpy(g->P.id, c->P.id, (size_t)n * sizeof *g->P.id);
+    copy_f(g->P.mass, c->P.mass, n);
+    for (int d = 0; d < c->dim; d++) {
+        copy_f(g->P.pos[d], c->P.pos[d], n);
+        copy_f(g->P.vel[d], c->P.vel[d], n);
+        copy_f(g->P.pred[d], c->P.pred[d], n);
+        copy_f(g->P.acc_p[d], c->P.acc_p[d], n);
+        copy_f(g->P.acc_v[d], c->P.acc_v[d], n);
+    }
+    copy_f(g->P.rho, c->P.rho, n);
+    copy_f(g->P.vol, c->P.vol, n);
+    copy_f(g->P.p, c->P.p, n);
+    copy_f(g->P.p_rho2, c->P.p_rho2, n);
+    g->dt = c->dt;
+    g->max_speed = c->max_speed;
+    g->max_acc = c->max_acc;
+    sph_sim_upload(g);
+}
+
+/* Largest |gl - cpu| of a field over particles and components, and the
+ * largest |cpu| (the scale the tolerances are fractions of). */
+static double field_error(const sph_sim *c, const sph_sim *g, sph_field_id f, double *scale, const char **name)
+{
+    sph_field fc, fg;
+    cr_assert(sph_sim_field(c, f, &fc) && sph_sim_field(g, f, &fg), "field %d missing", (int)f);
+    *name = fc.name;
+    double err = 0, big = 0;
+    for (int k = 0; k < fc.ncomp; k++)
+        for (uint32_t i = 0; i < c->n; i++) {
+            err = fmax(err, fabs((double)fg.c[k][i] - fc.c[k][i]));
+            big = fmax(big, fabs((double)fc.c[k][i]));
+        }
+    *scale = big;
+    return err;
+}
+
+static void expect_field(const sph_sim *c, const sph_sim *g, sph_field_id f, double tol, const char *what)
+{
+    const char *name;
+    double scale, err = field_error(c, g, f, &scale, &name);
+    cr_expect(err <= tol * scale + 1e-30, "%s: field %s differs by %.3g, above %.1g of its scale %.4g", what, name,
+              err, tol, scale);
+    if (getenv("SPH_TEST_VERBOSE")) fprintf(stderr, "%-15s %-7s error %.3g of scale %.4g: %.2g\n", what, name, err,
+                                            scale, scale > 0 ? err / scale : 0.0);
+}
+
+static void expect_index(const sph_sim *c, const sph_sim *g, const char *what)
+{
+    sph_sim_sync(g, SPH_SYNC_INDEX);
+    for (uint32_t i = 0; i < c->n; i++) {
+        const sph_entry *a = &c->S.entries[i], *b = &g->S.entries[i];
+        cr_assert(a->key == b->key && a->hash == b->hash && a->index == b->index,
+                  "%s: entry %u is (%u, %u, %u) on the GPU, (%u, %u, %u) on the CPU", what, i, b->key, b->hash,
+                  b->index, a->key, a->hash, a->index);
+    }
+}
+
+/* One step in lockstep, each pass checked against the CPU's. */
+static void lockstep(sph_sim *c, sph_sim *g)
+{
+    do {
+        copy_state(g, c);
+        sph_pass_id pc = sph_sim_step_pass(c), pg = sph_sim_step_pass(g);
+        cr_assert_eq(pc, pg, "the backends ran different passes");
+        const char *name = sph_passes[pc]->name;
+        switch (pc) {
+        case SPH_PASS_EXTERNAL:
+        case SPH_PASS_INTEGRATE:
+        case SPH_PASS_WALLS:
+            expect_field(c, g, SPH_FIELD_VEL, TOL_EXACT_KINEMATICS, name);
+            expect_field(c, g, pc == SPH_PASS_EXTERNAL ? SPH_FIELD_PRED : SPH_FIELD_POS, TOL_EXACT_KINEMATICS, name);
+            if (pc == SPH_PASS_INTEGRATE) {
+                cr_expect(fabsf(g->max_speed - c->max_speed) <= 1e-6f * c->max_speed, "max speed %g, CPU %g",
+                          g->max_speed, c->max_speed);
+                cr_expect(fabsf(g->max_acc - c->max_acc) <= 1e-5f * c->max_acc, "max acc %g, CPU %g", g->max_acc,
+                          c->max_acc);
+            }
+            break;
+        case SPH_PASS_HASH:
+        case SPH_PASS_SORT: expect_index(c, g, name); break;
+        case SPH_PASS_REORDER:
+            expect_index(c, g, name);
+            sph_sim_sync(g, SPH_SYNC_ID);
+            cr_expect(memcmp(c->P.id, g->P.id, c->n * sizeof *c->P.id) == 0, "reorder: ids differ");
+            expect_field(c, g, SPH_FIELD_POS, 0, name);
+            break;
+        case SPH_PASS_OFFSETS:
+            sph_sim_sync(g, SPH_SYNC_INDEX);
+            cr_expect(memcmp(c->S.start, g->S.start, c->S.table_size * sizeof *c->S.start) == 0,
+                      "offsets: start tables differ");
+            break;
+        case SPH_PASS_NEIGHBOURS: {
+            /* on GL the lists exist only on the host, built on demand from the device's index */
+            sph_sim_sync(g, SPH_SYNC_LISTS);
+            cr_expect(memcmp(c->S.nbr_start, g->S.nbr_start, (c->n + 1) * sizeof *c->S.nbr_start) == 0,
+                      "neighbour counts differ");
+            break;
+        }
+        case SPH_PASS_DENSITY:
+            expect_field(c, g, SPH_FIELD_RHO, TOL_DENSITY, name);
+            expect_field(c, g, SPH_FIELD_VOL, TOL_DENSITY, name);
+            break;
+        case SPH_PASS_PRESSURE:
+            expect_field(c, g, SPH_FIELD_P, TOL_PRESSURE, name);
+            expect_field(c, g, SPH_FIELD_PRHO2, TOL_PRESSURE, name);
+            break;
+        case SPH_PASS_PRESSURE_FORCE: expect_field(c, g, SPH_FIELD_ACC_P, TOL_FORCE, name); break;
+        case SPH_PASS_VISCOSITY: expect_field(c, g, SPH_FIELD_ACC_V, TOL_FORCE, name); break;
+        default: break;
+        }
+    } while (c->next_pass != 0);
+}
+
+static void lockstep_steps(const char *ini, const char *const *sets, int n_sets, int steps)
+{
+    need_gl();
+    sph_sim *c = make(ini, sets, n_sets, false), *g = make(ini, sets, n_sets, true);
+    for (int s = 0; s < 3; s++) sph_sim_step(c); /* the fluid moves before the checked steps */
+    for (int s = 0; s < steps; s++) lockstep(c, g);
+    sph_sim_destroy(g);
+    sph_sim_destroy(c);
+}
+
+Test(gl_backend, passes_match_cpu_2d_counting)
+{
+    lockstep_steps(scene_2d, NULL, 0, 2);
+}
+
+Test(gl_backend, passes_match_cpu_2d_bitonic)
+{
+    const char *sets[] = {"search.sort=bitonic"};
+    lockstep_steps(scene_2d, sets, 1, 2);
+}
+
+Test(gl_backend, passes_match_cpu_3d_counting)
+{
+    lockstep_steps(scene_3d, NULL, 0, 2);
+}
+
+Test(gl_backend, passes_match_cpu_3d_bitonic_no_reorder)
+{
+    const char *sets[] = {"search.sort=bitonic", "search.reorder=off"};
+    lockstep_steps(scene_3d, sets, 2, 1);
+}
+
+/* Few keys: long runs of mixed cells in each key, the stable rank's hard case. */
+Test(gl_backend, passes_match_cpu_few_keys)
+{
+    const char *sets[] = {"search.table_size=7"};
+    lockstep_steps(scene_2d, sets, 1, 1);
+}
+
+/* The other forms and kernels: shared pressure, smoothing viscosity, Tait,
+ * reflecting walls, the grid search. */
+Test(gl_backend, passes_match_cpu_other_forms)
+{
+    const char *sets[] = {"physics.pressure_form=shared", "physics.viscosity_form=smoothing", "physics.eos=tait",
+                          "domain.wall_model=reflect",     "search.method=grid",              "kernels.density=wendland",
+                          "kernels.pressure=cubic",        "kernels.viscosity=cubic"};
+    lockstep_steps(scene_2d, sets, 8, 1);
+}
+
+Test(gl_backend, passes_match_cpu_periodic_brute)
+{
+    const char *sets[] = {"domain.periodic=x", "search.method=brute"};
+    lockstep_steps(scene_2d, sets, 2, 1);
+}
+
+/* Separate simulations, 40 steps each: positions stay within TOL_POS_RUN. */
+static void whole_run(const char *ini)
+{
+    need_gl();
+    sph_sim *c = make(ini, NULL, 0, false), *g = make(ini, NULL, 0, true);
+    for (int s = 0; s < 40; s++) {
+        sph_sim_step(c);
+        sph_sim_step(g);
+    }
+    cr_assert(!g->alarm.raised && !c->alarm.raised, "the watchdog stopped a run");
+    cr_expect(fabs(g->t - c->t) <= 1e-6 * c->t, "simulated time %g on GL, %g on the CPU", g->t, c->t);
+    sph_sim_sync(g, SPH_SYNC_ALL);
+    /* match particles by id: both reorder the same way, but compare robustly */
+    uint32_t *where = malloc(c->n * sizeof *where);
+    cr_assert_not_null(where);
+    for (uint32_t i = 0; i < g->n; i++) where[g->P.id[i]] = i;
+    double err = 0;
+    for (uint32_t i = 0; i < c->n; i++)
+        for (int d = 0; d < c->dim; d++) err = fmax(err, fabs((double)g->P.pos[d][where[c->P.id[i]]] - c->P.pos[d][i]));
+    free(where);
+    if (getenv("SPH_TEST_VERBOSE")) fprintf(stderr, "whole run (%dD, 40 steps): positions differ by %.3g m\n", c->dim, err);
+    cr_expect(err <= TOL_POS_RUN, "positions after 40 steps differ by %.3g m (tolerance %g m)", err, TOL_POS_RUN);
+    sph_stats sc, sg;
+    sph_sim_stats(c, &sc);
+    sph_sim_stats(g, &sg);
+    cr_expect(fabs(sg.ekin - sc.ekin) <= 1e-3 * sc.ekin, "kinetic energy %g on GL, %g on the CPU", sg.ekin, sc.ekin);
+    sph_sim_destroy(g);
+    sph_sim_destroy(c);
+}
+
+Test(gl_backend, whole_run_2d)
+{
+    whole_run(scene_2d);
+}
+
+Test(gl_backend, whole_run_3d)
+{
+    whole_run(scene_3d);
+}
+
+/* A particle just below zero is in cell -1 (floor), not 0 (truncation), and
+ * its hash wraps in unsigned arithmetic as the CPU's does. */
+Test(gl_backend, hash_negative_coordinates)
+{
+    need_gl();
+    const char *ini = "[scene]\neffects=density\n[domain]\nmin=-1 -1\nmax=1 1\n[kernels]\nh=0.1\n"
+                      "[fluid a]\nmin=-0.3 -0.3\nmax=0.3 0.3\nspacing=0.1\n";
+    sph_sim *g = make(ini, NULL, 0, true);
+    sph_sim_step_pass(g); /* external: pred = pos */
+    sph_sim_step_pass(g); /* hash */
+    sph_sim_sync(g, SPH_SYNC_INDEX | SPH_SYNC_FIELD(SPH_FIELD_PRED));
+    int checked = 0;
+    for (uint32_t i = 0; i < g->n; i++) {
+        float x = g->P.pred[0][i], y = g->P.pred[1][i];
+        if (!(x < 0 && x > -g->S.cells.size[0] && y < 0 && y > -g->S.cells.size[1])) continue;
+        uint32_t want = sph_hash_cell(2, -1, -1, 0);
+        cr_expect_eq(g->S.entries[i].hash, want, "particle at (%g, %g): hash %u, cell (-1, -1) has %u", x, y,
+                     g->S.entries[i].hash, want);
+        cr_expect_eq(g->S.entries[i].key, want % g->S.table_size);
+        checked++;
+    }
+    cr_assert_eq(checked, 1, "expected one particle in cell (-1, -1), found %d", checked);
+    sph_sim_destroy(g);
+}
+
+/* A step taken pass by pass gives what a whole step gives (the GL backend is
+ * deterministic: the counting sort ranks each run, no float atomics). */
+Test(gl_backend, stepping_pass_by_pass)
+{
+    need_gl();
+    sph_sim *a = make(scene_2d, NULL, 0, true), *b = make(scene_2d, NULL, 0, true);
+    for (int s = 0; s < 3; s++) {
+        int passes = 0;
+        do {
+            sph_sim_step_pass(a);
+            passes++;
+            /* the host copy follows every pass */
+            sph_field pos;
+            cr_assert(sph_sim_field(a, SPH_FIELD_POS, &pos));
+        } while (a->next_pass != 0);
+        cr_expect_eq(passes, 12, "a step of this scene has 12 passes, stepped %d", passes);
+        sph_sim_step(b);
+    }
+    cr_assert_eq(a->step, b->step);
+    sph_sim_sync(a, SPH_SYNC_ALL);
+    sph_sim_sync(b, SPH_SYNC_ALL);
+    for (int d = 0; d < 2; d++)
+        cr_expect(memcmp(a->P.pos[d], b->P.pos[d], a->n * sizeof(float)) == 0, "positions differ on axis %d", d);
+    cr_expect(memcmp(a->P.rho, b->P.rho, a->n * sizeof(float)) == 0, "densities differ");
+    sph_sim_destroy(a);
+    sph_sim_destroy(b);
+}
+
+/* The CPU changes particles, uploads, and the device continues from there. */
+Test(gl_backend, upload_after_cpu_change)
+{
+    need_gl();
+    sph_sim *g = make(scene_2d, NULL, 0, true);
+    sph_sim_step(g);
+    sph_sim_sync(g, SPH_SYNC_ALL);
+    for (uint32_t i = 0; i < g->n; i++) g->P.vel[0][i] = 2.0f;
+    sph_sim_upload(g);
+    sph_sim_step_pass(g); /* external: pred = x + v dt with the new v */
+    sph_sim_sync(g, SPH_SYNC_ALL);
+    for (uint32_t i = 0; i < g->n; i++)
+        cr_assert_float_eq(g->P.pred[0][i], g->P.pos[0][i] + 2.0f * g->dt, 1e-6f, "particle %u", i);
+    sph_sim_destroy(g);
+}
+
+Test(gl_backend, refuses_what_it_does_not_implement)
+{
+    need_gl();
+    const char *cases[][2] = {{"search.sort=qsort", "[search] sort = qsort"},
+                              {"search.sort=none", "[search] sort = none"},
+                              {"physics.accumulate=double", "[physics] accumulate = double"}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        sph_scene_def def = test_scene(scene_2d);
+        sph_error err;
+        cr_assert_eq(sph_scene_set(&def, cases[k][0], &err), SPH_ERR_OK);
+        def.backend = SPH_BACKEND_GL;
+        sph_sim *sim = NULL;
+        cr_expect_neq(sph_sim_create(&def, 1, &sim, &err), SPH_ERR_OK, "%s accepted", cases[k][0]);
+        cr_expect_null(sim);
+        cr_expect(strstr(err.msg, cases[k][1]), "message does not name '%s': %s", cases[k][1], err.msg);
+        sph_sim_destroy(sim);
+    }
+}
+
+/* The device is named, for tables and the bench. */
+Test(gl_backend, names_its_device)
+{
+    need_gl();
+    sph_sim *g = make(scene_2d, NULL, 0, true);
+    cr_expect(strstr(g->backend->device, "OpenGL"), "device '%s'", g->backend->device);
+    sph_sim_destroy(g);
+}
