@@ -383,3 +383,36 @@ Test(gl_backend, names_its_device)
     cr_expect(strstr(g->backend->device, "OpenGL"), "device '%s'", g->backend->device);
     sph_sim_destroy(g);
 }
+
+/* A variant switched at run time (the window's toggles): the particles move
+ * from the old device buffers to the new ones and the run goes on as the CPU's. */
+Test(gl_backend, reconfigure_keeps_particles)
+{
+    need_gl();
+    sph_sim *c = make(scene_2d, NULL, 0, false), *g = make(scene_2d, NULL, 0, true);
+    for (int s = 0; s < 5; s++) {
+        sph_sim_step(c);
+        sph_sim_step(g);
+    }
+    sph_error err;
+    sph_scene_def next = c->def;
+    next.sort = SPH_SORT_BITONIC;
+    cr_assert_eq(sph_sim_reconfigure(c, &next, &err), SPH_ERR_OK, "%s", err.msg);
+    next.backend = SPH_BACKEND_GL;
+    cr_assert_eq(sph_sim_reconfigure(g, &next, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert(g->backend, "the reconfigured simulation lost its backend");
+    for (int s = 0; s < 5; s++) {
+        sph_sim_step(c);
+        sph_sim_step(g);
+    }
+    sph_sim_sync(g, SPH_SYNC_ALL);
+    double err_pos = 0;
+    for (uint32_t i = 0; i < c->n; i++)
+        for (int d = 0; d < 2; d++) {
+            cr_assert_eq(g->P.id[i], c->P.id[i], "particle %u: id %u on GL, %u on the CPU", i, g->P.id[i], c->P.id[i]);
+            err_pos = fmax(err_pos, fabs((double)g->P.pos[d][i] - c->P.pos[d][i]));
+        }
+    cr_expect(err_pos <= TOL_POS_RUN, "positions differ by %.3g m after the switch", err_pos);
+    sph_sim_destroy(g);
+    sph_sim_destroy(c);
+}
