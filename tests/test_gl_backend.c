@@ -187,6 +187,7 @@ static void lockstep(sph_sim *c, sph_sim *g)
             break;
         case SPH_PASS_PRESSURE_FORCE: expect_field(c, g, SPH_FIELD_ACC_P, TOL_FORCE, name); break;
         case SPH_PASS_VISCOSITY: expect_field(c, g, SPH_FIELD_ACC_V, TOL_FORCE, name); break;
+        case SPH_PASS_INTERACTION: expect_field(c, g, SPH_FIELD_ACC_I, TOL_FORCE, name); break;
         default: break;
         }
     } while (c->next_pass != 0);
@@ -196,6 +197,13 @@ static void lockstep_steps(const char *ini, const char *const *sets, int n_sets,
 {
     need_gl();
     sph_sim *c = make(ini, sets, n_sets, false), *g = make(ini, sets, n_sets, true);
+    for (int k = 0; k < 2; k++) { /* the mouse, for scenes with the interaction effect */
+        sph_sim *s = k ? g : c;
+        s->interaction_active = true;
+        s->interaction_point[0] = -0.15f;
+        s->interaction_point[1] = 0.0f;
+        s->interaction_sign = -1.0f;
+    }
     for (int s = 0; s < 3; s++) sph_sim_step(c); /* the fluid moves before the checked steps */
     for (int s = 0; s < steps; s++) lockstep(c, g);
     sph_sim_destroy(g);
@@ -239,6 +247,12 @@ Test(gl_backend, passes_match_cpu_other_forms)
                           "domain.wall_model=reflect",     "search.method=grid",              "kernels.density=wendland",
                           "kernels.pressure=cubic",        "kernels.viscosity=cubic"};
     lockstep_steps(scene_2d, sets, 8, 1);
+}
+
+Test(gl_backend, passes_match_cpu_interaction)
+{
+    const char *sets[] = {"scene.effects=gravity pressure viscosity walls interaction"};
+    lockstep_steps(scene_2d, sets, 1, 2);
 }
 
 Test(gl_backend, passes_match_cpu_periodic_brute)
