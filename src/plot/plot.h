@@ -6,7 +6,9 @@
  *   plot_out.c   stages output files (written to DIR/.NAME.PID.tmp.EXT and
  *                renamed only when every file of the command is complete);
  *   plot_draw.c  the chart types (stacked line panels, horizontal bars,
- *                stacked areas) and their black-and-white-safe styles;
+ *                stacked areas, log-log), their black-and-white-safe styles,
+ *                and the pieces a chart drawn elsewhere (the bench ladder)
+ *                builds on, so every chart of sphlab has one look;
  *   cmd_plot.c   the subcommands: passes, series, kernel, kernels. */
 #ifndef SPH_PLOT_H
 #define SPH_PLOT_H
@@ -100,7 +102,44 @@ typedef struct plot_stack {
     int nl;
 } plot_stack;
 
-typedef enum plot_kind { PLOT_LINES, PLOT_BARS, PLOT_STACK } plot_kind;
+enum { PLOT_MAX_CURVES = 16, PLOT_MAX_GUIDES = 4, PLOT_MAX_NOTES = 16 };
+
+/* Points on a log-log chart; non-positive or non-finite ones are left out. */
+typedef struct plot_curve {
+    char label[96];       /* legend text (PLplot escapes allowed) */
+    const double *x, *y;
+    int n;
+    int style;            /* colour, dashes and marker */
+    bool line;            /* join the points */
+    bool solid;           /* a solid line whatever the style's dashes */
+    bool markers;         /* a marker at every point */
+    bool filled;          /* filled markers, for emphasis */
+    const int *numbers;   /* if set, written beside each point */
+} plot_curve;
+
+/* A thin straight line across a whole log-log chart, y = y0 (x / x0)^slope,
+ * to read the data against. A level (slope 0) is kept inside the y axis; a
+ * slope is not, as it may cross every decade. */
+typedef struct plot_guide {
+    double x0, y0, slope;
+    int style;            /* colour and dashes, as a curve's; -1: grey dots */
+    char label[72];       /* legend text ("": none) */
+    bool on_line;         /* the label above the line's left end instead */
+} plot_guide;
+
+/* Log-log chart. Axes span whole decades, so every axis carries at least two
+ * labelled powers of ten. */
+typedef struct plot_loglog {
+    char title[160], subtitle[200], xlabel[96], ylabel[96];
+    plot_curve c[PLOT_MAX_CURVES];
+    int nc;
+    plot_guide g[PLOT_MAX_GUIDES];
+    int ng;
+    char note[PLOT_MAX_NOTES][120]; /* lines of text under the legend */
+    int nn;
+} plot_loglog;
+
+typedef enum plot_kind { PLOT_LINES, PLOT_BARS, PLOT_STACK, PLOT_LOGLOG } plot_kind;
 
 /* Draws a chart into DIR/BASE.png (width x height pixels) and DIR/BASE.pdf
  * (width/2 x height/2 points: the same layout, 144 dpi), both staged.
@@ -110,5 +149,34 @@ bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *
 
 /* Escapes PLplot's text escape character '#' in s (for file names in titles). */
 void plot_escape(char *dst, size_t cap, const char *s);
+
+/* ---- drawing kit: for a chart that none of the kinds above draws ---------- */
+
+/* Colour map 0, as every page sets it: curve colours at PLOT_CURVE + style % 8,
+ * fill greys at PLOT_FILL + style % 12. */
+enum { PLOT_BG, PLOT_FG, PLOT_GRID, PLOT_REF, PLOT_CURVE, PLOT_FILL = PLOT_CURVE + 8 };
+
+/* Draws draw(chart) on the pages of DIR/BASE.png and DIR/BASE.pdf, as
+ * plot_chart does (same sizes, staging and fixed PDF date). */
+typedef void plot_draw_fn(const void *chart);
+bool plot_page(plot_draw_fn *draw, const void *chart, const char *dir, const char *base, int width, int height);
+
+/* Within a page being drawn: */
+void plot_width(double w);  /* line width, scaled with the page */
+void plot_dash(int style);  /* the style's dashes; style 0 is solid */
+/* The polygon in fill style `style`: its grey, then its hatching in black. */
+void plot_fill(int n, const double *x, const double *y, int style);
+void plot_titles(const char *title, const char *subtitle);
+
+/* A legend entry: a fill sample, or a line and/or marker sample. */
+typedef struct plot_key {
+    const char *text;
+    int style;      /* fill style, or curve style (-1: a guide's grey dots) */
+    bool fill;
+    bool line, solid, marker, filled;
+} plot_key;
+/* A boxed legend between x0 and x1 (page fractions) from `top` down: the
+ * keys, then lines of notes. */
+void plot_legend(const plot_key *k, int n, const char *const *notes, int nn, double x0, double x1, double top);
 
 #endif

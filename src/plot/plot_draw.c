@@ -4,7 +4,10 @@
  * text, light grey grid; curves differ by line style (solid, dashed, dotted,
  * dash-dot, ...) and by marker (circle, square, triangle, ...) as well as by
  * colour; filled areas and bars differ by grey level and hatching. Legends
- * are drawn beside the plot area, never over the data. */
+ * are drawn beside the plot area, never over the data. The study's and the
+ * bench's charts are drawn here too (log-log) or with the public pieces
+ * (plot_page, plot_fill, plot_legend, ...), so that the tables below are
+ * the only ones. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,15 +19,7 @@
 
 /* ---- palette and styles ---------------------------------------------------- */
 
-enum {
-    COL_BG = 0,
-    COL_FG = 1,
-    COL_GRID = 2,
-    COL_ZERO = 3,
-    COL_CURVE = 4,  /* 8 curve colours */
-    COL_FILL = 12,  /* fill greys */
-    N_COLOURS = 24
-};
+enum { N_COLOURS = PLOT_FILL + 12 }; /* the colour indices are in plot.h */
 
 static const unsigned char curve_rgb[8][3] = {
     {0, 0, 0}, {0, 84, 166}, {190, 30, 45}, {0, 120, 60}, {120, 50, 150}, {190, 100, 0}, {80, 80, 80}, {0, 130, 140},
@@ -56,6 +51,10 @@ static const char *const marker[8] = {
     "#[0x25cf]", /* filled circle */
     "#[0x25bd]", /* down triangle */
 };
+/* The same shapes filled, for emphasis (the study's Pareto front). */
+static const char *const marker_filled[8] = {
+    "#[0x25cf]", "#[0x25a0]", "#[0x25b2]", "#[0x25c6]", "#[0x00d7]", "+", "#[0x25cf]", "#[0x25bc]",
+};
 
 /* Fills: a grey level (0-255) and a PLplot hatch pattern (0: none), all
  * combinations distinct; hatching is drawn in black over the grey. */
@@ -72,9 +71,9 @@ static const struct {
  * this so that the PDF looks like the PNG. */
 static double g_scale = 1.0;
 
-static void set_width(double w) { plwidth(w * g_scale); }
+void plot_width(double w) { plwidth(w * g_scale); }
 
-static void set_line_style(int style)
+void plot_dash(int style)
 {
     int s = ((style % 8) + 8) % 8;
     if (line_style[s].n == 0) {
@@ -110,15 +109,36 @@ static void set_pattern(int pattern)
     plpat(pat[pattern].n, inc, del);
 }
 
+/* A curve's colour and dashes (solid: none); style -1 is a guide's grey dots. */
+static void pen(int style, bool solid)
+{
+    plcol0(style < 0 ? PLOT_REF : PLOT_CURVE + style % 8);
+    plot_dash(style < 0 ? 2 : solid ? 0 : style);
+}
+
+void plot_fill(int n, const double *x, const double *y, int style)
+{
+    int f = ((style % 12) + 12) % 12;
+    plcol0(PLOT_FILL + f);
+    set_pattern(0);
+    plfill(n, x, y);
+    if (fill_style[f].pattern) {
+        plcol0(PLOT_FG);
+        set_pattern(fill_style[f].pattern);
+        plfill(n, x, y);
+        set_pattern(0);
+    }
+}
+
 static void setup_colours(void)
 {
     plscmap0n(N_COLOURS);
-    plscol0(COL_BG, 255, 255, 255);
-    plscol0(COL_FG, 0, 0, 0);
-    plscol0(COL_GRID, 215, 215, 215);
-    plscol0(COL_ZERO, 110, 110, 110);
-    for (int i = 0; i < 8; i++) plscol0(COL_CURVE + i, curve_rgb[i][0], curve_rgb[i][1], curve_rgb[i][2]);
-    for (int i = 0; i < 12; i++) plscol0(COL_FILL + i, fill_style[i].grey, fill_style[i].grey, fill_style[i].grey);
+    plscol0(PLOT_BG, 255, 255, 255);
+    plscol0(PLOT_FG, 0, 0, 0);
+    plscol0(PLOT_GRID, 215, 215, 215);
+    plscol0(PLOT_REF, 110, 110, 110);
+    for (int i = 0; i < 8; i++) plscol0(PLOT_CURVE + i, curve_rgb[i][0], curve_rgb[i][1], curve_rgb[i][2]);
+    for (int i = 0; i < 12; i++) plscol0(PLOT_FILL + i, fill_style[i].grey, fill_style[i].grey, fill_style[i].grey);
     plscolbg(255, 255, 255);
 }
 
@@ -185,12 +205,12 @@ static void page_text(double x, double y, double scale, double just, const char 
     plvpor(0, 1, 0, 1);
     plwind(0, 1, 0, 1);
     plschr(0, fit_scale(s, scale, 0.97));
-    plcol0(COL_FG);
+    plcol0(PLOT_FG);
     plptex(x, y, 1, 0, just, s);
     plschr(0, 1.0);
 }
 
-static void titles(const char *title, const char *subtitle)
+void plot_titles(const char *title, const char *subtitle)
 {
     page_text(0.5, 0.962, 1.3, 0.5, title);
     if (subtitle && *subtitle) page_text(0.5, 0.922, 0.95, 0.5, subtitle);
@@ -294,70 +314,58 @@ static void draw_markers(const plot_series *s, int k, int count, range xr, range
 
 /* ---- legends --------------------------------------------------------------- */
 
-/* A legend box to the right of the plot area, its top at `top`. Each entry is
- * a line sample with its marker, or a fill sample. */
-typedef struct legend_entry {
-    const char *text;
-    int style; /* line style / marker / colour, or fill style */
-} legend_entry;
-
-static void legend(const legend_entry *e, int n, bool fills, double x0, double x1, double top, const char *note)
+void plot_legend(const plot_key *k, int n, const char *const *notes, int nn, double x0, double x1, double top)
 {
-    if (n <= 0) return;
-    const double ts = 0.85;
-    double row = 1.9 * ts * line_height(), pad = 0.5 * row;
-    int rows = n + (note ? 1 : 0);
-    double y1 = top, y0 = top - rows * row - 2 * pad;
-    if (y0 < 0.01) y0 = 0.01;
+    if (n + nn <= 0) return;
+    double ts = 0.85, lh = line_height();
+    /* a long legend shrinks rather than runs off the page */
+    if ((n + nn + 1) * 1.9 * ts * lh > top - 0.01) ts = (top - 0.01) / ((n + nn + 1) * 1.9 * lh);
+    double row = 1.9 * ts * lh, pad = 0.5 * row;
+    double y1 = top, y0 = top - (n + nn) * row - 2 * pad;
     plvpor(0, 1, 0, 1);
     plwind(0, 1, 0, 1); /* world = page coordinates */
     PLFLT bx[5] = {x0, x1, x1, x0, x0}, by[5] = {y0, y0, y1, y1, y0};
-    plcol0(COL_BG);
+    plcol0(PLOT_BG);
     set_pattern(0);
     plfill(4, bx, by);
-    plcol0(COL_FG);
+    plcol0(PLOT_FG);
     pllsty(1);
-    set_width(1.0);
+    plot_width(1.0);
     plline(5, bx, by);
-    double w = x1 - x0, sx0 = x0 + 0.05 * w, sx1 = x0 + 0.24 * w, tx = x0 + 0.285 * w;
+    double w = x1 - x0, sx0 = x0 + 0.05 * w, sx1 = x0 + 0.24 * w, tx = x0 + 0.285 * w, text = ts;
+    for (int i = 0; i < n; i++) text = fmin(text, fit_scale(k[i].text, ts, x1 - tx - 0.01)); /* one size for all */
     for (int i = 0; i < n; i++) {
         double y = y1 - pad - (i + 0.5) * row;
-        if (fills) {
+        if (k[i].fill) {
             double hh = 0.36 * row;
             PLFLT fx[5] = {sx0, sx1, sx1, sx0, sx0}, fy[5] = {y - hh, y - hh, y + hh, y + hh, y - hh};
-            int f = e[i].style % 12;
-            plcol0(COL_FILL + f);
-            set_pattern(0);
-            plfill(4, fx, fy);
-            if (fill_style[f].pattern) {
-                plcol0(COL_FG);
-                set_pattern(fill_style[f].pattern);
-                plfill(4, fx, fy);
-                set_pattern(0);
-            }
-            plcol0(COL_FG);
-            set_width(1.0);
+            plot_fill(4, fx, fy, k[i].style);
+            plcol0(PLOT_FG);
+            plot_width(1.0);
             plline(5, fx, fy);
         } else {
             PLFLT lx[2] = {sx0, sx1}, ly[2] = {y, y}, mx = 0.5 * (sx0 + sx1), my = y;
-            plcol0(COL_CURVE + e[i].style % 8);
-            set_width(2.2);
-            set_line_style(e[i].style);
-            plline(2, lx, ly);
+            pen(k[i].style, k[i].solid);
+            if (k[i].line) {
+                plot_width(k[i].style < 0 ? 1.2 : 2.2); /* a guide is drawn thin */
+                plline(2, lx, ly);
+            }
             pllsty(1);
-            plschr(0, 0.85);
-            plstring(1, &mx, &my, marker[e[i].style % 8]);
+            if (k[i].marker) {
+                plschr(0, 0.85);
+                plstring(1, &mx, &my, (k[i].filled ? marker_filled : marker)[k[i].style % 8]);
+            }
         }
-        plcol0(COL_FG);
-        plschr(0, fit_scale(e[i].text, ts, x1 - tx - 0.01));
-        plptex(tx, y, 1, 0, 0.0, e[i].text);
+        plcol0(PLOT_FG);
+        plschr(0, text);
+        plptex(tx, y, 1, 0, 0.0, k[i].text);
     }
-    if (note) {
-        plschr(0, fit_scale(note, 0.75, x1 - sx0 - 0.01));
-        plptex(sx0, y1 - pad - (n + 0.5) * row, 1, 0, 0.0, note);
+    for (int j = 0; j < nn; j++) {
+        plschr(0, fit_scale(notes[j], 0.75 * ts / 0.85, x1 - sx0 - 0.01));
+        plptex(sx0, y1 - pad - (n + j + 0.5) * row, 1, 0, 0.0, notes[j]);
     }
     plschr(0, 1.0);
-    set_width(1.0);
+    plot_width(1.0);
 }
 
 /* "Q [U]" with values scaled by 10^-e: "Q [10^e U]", or "Q [10^e/m]" for U = 1/m. */
@@ -378,8 +386,9 @@ static void scale_label(char *dst, size_t cap, const char *label, int e)
 
 /* ---- line charts ----------------------------------------------------------- */
 
-static void draw_lines(const plot_lines *c)
+static void draw_lines(const void *chart)
 {
+    const plot_lines *c = chart;
     const double vx0 = 0.125, vx1 = 0.75, vy0 = 0.10, vy1 = 0.885, gap = 0.035;
     int np = c->np > 0 ? c->np : 1;
     double ph = (vy1 - vy0 - gap * (np - 1)) / np;
@@ -394,7 +403,7 @@ static void draw_lines(const plot_lines *c)
         if (xr.lo > 0 && xr.lo < 0.05 * (xr.hi - xr.lo)) xr.lo = 0; /* time from 0 */
     }
 
-    titles(c->title, c->subtitle);
+    plot_titles(c->title, c->subtitle);
     for (int p = 0; p < c->np; p++) {
         const plot_panel *P = &c->p[p];
         double top = vy1 - p * (ph + gap), bottom = top - ph;
@@ -426,61 +435,47 @@ static void draw_lines(const plot_lines *c)
 
         plvpor(vx0, vx1, bottom, top);
         plwind(xr.lo, xr.hi, yr.lo, yr.hi);
-        plcol0(COL_GRID);
-        set_width(1.0);
+        plcol0(PLOT_GRID);
+        plot_width(1.0);
         pllsty(1);
         plbox("g", 0, 0, "g", 0, 0);
         if (P->zero_line && yr.lo < 0 && yr.hi > 0) {
             PLFLT zx[2] = {xr.lo, xr.hi}, zy[2] = {0, 0};
-            plcol0(COL_ZERO);
+            plcol0(PLOT_REF);
             plline(2, zx, zy);
         }
         for (int k = 0; k < P->n; k++) {
             const plot_series *s = &P->s[k];
-            plcol0(COL_CURVE + s->style % 8);
-            set_width(2.2);
-            set_line_style(s->style);
+            pen(s->style, false);
+            plot_width(2.2);
             draw_polyline(s->x, s->y, s->n, scale);
             pllsty(1);
             draw_markers(s, k, P->n, xr, yr, scale);
         }
-        plcol0(COL_FG);
-        set_width(1.6);
+        plcol0(PLOT_FG);
+        plot_width(1.6);
         pllsty(1);
         plbox(p == c->np - 1 ? "bcnst" : "bcst", 0, 0, "bcnstv", 0, 0);
-        set_width(1.0);
+        plot_width(1.0);
         plmtex("l", 5.2, 0.5, 0.5, ylabel);
         if (p == c->np - 1) plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
 
-        legend_entry e[PLOT_MAX_SERIES];
+        plot_key e[PLOT_MAX_SERIES];
         char text[PLOT_MAX_SERIES][72];
         for (int k = 0; k < P->n; k++) {
             snprintf(text[k], sizeof text[k], "%s%s", P->s[k].label, singular[k] ? "*" : "");
-            e[k] = (legend_entry){text[k], P->s[k].style};
+            e[k] = (plot_key){.text = text[k], .style = P->s[k].style, .line = true, .marker = true};
         }
-        legend(e, P->n, false, vx1 + 0.015, 0.992, top, any_singular ? "* off scale near 0" : NULL);
+        const char *note = "* off scale near 0";
+        plot_legend(e, P->n, &note, any_singular, vx1 + 0.015, 0.992, top);
     }
 }
 
 /* ---- horizontal bars -------------------------------------------------------- */
 
-static void fill_box(PLFLT *fx, PLFLT *fy, int style)
+static void draw_bars(const void *chart)
 {
-    int f = style % 12;
-    plcol0(COL_FILL + f);
-    set_pattern(0);
-    plfill(4, fx, fy);
-    if (fill_style[f].pattern) {
-        plcol0(COL_FG);
-        set_width(1.0);
-        set_pattern(fill_style[f].pattern);
-        plfill(4, fx, fy);
-        set_pattern(0);
-    }
-}
-
-static void draw_bars(const plot_bars *c)
-{
+    const plot_bars *c = chart;
     const double vx0 = 0.20, vx1 = 0.955, vy0 = 0.11, vy1 = 0.875;
     double vmax = 0;
     for (int i = 0; i < c->n; i++)
@@ -488,38 +483,39 @@ static void draw_bars(const plot_bars *c)
     if (vmax <= 0) vmax = 1;
     double xmax = vmax * 1.5;
 
-    titles(c->title, c->subtitle);
+    plot_titles(c->title, c->subtitle);
     plvpor(vx0, vx1, vy0, vy1);
     plwind(0, xmax, 0, c->n);
-    plcol0(COL_GRID);
-    set_width(1.0);
+    plcol0(PLOT_GRID);
+    plot_width(1.0);
     pllsty(1);
     plbox("g", 0, 0, "", 0, 0);
     for (int i = 0; i < c->n; i++) {
         double yc = c->n - 1 - i + 0.5, hh = 0.34, v = isfinite(c->value[i]) ? fmax(c->value[i], 0) : 0;
         PLFLT fx[5] = {0, v, v, 0, 0}, fy[5] = {yc - hh, yc - hh, yc + hh, yc + hh, yc - hh};
-        fill_box(fx, fy, i);
-        plcol0(COL_FG);
-        set_width(1.2);
+        plot_fill(4, fx, fy, i);
+        plcol0(PLOT_FG);
+        plot_width(1.2);
         plline(5, fx, fy);
-        set_width(1.0);
+        plot_width(1.0);
         plschr(0, 0.85);
         plptex(v + 0.012 * xmax, yc, 1, 0, 0.0, c->note[i]);
         plschr(0, 0.95);
         plmtex("lv", 0.8, yc / c->n, 1.0, c->name[i]);
         plschr(0, 1.0);
     }
-    plcol0(COL_FG);
-    set_width(1.6);
+    plcol0(PLOT_FG);
+    plot_width(1.6);
     plbox("bcnst", 0, 0, "bc", 0, 0);
-    set_width(1.0);
+    plot_width(1.0);
     plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
 }
 
 /* ---- stacked areas ---------------------------------------------------------- */
 
-static void draw_stack(const plot_stack *c)
+static void draw_stack(const void *chart)
 {
+    const plot_stack *c = chart;
     const double vx0 = 0.11, vx1 = 0.74, vy0 = 0.10, vy1 = 0.885;
     size_t n = c->n;
     double *base = calloc(n ? n : 1, sizeof *base);
@@ -537,7 +533,7 @@ static void draw_stack(const plot_stack *c)
     if (yr.hi <= 0) yr.hi = 1;
     yr.hi *= 1.06;
 
-    titles(c->title, c->subtitle);
+    plot_titles(c->title, c->subtitle);
     plvpor(vx0, vx1, vy0, vy1);
     plwind(xr.lo, xr.hi, yr.lo, yr.hi);
     for (int l = 0; l < c->nl; l++) {
@@ -549,35 +545,130 @@ static void draw_stack(const plot_stack *c)
             px[m] = c->x[i], py[m++] = base[i];
         }
         if (n >= 2) {
-            int f = l % 12;
-            plcol0(COL_FILL + f);
-            set_pattern(0);
-            plfill((PLINT)m, px, py);
-            if (fill_style[f].pattern) {
-                plcol0(COL_FG);
-                set_pattern(fill_style[f].pattern);
-                plfill((PLINT)m, px, py);
-                set_pattern(0);
-            }
-            plcol0(COL_FG);
-            set_width(0.8);
+            plot_fill((int)m, px, py, l);
+            plcol0(PLOT_FG);
+            plot_width(0.8);
             plline((PLINT)n, c->x, base); /* the layer's upper edge */
         }
     }
-    plcol0(COL_FG);
-    set_width(1.6);
+    plcol0(PLOT_FG);
+    plot_width(1.6);
     plbox("bcnst", 0, 0, "bcnstv", 0, 0);
-    set_width(1.0);
+    plot_width(1.0);
     plmtex("l", 5.2, 0.5, 0.5, c->ylabel);
     plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
 
-    legend_entry e[PLOT_MAX_LAYERS];
-    for (int l = 0; l < c->nl; l++) e[l] = (legend_entry){c->name[c->nl - 1 - l], c->nl - 1 - l};
-    legend(e, c->nl, true, vx1 + 0.015, 0.992, vy1, NULL);
+    plot_key e[PLOT_MAX_LAYERS];
+    for (int l = 0; l < c->nl; l++) e[l] = (plot_key){.text = c->name[c->nl - 1 - l], .style = c->nl - 1 - l, .fill = true};
+    plot_legend(e, c->nl, NULL, 0, vx1 + 0.015, 0.992, vy1);
 out:
     free(base);
     free(px);
     free(py);
+}
+
+/* ---- log-log charts -------------------------------------------------------- */
+
+static bool point_ok(const plot_curve *s, int i)
+{
+    return s->x[i] > 0 && s->y[i] > 0 && isfinite(s->x[i]) && isfinite(s->y[i]);
+}
+
+/* log10 of the axis ends: whole decades around the points (and the levels, on y). */
+static range decades(const plot_loglog *c, bool x)
+{
+    range r = range_empty();
+    for (int k = 0; k < c->nc; k++)
+        for (int i = 0; i < c->c[k].n; i++)
+            if (point_ok(&c->c[k], i)) range_add(&r, log10(x ? c->c[k].x[i] : c->c[k].y[i]));
+    for (int g = 0; g < c->ng && !x; g++)
+        if (c->g[g].slope == 0 && c->g[g].y0 > 0) range_add(&r, log10(c->g[g].y0));
+    if (!(r.lo <= r.hi)) return (range){0, 1};
+    r = (range){floor(r.lo + 1e-9), ceil(r.hi - 1e-9)};
+    if (r.hi <= r.lo) r.hi = r.lo + 1;
+    return r;
+}
+
+static void draw_loglog(const void *chart)
+{
+    const plot_loglog *c = chart;
+    const double vx0 = 0.11, vx1 = 0.66, vy0 = 0.11, vy1 = 0.875;
+    range xr = decades(c, true), yr = decades(c, false);
+    plot_titles(c->title, c->subtitle);
+    plvpor(vx0, vx1, vy0, vy1);
+    plwind(xr.lo, xr.hi, yr.lo, yr.hi);
+    plcol0(PLOT_GRID);
+    plot_width(1.0);
+    pllsty(1);
+    plbox("gl", 1, 0, "gl", 1, 0);
+    for (int g = 0; g < c->ng; g++) {
+        const plot_guide *G = &c->g[g];
+        if (!(G->x0 > 0 && G->y0 > 0)) continue;
+        double gx0 = log10(G->x0), gy0 = log10(G->y0);
+        PLFLT gx[2] = {xr.lo, xr.hi}, gy[2] = {gy0 + G->slope * (xr.lo - gx0), gy0 + G->slope * (xr.hi - gx0)};
+        pen(G->style, false);
+        plot_width(1.2);
+        plline(2, gx, gy);
+        pllsty(1);
+        if (G->on_line) {
+            plschr(0, 0.75);
+            plptex(xr.lo + 0.02 * (xr.hi - xr.lo), gy[0] + 0.02 * (yr.hi - yr.lo), 1, 0, 0.0, G->label);
+            plschr(0, 1.0);
+        }
+    }
+    for (int k = 0; k < c->nc; k++) {
+        const plot_curve *s = &c->c[k];
+        size_t cap = s->n > 0 ? (size_t)s->n : 1;
+        PLFLT *px = malloc(2 * cap * sizeof *px); /* log10 of the usable points: x, then y */
+        if (!px) continue;
+        PLFLT *py = px + cap;
+        int m = 0;
+        for (int i = 0; i < s->n; i++)
+            if (point_ok(s, i)) px[m] = log10(s->x[i]), py[m++] = log10(s->y[i]);
+        pen(s->style, s->solid);
+        if (s->line && m > 1) {
+            plot_width(2.2);
+            plline(m, px, py);
+        }
+        pllsty(1);
+        if (s->markers) {
+            plschr(0, s->filled ? 1.0 : 0.9);
+            plstring(m, px, py, (s->filled ? marker_filled : marker)[s->style % 8]);
+        }
+        if (s->numbers) { /* beside each point, up and to the right */
+            plschr(0, 0.62);
+            plcol0(PLOT_FG);
+            double dx = 0.012 * (xr.hi - xr.lo), dy = 0.012 * (yr.hi - yr.lo);
+            for (int i = 0, j = 0; i < s->n; i++) {
+                if (!point_ok(s, i)) continue;
+                char num[16];
+                snprintf(num, sizeof num, "%d", s->numbers[i]);
+                plptex(px[j] + dx, py[j] + dy, 1, 0, 0.0, num);
+                j++;
+            }
+        }
+        plschr(0, 1.0);
+        free(px);
+    }
+    plcol0(PLOT_FG);
+    plot_width(1.6);
+    pllsty(1);
+    plbox("bclnst", 1, 0, "bclnstv", 1, 0);
+    plot_width(1.0);
+    plmtex("l", 4.2, 0.5, 0.5, c->ylabel);
+    plmtex("b", 3.0, 0.5, 0.5, c->xlabel);
+
+    plot_key e[PLOT_MAX_CURVES + PLOT_MAX_GUIDES];
+    const char *notes[PLOT_MAX_NOTES];
+    int n = 0;
+    for (int k = 0; k < c->nc; k++) {
+        const plot_curve *s = &c->c[k];
+        e[n++] = (plot_key){s->label, s->style, false, s->line, s->solid, s->markers, s->filled};
+    }
+    for (int g = 0; g < c->ng; g++)
+        if (c->g[g].label[0] && !c->g[g].on_line) e[n++] = (plot_key){.text = c->g[g].label, .style = c->g[g].style, .line = true};
+    for (int i = 0; i < c->nn; i++) notes[i] = c->note[i];
+    plot_legend(e, n, notes, c->nn, vx1 + 0.02, 0.992, vy1);
 }
 
 /* ---- devices and files ------------------------------------------------------ */
@@ -600,7 +691,7 @@ static bool have_device(const char *name)
     return false;
 }
 
-static void render(plot_kind kind, const void *chart, const char *dev, const char *file, int w, int h, double scale)
+static void render(plot_draw_fn *draw, const void *chart, const char *dev, const char *file, int w, int h, double scale)
 {
     g_scale = scale;
     plsexit(on_plplot_exit);
@@ -611,11 +702,7 @@ static void render(plot_kind kind, const void *chart, const char *dev, const cha
     plinit();
     pladv(0);
     plschr(0, 1.0);
-    switch (kind) {
-    case PLOT_LINES: draw_lines(chart); break;
-    case PLOT_BARS: draw_bars(chart); break;
-    case PLOT_STACK: draw_stack(chart); break;
-    }
+    draw(chart);
     plend();
 }
 
@@ -647,7 +734,7 @@ static bool fix_pdf_date(const char *path)
     return ok;
 }
 
-bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *base, int width, int height)
+bool plot_page(plot_draw_fn *draw, const void *chart, const char *dir, const char *base, int width, int height)
 {
     for (int i = 0; i < 2; i++) {
         const char *dev = i ? "pdfcairo" : "pngcairo";
@@ -664,14 +751,21 @@ bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *
     if (!png_tmp) return false;
     const char *pdf_tmp = plot_out_stage(dir, pdf);
     if (!pdf_tmp) return false;
-    render(kind, chart, "pngcairo", png_tmp, width, height, 1.0);
+    render(draw, chart, "pngcairo", png_tmp, width, height, 1.0);
     /* same layout on a page of half the pixel count in points: the PNG is the PDF at 144 dpi */
-    render(kind, chart, "pdfcairo", pdf_tmp, (width + 1) / 2, (height + 1) / 2, 0.5);
+    render(draw, chart, "pdfcairo", pdf_tmp, (width + 1) / 2, (height + 1) / 2, 0.5);
     if (!fix_pdf_date(pdf_tmp)) {
         fprintf(stderr, "sphlab plot: %s/%s: cannot finish the PDF\n", dir, pdf);
         return false;
     }
     return true;
+}
+
+bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *base, int width, int height)
+{
+    static plot_draw_fn *const draw[] = {
+        [PLOT_LINES] = draw_lines, [PLOT_BARS] = draw_bars, [PLOT_STACK] = draw_stack, [PLOT_LOGLOG] = draw_loglog};
+    return plot_page(draw[kind], chart, dir, base, width, height);
 }
 
 /* Under LeakSanitizer (`make asan`): fontconfig keeps its font cache, and
