@@ -233,6 +233,37 @@ Test(plot, kernel_chart_png_pdf_and_csv_of_the_kernel_values)
     remove_dir(dir);
 }
 
+/* --svg adds BASE.svg: an SVG document of the PDF's page size (points) that
+ * draws the chart (paths for the curves, glyphs for the text); without it no
+ * SVG is written. */
+Test(plot, svg_on_request)
+{
+    const char *dir = temp_dir();
+    int rc = plot("plot kernel poly6 --size 800x640 --svg --out %s%s", dir, "");
+    cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
+    char svg[256];
+    snprintf(svg, sizeof svg, "%s/kernel-poly6-2d.svg", dir);
+    cr_assert(strstr(out, svg), "not listed as written: %s", out);
+    cr_assert_eq(dir_entries(dir), 4, "want csv, png, pdf and svg (no temporaries)");
+    size_t n;
+    char *text = read_all(svg, &n);
+    cr_assert(strncmp(text, "<?xml", 5) == 0, "%s does not start as XML", svg);
+    cr_assert(strstr(text, "<svg") && strstr(text, "width=\"400pt\"") && strstr(text, "height=\"320pt\""),
+              "%s: not an SVG page of 400 x 320 pt", svg);
+    int paths = 0;
+    for (const char *p = text; (p = strstr(p, "<path")); p++) paths++;
+    cr_assert(paths > 20, "%s: only %d paths", svg, paths);
+    cr_assert(strstr(text, "</svg>"), "%s is cut short", svg);
+    free(text);
+    remove_dir(dir);
+
+    dir = temp_dir();
+    rc = plot("plot kernel poly6 --out %s%s", dir, "");
+    cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
+    cr_assert_eq(dir_entries(dir), 3, "without --svg: csv, png and pdf only");
+    remove_dir(dir);
+}
+
 /* Curves differ by colour and style: the dW/dr panel is drawn in blue, the
  * Laplacian's in red; the W panel in black. Each colour has pixels, and the
  * blue ones lie above the red ones (panels stacked W, dW/dr, Laplacian). */

@@ -32,8 +32,9 @@ static void usage(FILE *f)
           "  --h H                    kernels: support radius in m (default: the scene default)\n"
           "  --x t|step               series: the x axis (default t)\n"
           "  --bins N                 passes: time bins of the stacked chart (default 100)\n"
+          "  --svg                    also write BASE.svg\n"
           "  --quiet                  do not list the files written\n"
-          "Each chart is written as BASE.png and BASE.pdf beside BASE.csv, the data it shows.\n",
+          "Each chart is written as BASE.png and BASE.pdf (and BASE.svg) beside BASE.csv, the data it shows.\n",
           f);
 }
 
@@ -88,6 +89,8 @@ static int parse_args(int argc, char **argv, plot_opts *o)
             return 0;
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             o->quiet = true;
+        } else if (strcmp(a, "--svg") == 0) {
+            plot_set_svg(true);
         } else if (is_opt(a, "--out")) {
             if (!(o->out = opt_value(argc, argv, &i, "--out"))) return 2;
         } else if (is_opt(a, "--name")) {

@@ -146,6 +146,9 @@ typedef enum plot_kind { PLOT_LINES, PLOT_BARS, PLOT_STACK, PLOT_LOGLOG } plot_k
  * Deterministic: the PDF's creation date is SOURCE_DATE_EPOCH, or 1970-01-01
  * when that is not set. Returns false with a message on failure. */
 bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *base, int width, int height);
+/* Also write DIR/BASE.svg (the PDF's page size) for every chart from now on:
+ * a vector format that web pages and most editors take. */
+void plot_set_svg(bool on);
 
 /* Escapes PLplot's text escape character '#' in s (for file names in titles). */
 void plot_escape(char *dst, size_t cap, const char *s);

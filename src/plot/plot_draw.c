@@ -734,10 +734,13 @@ static bool fix_pdf_date(const char *path)
     return ok;
 }
 
+static bool g_svg;
+void plot_set_svg(bool on) { g_svg = on; }
+
 bool plot_page(plot_draw_fn *draw, const void *chart, const char *dir, const char *base, int width, int height)
 {
-    for (int i = 0; i < 2; i++) {
-        const char *dev = i ? "pdfcairo" : "pngcairo";
+    for (int i = 0; i < (g_svg ? 3 : 2); i++) {
+        const char *dev = i == 2 ? "svgcairo" : i ? "pdfcairo" : "pngcairo";
         if (!have_device(dev)) {
             fprintf(stderr, "sphlab plot: PLplot has no %s driver (Debian: apt-get install plplot-driver-cairo)\n",
                     dev);
@@ -757,6 +760,13 @@ bool plot_page(plot_draw_fn *draw, const void *chart, const char *dir, const cha
     if (!fix_pdf_date(pdf_tmp)) {
         fprintf(stderr, "sphlab plot: %s/%s: cannot finish the PDF\n", dir, pdf);
         return false;
+    }
+    if (g_svg) {
+        char svg[300];
+        snprintf(svg, sizeof svg, "%s.svg", base);
+        const char *svg_tmp = plot_out_stage(dir, svg);
+        if (!svg_tmp) return false;
+        render(draw, chart, "svgcairo", svg_tmp, (width + 1) / 2, (height + 1) / 2, 0.5);
     }
     return true;
 }
