@@ -47,6 +47,10 @@ fi
 # no OpenGL 4.3 (Mesa told to offer 3.3 at most): the reason, exit 1
 MESA_GL_VERSION_OVERRIDE=3.3 "$BIN" run "$scene" --backend gl --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "backend = gl: no OpenGL 4.3 context: " "$tmp/gl.txt" && ok || { bad "gl without OpenGL 4.3: want exit 1 and the reason"; cat "$tmp/gl.txt"; }
+# the window (SDL's offscreen driver) on the GL backend: a pass stepped, its state drawn
+SDL_VIDEODRIVER=offscreen "$BIN" view "$scene" --backend gl --frames 3 --keys "." --overlay grid,neighbours \
+    --select 50 --screenshot "$tmp/view.png" > "$tmp/gl.txt" 2>&1
+[ $? -eq 0 ] && [ -s "$tmp/view.png" ] && grep -q "pass external wrote" "$tmp/gl.txt" && ok || { bad "view --backend gl"; cat "$tmp/gl.txt"; }
 unset LIBGL_ALWAYS_SOFTWARE
 
 # The hard cases: every verdict must be "pass" (they run headless, a few seconds).

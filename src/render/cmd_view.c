@@ -590,8 +590,17 @@ int cmd_view(int argc, char **argv)
         w.v.hud.message = now < w.msg_until ? w.msg : NULL;
         w.v.selected = sim_index_of_id(w.sim, w.sel_id);
         fill_panel(&w);
-        SDL_GL_MakeCurrent(win, ctx); /* the GL backend's passes made their own context current */
-        sph_glctx_forget_current();
+        if (w.sim->backend) {
+            /* read the backend's buffers back now, while its context is the
+             * current one (sph_render would otherwise switch to it) */
+            sph_sim_sync(w.sim, SPH_SYNC_ALL);
+            /* the GL backend's passes made their own context current; SDL
+             * skips a make-current of the context it believes current, so
+             * release it first */
+            SDL_GL_MakeCurrent(win, NULL);
+            SDL_GL_MakeCurrent(win, ctx);
+            sph_glctx_forget_current();
+        }
         if (!sph_render(w.r, w.sim, &w.v, err, sizeof err)) {
             fprintf(stderr, "sphlab view: %s\n", err);
             goto out;
