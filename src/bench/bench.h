@@ -41,6 +41,9 @@ enum { BENCH_MAX_LEVELS = 32 };
 /* Index of the level named `name` in bench_levels[], or -1. */
 int bench_level_find(const char *name);
 int bench_levels_cores(void); /* what threads = 0 means */
+/* The level runs on the GL backend ([compute] backend = gl): measured only
+ * where an OpenGL 4.3 context can be made, and named by its device. */
+bool bench_level_gl(const bench_level *L);
 
 /* Overrides from the command line (--set [LEVEL:]section.key=value). */
 enum { BENCH_MAX_SETS = 32 };
@@ -86,6 +89,8 @@ typedef struct bench_plan {
     int steps;         /* steps per repeat */
     double budget_ms;  /* stop repeating once this much was spent (at least one repeat) */
     double decide_fps; /* > 0: stop after one repeat if clearly above (x1.5) or below (/3) it */
+    bool pass_times;   /* true per-pass times: a GL level then waits for each pass (glFinish), which
+                          costs it a little; false: passes are only queued, steps/s is the device's */
 } bench_plan;
 
 typedef struct bench_meas {

@@ -28,6 +28,13 @@ const bench_level bench_levels[] = {
      "search.method=hash search.sort=counting search.reorder=on search.vector=on", 0},
     {"L7", "dense grid: a stencil row is one run",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on", 0},
+    /* The seed's GPU steps: the passes as GLSL compute shaders (src/gpu/), on
+     * whatever OpenGL 4.3 device EGL gives (llvmpipe without a GPU). */
+    {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0},
+    {"G1", "GLSL: hash + bitonic sort (the seed)",
+     "compute.backend=gl search.method=hash search.sort=bitonic search.reorder=off", 0},
+    {"G2", "GLSL: counting sort + reorder",
+     "compute.backend=gl search.method=hash search.sort=counting search.reorder=on", 0},
 };
 const int bench_level_count = (int)(sizeof bench_levels / sizeof bench_levels[0]);
 
@@ -37,6 +44,8 @@ int bench_level_find(const char *name)
         if (strcmp(bench_levels[i].name, name) == 0) return i;
     return -1;
 }
+
+bool bench_level_gl(const bench_level *L) { return strstr(L->sets, "compute.backend=gl") != NULL; }
 
 int bench_levels_cores(void)
 {

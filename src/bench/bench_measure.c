@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "bench.h"
+#include "gpu.h"
 
 /* ---- timing ---------------------------------------------------------------- */
 
@@ -20,6 +21,7 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
     if (!bench_make_sim(cfg, L, k, false, &sim, why, n)) return false;
     out->create_ms = sph_now_ms() - t0;
     sim->watchdog = cfg->watchdog;
+    if (sim->backend) sph_gpu_set_pass_sync(sim, plan->pass_times);
     out->n = sim->n;
     out->threads = sim->threads;
 
@@ -74,7 +76,10 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
         for (int p = 0; p < SPH_PASS_COUNT; p++)
             if (sim->in_pipeline[p]) out->pass_ms[p] = bench_median(pass_ms + (size_t)p * R * S, steps);
         out->ms_step = bench_median(step_ms, steps);
-        out->pairs = sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start ? (double)sim->S.nbr_start[sim->n] : 0;
+        /* no lists on a backend (the GL passes walk the cells): no pair rate */
+        out->pairs = sim->backend ? NAN
+                     : sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start ? (double)sim->S.nbr_start[sim->n]
+                                                                                 : 0;
     }
     free(rate);
     free(step_ms);
@@ -195,6 +200,11 @@ bool bench_state_run(const bench_config *cfg, const bench_level *L, int k, bench
         for (uint32_t i = 0; i < N; i++) start[d][sim->P.id[i]] = sim->P.pos[d][i];
     if (ok) {
         sph_sim_step(sim);
+        /* a GL level keeps its data on the device and builds no lists: its
+         * index and positions come back, and the CPU's neighbour pass lists
+         * the pairs they give (the walk in its shaders is checked through
+         * the state below) */
+        sph_sim_sync(sim, SPH_SYNC_ALL);
         if (!sets_by_id(sim, out)) {
             snprintf(why, n, "out of memory");
             ok = false;
@@ -204,6 +214,7 @@ bool bench_state_run(const bench_config *cfg, const bench_level *L, int k, bench
                 out->pred1[d][sim->P.id[i]] = sim->P.pred[d] ? sim->P.pred[d][i] : sim->P.pos[d][i];
     }
     while (ok && sim->step < BENCH_CHECK_STEPS && !sim->alarm.raised) sph_sim_step(sim);
+    sph_sim_sync(sim, SPH_SYNC_ALL);
     if (ok && sim->alarm.raised) {
         out->stopped = true;
         sph_sim_alarm_report(sim, out->report, sizeof out->report);

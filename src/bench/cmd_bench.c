@@ -12,6 +12,7 @@
 
 #include "app.h"
 #include "bench.h"
+#include "gpu.h"
 #include "plot.h"
 
 static void usage(FILE *f)
@@ -256,7 +257,8 @@ typedef struct level_result {
     bench_diff small, large;   /* checks */
     bool check_ok;
     double others;             /* cores other processes kept busy while this level was measured */
-    char error[512];
+    bool skipped;              /* a GL level where no OpenGL 4.3 context can be made */
+    char error[512];           /* or why it was skipped */
 } level_result;
 
 /* Largest size k of level L with steps/s >= fps. */
@@ -328,7 +330,7 @@ static void fill_rates(level_result *r)
         if (is_pair_pass(p)) r->force_ms += v;
     }
     int t = r->at.threads > 0 ? r->at.threads : 1;
-    r->search_rate = r->search_ms > 0 ? r->at.pairs / (r->search_ms / 1e3) / t : 0;
+    r->search_rate = r->search_ms > 0 ? r->at.pairs / (r->search_ms / 1e3) / t : 0; /* NaN: no lists (GL) */
     r->force_rate = r->force_ms > 0 ? r->at.pairs / (r->force_ms / 1e3) / t : 0;
 }
 
@@ -350,6 +352,7 @@ static void top_passes(const bench_meas *m, char *out, size_t cap, int count)
 
 static const char *check_word(const level_result *r)
 {
+    if (r->skipped) return "SKIP";
     if (!r->small.done && !r->large.done) return "-";
     return r->check_ok ? "PASS" : "FAIL";
 }
@@ -363,7 +366,7 @@ static void csv_num(FILE *f, double v, const char *fmt)
 static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *res, const bool *pass_used, double n_at,
                              double n_check)
 {
-    fprintf(f, "level,description,threads,max_n,capped,steps_per_s_at_max,speedup,n_at,ms_per_step,pairs_per_step,"
+    fprintf(f, "level,description,backend,threads,max_n,capped,steps_per_s_at_max,speedup,n_at,ms_per_step,pairs_per_step,"
                "search_ms,force_ms,search_pairs_per_s_core,force_pairs_per_s_core,check,check_ref,check_n,sets_differ,"
                "edge_pairs,max_dx_m,max_dv_m_s,max_drho,check_at_ref,check_at_n,sets_differ_at,edge_pairs_at,"
                "max_dx_at_m,max_dv_at_m_s,max_drho_at,others_cores");
@@ -378,7 +381,8 @@ static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *r
         snprintf(about, sizeof about, "%s", L->about);
         for (char *c = about; *c; c++)
             if (*c == ',' || *c == '"') *c = ';';
-        fprintf(f, "%s,%s,%d", L->name, about, r->at.threads ? r->at.threads : L->threads);
+        fprintf(f, "%s,%s,%s,%d", L->name, about, bench_level_gl(L) ? "gl" : "cpu",
+                r->at.threads ? r->at.threads : L->threads);
         csv_num(f, r->searched ? r->max_n : NAN, "%.0f");
         fprintf(f, ",%d", r->capped ? 1 : 0);
         csv_num(f, r->searched ? r->rate_at_max : NAN, "%.4g");
@@ -448,8 +452,11 @@ typedef struct ladder_meta {
     double n_at, n_check, seconds;
     double others; /* cores other processes kept busy during the run, on average */
     double ghz0, ghz1; /* clock probe at the start and the end */
-    int best;       /* index into res of the level with the largest max N, -1 if none */
+    int best;       /* index into res of the CPU level with the largest max N, -1 if none */
     bool target_evaluated, target_met;
+    int gl_best;    /* likewise among the GL levels */
+    bool gl_ran, gl_is_gpu, gl_target_met; /* a GL level ran; on a GPU (not llvmpipe); 1,000,000 reached */
+    char gl_device[256]; /* the GL levels' device, or why none could be made */
     bool all_pass;
 } ladder_meta;
 
@@ -505,6 +512,19 @@ static void write_ladder_json(FILE *f, const bench_opts *o, const level_result *
         fprintf(f, ", \"best_n\": %.0f, ", res[m->best].max_n);
     }
     fprintf(f, "\"met\": %s},\n", !m->target_evaluated ? "null" : m->target_met ? "true" : "false");
+    fputs("  \"gl_device\": ", f);
+    if (m->gl_device[0])
+        bench_json_string(f, m->gl_device);
+    else
+        fputs("null", f);
+    fputs(",\n  \"gl_target\": {\"dim\": 3, \"fps\": 60, \"n\": 1000000, ", f);
+    if (m->gl_best >= 0) {
+        fputs("\"best_level\": ", f);
+        bench_json_string(f, bench_levels[o->sel[m->gl_best]].name);
+        fprintf(f, ", \"best_n\": %.0f, ", res[m->gl_best].max_n);
+    }
+    fprintf(f, "\"met\": %s},\n",
+            !(m->gl_ran && m->gl_is_gpu && m->target_evaluated) ? "null" : m->gl_target_met ? "true" : "false");
     fprintf(f, "  \"all_checks_pass\": %s,\n  \"levels\": [\n", m->all_pass ? "true" : "false");
     double prev = NAN;
     for (int s = 0; s < o->nsel; s++) {
@@ -516,7 +536,8 @@ static void write_ladder_json(FILE *f, const bench_opts *o, const level_result *
         bench_json_string(f, L->about);
         fputs(", \"sets\": ", f);
         bench_json_string(f, L->sets);
-        fprintf(f, ", \"threads\": %d,\n      ", r->at.threads ? r->at.threads : L->threads);
+        fprintf(f, ", \"backend\": \"%s\", \"threads\": %d,\n      ", bench_level_gl(L) ? "gl" : "cpu",
+                r->at.threads ? r->at.threads : L->threads);
         json_num(f, "max_n", r->searched ? r->max_n : NAN, "%.0f", true);
         fprintf(f, "\"capped\": %s, ", r->capped ? "true" : "false");
         json_num(f, "steps_per_s_at_max", r->searched ? r->rate_at_max : NAN, "%.4g", true);
@@ -620,8 +641,8 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
     const int k_at = bench_k_near(dim, o->at);
     meta.n_check = bench_count(dim, k_check);
     meta.n_at = bench_count(dim, k_at);
-    const bench_plan plan_search = o->quick ? (bench_plan){2, 2, 300, fps} : (bench_plan){5, 3, 2500, fps};
-    const bench_plan plan_at = o->quick ? (bench_plan){3, 2, 600, 0} : (bench_plan){7, 3, 5000, 0};
+    const bench_plan plan_search = o->quick ? (bench_plan){2, 2, 300, fps, false} : (bench_plan){5, 3, 2500, fps, false};
+    const bench_plan plan_at = o->quick ? (bench_plan){3, 2, 600, 0, true} : (bench_plan){7, 3, 5000, 0, true};
     const double cap = o->quick ? 150000 : 4000000;
 
     if (!plot_out_dir(o->out)) return 1;
@@ -641,11 +662,26 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
     ref_cache ref_s = {.level = ref_small, .k = k_check}, ref_l = {.level = ref_large, .k = k_at};
     ref_cache ref_l_small = {.level = ref_large, .k = k_check};
     bool all_pass = true;
+    int gl_state = 0; /* 0: not probed yet, 1: a GL 4.3 context can be made, -1: none */
+    meta.gl_best = -1;
     for (int s = 0; s < o->nsel; s++) {
         const int Li = o->sel[s];
         const bench_level *L = &bench_levels[Li];
         level_result *r = &res[s];
         char err[512] = "";
+        if (bench_level_gl(L)) {
+            if (gl_state == 0) {
+                gl_state = sph_gpu_probe(meta.gl_device, sizeof meta.gl_device) ? 1 : -1;
+                meta.gl_is_gpu = gl_state > 0 && !strstr(meta.gl_device, "llvmpipe") &&
+                                 !strstr(meta.gl_device, "softpipe") && !strstr(meta.gl_device, "lavapipe");
+            }
+            if (gl_state < 0) { /* no device: said, not failed */
+                r->skipped = true;
+                snprintf(r->error, sizeof r->error, "no OpenGL 4.3 device: %s", meta.gl_device);
+                continue;
+            }
+            meta.gl_ran = true;
+        }
         bench_cpu c0, c1;
         bench_cpu_now(&c0);
         /* checks first: no speedup is reported without them */
@@ -687,10 +723,13 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
     bench_loadavg(meta.load1);
     meta.seconds = (sph_now_ms() - t_start) / 1e3;
     meta.all_pass = all_pass;
-    for (int s = 0; s < o->nsel; s++)
-        if (res[s].searched && (meta.best < 0 || res[s].max_n > res[meta.best].max_n)) meta.best = s;
+    for (int s = 0; s < o->nsel; s++) {
+        int *best = bench_level_gl(&bench_levels[o->sel[s]]) ? &meta.gl_best : &meta.best;
+        if (res[s].searched && (*best < 0 || res[s].max_n > res[*best].max_n)) *best = s;
+    }
     meta.target_evaluated = dim == 3 && fabs(fps - 60) < 1e-9 && meta.best >= 0;
     meta.target_met = meta.target_evaluated && res[meta.best].max_n >= 60000;
+    meta.gl_target_met = meta.gl_best >= 0 && res[meta.gl_best].max_n >= 1000000;
 
     bool pass_used[SPH_PASS_COUNT] = {false};
     for (int s = 0; s < o->nsel; s++)
@@ -709,6 +748,11 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
         printf("other processes kept %.2f of the %d cores busy on average while it ran; one core's clock %.2f GHz\n"
                "at the start, %.2f at the end (lower when the host is busy)\n",
                meta.others, bench_levels_cores(), meta.ghz0, meta.ghz1);
+        if (meta.gl_ran)
+            printf("GL levels (G*): %s%s\n", meta.gl_device,
+                   meta.gl_is_gpu ? "" : " (software rendering on this CPU: a correctness device, not a GPU)");
+        else if (gl_state < 0)
+            printf("GL levels (G*) skipped: no OpenGL 4.3 device: %s\n", meta.gl_device);
         double worst = 0;
         for (int s = 0; s < o->nsel; s++) worst = fmax(worst, res[s].others);
         if (worst > 0.2)
@@ -746,10 +790,15 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
         for (int s = 0; s < o->nsel; s++) {
             const level_result *r = &res[s];
             if (!r->at_ok) continue;
-            printf("%-5s %12.0f %10.3f %16.3g %10.3f %16.3g\n", bench_levels[o->sel[s]].name, r->at.pairs, r->search_ms,
-                   r->search_rate, r->force_ms, r->force_rate);
+            if (r->at.pairs > 0)
+                printf("%-5s %12.0f %10.3f %16.3g %10.3f %16.3g\n", bench_levels[o->sel[s]].name, r->at.pairs,
+                       r->search_ms, r->search_rate, r->force_ms, r->force_rate);
+            else /* a GL level: no lists, its passes walk the cells */
+                printf("%-5s %12s %10.3f %16s %10.3f %16s\n", bench_levels[o->sel[s]].name, "-", r->search_ms, "-",
+                       r->force_ms, "-");
         }
-        printf("search: hash, sort, reorder, offsets, neighbours; forces: density, pressure_force, viscosity\n");
+        printf("search: hash, sort, reorder, offsets, neighbours; forces: density, pressure_force, viscosity\n"
+               "(GL levels build no lists: density and the forces walk the cells themselves, so no pair count)\n");
         printf("\nchecks: neighbour sets identical after 1 step (a pair within %g h of r = h is rounding's call and\n"
                "counted apart: edge pairs), and after %d steps positions within %g m, velocities within %g m/s,\n"
                "densities within %g (relative), particles matched by id; against %s at N = %s",
@@ -766,14 +815,28 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
                            bench_levels[o->sel[s]].name, bench_levels[d[j]->ref].name, j ? meta.n_at : meta.n_check,
                            d[j]->pass ? "PASS" : "FAIL", d[j]->sets_differ, d[j]->edge_pairs, d[j]->dx, d[j]->dv,
                            d[j]->drho, d[j]->why[0] ? ": " : "", d[j]->why);
-            if (r->error[0] && !r->check_ok) printf("  %-4s error: %s\n", bench_levels[o->sel[s]].name, r->error);
+            if (r->skipped)
+                printf("  %-4s skipped: %s\n", bench_levels[o->sel[s]].name, r->error);
+            else if (r->error[0] && !r->check_ok)
+                printf("  %-4s error: %s\n", bench_levels[o->sel[s]].name, r->error);
         }
         if (meta.target_evaluated) {
             char bn[32];
             bench_fmt_count(bn, sizeof bn, res[meta.best].max_n);
-            printf("\ntarget (issue 6): the fastest level reaches 60,000 particles at 60 steps/s in 3D: %s "
+            printf("\ntarget (issue 6): the fastest CPU level reaches 60,000 particles at 60 steps/s in 3D: %s "
                    "(%s: %s)\n",
                    meta.target_met ? "MET" : "NOT MET", bench_levels[o->sel[meta.best]].name, bn);
+            if (meta.gl_best >= 0) {
+                bench_fmt_count(bn, sizeof bn, res[meta.gl_best].max_n);
+                if (meta.gl_is_gpu)
+                    printf("target (issue 7): a GL level reaches 1,000,000 particles at 60 steps/s in 3D on a GPU: %s "
+                           "(%s: %s)\n",
+                           meta.gl_target_met ? "MET" : "NOT MET", bench_levels[o->sel[meta.gl_best]].name, bn);
+                else
+                    printf("target (issue 7, 1,000,000 at 60 steps/s on a GPU): not evaluated, no GPU here (%s: %s "
+                           "on software rendering)\n",
+                           bench_levels[o->sel[meta.gl_best]].name, bn);
+            }
         } else {
             printf("\ntarget (issue 6: 60,000 particles at 60 steps/s in 3D): not evaluated with these options\n");
         }
@@ -853,13 +916,29 @@ static int cmd_scaling(bench_opts *o)
     /* N = 128, 256, ... : the quick run stops at 8192 */
     const double n_max = o->quick ? 8192 : (dim == 3 ? 262144 : 524288);
     const double max_ms = o->quick ? 150 : 1000; /* a level stops after a size this slow */
-    const bench_plan plan = o->quick ? (bench_plan){1, 2, 200, 0} : (bench_plan){3, 3, 3000, 0};
+    const bench_plan plan = o->quick ? (bench_plan){1, 2, 200, 0, false} : (bench_plan){3, 3, 3000, 0, false};
     int ks[64], nk = 0;
     for (double n = 128; n <= n_max * 1.001 && nk < 64; n *= 2) {
         int k = bench_k_near(dim, n);
         if (nk == 0 || k != ks[nk - 1]) ks[nk++] = k;
     }
     if (!plot_out_dir(o->out)) return 1;
+    /* GL levels only where an OpenGL 4.3 context can be made; said either way */
+    char gl_device[256] = "";
+    bool gl_probed = false, gl_ok = false;
+    for (int s = 0; s < o->nsel; s++) {
+        if (!bench_level_gl(&bench_levels[o->sel[s]])) continue;
+        if (!gl_probed) {
+            gl_ok = sph_gpu_probe(gl_device, sizeof gl_device);
+            gl_probed = true;
+            if (!o->quiet) printf("GL levels (G*): %s%s\n", gl_ok ? "" : "skipped, no OpenGL 4.3 device: ", gl_device);
+        }
+        if (!gl_ok) {
+            memmove(o->sel + s, o->sel + s + 1, (size_t)(o->nsel - s - 1) * sizeof o->sel[0]);
+            o->nsel--;
+            s--;
+        }
+    }
     double *N = calloc((size_t)o->nsel * nk, sizeof *N), *MS = calloc((size_t)o->nsel * nk, sizeof *MS);
     double *PR = calloc((size_t)o->nsel * nk, sizeof *PR);
     int *cnt = calloc((size_t)o->nsel, sizeof *cnt), *thr = calloc((size_t)o->nsel, sizeof *thr);
@@ -1035,7 +1114,8 @@ static int cmd_levels(const bench_opts *o)
         const bench_level *L = &bench_levels[o->sel[s]];
         char t[16];
         snprintf(t, sizeof t, "%d", L->threads);
-        printf("%-5s %-42s %-8s %s\n", L->name, L->about, L->threads > 0 ? t : "cores", L->sets);
+        printf("%-5s %-42s %-8s %s\n", L->name, L->about, bench_level_gl(L) ? "device" : L->threads > 0 ? t : "cores",
+               L->sets);
     }
     char ini[2048];
     bench_scene_ini(o->cfg.dim, bench_k_near(o->cfg.dim, 1000), BENCH_JITTER, ini, sizeof ini);

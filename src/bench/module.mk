@@ -11,8 +11,8 @@ BENCH_SAVED_GOAL := $(.DEFAULT_GOAL)
 BENCH_SRC := cmd_bench bench_levels bench_measure bench_machine bench_chart
 MOD_OBJ   += $(BENCH_SRC:%=$(BUILD)/bench/%.o)
 
-$(BUILD)/bench/%.o: src/bench/%.c src/bench/*.h src/plot/plot.h src/app/*.h src/core/*.h | $(BUILD)/bench
-	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app -Isrc/plot $(PLOT_CFLAGS) -c -o $@ $<
+$(BUILD)/bench/%.o: src/bench/%.c src/bench/*.h src/plot/plot.h src/gpu/gpu.h src/app/*.h src/core/*.h | $(BUILD)/bench
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app -Isrc/plot -Isrc/gpu $(PLOT_CFLAGS) -c -o $@ $<
 
 $(BUILD)/bench:
 	mkdir -p $@
