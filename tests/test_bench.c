@@ -185,6 +185,30 @@ Test(bench, quick_ladder_every_level_checked_and_a_hash_beats_brute_force, .time
     }
 }
 
+/* Where no OpenGL 4.3 context can be made (forced here: Mesa told to offer
+ * 3.3), a GL level is skipped with the reason, and that is not a failure:
+ * the CPU levels are measured and the command exits 0. */
+Test(bench, gl_levels_skipped_without_gl43, .timeout = 300)
+{
+    char dir[64], args[256], path[256];
+    make_dir(dir, sizeof dir);
+    setenv("MESA_GL_VERSION_OVERRIDE", "3.3", 1); /* this test's process and the sphlab it runs */
+    snprintf(args, sizeof args, "bench ladder --quick --fps 500 --at 500 --levels L0,G1 --out %s", dir);
+    int rc = test_sphlab(args, g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
+    cr_assert(strstr(g_out, "G1   skipped: no OpenGL 4.3 device"), "no reason given:\n%s", g_out);
+    csv c;
+    snprintf(path, sizeof path, "%s/ladder-3d.csv", dir);
+    csv_read(&c, path);
+    int r0 = csv_row(&c, "L0"), r1 = csv_row(&c, "G1"), ccheck = csv_col(&c, "check"), cmax = csv_col(&c, "max_n");
+    cr_assert(r0 > 0 && r1 > 0);
+    cr_assert_str_eq(c.cell[r0][ccheck], "PASS");
+    cr_assert(atof(c.cell[r0][cmax]) > 0);
+    cr_assert_str_eq(c.cell[r1][ccheck], "SKIP");
+    cr_assert_str_eq(c.cell[r1][cmax], "", "a skipped level has no max N");
+    free(c.text);
+}
+
 /* A level that computes something else (a larger h) is caught and flagged,
  * and the command exits non-zero. */
 Test(bench, a_level_with_other_physics_fails_its_check, .timeout = 300)
