@@ -51,6 +51,10 @@ MESA_GL_VERSION_OVERRIDE=3.3 "$BIN" run "$scene" --backend gl --steps 1 > "$tmp/
 SDL_VIDEODRIVER=offscreen "$BIN" view "$scene" --backend gl --frames 3 --keys "." --overlay grid,neighbours \
     --select 50 --screenshot "$tmp/view.png" > "$tmp/gl.txt" 2>&1
 [ $? -eq 0 ] && [ -s "$tmp/view.png" ] && grep -q "pass external wrote" "$tmp/gl.txt" && ok || { bad "view --backend gl"; cat "$tmp/gl.txt"; }
+# render on the GL backend: the renderer's context is the backend's, frames drawn from its buffers
+"$BIN" render "$scene" --backend gl --steps 4 --every 2 --size 160x120 --out "$tmp/glframes" > "$tmp/gl.txt" 2>&1
+[ $? -eq 0 ] && [ -s "$tmp/glframes/frame_00002.png" ] && grep -q "drawn from the GL backend's buffers" "$tmp/gl.txt" && ok ||
+    { bad "render --backend gl: not drawn from the buffers"; cat "$tmp/gl.txt"; }
 unset LIBGL_ALWAYS_SOFTWARE
 
 # The hard cases: every verdict must be "pass" (they run headless, a few seconds).

@@ -408,3 +408,42 @@ Test(render, window_without_a_display_says_so_and_exits_non_zero)
     cr_expect(strstr(out, "sphlab view: SDL") != NULL, "message: %s", out);
     remove(scene);
 }
+
+/* On the GL backend the window asks for OpenGL 4.3 and the simulation runs
+ * in the window's context: the particles are drawn from its buffers. With
+ * no overlay nothing is read back after the first frame (whose first step
+ * reads the energy reference once), and the picture is the CPU backend's. */
+Test(render, window_on_the_gl_backend_draws_from_its_buffers)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    const char *d = temp_dir();
+    char args[1024], out[4096];
+    const char *opts = "--frames 4 --steps-per-frame 2 --size 240x180 --overlay none";
+    snprintf(args, sizeof args, "view %s --backend gl %s --screenshot %s/gl.png", scene, opts, d);
+    int rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    const char *line = strstr(out, "particles drawn from its buffers; bytes read back from it per frame:");
+    cr_assert_not_null(line, "no report of the direct path in: %s", out);
+    unsigned long long bytes[4];
+    int got = sscanf(strchr(line, ':') + 1, "%llu %llu %llu %llu", &bytes[0], &bytes[1], &bytes[2], &bytes[3]);
+    cr_assert_eq(got, 4, "%s", line);
+    for (int f = 1; f < 4; f++) cr_expect_eq(bytes[f], 0, "frame %d read back %llu bytes", f, bytes[f]);
+    snprintf(args, sizeof args, "view %s --backend cpu %s --screenshot %s/cpu.png", scene, opts, d);
+    rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    char p1[128], p2[128];
+    snprintf(p1, sizeof p1, "%s/gl.png", d);
+    snprintf(p2, sizeof p2, "%s/cpu.png", d);
+    int w1, h1, w2, h2;
+    unsigned char *a = load_png(p1, &w1, &h1), *b = load_png(p2, &w2, &h2);
+    cr_assert(w1 == 240 && h1 == 180 && w2 == 240 && h2 == 180);
+    size_t off = 0, lit = 0;
+    for (size_t i = 0; i < (size_t)w1 * h1 * 3; i++) off += abs((int)a[i] - (int)b[i]) > 8;
+    for (size_t i = 0; i < (size_t)w1 * h1; i++) lit += a[3 * i + 1] > 100; /* viridis' greens and yellows */
+    cr_expect_gt(lit, (size_t)50, "no particle drawn (%zu bright pixels)", lit);
+    cr_expect_leq(off, (size_t)w1 * h1 * 3 / 200, "%zu channel values differ from the CPU backend's", off);
+    stbi_image_free(a);
+    stbi_image_free(b);
+    remove_dir(d);
+    remove(scene);
+}

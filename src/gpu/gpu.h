@@ -9,6 +9,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "sph_sim.h"
 
@@ -30,5 +31,39 @@ bool sph_gpu_probe(char *device, size_t n);
  * time lands in the integrate pass, which reads back the CFL maxima. On by
  * default; a benchmark of whole steps may switch it off. */
 void sph_gpu_set_pass_sync(sph_sim *sim, bool on);
+
+/* ---- drawing from the device's buffers (src/render/) ------------------------
+ * A window or renderer that draws in the simulation's own context reads the
+ * particles where they are: any buffer object can be a vertex source. */
+
+/* On: GL simulations created from now on (sph_sim_create, reconfigure) adopt
+ * the OpenGL context current on the calling thread (4.3 core or later,
+ * made by the caller: the window's, the renderer's) instead of making an EGL
+ * context of their own. The caller keeps that context current whenever the
+ * simulation runs or is destroyed, and destroys the context after it. Off
+ * (the default): an EGL surfaceless context each. */
+void sph_gpu_adopt_current_context(bool on);
+/* Whether sim runs on the GL backend in an adopted context. */
+bool sph_gpu_context_adopted(const sph_sim *sim);
+/* Whether sim adopted the context that is current now, so that its buffer
+ * names are valid there (a renderer asks after making its own current). */
+bool sph_gpu_context_is_current(const sph_sim *sim);
+/* The GL name (a plain unsigned: no GL header here) of the buffer holding
+ * field f now, laid out as component d of particle i at float d * N + i.
+ * The reorder pass swaps buffers every step, so ask for it every frame;
+ * particles are in the sorted order (their ids in no buffer asked for here).
+ * False if sim is not on the GL backend or lacks the field. */
+bool sph_gpu_field_buffer(const sph_sim *sim, sph_field_id f, unsigned *gl_name);
+/* Computes on the device the smallest and largest finite value of field f
+ * (norm: of its vectors' lengths) into a buffer of 4 uints, named in
+ * *gl_name: [0] and [1] are the min and max as ordered keys (a float's bits,
+ * all flipped if negative, else with the sign bit set; min > max: no finite
+ * value). lo_hi non-NULL: also reads the two floats back (8 bytes; 0 and 0 if
+ * none). False if sim is not on the GL backend or lacks the field. */
+bool sph_gpu_field_range(const sph_sim *sim, sph_field_id f, bool norm, unsigned *gl_name, float lo_hi[2]);
+/* Bytes this simulation's backend copied to the host so far: sph_sim_sync's
+ * downloads and range reads (not the integrate pass's 8-byte CFL maxima,
+ * which every step reads). 0 if sim is not on the GL backend. */
+uint64_t sph_gpu_downloaded_bytes(const sph_sim *sim);
 
 #endif

@@ -37,7 +37,7 @@ static const char *const binding_names[B_TOTAL] = {
 #define GPU_PROGRAMS(X)                                                                                    \
     X(external, 0) X(hash, 0) X(bitonic, 0) X(fill, 0) X(histogram, 0) X(scan_block, 0) X(scan_add, 0)     \
     X(scatter, 0) X(rank, 0) X(gather, 0) X(reindex, 0) X(offsets, 0) X(density, 1) X(pressure, 0)          \
-    X(pressure_force, 1) X(viscosity, 1) X(interaction, 0) X(integrate, 0) X(walls, 0)
+    X(pressure_force, 1) X(viscosity, 1) X(interaction, 0) X(integrate, 0) X(walls, 0) X(range, 0)
 enum {
 #define GPU_P_ENUM(name, walk) PROG_##name,
     GPU_PROGRAMS(GPU_P_ENUM)
@@ -73,7 +73,9 @@ static const char *const uniform_names[U_TOTAL] = {
 
 typedef struct gpu {
     sph_backend base; /* first: the core's table */
-    sph_glctx *ctx;
+    sph_glctx *ctx;           /* NULL: the caller's context, adopted (sph_gpu_adopt_current_context) */
+    bool adopted;
+    sph_glctx *borrowed;      /* the adopted context, if sphlab made it (the renderer's): made current again */
     sph_gl gl;
     sph_gl_compute gc;
     uint32_t n, table; /* particles, hash keys */
@@ -85,7 +87,12 @@ typedef struct gpu {
     GLint loc[PROG_TOTAL][U_TOTAL];
     bool reordered;           /* this step's reorder pass ran (as S->reordered on the CPU) */
     bool pass_sync;           /* glFinish after each pass, so per-pass timings are true */
+    GLuint range;             /* a field's min and max, as ordered keys (sph_gpu_field_range) */
+    uint64_t downloaded;      /* bytes copied to the host: sph_sim_sync, range reads */
 } gpu;
+
+/* Whether sph_gpu_backend_create adopts the caller's current context. */
+static bool adopt_current;
 
 /* ---- set-up --------------------------------------------------------------- */
 
@@ -269,7 +276,8 @@ static void bind(gpu *g, int binding, GLuint b)
 
 static void current(gpu *g)
 {
-    sph_glctx_make_current(g->ctx);
+    /* an adopted context that is not sphlab's (SDL's) is the caller's to keep current */
+    if (g->ctx || g->borrowed) sph_glctx_make_current(g->ctx ? g->ctx : g->borrowed);
 }
 
 /* ---- dispatch ------------------------------------------------------------- */
@@ -452,6 +460,7 @@ static void run(sph_backend *b, sph_sim *sim, sph_pass_id pass)
 
 static void get(gpu *g, GLuint b, size_t offset, size_t bytes, void *dst)
 {
+    g->downloaded += bytes;
     g->gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
     g->gc.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)offset, (GLsizeiptr)bytes, dst);
 }
@@ -533,7 +542,7 @@ static void destroy(sph_backend *b)
 {
     gpu *g = (gpu *)b;
     if (!g) return;
-    if (g->ctx) {
+    if (g->ctx || g->adopted) {
         current(g);
         for (int p = 0; p < PROG_TOTAL; p++)
             if (g->prog[p]) g->gl.DeleteProgram(g->prog[p]);
@@ -542,6 +551,7 @@ static void destroy(sph_backend *b)
         if (g->spare) g->gl.DeleteBuffers(1, &g->spare);
         for (int l = 0; l < MAX_SCAN_LEVELS; l++)
             if (g->levels[l]) g->gl.DeleteBuffers(1, &g->levels[l]);
+        if (g->range) g->gl.DeleteBuffers(1, &g->range);
         sph_glctx_destroy(g->ctx);
     }
     free(g);
@@ -578,6 +588,7 @@ static void needed_programs(const sph_sim *sim, bool need[PROG_TOTAL])
     memset(need, 0, PROG_TOTAL * sizeof *need);
     need[PROG_fill] = true;
     need[PROG_integrate] = true;
+    need[PROG_range] = true;
     need[PROG_external] = in[SPH_PASS_EXTERNAL];
     need[PROG_hash] = in[SPH_PASS_HASH];
     if (in[SPH_PASS_SORT]) {
@@ -631,6 +642,7 @@ static bool make_buffers(gpu *g, const sph_sim *sim)
         if (level <= 1) break;
     }
     g->buf[B_REDUCE] = new_buffer(g, 4 * sizeof(uint32_t), NULL);
+    g->range = new_buffer(g, 4 * sizeof(uint32_t), NULL); /* 16 bytes: a uniform block's vec4 */
     float wall[2 * (SPH_WALL_TABLE + 1)];
     memcpy(wall, sim->k_density.wall_psi, sizeof sim->k_density.wall_psi);
     memcpy(wall + SPH_WALL_TABLE + 1, sim->k_density.wall_area, sizeof sim->k_density.wall_area);
@@ -640,12 +652,9 @@ static bool make_buffers(gpu *g, const sph_sim *sim)
     return g->gl.GetError() == GL_NO_ERROR;
 }
 
-/* An EGL surfaceless context of OpenGL 4.3 or later; NULL with the reason. */
-static sph_glctx *make_context(sph_gl *gl, sph_gl_compute *gc, char *why, size_t n)
+/* Whether the current context can run the passes; false with the reason. */
+static bool context_usable(sph_gl *gl, char *why, size_t n)
 {
-    sph_glctx *ctx = sph_glctx_create_egl_version(gl, 4, 3, why, n);
-    if (!ctx) return NULL;
-    sph_gl_load_compute_epoxy(gc);
     GLint major = 0, minor = 0, bindings = 0, blocks = 0;
     gl->GetIntegerv(GL_MAJOR_VERSION, &major);
     gl->GetIntegerv(GL_MINOR_VERSION, &minor);
@@ -657,10 +666,33 @@ static sph_glctx *make_context(sph_gl *gl, sph_gl_compute *gc, char *why, size_t
         snprintf(why, n, "the device has %d storage buffer bindings and %d per compute shader (needs %d and 12)",
                  bindings, blocks, B_TOTAL);
     } else {
-        return ctx;
+        return true;
     }
+    return false;
+}
+
+/* An EGL surfaceless context of OpenGL 4.3 or later; NULL with the reason. */
+static sph_glctx *make_context(sph_gl *gl, sph_gl_compute *gc, char *why, size_t n)
+{
+    sph_glctx *ctx = sph_glctx_create_egl_version(gl, 4, 3, why, n);
+    if (!ctx) return NULL;
+    sph_gl_load_compute_epoxy(gc);
+    if (context_usable(gl, why, n)) return ctx;
     sph_glctx_destroy(ctx);
     return NULL;
+}
+
+/* The caller's current context (a window's, the renderer's), if it can run
+ * the passes; false with the reason. */
+static bool adopt_context(sph_gl *gl, sph_gl_compute *gc, char *why, size_t n)
+{
+    sph_gl_load_epoxy(gl);
+    sph_gl_load_compute_epoxy(gc);
+    if (!gl->GetString(GL_VERSION)) {
+        snprintf(why, n, "no OpenGL context is current to adopt");
+        return false;
+    }
+    return context_usable(gl, why, n);
 }
 
 static void device_name(const sph_gl *gl, char *out, size_t n)
@@ -701,11 +733,16 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, sph_backend **out, sph_error
     g->table = sim->S.table_size ? sim->S.table_size : 1;
     g->pass_sync = true;
     char why[1024];
-    g->ctx = make_context(&g->gl, &g->gc, why, sizeof why);
-    if (!g->ctx) {
+    if (adopt_current) {
+        g->borrowed = sph_glctx_current();
+        g->adopted = adopt_context(&g->gl, &g->gc, why, sizeof why);
+    }
+    else
+        g->ctx = make_context(&g->gl, &g->gc, why, sizeof why);
+    if (!g->ctx && !g->adopted) {
         free(g);
-        return sph_fail(err, SPH_ERR_SCENE, "%s: [compute] backend = gl: no OpenGL 4.3 context: %s", sim->def.file,
-                        why);
+        return sph_fail(err, SPH_ERR_SCENE, "%s: [compute] backend = gl: no OpenGL 4.3 context%s: %s", sim->def.file,
+                        adopt_current ? " (adopting the current one)" : "", why);
     }
     device_name(&g->gl, g->base.device, sizeof g->base.device);
     GLint max_block = 0;
@@ -744,6 +781,78 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, sph_backend **out, sph_error
 void sph_gpu_set_pass_sync(sph_sim *sim, bool on)
 {
     if (sim->backend && sim->backend->run == run) ((gpu *)sim->backend)->pass_sync = on;
+}
+
+void sph_gpu_adopt_current_context(bool on)
+{
+    adopt_current = on;
+}
+
+static gpu *gpu_of(const sph_sim *sim)
+{
+    return sim->backend && sim->backend->run == run ? (gpu *)sim->backend : NULL;
+}
+
+bool sph_gpu_context_adopted(const sph_sim *sim)
+{
+    gpu *g = gpu_of(sim);
+    return g && g->adopted;
+}
+
+bool sph_gpu_context_is_current(const sph_sim *sim)
+{
+    gpu *g = gpu_of(sim);
+    /* SDL's context is no sphlab context: then none of sphlab's must be current */
+    return g && g->adopted && sph_glctx_current() == g->borrowed;
+}
+
+bool sph_gpu_field_buffer(const sph_sim *sim, sph_field_id f, unsigned *gl_name)
+{
+    gpu *g = gpu_of(sim);
+    float **vec, *scalar;
+    int bi = g ? field_arrays((sph_sim *)sim, (int)f, &vec, &scalar) : -1;
+    if (bi < 0 || !g->buf[bi]) return false;
+    *gl_name = g->buf[bi];
+    return true;
+}
+
+/* An ordered key's float (see gpu_range.comp). */
+static float key_float(uint32_t k)
+{
+    uint32_t u = (k & 0x80000000u) ? (k & 0x7FFFFFFFu) : ~k;
+    float v;
+    memcpy(&v, &u, sizeof v);
+    return v;
+}
+
+bool sph_gpu_field_range(const sph_sim *sim, sph_field_id f, bool norm, unsigned *gl_name, float lo_hi[2])
+{
+    gpu *g = gpu_of(sim);
+    unsigned src;
+    if (!g || !sph_gpu_field_buffer(sim, f, &src)) return false;
+    current(g);
+    /* min starts above every key, max below: an empty or all-NaN field stays so */
+    const uint32_t init[4] = {0xFFFFFFFFu, 0, 0, 0};
+    send(g, g->range, 0, sizeof init, init);
+    use(g, PROG_range);
+    bind(g, B_SRC, src);
+    bind(g, B_DST, g->range);
+    set_u(g, PROG_range, U_count, norm ? (uint32_t)g->dim : 1u);
+    dispatch(g, g->n);
+    *gl_name = g->range;
+    if (lo_hi) {
+        uint32_t k[2];
+        get(g, g->range, 0, sizeof k, k);
+        lo_hi[0] = k[0] > k[1] ? 0.0f : key_float(k[0]);
+        lo_hi[1] = k[0] > k[1] ? 0.0f : key_float(k[1]);
+    }
+    return true;
+}
+
+uint64_t sph_gpu_downloaded_bytes(const sph_sim *sim)
+{
+    gpu *g = gpu_of(sim);
+    return g ? g->downloaded : 0;
 }
 
 void sph_gpu_register(void)

@@ -6,8 +6,10 @@ GPU_OBJ := $(BUILD)/gpu/gpu_backend.o
 
 MOD_OBJ       += $(GPU_OBJ)
 # The tests link the backend from a library before the render library (its
-# EGL context and GL table), then the core again.
-MOD_TEST_LIBS += $(BUILD)/gpu/libgpu.a $(BUILD)/render/librender.a $(BUILD)/libsphcore.a $(RENDER_LIBS)
+# EGL context and GL table), which draws from the backend's buffers, so the
+# backend comes again after it; then the core again.
+MOD_TEST_LIBS += $(BUILD)/gpu/libgpu.a $(BUILD)/render/librender.a $(BUILD)/gpu/libgpu.a $(BUILD)/libsphcore.a \
+                 $(RENDER_LIBS)
 
 $(BUILD)/sphlab-tests: $(BUILD)/gpu/libgpu.a
 

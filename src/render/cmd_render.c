@@ -8,6 +8,7 @@
 
 #include "cmd_common.h"
 #include "commands.h"
+#include "gpu.h"
 #include "vtk.h"
 
 static void usage(FILE *f)
@@ -130,20 +131,35 @@ int cmd_render(int argc, char **argv)
         fprintf(stderr, "sphlab render: %s\n", err);
         return 1;
     }
+    /* software rasterising: the same pixels on every machine */
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
+    /* The GL backend runs in the renderer's own context where it can (EGL,
+     * OpenGL 4.3), and the frames are drawn from its buffers; otherwise it
+     * makes a context of its own and each frame is copied through the host. */
+    sph_renderer *r = NULL;
+    if (def.backend == SPH_BACKEND_GL && backend == SPH_GL_EGL) {
+        r = sph_renderer_create_gl43(backend, vo.w, vo.h, err, sizeof err);
+        if (!r && !quiet)
+            fprintf(stderr, "sphlab render: note: %s; the frames are copied from the GL backend through the host\n",
+                    err);
+    }
+    sph_gpu_adopt_current_context(r != NULL);
     sph_sim *sim;
     sph_error serr;
-    if (sph_sim_create(&def, (int)threads, &sim, &serr) != SPH_ERR_OK) {
+    sph_error_code made = sph_sim_create(&def, (int)threads, &sim, &serr);
+    sph_gpu_adopt_current_context(false);
+    if (made != SPH_ERR_OK) {
         fprintf(stderr, "sphlab: %s\n", serr.msg);
+        sph_renderer_destroy(r);
         return 1;
     }
     sph_view view;
     if (!view_opts_apply(&vo, "render", sim, &view)) {
         sph_sim_destroy(sim);
+        sph_renderer_destroy(r);
         return 2;
     }
-    /* software rasterising: the same pixels on every machine */
-    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
-    sph_renderer *r = sph_renderer_create(backend, vo.w, vo.h, err, sizeof err);
+    if (!r) r = sph_renderer_create(backend, vo.w, vo.h, err, sizeof err);
     if (!r) {
         fprintf(stderr, "sphlab render: no usable OpenGL: %s\n", err);
         sph_sim_destroy(sim);
@@ -152,8 +168,8 @@ int cmd_render(int argc, char **argv)
     uint8_t *rgb = malloc((size_t)vo.w * vo.h * 3);
     if (!rgb) {
         fprintf(stderr, "sphlab render: out of memory\n");
+        sph_sim_destroy(sim); /* first: it may live in the renderer's context */
         sph_renderer_destroy(r);
-        sph_sim_destroy(sim);
         return 1;
     }
     bool progress = !quiet && isatty(STDERR_FILENO), ok = true, alarm = false;
@@ -201,11 +217,12 @@ int cmd_render(int argc, char **argv)
     }
     if (progress) fprintf(stderr, "\r%60s\r", "");
     if (!quiet && frame)
-        printf("%u frame%s (%dx%d) in %s/%s%s%s, %.1f s; %s: %s\n", frame, frame == 1 ? "" : "s", vo.w, vo.h, out,
+        printf("%u frame%s (%dx%d) in %s/%s%s%s, %.1f s; %s: %s%s\n", frame, frame == 1 ? "" : "s", vo.w, vo.h, out,
                vtk_dir ? " and VTK in " : "", vtk_dir ? vtk_dir : "", vtk_dir ? "/" : "", (sph_now_ms() - t0) / 1e3,
-               sph_gl_backend_names[backend], sph_renderer_info(r));
+               sph_gl_backend_names[backend], sph_renderer_info(r),
+               sph_renderer_drew_direct(r) ? "; particles drawn from the GL backend's buffers" : "");
     free(rgb);
+    sph_sim_destroy(sim); /* first: it may live in the renderer's context */
     sph_renderer_destroy(r);
-    sph_sim_destroy(sim);
     return !ok ? 1 : alarm ? 4 : 0;
 }

@@ -1,4 +1,5 @@
-/* sphlab view SCENE.ini: an SDL2 window with an OpenGL 3.3 core context
+/* sphlab view SCENE.ini: an SDL2 window with an OpenGL 3.3 core context (4.3
+ * on the GL backend, whose simulation then runs in it: see cmd_view below)
  * (GL through libepoxy), running the scene live. The same renderer as
  * `sphlab render` draws into an offscreen framebuffer, which is copied to
  * the window; a screenshot reads that framebuffer, so it holds exactly what
@@ -15,8 +16,9 @@
 #include <string.h>
 
 #include "cmd_common.h"
-#include "gl_context.h"
 #include "commands.h"
+#include "gl_context.h"
+#include "gpu.h"
 
 /* The key bindings, written once: the help panel, `--help` and
  * docs/rendering.md list them from here. */
@@ -383,6 +385,7 @@ static void fill_panel(viewer *w)
         snprintf(w->panel[n++], 128, "keys");
         for (int k = 0; k < N_KEYS && n < 24; k++) snprintf(w->panel[n++], 128, "%-14s %s", key_names[k], key_about[k]);
     } else if (w->v.selected >= 0 && (uint32_t)w->v.selected < w->sim->n) {
+        sph_sim_sync(w->sim, SPH_SYNC_ALL); /* the inspector reads the host copy */
         n = sph_inspect_lines(w->sim, (uint32_t)w->v.selected, w->panel, 24);
     } else {
         return;
@@ -489,28 +492,19 @@ int cmd_view(int argc, char **argv)
         return 1;
     }
     sph_error serr;
-    if (sph_sim_create(&w.def, w.threads, &w.sim, &serr) != SPH_ERR_OK) {
-        fprintf(stderr, "sphlab: %s\n", serr.msg);
-        return 1;
-    }
-    if (!view_opts_apply(&vo, "view", w.sim, &w.v)) {
-        sph_sim_destroy(w.sim);
-        return 2;
-    }
-    /* the window shows everything by default, except what a script leaves out */
-    bool chose = vo.ov_on || vo.ov_off || vo.ov_none;
-    if (!chose) w.v.overlays |= SPH_OV_BIT(TIMINGS);
-    w.user_field = w.v.field;
-    w.sel_id = vo.select_id;
-
     int rc = 1;
     SDL_Window *win = NULL;
     SDL_GLContext ctx = NULL;
+    /* On the GL backend the window asks for OpenGL 4.3, and the simulation
+     * adopts the window's context: the particles are then drawn from its
+     * buffers, with no copy through the host. */
+    const bool want_gl43 = w.def.backend == SPH_BACKEND_GL;
+    bool adopt = false;
     if (SDL_Init(SDL_INIT_VIDEO) != 0) {
         fprintf(stderr, "sphlab view: SDL cannot open the video subsystem: %s\n", SDL_GetError());
         goto out;
     }
-    SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 3);
+    SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, want_gl43 ? 4 : 3);
     SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 3);
     SDL_GL_SetAttribute(SDL_GL_CONTEXT_PROFILE_MASK, SDL_GL_CONTEXT_PROFILE_CORE);
     SDL_GL_SetAttribute(SDL_GL_DOUBLEBUFFER, 1);
@@ -525,6 +519,15 @@ int cmd_view(int argc, char **argv)
     }
     SDL_SetWindowMinimumSize(win, 160, 120);
     ctx = SDL_GL_CreateContext(win);
+    adopt = want_gl43 && ctx;
+    if (want_gl43 && !ctx) {
+        fprintf(stderr,
+                "sphlab view: note: SDL (%s driver) cannot make an OpenGL 4.3 core context (%s); the GL backend "
+                "runs in a context of its own and each frame is copied through the host\n",
+                SDL_GetCurrentVideoDriver(), SDL_GetError());
+        SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 3);
+        ctx = SDL_GL_CreateContext(win);
+    }
     if (!ctx) {
         fprintf(stderr, "sphlab view: no usable OpenGL: SDL (%s driver) cannot make an OpenGL 3.3 core context: %s\n",
                 SDL_GetCurrentVideoDriver(), SDL_GetError());
@@ -538,12 +541,34 @@ int cmd_view(int argc, char **argv)
         fprintf(stderr, "sphlab view: no usable OpenGL: %s\n", err);
         goto out;
     }
+    /* on for the whole session: a reset or a variant makes a new backend, in this context too */
+    sph_gpu_adopt_current_context(adopt);
+    if (sph_sim_create(&w.def, w.threads, &w.sim, &serr) != SPH_ERR_OK) {
+        fprintf(stderr, "sphlab: %s\n", serr.msg);
+        goto out;
+    }
+    if (!view_opts_apply(&vo, "view", w.sim, &w.v)) {
+        rc = 2;
+        goto out;
+    }
+    /* the window shows everything by default, except what a script leaves out */
+    bool chose = vo.ov_on || vo.ov_off || vo.ov_none;
+    if (!chose) w.v.overlays |= SPH_OV_BIT(TIMINGS);
+    w.user_field = w.v.field;
+    w.sel_id = vo.select_id;
     if (!w.scripted) {
-        printf("sphlab view: %s; press h for the keys\n", sph_renderer_info(w.r));
+        printf("sphlab view: %s%s; press h for the keys\n", sph_renderer_info(w.r),
+               adopt ? "; the GL backend runs in this context, drawn from its buffers" : "");
         fflush(stdout);
     }
+    /* bytes read back from the GL backend, per frame, for a scripted run's report */
+    char per_frame[256] = "";
+    size_t used = 0;
+    bool direct_all = true;
     double last = sph_now_ms();
     for (long frame = 0; !w.quit && (frames < 0 || frame < frames); frame++) {
+        const sph_sim *counted = w.sim; /* a reset replaces it, and its count */
+        uint64_t bytes0 = sph_gpu_downloaded_bytes(w.sim);
         int ww, wh;
         SDL_GetWindowSize(win, &ww, &wh);
         SDL_GL_GetDrawableSize(win, &dw, &dh);
@@ -590,7 +615,7 @@ int cmd_view(int argc, char **argv)
         w.v.hud.message = now < w.msg_until ? w.msg : NULL;
         w.v.selected = sim_index_of_id(w.sim, w.sel_id);
         fill_panel(&w);
-        if (w.sim->backend) {
+        if (w.sim->backend && !sph_gpu_context_adopted(w.sim)) {
             /* read the backend's buffers back now, while its context is the
              * current one (sph_render would otherwise switch to it) */
             sph_sim_sync(w.sim, SPH_SYNC_ALL);
@@ -607,7 +632,18 @@ int cmd_view(int argc, char **argv)
         }
         sph_renderer_present(w.r, dw, dh);
         SDL_GL_SwapWindow(win);
+        direct_all &= sph_renderer_drew_direct(w.r);
+        if (w.scripted && w.sim->backend && used + 24 < sizeof per_frame)
+            used += (size_t)snprintf(per_frame + used, sizeof per_frame - used, " %llu",
+                                     w.sim == counted ? (unsigned long long)(sph_gpu_downloaded_bytes(w.sim) - bytes0)
+                                                      : (unsigned long long)sph_gpu_downloaded_bytes(w.sim));
     }
+    if (w.scripted && w.sim && w.sim->backend)
+        fprintf(stderr, "sphlab view: GL backend %s; bytes read back from it per frame:%s\n",
+                !adopt ? "in a context of its own, frames copied through the host"
+                : direct_all ? "in the window's context, particles drawn from its buffers"
+                             : "in the window's context, some frames copied through the host (colour field or overlays)",
+                per_frame);
     rc = 0;
     if (shot) {
         w.msg[0] = '\0';
@@ -615,10 +651,16 @@ int cmd_view(int argc, char **argv)
         if (strncmp(w.msg, "saved", 5) != 0) rc = 1;
     }
 out:
+    /* the simulation first: an adopted context must still be there */
+    sph_sim_destroy(w.sim);
+    sph_gpu_adopt_current_context(false);
+    if (ctx) { /* a backend of its own may have taken the thread's GL */
+        SDL_GL_MakeCurrent(win, NULL);
+        SDL_GL_MakeCurrent(win, ctx);
+    }
     sph_renderer_destroy(w.r);
     if (ctx) SDL_GL_DeleteContext(ctx);
     if (win) SDL_DestroyWindow(win);
     SDL_Quit();
-    sph_sim_destroy(w.sim);
     return rc;
 }

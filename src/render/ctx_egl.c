@@ -32,6 +32,12 @@ void sph_glctx_forget_current(void)
     sph_glctx_last_current = NULL;
 }
 
+sph_glctx *sph_glctx_current(void)
+{
+    sph_glctx *c = sph_glctx_last_current;
+    return c && eglGetCurrentContext() == c->ctx ? c : NULL;
+}
+
 static const char *egl_error_name(EGLint e)
 {
     switch (e) {

@@ -22,6 +22,10 @@ bool sph_glctx_make_current_osmesa(sph_glctx *c);
  * that makes its own context current calls sph_glctx_forget_current(). */
 extern sph_glctx *sph_glctx_last_current;
 void sph_glctx_forget_current(void);
+/* The sphlab EGL context current on this thread, or NULL (none, or another
+ * library's, such as SDL's): what a GL simulation adopting the current
+ * context makes current again before its passes. */
+sph_glctx *sph_glctx_current(void);
 sph_glctx *sph_glctx_create_osmesa(sph_gl *gl, char *err, size_t n);
 void sph_glctx_destroy(sph_glctx *c);        /* EGL */
 void sph_glctx_destroy_osmesa(sph_glctx *c); /* OSMesa */

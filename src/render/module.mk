@@ -34,8 +34,8 @@ SHADERS := $(wildcard shaders/*.vert shaders/*.frag)
 $(BUILD)/render/shaders.h: $(SHADERS) src/render/embed-shaders.sh | $(BUILD)/render
 	sh src/render/embed-shaders.sh $(SHADERS) > $@.tmp && mv $@.tmp $@
 
-$(BUILD)/render/%.o: src/render/%.c src/render/*.h src/core/*.h src/app/*.h | $(BUILD)/render
-	$(CC) $(CFLAGS) $(CORE_CFLAGS) $(RENDER_CFLAGS) -Isrc/render -Isrc/app -I$(BUILD)/render -c -o $@ $<
+$(BUILD)/render/%.o: src/render/%.c src/render/*.h src/gpu/gpu.h src/core/*.h src/app/*.h | $(BUILD)/render
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) $(RENDER_CFLAGS) -Isrc/render -Isrc/gpu -Isrc/app -I$(BUILD)/render -c -o $@ $<
 $(BUILD)/render/renderer.o: $(BUILD)/render/shaders.h
 
 $(BUILD)/render:
@@ -43,7 +43,7 @@ $(BUILD)/render:
 
 # The render tests include src/render/ headers (tests/test_render.c and tests/test_render_*.c).
 $(BUILD)/tests/test_render.o: CORE_CFLAGS += -Isrc/render $(RENDER_CFLAGS)
-$(BUILD)/tests/test_render_%.o: CORE_CFLAGS += -Isrc/render $(RENDER_CFLAGS)
+$(BUILD)/tests/test_render_%.o: CORE_CFLAGS += -Isrc/render -Isrc/gpu $(RENDER_CFLAGS)
 
 # `make asan`: Mesa (LLVM's JIT, the drivers) keeps allocations until exit
 # by design; tests/lsan.supp (set by the Makefile) tells LeakSanitizer so.

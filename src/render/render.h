@@ -49,6 +49,11 @@ typedef struct sph_renderer sph_renderer;
 /* Makes the context (EGL, OSMesa) or takes the current one (CURRENT), and a
  * w x h framebuffer. NULL on failure, with the reason in err. */
 sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *err, size_t n);
+/* The same with an OpenGL 4.3 core context (EGL; CURRENT: the caller's must
+ * be 4.3), which a GL simulation may then adopt (sph_gpu_adopt_current_context
+ * in src/gpu/gpu.h): sph_render then draws its particles straight from the
+ * backend's buffers. */
+sph_renderer *sph_renderer_create_gl43(sph_gl_backend backend, int w, int h, char *err, size_t n);
 bool sph_renderer_resize(sph_renderer *r, int w, int h, char *err, size_t n);
 void sph_renderer_destroy(sph_renderer *r);
 /* "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5 (Core Profile) Mesa 22.3.6" */
@@ -57,6 +62,8 @@ void sph_renderer_size(const sph_renderer *r, int *w, int *h);
 
 /* Draws the state; false (with the reason) on a GL error or out of memory. */
 bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *err, size_t n);
+/* Whether the last frame's particles were drawn from the GL backend's buffers. */
+bool sph_renderer_drew_direct(const sph_renderer *r);
 /* The frame just drawn, RGB, rows from the top: w * h * 3 bytes. */
 void sph_renderer_read_rgb(sph_renderer *r, uint8_t *rgb);
 /* Copies the frame to the default framebuffer (the window), w x h pixels. */

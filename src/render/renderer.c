@@ -21,6 +21,7 @@
 #include "font.h"
 #include "gl_context.h"
 #include "gl_table.h"
+#include "gpu.h"
 #include "shaders.h" /* generated from shaders/ by src/render/module.mk */
 
 const char *const sph_gl_backend_names[SPH_GL_BACKEND_COUNT] = {
@@ -39,6 +40,11 @@ typedef struct inst {
     uint32_t rgba;
 } inst;
 
+/* Uniforms of a particle program. */
+typedef struct ploc {
+    GLint view, proj, radius, sphere, cut, rim, dim, comps, fixed, range;
+} ploc;
+
 struct sph_renderer {
     sph_gl gl;
     sph_gl_backend backend;
@@ -47,8 +53,16 @@ struct sph_renderer {
     int w, h;
     GLuint fbo, rb_color, rb_depth;
     GLuint prog_p, prog_c;
-    GLint up_view, up_proj, up_radius, up_sphere, up_cut, up_rim, uc_size, uc_atlas;
+    ploc lp;
+    GLint uc_size, uc_atlas;
     GLuint vao_p, vbo_corner, vbo_inst, vao_c, vbo_c, tex;
+    /* Drawing from the GL backend's buffers (OpenGL 4.3): its program, with
+     * the colour map as a texture, made on first use. */
+    bool gl43;
+    sph_gl_compute gc;
+    GLuint prog_d, vao_d, tex_cmap;
+    ploc ld;
+    bool drew_direct;
     sph_font font;
     bool have_font;
     inst *inst;
@@ -179,7 +193,22 @@ static bool check_size(int w, int h, char *err, size_t n)
     return true;
 }
 
-sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *err, size_t n)
+static void locate(sph_renderer *r, GLuint prog, ploc *l)
+{
+    sph_gl *gl = &r->gl;
+    l->view = gl->GetUniformLocation(prog, "u_view");
+    l->proj = gl->GetUniformLocation(prog, "u_proj");
+    l->radius = gl->GetUniformLocation(prog, "u_radius");
+    l->sphere = gl->GetUniformLocation(prog, "u_sphere");
+    l->cut = gl->GetUniformLocation(prog, "u_cut");
+    l->rim = gl->GetUniformLocation(prog, "u_rim");
+    l->dim = gl->GetUniformLocation(prog, "u_dim");
+    l->comps = gl->GetUniformLocation(prog, "u_comps");
+    l->fixed = gl->GetUniformLocation(prog, "u_fixed");
+    l->range = gl->GetUniformLocation(prog, "u_range");
+}
+
+static sph_renderer *create(sph_gl_backend backend, int w, int h, bool gl43, char *err, size_t n)
 {
     if (!check_size(w, h, err, n)) return NULL;
     sph_renderer *r = calloc(1, sizeof *r);
@@ -191,7 +220,7 @@ sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *er
     r->w = w;
     r->h = h;
     if (backend == SPH_GL_EGL)
-        r->ctx = sph_glctx_create_egl(&r->gl, err, n);
+        r->ctx = gl43 ? sph_glctx_create_egl_version(&r->gl, 4, 3, err, n) : sph_glctx_create_egl(&r->gl, err, n);
     else if (backend == SPH_GL_OSMESA)
         r->ctx = sph_glctx_create_osmesa(&r->gl, err, n);
     else
@@ -211,18 +240,22 @@ sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *er
         sph_renderer_destroy(r);
         return NULL;
     }
+    /* the compute table comes from epoxy, which OSMesa cannot use (gl_table.h) */
+    r->gl43 = major * 10 + minor >= 43 && backend != SPH_GL_OSMESA;
+    if (r->gl43) sph_gl_load_compute_epoxy(&r->gc);
+    if (gl43 && !r->gl43) {
+        snprintf(err, n, "%s: OpenGL %d.%d, 4.3 needed to draw from the GL backend's buffers",
+                 sph_gl_backend_names[backend], major, minor);
+        sph_renderer_destroy(r);
+        return NULL;
+    }
     r->prog_p = program(r, shader_particles_vert, shader_particles_frag, "particles", err, n);
     r->prog_c = r->prog_p ? program(r, shader_canvas_vert, shader_canvas_frag, "canvas", err, n) : 0;
     if (!r->prog_c || !make_fbo(r, err, n) || !make_font(r, err, n)) {
         sph_renderer_destroy(r);
         return NULL;
     }
-    r->up_view = gl->GetUniformLocation(r->prog_p, "u_view");
-    r->up_proj = gl->GetUniformLocation(r->prog_p, "u_proj");
-    r->up_radius = gl->GetUniformLocation(r->prog_p, "u_radius");
-    r->up_sphere = gl->GetUniformLocation(r->prog_p, "u_sphere");
-    r->up_cut = gl->GetUniformLocation(r->prog_p, "u_cut");
-    r->up_rim = gl->GetUniformLocation(r->prog_p, "u_rim");
+    locate(r, r->prog_p, &r->lp);
     r->uc_size = gl->GetUniformLocation(r->prog_c, "u_size");
     r->uc_atlas = gl->GetUniformLocation(r->prog_c, "u_atlas");
 
@@ -263,6 +296,46 @@ sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *er
     return r;
 }
 
+sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *err, size_t n)
+{
+    return create(backend, w, h, false, err, n);
+}
+
+sph_renderer *sph_renderer_create_gl43(sph_gl_backend backend, int w, int h, char *err, size_t n)
+{
+    return create(backend, w, h, true, err, n);
+}
+
+/* The program and vertex layout that read the GL backend's buffers, made on
+ * the first frame that needs them; false (reason in err) if they fail. */
+static bool make_direct(sph_renderer *r, char *err, size_t n)
+{
+    if (r->prog_d) return true;
+    sph_gl *gl = &r->gl;
+    r->prog_d = program(r, shader_particles_direct_vert, shader_particles_frag, "particles_direct", err, n);
+    if (!r->prog_d) return false;
+    locate(r, r->prog_d, &r->ld);
+    uint32_t cmap[256];
+    for (int k = 0; k < 256; k++) cmap[k] = sph_colormap_viridis((float)k / 255.0f);
+    gl->GenTextures(1, &r->tex_cmap);
+    gl->BindTexture(GL_TEXTURE_2D, r->tex_cmap);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 256, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, cmap); /* bytes R, G, B, A */
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->GenVertexArrays(1, &r->vao_d);
+    gl->BindVertexArray(r->vao_d);
+    gl->BindBuffer(GL_ARRAY_BUFFER, r->vbo_corner);
+    gl->EnableVertexAttribArray(0);
+    gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
+    for (GLuint a = 1; a <= 6; a++) {
+        gl->EnableVertexAttribArray(a);
+        gl->VertexAttribDivisor(a, 1);
+    }
+    gl->BindVertexArray(0);
+    return true;
+}
+
 /* The GL compute backend has a context of its own and makes it current for
  * its passes; the headless contexts are made current again before drawing
  * (the window's is, by the window: cmd_view.c). */
@@ -290,6 +363,9 @@ void sph_renderer_destroy(sph_renderer *r)
     if (gl->DeleteProgram) {
         if (r->prog_p) gl->DeleteProgram(r->prog_p);
         if (r->prog_c) gl->DeleteProgram(r->prog_c);
+        if (r->prog_d) gl->DeleteProgram(r->prog_d);
+        if (r->tex_cmap) gl->DeleteTextures(1, &r->tex_cmap);
+        if (r->vao_d) gl->DeleteVertexArrays(1, &r->vao_d);
         if (r->fbo) gl->DeleteFramebuffers(1, &r->fbo);
         if (r->rb_color) gl->DeleteRenderbuffers(1, &r->rb_color);
         if (r->rb_depth) gl->DeleteRenderbuffers(1, &r->rb_depth);
@@ -696,15 +772,66 @@ static void clip_to_view(sph_renderer *r, bool on)
     gl->Scissor(rc[0], r->h - rc[1] - rc[3], rc[2], rc[3]); /* GL counts rows from the bottom */
 }
 
+/* The backend's field a colour field is made of (norm: a vector's length);
+ * -1 for those the device does not hold (keys, neighbour counts). */
+static int device_field(sph_color_field f, bool *norm)
+{
+    *norm = f == SPH_COLOR_SPEED || f == SPH_COLOR_ACC_P || f == SPH_COLOR_ACC_V;
+    switch (f) {
+    case SPH_COLOR_DENSITY: return SPH_FIELD_RHO;
+    case SPH_COLOR_PRESSURE: return SPH_FIELD_P;
+    case SPH_COLOR_SPEED: return SPH_FIELD_VEL;
+    case SPH_COLOR_ACC_P: return SPH_FIELD_ACC_P;
+    case SPH_COLOR_ACC_V: return SPH_FIELD_ACC_V;
+    default: return -1;
+    }
+}
+
+/* Overlays built from the particles' data on the host (the grid needs only
+ * the cells, the HUD syncs what it shows, the legend reads its range). */
+#define HOST_LAYERS                                                                                                \
+    (SPH_OV_BIT(KEYS) | SPH_OV_BIT(COLLISIONS) | SPH_OV_BIT(NEIGHBOURS) | SPH_OV_BIT(FORCES) | SPH_OV_BIT(INDEX))
+
+/* The particles as attributes read from the backend's buffers: a coordinate
+ * or component each, at offset d * N floats (unused ones alias the first). */
+static void bind_direct(sph_renderer *r, const sph_sim *sim, unsigned pos, unsigned val, int comps)
+{
+    sph_gl *gl = &r->gl;
+    const size_t row = (size_t)sim->n * sizeof(float);
+    gl->BindVertexArray(r->vao_d);
+    gl->BindBuffer(GL_ARRAY_BUFFER, pos);
+    for (int d = 0; d < 3; d++)
+        gl->VertexAttribPointer((GLuint)(1 + d), 1, GL_FLOAT, GL_FALSE, 0,
+                                (const void *)(uintptr_t)(d < sim->dim ? (size_t)d * row : 0));
+    gl->BindBuffer(GL_ARRAY_BUFFER, val);
+    for (int c = 0; c < 3; c++)
+        gl->VertexAttribPointer((GLuint)(4 + c), 1, GL_FLOAT, GL_FALSE, 0,
+                                (const void *)(uintptr_t)(c < comps ? (size_t)c * row : 0));
+}
+
 bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *err, size_t n)
 {
     sph_gl *gl = &r->gl;
-    /* With the GL backend, the particles, index and lists are read back from
-     * its buffers here (a copy per frame; nothing to do on the CPU backend). */
-    sph_sim_sync(sim, SPH_SYNC_ALL);
-    make_current(r);
-    const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
     const unsigned L = v->overlays;
+    sph_color_field f = v->field;
+    if (sph_color_field_missing(sim, f)) f = sph_color_field_default(sim);
+    bool norm;
+    const int df = device_field(f, &norm);
+    /* Straight from the GL backend's buffers when the simulation runs in this
+     * renderer's context (sph_gpu_adopt_current_context: the caller's
+     * contract) and the colour field is on the device. Otherwise the host
+     * copy is refreshed (a copy per frame; nothing to do on the CPU backend),
+     * and so it is for overlays that show the particles' data. */
+    make_current(r);
+    const bool direct = r->gl43 && df >= 0 && sph_gpu_context_is_current(sim);
+    r->drew_direct = direct;
+    if (!direct || (L & HOST_LAYERS))
+        sph_sim_sync(sim, SPH_SYNC_ALL);
+    else if (L & SPH_OV_BIT(HUD))
+        sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_RHO)); /* the density error; sph_sim_stats syncs the rest */
+    make_current(r);
+    if (direct && !make_direct(r, err, n)) return false;
+    const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
     /* layout: legend on the right, index strip at the bottom, the view in the rest */
     const int pad = (int)roundf(0.6f * fn);
     const int legend_w = (L & SPH_OV_BIT(LEGEND)) ? (int)roundf(6.0f * fn) : 0;
@@ -737,20 +864,35 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     }
 
     /* particle colours */
-    sph_color_field f = v->field;
-    if (sph_color_field_missing(sim, f)) f = sph_color_field_default(sim);
-    if (!grow_particles(r, sim->n)) {
-        snprintf(err, n, "out of memory for %u particles", sim->n);
-        return false;
-    }
     float lo = 0, hi = 0;
-    sph_color_field_values(sim, f, r->vals, &lo, &hi);
+    unsigned range_buf = 0, pos_buf = 0, val_buf = 0;
+    if (direct) {
+        /* the range is computed on the device for the vertex shader; read
+         * back (8 bytes) only for the legend's numbers */
+        float lo_hi[2] = {0, 0};
+        bool need = legend_w && !v->fixed_range;
+        if (!sph_gpu_field_range(sim, (sph_field_id)df, norm, &range_buf, need ? lo_hi : NULL) ||
+            !sph_gpu_field_buffer(sim, SPH_FIELD_POS, &pos_buf) ||
+            !sph_gpu_field_buffer(sim, (sph_field_id)df, &val_buf)) {
+            snprintf(err, n, "the GL backend has no buffer for %s", sph_color_field_names[f]);
+            return false;
+        }
+        make_current(r);
+        lo = lo_hi[0];
+        hi = lo_hi[1];
+    } else {
+        if (!grow_particles(r, sim->n)) {
+            snprintf(err, n, "out of memory for %u particles", sim->n);
+            return false;
+        }
+        sph_color_field_values(sim, f, r->vals, &lo, &hi);
+    }
     if (v->fixed_range) {
         lo = v->range[0];
         hi = v->range[1];
     }
     /* the same function the legend and the tests use */
-    for (uint32_t i = 0; i < sim->n; i++) {
+    for (uint32_t i = 0; !direct && i < sim->n; i++) {
         inst *p = &r->inst[i];
         p->x = sim->P.pos[0][i];
         p->y = sim->P.pos[1][i];
@@ -808,26 +950,41 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     if (r->cam.px_per_m > 0 && rad * r->cam.px_per_m < min_px) rad = min_px / r->cam.px_per_m;
     r->radius_px = rad * r->cam.px_per_m;
     if (sim->n) {
-        gl->UseProgram(r->prog_p);
-        gl->UniformMatrix4fv(r->up_view, 1, GL_FALSE, r->cam.view);
-        gl->UniformMatrix4fv(r->up_proj, 1, GL_FALSE, r->cam.proj);
-        gl->Uniform1f(r->up_radius, rad);
+        const ploc *pl = direct ? &r->ld : &r->lp;
+        gl->UseProgram(direct ? r->prog_d : r->prog_p);
+        gl->UniformMatrix4fv(pl->view, 1, GL_FALSE, r->cam.view);
+        gl->UniformMatrix4fv(pl->proj, 1, GL_FALSE, r->cam.proj);
+        gl->Uniform1f(pl->radius, rad);
         /* a rim keeps touching discs apart; on discs of a few pixels it would be all there is */
-        gl->Uniform1f(r->up_rim, r->radius_px >= 4.0f ? 0.35f : 0.0f);
-        gl->Uniform1i(r->up_sphere, sim->dim == 3);
+        gl->Uniform1f(pl->rim, r->radius_px >= 4.0f ? 0.35f : 0.0f);
+        gl->Uniform1i(pl->sphere, sim->dim == 3);
         /* 3D with the slice's overlays: cut the fluid open at the slice, the
          * camera's side removed, so the slice's cells are seen, not hidden */
         bool cut = sim->dim == 3 && (L & (SPH_OV_BIT(GRID) | SPH_OV_BIT(KEYS) | SPH_OV_BIT(COLLISIONS)));
-        gl->Uniform1f(r->up_cut, cut ? v->slice_z + 0.5f * sph_particle_radius(sim) : 3.0e38f);
+        gl->Uniform1f(pl->cut, cut ? v->slice_z + 0.5f * sph_particle_radius(sim) : 3.0e38f);
         if (sim->dim == 3) {
             gl->Enable(GL_DEPTH_TEST);
             gl->DepthFunc(GL_LESS);
         } else {
             gl->Disable(GL_DEPTH_TEST);
         }
-        gl->BindVertexArray(r->vao_p);
-        gl->BindBuffer(GL_ARRAY_BUFFER, r->vbo_inst);
-        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)sim->n * sizeof(inst)), r->inst, GL_STREAM_DRAW);
+        if (direct) {
+            gl->Uniform1i(pl->dim, sim->dim);
+            gl->Uniform1i(pl->comps, norm ? sim->dim : 1);
+            gl->Uniform1i(pl->fixed, v->fixed_range);
+            gl->Uniform2f(pl->range, lo, hi);
+            bind_direct(r, sim, pos_buf, val_buf, norm ? sim->dim : 1);
+            r->gc.BindBufferBase(GL_UNIFORM_BUFFER, 0, range_buf);
+            gl->ActiveTexture(GL_TEXTURE1);
+            gl->BindTexture(GL_TEXTURE_2D, r->tex_cmap);
+            gl->ActiveTexture(GL_TEXTURE0);
+            /* the compute passes' writes, seen as vertices and a uniform block */
+            r->gc.MemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+        } else {
+            gl->BindVertexArray(r->vao_p);
+            gl->BindBuffer(GL_ARRAY_BUFFER, r->vbo_inst);
+            gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)sim->n * sizeof(inst)), r->inst, GL_STREAM_DRAW);
+        }
         gl->DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)sim->n);
         gl->Disable(GL_DEPTH_TEST);
     }
@@ -904,8 +1061,14 @@ void sph_renderer_present(sph_renderer *r, int w, int h)
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
 }
 
+bool sph_renderer_drew_direct(const sph_renderer *r)
+{
+    return r->drew_direct;
+}
+
 int32_t sph_renderer_pick(const sph_renderer *r, const sph_sim *sim, const float px[2], float max_px)
 {
+    sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_POS)); /* a click, not a frame: positions from the host */
     int32_t best = -1;
     float best_d = max_px * max_px, best_depth = INFINITY;
     for (uint32_t i = 0; i < sim->n; i++) {

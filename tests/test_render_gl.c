@@ -1,0 +1,189 @@
+/* The GL backend drawn straight from its buffers: a renderer with an OpenGL
+ * 4.3 EGL context, a GL simulation that adopted it (sph_gpu_adopt_current_
+ * context). Frames without host overlays download nothing from the device,
+ * and they look like the CPU backend's frames of the same scene. Needs EGL
+ * (Mesa's llvmpipe), no GPU and no display. */
+#define _GNU_SOURCE /* setenv */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu.h"
+#include "render.h"
+#include "test_util.h"
+
+#define W 240
+#define H 180
+
+/* jittered, moving, with walls: particles reorder every step; time steps
+ * small enough that the two backends stay within rounding of each other */
+static const char *scene_2d =
+    "[scene]\nname=direct 2d\ndimension=2\neffects=gravity pressure viscosity walls\njitter=0.2\n"
+    "[domain]\nmin=-0.3 -0.2\nmax=0.3 0.4\nwall_damping=0.3\n[physics]\nviscosity=0.005\n"
+    "[kernels]\nh=0.04\n[time]\ndt=0.0002\ncfl=0\n"
+    "[fluid a]\nmin=-0.3 -0.2\nmax=0.0 0.1\nspacing=0.02\nvelocity=0.5 0\n";
+
+static const char *scene_3d =
+    "[scene]\nname=direct 3d\ndimension=3\neffects=gravity pressure viscosity walls\njitter=0.2\n"
+    "[domain]\nmin=-0.2 -0.2 -0.2\nmax=0.2 0.2 0.2\nwall_damping=0.3\n[physics]\nviscosity=0.005\n"
+    "[kernels]\nh=0.05\n[time]\ndt=0.0002\ncfl=0\n"
+    "[fluid a]\nmin=-0.2 -0.2 -0.2\nmax=0.0 0.0 0.0\nspacing=0.025\nvelocity=0 0 0.3\n";
+
+typedef struct pair {
+    sph_renderer *r_gl, *r_cpu;
+    sph_sim *gl, *cpu;
+} pair;
+
+/* The GL simulation in the first renderer's context; the CPU one drawn by a
+ * second renderer, through the host as always. */
+static pair make_pair(const char *ini)
+{
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
+    sph_gpu_register();
+    char dev[512];
+    if (!sph_gpu_probe(dev, sizeof dev)) cr_skip_test("no OpenGL 4.3 here: %s", dev);
+    pair p;
+    char err[512];
+    p.r_gl = sph_renderer_create_gl43(SPH_GL_EGL, W, H, err, sizeof err);
+    cr_assert_not_null(p.r_gl, "no 4.3 renderer: %s", err);
+    sph_scene_def def = test_scene(ini);
+    def.backend = SPH_BACKEND_GL;
+    sph_error e;
+    sph_gpu_adopt_current_context(true);
+    sph_error_code c = sph_sim_create(&def, 1, &p.gl, &e);
+    sph_gpu_adopt_current_context(false);
+    cr_assert_eq(c, SPH_ERR_OK, "%s", e.msg);
+    cr_assert(sph_gpu_context_adopted(p.gl));
+    p.r_cpu = sph_renderer_create(SPH_GL_EGL, W, H, err, sizeof err);
+    cr_assert_not_null(p.r_cpu, "%s", err);
+    def.backend = SPH_BACKEND_CPU;
+    cr_assert_eq(sph_sim_create(&def, 1, &p.cpu, &e), SPH_ERR_OK, "%s", e.msg);
+    return p;
+}
+
+static void free_pair(pair *p)
+{
+    sph_sim_destroy(p->cpu);
+    sph_renderer_destroy(p->r_cpu);
+    sph_sim_destroy(p->gl); /* before its context */
+    sph_renderer_destroy(p->r_gl);
+}
+
+static void frame(sph_renderer *r, const sph_sim *sim, const sph_view *v, uint8_t *rgb)
+{
+    char err[512];
+    cr_assert(sph_render(r, sim, v, err, sizeof err), "%s", err);
+    sph_renderer_read_rgb(r, rgb);
+}
+
+/* Channel values more than 8 apart, and pixels that are not the background
+ * or the domain's (so a frame with no particle cannot pass). */
+static size_t differing(const uint8_t *a, const uint8_t *b)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < (size_t)W * H * 3; i++) k += abs((int)a[i] - (int)b[i]) > 8;
+    return k;
+}
+
+static size_t particle_pixels(const uint8_t *a)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < (size_t)W * H; i++) {
+        const uint8_t *p = a + 3 * i;
+        bool bg = (p[0] == 30 && p[1] == 32 && p[2] == 38) || (p[0] == 42 && p[1] == 45 && p[2] == 54);
+        k += !bg;
+    }
+    return k;
+}
+
+static void check_scene(const char *ini, sph_color_field f, unsigned overlays)
+{
+    pair p = make_pair(ini);
+    sph_view v = sph_view_default(p.gl);
+    v.field = f;
+    v.overlays = overlays;
+    uint8_t *a = malloc(W * H * 3), *b = malloc(W * H * 3);
+    cr_assert(a && b);
+    /* the first step reads the energy reference (sph_sim_stats) once */
+    sph_sim_step(p.gl);
+    sph_sim_step(p.cpu);
+    for (int k = 0; k < 4; k++) {
+        uint64_t before = sph_gpu_downloaded_bytes(p.gl);
+        for (int s = 0; s < 3; s++) {
+            sph_sim_step(p.gl);
+            sph_sim_step(p.cpu);
+        }
+        frame(p.r_gl, p.gl, &v, a);
+        cr_expect(sph_renderer_drew_direct(p.r_gl), "frame %d was copied through the host", k);
+        cr_expect_eq(sph_gpu_downloaded_bytes(p.gl) - before, 0, "frame %d: %llu bytes downloaded", k,
+                     (unsigned long long)(sph_gpu_downloaded_bytes(p.gl) - before));
+        frame(p.r_cpu, p.cpu, &v, b);
+        cr_expect(!sph_renderer_drew_direct(p.r_cpu));
+        size_t drawn = particle_pixels(b);
+        cr_expect_gt(drawn, (size_t)W * H / 50, "frame %d: only %zu particle pixels", k, drawn);
+        size_t off = differing(a, b);
+        cr_expect_leq(off, (size_t)W * H * 3 / 200, "frame %d: %zu channel values differ from the CPU's", k, off);
+    }
+    free(a);
+    free(b);
+    free_pair(&p);
+}
+
+Test(render_gl, direct_2d_density_downloads_nothing_and_matches_the_cpu)
+{
+    check_scene(scene_2d, SPH_COLOR_DENSITY, 0);
+}
+
+Test(render_gl, direct_2d_speed_downloads_nothing_and_matches_the_cpu)
+{
+    check_scene(scene_2d, SPH_COLOR_SPEED, 0);
+}
+
+Test(render_gl, direct_3d_pressure_acc_downloads_nothing_and_matches_the_cpu)
+{
+    check_scene(scene_3d, SPH_COLOR_ACC_P, SPH_OV_BIT(GRID));
+}
+
+/* The legend's numbers cost the range's 8 bytes; the HUD syncs what it
+ * shows; a colour the device does not hold (keys) goes through the host. */
+Test(render_gl, overlays_read_back_only_what_they_show)
+{
+    pair p = make_pair(scene_2d);
+    sph_view v = sph_view_default(p.gl);
+    v.overlays = SPH_OV_BIT(LEGEND);
+    uint8_t *a = malloc(W * H * 3);
+    cr_assert_not_null(a);
+    sph_sim_step(p.gl);
+    sph_sim_step(p.gl);
+    uint64_t before = sph_gpu_downloaded_bytes(p.gl);
+    frame(p.r_gl, p.gl, &v, a);
+    cr_expect_eq(sph_gpu_downloaded_bytes(p.gl) - before, 8);
+    cr_expect(sph_renderer_drew_direct(p.r_gl));
+    sph_sim_step(p.gl);
+    v.overlays = SPH_OV_BIT(HUD);
+    before = sph_gpu_downloaded_bytes(p.gl);
+    frame(p.r_gl, p.gl, &v, a);
+    cr_expect_gt(sph_gpu_downloaded_bytes(p.gl) - before, 0);
+    v.overlays = 0;
+    v.field = SPH_COLOR_KEY;
+    sph_sim_step(p.gl);
+    frame(p.r_gl, p.gl, &v, a);
+    cr_expect(!sph_renderer_drew_direct(p.r_gl), "keys are not on the device: the host copy draws them");
+    free(a);
+    free_pair(&p);
+}
+
+/* The reorder pass swaps buffers: the names change from step to step. */
+Test(render_gl, field_buffers_are_swapped_by_the_reorder_pass)
+{
+    pair p = make_pair(scene_2d);
+    unsigned a = 0, b = 0;
+    cr_assert(sph_gpu_field_buffer(p.gl, SPH_FIELD_POS, &a));
+    sph_sim_step(p.gl);
+    cr_assert(sph_gpu_field_buffer(p.gl, SPH_FIELD_POS, &b));
+    cr_expect_neq(a, b, "the reorder pass gathers into the spare buffer and swaps");
+    cr_expect(!sph_gpu_field_buffer(p.cpu, SPH_FIELD_POS, &a), "a CPU simulation has no buffer");
+    cr_expect_eq(sph_gpu_downloaded_bytes(p.cpu), 0);
+    free_pair(&p);
+}
