@@ -1,18 +1,24 @@
-// uses: PRED VEL VOL RHO ACC_V ENTRIES START
+// uses: PRED VEL MASS VOL RHO ACC_V ENTRIES START
 // Pass viscosity (src/passes/viscosity.c): reads vel, writes acc_v only. The
 // seed's shader added the result to the velocity buffer it was still reading
 // for other particles, so its result depended on the order threads ran in.
+#if VFORM != VFORM_LAPLACIAN && VFORM != VFORM_SMOOTHING && VFORM != VFORM_MORRIS
+#error "a viscosity form this shader does not implement"
+#endif
 layout(local_size_x = WG) in;
 vec3 acc, vi;
+float rho_i;
 void sph_pair(uint i, uint j, vec3 dx, float r2)
 {
     float r = sqrt(r2);
-#if VFORM_LAP
-    float w = kernel_lap(KV, SIG_V, r);
+#if VFORM == VFORM_MORRIS
+    // -(x_ij . grad W) / (r^2 + eta^2), eta = 0.01 h, symmetrised in density (Morris 1997)
+    float coef = -mass_[j] * (rho_i + rho_[j]) / (rho_i * rho_[j]) * r * kernel_dw(KV, SIG_V, r) / (r2 + 1e-4 * H2);
+#elif VFORM == VFORM_LAPLACIAN
+    float coef = vol_[j] * kernel_lap(KV, SIG_V, r);
 #else
-    float w = kernel_w(KV, SIG_V, r);
+    float coef = vol_[j] * kernel_w(KV, SIG_V, r);
 #endif
-    float coef = vol_[j] * w;
     vec3 vj = VEL3(j);
     for (int d = 0; d < DIM; d++) acc[d] += coef * (vj[d] - vi[d]);
 }
@@ -23,8 +29,11 @@ void main()
     if (i >= N) return;
     acc = vec3(0.0);
     vi = VEL3(i);
+    rho_i = rho_[i];
     sph_walk(i, PRED3(i));
-#if VFORM_LAP
+#if VFORM == VFORM_MORRIS
+    float s = NU;
+#elif VFORM == VFORM_LAPLACIAN
     float s = NU * RHO0 / rho_[i];
 #else
     float s = NU * 2.0 * float(DIM) / M2_V;

@@ -261,6 +261,60 @@ Test(gl_backend, passes_match_cpu_periodic_brute)
     lockstep_steps(scene_2d, sets, 2, 1);
 }
 
+/* Every value of every choice and kernel key either runs on GL and matches
+ * the CPU pass by pass, or is refused when the simulation is made, by key and
+ * value. Nothing in between: a form added on the CPU and unknown to the
+ * shaders must not run as some other form. Values the CPU itself refuses for
+ * this scene are left out, after trying the companion key they need. */
+static bool try_make(const char *ini, const char *const *sets, int n_sets, bool gl, sph_sim **out, sph_error *err)
+{
+    sph_scene_def def = test_scene(ini);
+    for (int i = 0; i < n_sets; i++)
+        if (sph_scene_set(&def, sets[i], err) != SPH_ERR_OK) return false;
+    def.backend = gl ? SPH_BACKEND_GL : SPH_BACKEND_CPU;
+    return sph_sim_create(&def, 2, out, err) == SPH_ERR_OK;
+}
+
+Test(gl_backend, every_choice_runs_or_is_refused, .timeout = 900)
+{
+    need_gl();
+    int ran = 0, refused = 0;
+    for (int k = 0; k < sph_scene_key_count; k++) {
+        const sph_key *key = &sph_scene_keys[k];
+        if ((key->type != SPH_KEY_CHOICE && key->type != SPH_KEY_KERNEL) || strcmp(key->section, "compute") == 0)
+            continue;
+        for (int v = 0; v < key->n_choices; v++) {
+            char set[200];
+            if (strcmp(key->section, "fluid") == 0)
+                snprintf(set, sizeof set, "fluid.a.%s=%s", key->name, key->choices[v]);
+            else
+                snprintf(set, sizeof set, "%s.%s=%s", key->section, key->name, key->choices[v]);
+            const char *sets[2] = {set, "kernels.viscosity=cubic"}; /* morris needs a smooth gradient */
+            sph_sim *c = NULL, *g = NULL;
+            sph_error err;
+            int n_sets = 1;
+            if (!try_make(scene_2d, sets, 1, false, &c, &err)) {
+                n_sets = 2;
+                if (!try_make(scene_2d, sets, 2, false, &c, &err)) continue; /* not a valid scene on the CPU either */
+            }
+            if (!try_make(scene_2d, sets, n_sets, true, &g, &err)) {
+                cr_expect(strstr(err.msg, key->name) && strstr(err.msg, key->choices[v]),
+                          "%s: refused without naming the key and value: %s", set, err.msg);
+                refused++;
+                sph_sim_destroy(c);
+                continue;
+            }
+            for (int st = 0; st < 2; st++) sph_sim_step(c);
+            lockstep(c, g);
+            ran++;
+            sph_sim_destroy(g);
+            sph_sim_destroy(c);
+        }
+    }
+    if (getenv("SPH_TEST_VERBOSE")) fprintf(stderr, "%d values ran on GL, %d were refused\n", ran, refused);
+    cr_expect(ran >= 20 && refused >= 2, "%d values ran on GL, %d were refused", ran, refused);
+}
+
 /* Separate simulations, 40 steps each: positions stay within TOL_POS_RUN. */
 static void whole_run(const char *ini)
 {

@@ -461,3 +461,72 @@ Test(physics, energy_drift_is_measured_from_the_first_step)
     cr_assert(drift != 0.0, "a symplectic Euler free fall is not exact: the drift must be measured, not 0");
     sph_sim_destroy(sim);
 }
+
+/* Viscosity forms against an analytic Laplacian: on a 2D or 3D lattice at
+ * rest density, v = (y^2, 0, 0) has lap v = (2, 0, 0), so the viscous
+ * acceleration must be nu (2, 0, 0) at interior particles (farther than h
+ * from every face, where the kernel's support is full). Returns the largest
+ * relative error of a_x there and checks a_y, a_z stay near 0. */
+static double viscosity_lap_error(int dim, const char *form, const char *kernel, double h_over_s)
+{
+    const double s = 0.02, nu = 0.01, L = 0.4;
+    char ini[1024];
+    snprintf(ini, sizeof ini,
+             "[scene]\ndimension=%d\neffects=viscosity\n[domain]\nmin=0 0 0\nmax=%g %g %g\n"
+             "[fluid a]\nmin=0 0 0\nmax=%g %g %g\nspacing=%g\n[physics]\nviscosity=%g\nviscosity_form=%s\n"
+             "[kernels]\nh=%g\ndensity=wendland\nviscosity=%s\n[time]\ndt=1e-7\ncfl=0\n",
+             dim, L, L, L, L, L, L, s, nu, form, h_over_s * s, kernel);
+    sph_sim *sim = test_sim(ini, 2);
+    sph_particles *P = &sim->P;
+    for (uint32_t i = 0; i < sim->n; i++) P->vel[0][i] = P->pos[1][i] * P->pos[1][i];
+    while (sph_sim_step_pass(sim) != SPH_PASS_VISCOSITY) {}
+    const double h = h_over_s * s, want = 2 * nu;
+    double worst = 0;
+    int checked = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        bool interior = true;
+        for (int d = 0; d < dim; d++) interior &= P->pred[d][i] > h + s && P->pred[d][i] < L - h - s;
+        if (!interior) continue;
+        checked++;
+        /* the lattice density is within 1% of rho0; rescale nothing: the forms divide by rho themselves */
+        worst = fmax(worst, fabs(P->acc_v[0][i] - want) / want);
+        for (int d = 1; d < dim; d++)
+            cr_assert(fabs(P->acc_v[d][i]) <= 1e-3 * want, "%s: a_%c = %g at an interior particle", form, "xyz"[d],
+                      P->acc_v[d][i]);
+    }
+    cr_assert(checked > 10);
+    sph_sim_destroy(sim);
+    return worst;
+}
+
+Test(physics, viscosity_forms_against_an_analytic_laplacian)
+{
+    /* measured: 2D mueller 19.8%, morris cubic 2.4%, wendland h = 3s 0.8%;
+     * 3D 7.6%, 1.4%, 0.3% */
+    const int dims[2] = {2, 3};
+    const double tol_cubic[2] = {0.04, 0.03};
+    for (int k = 0; k < 2; k++) {
+        int dim = dims[k];
+        double muller = viscosity_lap_error(dim, "laplacian", "viscosity", 2);
+        double morris = viscosity_lap_error(dim, "morris", "cubic", 2);
+        double morris3 = viscosity_lap_error(dim, "morris", "wendland", 3);
+        cr_assert(morris <= tol_cubic[k], "%dD morris, cubic, h = 2s: %.2f%% off nu lap v", dim, 100 * morris);
+        cr_assert(morris3 <= 0.015, "%dD morris, wendland, h = 3s: %.2f%% off nu lap v", dim, 100 * morris3);
+        cr_assert(morris < muller / 2, "%dD at h = 2s: morris %.2f%% is not well below Mueller's %.2f%%", dim,
+                  100 * morris, 100 * muller);
+    }
+}
+
+/* Morris's form needs a kernel whose gradient is finite: Mueller's viscosity
+ * kernel is refused with the key and the way out. */
+Test(physics, morris_form_refuses_the_viscosity_kernel)
+{
+    sph_scene_def def = sph_default_scene_def();
+    sph_error err;
+    const char *ini = "[scene]\neffects=viscosity\n[fluid a]\nmax=0.1 0.1\n[physics]\nviscosity_form=morris\n";
+    cr_assert_eq(sph_scene_load_string(ini, "morris.ini", &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_neq(sph_scene_validate(&def, &err), SPH_ERR_OK);
+    cr_assert(strstr(err.msg, "morris.ini:6") && strstr(err.msg, "viscosity_form = morris") &&
+                  strstr(err.msg, "[kernels] viscosity = cubic"),
+              "%s", err.msg);
+}

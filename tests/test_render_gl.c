@@ -187,3 +187,47 @@ Test(render_gl, field_buffers_are_swapped_by_the_reorder_pass)
     cr_expect_eq(sph_gpu_downloaded_bytes(p.cpu), 0);
     free_pair(&p);
 }
+
+/* Storage buffer bindings belong to the context: a second simulation made in
+ * the same adopted context (the window's reset or variant switch) rebinds
+ * them, and deleting its buffers unbinds them. The first must still compute
+ * on its own buffers afterwards: it matches the CPU as if nothing happened. */
+Test(render_gl, a_second_simulation_in_the_context_leaves_the_first_intact)
+{
+    pair p = make_pair(scene_2d);
+    for (int s = 0; s < 5; s++) {
+        sph_sim_step(p.gl);
+        sph_sim_step(p.cpu);
+    }
+    sph_scene_def def = test_scene(scene_3d);
+    def.backend = SPH_BACKEND_GL;
+    sph_error e;
+    sph_sim *other;
+    sph_gpu_adopt_current_context(true);
+    sph_error_code c = sph_sim_create(&def, 1, &other, &e);
+    sph_gpu_adopt_current_context(false);
+    cr_assert_eq(c, SPH_ERR_OK, "%s", e.msg);
+    sph_sim_step(other);
+    sph_sim_destroy(other);
+    for (int s = 0; s < 20; s++) {
+        sph_sim_step(p.gl);
+        sph_sim_step(p.cpu);
+    }
+    cr_assert(!p.gl->alarm.raised && !p.cpu->alarm.raised);
+    sph_sim_sync(p.gl, SPH_SYNC_ALL);
+    uint32_t *at = malloc(p.cpu->n * sizeof *at); /* CPU index of each id */
+    cr_assert_not_null(at);
+    for (uint32_t i = 0; i < p.cpu->n; i++) at[p.cpu->P.id[i]] = i;
+    double worst = 0;
+    for (uint32_t i = 0; i < p.gl->n; i++) {
+        cr_assert_lt(p.gl->P.id[i], p.cpu->n, "id %u out of range: the buffers were mixed up", p.gl->P.id[i]);
+        uint32_t j = at[p.gl->P.id[i]];
+        for (int d = 0; d < 2; d++) {
+            double dx = (double)p.gl->P.pos[d][i] - p.cpu->P.pos[d][j];
+            worst = dx > worst ? dx : -dx > worst ? -dx : worst;
+        }
+    }
+    cr_expect(worst <= 1e-4, "positions differ from the CPU's by %g m after the other simulation", worst);
+    free(at);
+    free_pair(&p);
+}

@@ -84,7 +84,10 @@ const sph_key sph_scene_keys[] = {
      "kinematic viscosity nu"},
     {"physics", "viscosity_form", SPH_KEY_CHOICE, S(viscosity_form), 0, 0, 0, 0, CH(sph_viscosity_form_names), "",
      "laplacian",
-     "laplacian: Mueller's nu m_j (v_j - v_i)/rho_j lap W; smoothing: the seed's kernel-weighted velocity average"},
+     "laplacian: Mueller's nu m_j (v_j - v_i)/rho_j lap W; smoothing: the seed's kernel-weighted velocity average; "
+     "morris: nu m_j (rho_i + rho_j)/(rho_i rho_j) (x_ij . grad W)/(r^2 + 1e-4 h^2) (v_i - v_j), a Laplacian from "
+     "the kernel's gradient (needs a kernel with a smooth gradient: [kernels] viscosity = cubic, wendland, spiky or "
+     "poly6)"},
     {"physics", "accumulate", SPH_KEY_CHOICE, S(accumulate), 0, 0, 0, 0, CH(sph_accumulate_names), "", "float",
      "precision of the density and force sums: float, or double (slower; shows what round-off costs)"},
     {"physics", "gravity", SPH_KEY_VEC, S(gravity), -1e4, 1e4, 0, 0, NULL, 0, "m/s^2", "0 -9.81 0", "g"},
@@ -789,6 +792,16 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                             "%s:%d: [domain] periodic %c: the domain is %g m long, less than 3 h = %g m (a particle "
                             "would meet its own image)",
                             def->file, def->origin[li].line, axes[a], len, 3.0 * def->h);
+    }
+    if (def->viscosity_form == SPH_VFORM_MORRIS && def->kernel_viscosity == SPH_KERNEL_VISCOSITY &&
+        (def->effects & SPH_EFFECT(VISCOSITY))) {
+        int li = key_index("physics", "viscosity_form");
+        char loc[300];
+        return sph_fail(err, SPH_ERR_RANGE,
+                        "%s: [physics] viscosity_form = morris with [kernels] viscosity = viscosity: that kernel's "
+                        "gradient grows without bound as r -> 0 (it is made for its Laplacian); set [kernels] "
+                        "viscosity = cubic, wendland, spiky or poly6",
+                        origin_text(def, def->origin[li].line, loc, sizeof loc));
     }
     if (def->n_blocks == 0)
         return sph_fail(err, SPH_ERR_SCENE, "%s: no particles: the scene has no [fluid NAME] block", def->file);

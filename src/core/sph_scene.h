@@ -38,7 +38,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 /* The choices of each switchable method, as enums with their names. */
 #define SPH_EOS_CHOICES(X) X(LINEAR, "linear") X(TAIT, "tait")
 #define SPH_PFORM_CHOICES(X) X(SYMMETRIC, "symmetric") X(SHARED, "shared")
-#define SPH_VFORM_CHOICES(X) X(LAPLACIAN, "laplacian") X(SMOOTHING, "smoothing")
+#define SPH_VFORM_CHOICES(X) X(LAPLACIAN, "laplacian") X(SMOOTHING, "smoothing") X(MORRIS, "morris")
 #define SPH_SEARCH_CHOICES(X) X(HASH, "hash") X(GRID, "grid") X(BRUTE, "brute")
 #define SPH_SORT_CHOICES(X) X(BITONIC, "bitonic") X(COUNTING, "counting") X(QSORT, "qsort") X(NONE, "none")
 #define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")

@@ -188,8 +188,13 @@ static char *prelude(const gpu *g, const sph_sim *sim)
         def->negative_pressure == SPH_NEGP_CLAMP);
     put_float(&t, "GAMMA", def->tait_gamma);
     put_float(&t, "TAIT_B", def->stiffness * def->rest_density / def->tait_gamma);
-    put(&t, "#define PFORM_SYM %d\n#define VFORM_LAP %d\n", def->pressure_form == SPH_PFORM_SYMMETRIC,
-        def->viscosity_form == SPH_VFORM_LAPLACIAN);
+    /* the form as its enum value: the shader names each one it implements and
+     * stops with #error on any other, so a form added on the CPU is never
+     * silently computed as another on GL */
+    put(&t, "#define PFORM_SYM %d\n#define VFORM %d\n#define VFORM_LAPLACIAN %d\n#define VFORM_SMOOTHING %d\n"
+            "#define VFORM_MORRIS %d\n",
+        def->pressure_form == SPH_PFORM_SYMMETRIC, (int)def->viscosity_form, (int)SPH_VFORM_LAPLACIAN,
+        (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS);
     put_float(&t, "NU", def->viscosity);
     put_float(&t, "DAMP", def->wall_damping);
     put_float(&t, "INTER_R", def->interaction_radius);
@@ -393,7 +398,7 @@ static void integrate(gpu *g, sph_sim *sim)
     set_f(g, PROG_integrate, U_dt, sim->dt);
     dispatch(g, g->n);
     /* the only read-back of a step: two floats for the CFL step and the watchdog */
-    uint32_t bits[2];
+    uint32_t bits[2] = {0x7fc00000u, 0x7fc00000u}; /* NaN if the read fails: the watchdog stops the run */
     g->gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, g->buf[B_REDUCE]);
     g->gc.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof bits, bits);
     float v2, a2, g2 = 0;
@@ -405,10 +410,20 @@ static void integrate(gpu *g, sph_sim *sim)
     sim->max_acc = sqrtf(a2) + sqrtf(g2);
 }
 
+/* Storage buffer bindings are the context's state, not the program's: in an
+ * adopted context another simulation (a reset or a variant switch in the
+ * window) may have rebound them, or unbound them by deleting its buffers. */
+static void rebind(gpu *g)
+{
+    for (int k = 0; k < B_TOTAL; k++)
+        if (g->buf[k]) bind(g, k, g->buf[k]);
+}
+
 static void run(sph_backend *b, sph_sim *sim, sph_pass_id pass)
 {
     gpu *g = (gpu *)b;
     current(g);
+    if (g->adopted) rebind(g);
     int simple = -1; /* a pass that is one dispatch over the particles */
     switch (pass) {
     case SPH_PASS_EXTERNAL:
@@ -447,7 +462,10 @@ static void run(sph_backend *b, sph_sim *sim, sph_pass_id pass)
         break;
     case SPH_PASS_INTEGRATE: integrate(g, sim); break;
     case SPH_PASS_WALLS: simple = PROG_walls; break;
-    default: break;
+    default: /* check_scene refuses a pipeline with a pass not listed here */
+        fprintf(stderr, "sphlab: the GL backend has no pass %d (%s)\n", (int)pass,
+                (unsigned)pass < SPH_PASS_COUNT ? sph_passes[pass]->name : "unknown");
+        abort();
     }
     if (simple >= 0) {
         use(g, simple);
@@ -563,6 +581,20 @@ static void destroy(sph_backend *b)
 static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
 {
     const sph_scene_def *def = &sim->def;
+    /* the passes run() dispatches; a pass added to the pipeline without a
+     * shader is refused here rather than skipped on the device */
+    static const sph_pass_id has[] = {SPH_PASS_EXTERNAL,  SPH_PASS_HASH,       SPH_PASS_SORT,
+                                      SPH_PASS_REORDER,   SPH_PASS_OFFSETS,    SPH_PASS_NEIGHBOURS,
+                                      SPH_PASS_DENSITY,   SPH_PASS_PRESSURE,   SPH_PASS_PRESSURE_FORCE,
+                                      SPH_PASS_VISCOSITY, SPH_PASS_INTERACTION, SPH_PASS_INTEGRATE,
+                                      SPH_PASS_WALLS};
+    for (int p = 0; p < SPH_PASS_COUNT; p++) {
+        bool found = false;
+        for (size_t k = 0; k < sizeof has / sizeof has[0]; k++) found |= has[k] == (sph_pass_id)p;
+        if (sim->in_pipeline[p] && !found)
+            return sph_fail(err, SPH_ERR_SCENE, "%s: the GL backend has no %s pass (the scene needs it)", def->file,
+                            sph_passes[p]->name);
+    }
     if (sim->in_pipeline[SPH_PASS_SORT] && def->sort != SPH_SORT_BITONIC && def->sort != SPH_SORT_COUNTING)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] sort = %s is not implemented by the GL backend (accepted there: bitonic, "

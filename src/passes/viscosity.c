@@ -5,6 +5,14 @@
  *              (the seed's velocity smoothing; a kernel average differs from
  *              the centre value by (M2 / 2 dim) lap v, M2 = int r^2 W dV, so
  *              the factor makes both forms mean the same nu)
+ *   morris:    a_i = nu sum_j m_j (rho_i + rho_j) / (rho_i rho_j)
+ *                    (x_ij . grad W_ij) / (r^2 + eta^2) (v_i - v_j)
+ *              (Morris 1997, after Brookshaw: a Laplacian built from the
+ *              kernel's first derivative, which a kernel gives accurately
+ *              where its second derivative is noisy: on a 2D lattice at h = 2
+ *              spacings, 2.4% off with the cubic spline where Mueller's
+ *              lap W is 20% off, tests/test_physics.c. Pairwise equal and
+ *              opposite.)
  * It reads vel and writes acc_v only: the seed's shader added the result to
  * the velocities it was still reading for other particles, so its outcome
  * depended on the order threads ran in. */
@@ -32,8 +40,14 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
     const bool laplacian = sim->def.viscosity_form == SPH_VFORM_LAPLACIAN;
+    const bool morris = sim->def.viscosity_form == SPH_VFORM_MORRIS;
     const float nu = sim->def.viscosity;
     const float *per = sim->period, *iper = sim->inv_period;
+    /* eta = 0.01 h keeps 1 / r^2 finite as r -> 0 (for spiky; W'(r) / r stays
+     * finite for cubic, Wendland, poly6). Morris's 0.1 h biases the nearest
+     * pairs (r = h/2) by 4%, and the whole sum by 3-4% at h = 2 spacings. */
+    const float eta2 = 1e-4f * k->h * k->h;
+    const float rho_i = P->rho[i];
     float xi[3], vi[3], af[3] = {0, 0, 0};
     double ad[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++) {
@@ -49,15 +63,18 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
             r2 += dx * dx;
         }
         float r = sqrtf(r2);
-        float w = laplacian ? sph_kernel_lap(k, r) : sph_kernel_w(k, r);
-        float coef = P->vol[j] * w;
+        float coef;
+        if (morris) /* -(x_ij . grad W) = -r W'(r) >= 0 */
+            coef = -P->mass[j] * (rho_i + P->rho[j]) / (rho_i * P->rho[j]) * r * sph_kernel_dw(k, r) / (r2 + eta2);
+        else
+            coef = P->vol[j] * (laplacian ? sph_kernel_lap(k, r) : sph_kernel_w(k, r));
         for (int d = 0; d < dim; d++) {
             float t = coef * (P->vel[d][j] - vi[d]);
             if (dbl) ad[d] += t;
             else af[d] += t;
         }
     }
-    float s = laplacian ? nu * sim->def.rest_density / P->rho[i] : nu * 2.0f * (float)dim / k->m2;
+    float s = morris ? nu : laplacian ? nu * sim->def.rest_density / rho_i : nu * 2.0f * (float)dim / k->m2;
     for (int d = 0; d < dim; d++) P->acc_v[d][i] = s * (dbl ? (float)ad[d] : af[d]);
 }
 
@@ -113,5 +130,5 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_viscosity = {
-    "viscosity", "viscous force (acceleration)", "pred vol rho vel nbr", "acc_v", skip_reason, describe, run,
+    "viscosity", "viscous force (acceleration)", "pred mass vol rho vel nbr", "acc_v", skip_reason, describe, run,
 };
