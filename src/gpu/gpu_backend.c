@@ -56,7 +56,7 @@ static const char *const program_sources[PROG_TOTAL] = {
 };
 
 /* Uniforms the programs may have; looked up once per program. */
-#define GPU_UNIFORMS(X) X(dt) X(w) X(flip) X(count) X(value) X(point)
+#define GPU_UNIFORMS(X) X(dt) X(w) X(flip) X(count) X(value) X(point) X(rows)
 enum {
 #define GPU_U_ENUM(name) U_##name,
     GPU_UNIFORMS(GPU_U_ENUM)
@@ -469,6 +469,9 @@ static void run(sph_backend *b, sph_sim *sim, sph_pass_id pass)
     }
     if (simple >= 0) {
         use(g, simple);
+        /* the walk's row runs need this step's particles in cell order (the
+         * reorder pass may be switched off in the window) */
+        set_u(g, simple, U_rows, g->reordered && sim->S.cells.dense);
         dispatch(g, g->n);
     }
     if (g->pass_sync) g->gl.Finish();
