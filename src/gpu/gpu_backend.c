@@ -236,30 +236,11 @@ static bool compile(gpu *g, int p, const char *pre, char *why, size_t n)
         parts[5] = mark + strlen("#include_walk\n");
         count = 6;
     }
-    GLuint sh = gl->CreateShader(GL_COMPUTE_SHADER);
-    gl->ShaderSource(sh, count, parts, lens);
-    gl->CompileShader(sh);
-    GLint ok = 0;
-    gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = "";
-        gl->GetShaderInfoLog(sh, sizeof log, NULL, log);
-        snprintf(why, n, "compiling shaders/gpu_%s.comp failed: %.900s", program_names[p], log);
-        gl->DeleteShader(sh);
-        return false;
-    }
-    GLuint prog = gl->CreateProgram();
-    gl->AttachShader(prog, sh);
-    gl->LinkProgram(prog);
-    gl->DeleteShader(sh);
-    gl->GetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = "";
-        gl->GetProgramInfoLog(prog, sizeof log, NULL, log);
-        snprintf(why, n, "linking shaders/gpu_%s.comp failed: %.900s", program_names[p], log);
-        gl->DeleteProgram(prog);
-        return false;
-    }
+    const sph_gl_stage stage = {GL_COMPUTE_SHADER, count, parts, lens};
+    char what[96];
+    snprintf(what, sizeof what, "shaders/gpu_%s.comp", program_names[p]);
+    GLuint prog = sph_gl_program(gl, &stage, 1, what, why, n);
+    if (!prog) return false;
     g->prog[p] = prog;
     for (int u = 0; u < U_TOTAL; u++) g->loc[p][u] = gl->GetUniformLocation(prog, uniform_names[u]);
     return true;

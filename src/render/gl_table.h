@@ -16,6 +16,8 @@
 #ifndef SPH_GL_TABLE_H
 #define SPH_GL_TABLE_H
 
+#include <stddef.h>
+
 #ifndef __epoxy_gl_h__
 #include <GL/glcorearb.h>
 #endif
@@ -116,6 +118,22 @@ typedef struct sph_gl_compute {
 
 /* Fills the compute table from libepoxy (a current EGL context). */
 void sph_gl_load_compute_epoxy(sph_gl_compute *gl);
+
+/* One shader stage of a program: its type and its source in parts, as
+ * glShaderSource takes them (lens NULL: every part ends with a NUL). */
+typedef struct sph_gl_stage {
+    GLenum type;
+    int count;
+    const char *const *parts;
+    const GLint *lens;
+} sph_gl_stage;
+
+/* Compiles the stages and links them into a program, through the table (so
+ * under every context kind). Returns 0 with "NAME does not compile: LOG" or
+ * "NAME does not link: LOG" in err; the renderer and the compute backend both
+ * build their programs here (gl_program.c). */
+GLuint sph_gl_program(const sph_gl *gl, const sph_gl_stage *stages, int n_stages, const char *name, char *err,
+                      size_t n);
 
 /* Fills the table from libepoxy (a current EGL or GLX context: the EGL and
  * SDL backends). Always succeeds; epoxy resolves each on first call. */

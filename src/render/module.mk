@@ -15,7 +15,7 @@ DEB_PKGS += libepoxy-dev libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri libos
             libsdl2-dev fonts-dejavu-core
 
 RENDER_LIB_OBJ := $(BUILD)/core/sph_overlay.o \
-    $(patsubst %,$(BUILD)/render/%.o,camera font vtk gl_epoxy ctx_egl ctx_osmesa renderer)
+    $(patsubst %,$(BUILD)/render/%.o,camera font vtk gl_epoxy gl_program ctx_egl ctx_osmesa renderer)
 RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view)
 
 MOD_OBJ       += $(RENDER_LIB_OBJ) $(RENDER_CMD_OBJ)

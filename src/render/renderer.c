@@ -81,50 +81,12 @@ static const uint32_t BG = SPH_RGBA(30, 32, 38, 255);
 
 /* ---- set-up -------------------------------------------------------------- */
 
-static GLuint compile(sph_renderer *r, GLenum type, const char *src, const char *name, char *err, size_t n)
-{
-    sph_gl *gl = &r->gl;
-    GLuint s = gl->CreateShader(type);
-    gl->ShaderSource(s, 1, &src, NULL);
-    gl->CompileShader(s);
-    GLint ok = 0;
-    gl->GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[512] = "";
-        gl->GetShaderInfoLog(s, sizeof log, NULL, log);
-        snprintf(err, n, "shader %s does not compile: %s", name, log);
-        gl->DeleteShader(s);
-        return 0;
-    }
-    return s;
-}
-
 static GLuint program(sph_renderer *r, const char *vs, const char *fs, const char *name, char *err, size_t n)
 {
-    sph_gl *gl = &r->gl;
-    GLuint v = compile(r, GL_VERTEX_SHADER, vs, name, err, n);
-    if (!v) return 0;
-    GLuint f = compile(r, GL_FRAGMENT_SHADER, fs, name, err, n);
-    if (!f) {
-        gl->DeleteShader(v);
-        return 0;
-    }
-    GLuint p = gl->CreateProgram();
-    gl->AttachShader(p, v);
-    gl->AttachShader(p, f);
-    gl->LinkProgram(p);
-    gl->DeleteShader(v);
-    gl->DeleteShader(f);
-    GLint ok = 0;
-    gl->GetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[512] = "";
-        gl->GetProgramInfoLog(p, sizeof log, NULL, log);
-        snprintf(err, n, "shaders %s do not link: %s", name, log);
-        gl->DeleteProgram(p);
-        return 0;
-    }
-    return p;
+    const sph_gl_stage stages[2] = {{GL_VERTEX_SHADER, 1, &vs, NULL}, {GL_FRAGMENT_SHADER, 1, &fs, NULL}};
+    char what[128];
+    snprintf(what, sizeof what, "shaders %s", name);
+    return sph_gl_program(&r->gl, stages, 2, what, err, n);
 }
 
 /* Text sizes follow the image's height, so a small test image and a large
