@@ -55,6 +55,11 @@ SDL_VIDEODRIVER=offscreen "$BIN" view "$scene" --backend gl --frames 3 --keys ".
 "$BIN" render "$scene" --backend gl --steps 4 --every 2 --size 160x120 --out "$tmp/glframes" > "$tmp/gl.txt" 2>&1
 [ $? -eq 0 ] && [ -s "$tmp/glframes/frame_00002.png" ] && grep -q "drawn from the GL backend's buffers" "$tmp/gl.txt" && ok ||
     { bad "render --backend gl: not drawn from the buffers"; cat "$tmp/gl.txt"; }
+# the EGL device platform (the way to a headless GPU), here on Mesa's software
+# device: the same frames as the surfaceless display gives
+SPHLAB_EGL_DEVICE=any "$BIN" render "$scene" --backend gl --steps 4 --every 2 --size 160x120 --out "$tmp/devframes" \
+    > "$tmp/dev.txt" 2>&1 && cmp -s "$tmp/glframes/frame_00002.png" "$tmp/devframes/frame_00002.png" && ok ||
+    { bad "render --backend gl on the EGL device platform"; cat "$tmp/dev.txt"; }
 unset LIBGL_ALWAYS_SOFTWARE
 
 # The hard cases: every verdict must be "pass" (they run headless, a few seconds).

@@ -1,7 +1,9 @@
-/* EGL surfaceless context: no display, no window, no GPU needed. Mesa's
- * EGL_MESA_platform_surfaceless gives a display without any window system;
- * with no GPU (or LIBGL_ALWAYS_SOFTWARE=1) Mesa renders with llvmpipe. We
- * draw into a framebuffer object, so the context needs no surface at all.
+/* EGL context without a window: no display, no window system, no GPU needed.
+ * Where EGL lists a GPU device (EGL_EXT_platform_device: NVIDIA's EGL, or
+ * Mesa's with a DRM device) the context is made on it; otherwise Mesa's
+ * EGL_MESA_platform_surfaceless gives a display without any window system
+ * and renders with llvmpipe. We draw into a framebuffer object, so the
+ * context needs no surface at all.
  * EGL itself is called through libEGL; GL through libepoxy (gl_epoxy.c). */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -69,11 +71,41 @@ sph_glctx *sph_glctx_create_egl(sph_gl *gl, char *err, size_t n)
     return sph_glctx_create_egl_version(gl, 3, 3, err, n);
 }
 
+/* A GPU's display through EGL_EXT_platform_device: the way to a GPU without
+ * a window system (NVIDIA's EGL offers no surfaceless platform). Devices that
+ * are Mesa's software renderer are passed over unless `any`, since the
+ * surfaceless platform gives the same llvmpipe. EGL_NO_DISPLAY if none. */
+static EGLDisplay device_display(const char *ext, bool any)
+{
+    if (!has_word(ext, "EGL_EXT_platform_device") ||
+        !(has_word(ext, "EGL_EXT_device_enumeration") || has_word(ext, "EGL_EXT_device_base")))
+        return EGL_NO_DISPLAY;
+    PFNEGLQUERYDEVICESEXTPROC query = (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+    PFNEGLQUERYDEVICESTRINGEXTPROC str = (PFNEGLQUERYDEVICESTRINGEXTPROC)eglGetProcAddress("eglQueryDeviceStringEXT");
+    EGLDeviceEXT dev[16];
+    EGLint count = 0;
+    if (!query || !str || !query(16, dev, &count)) return EGL_NO_DISPLAY;
+    for (EGLint k = 0; k < count; k++) {
+        const char *dext = str(dev[k], EGL_EXTENSIONS);
+        if (!any && dext && has_word(dext, "EGL_MESA_device_software")) continue;
+        /* not initialised here: eglTerminate would end the contexts of a display in use */
+        EGLDisplay d = eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, dev[k], NULL);
+        if (d != EGL_NO_DISPLAY) return d;
+    }
+    return EGL_NO_DISPLAY;
+}
+
 sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_want, char *err, size_t n)
 {
+    /* SPHLAB_EGL_DEVICE: unset, a GPU if EGL lists one, else surfaceless;
+     * "software", surfaceless only (llvmpipe even beside a GPU); "any", the
+     * first device EGL lists, software included (tests the device path). */
+    const char *want = getenv("SPHLAB_EGL_DEVICE");
+    const bool software_only = want && strcmp(want, "software") == 0, any = want && strcmp(want, "any") == 0;
     const char *ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!ext || !has_word(ext, "EGL_MESA_platform_surfaceless")) {
-        snprintf(err, n, "EGL (surfaceless): this EGL has no EGL_MESA_platform_surfaceless "
+    EGLDisplay dpy = ext && !software_only ? device_display(ext, any) : EGL_NO_DISPLAY;
+    if (dpy == EGL_NO_DISPLAY && (!ext || !has_word(ext, "EGL_MESA_platform_surfaceless"))) {
+        snprintf(err, n, "EGL (surfaceless): this EGL has no EGL_MESA_platform_surfaceless and no GPU device "
                          "(install Debian's libegl-mesa0 and libgl1-mesa-dri, or try --gl osmesa)");
         return NULL;
     }
@@ -82,12 +114,17 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
         snprintf(err, n, "EGL: out of memory");
         return NULL;
     }
-    c->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    c->dpy = dpy != EGL_NO_DISPLAY ? dpy : eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
     EGLint major = 0, minor = 0;
     const char *what = NULL;
     char ask[64];
     snprintf(ask, sizeof ask, "eglCreateContext (OpenGL %d.%d core)", major_want, minor_want);
     bool initialised = c->dpy != EGL_NO_DISPLAY && eglInitialize(c->dpy, &major, &minor);
+    if (!initialised && dpy != EGL_NO_DISPLAY && has_word(ext, "EGL_MESA_platform_surfaceless")) {
+        /* the device would not start: Mesa's surfaceless platform instead */
+        c->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+        initialised = c->dpy != EGL_NO_DISPLAY && eglInitialize(c->dpy, &major, &minor);
+    }
     if (initialised) live_contexts++; /* sph_glctx_destroy counts it down */
     if (c->dpy == EGL_NO_DISPLAY) {
         what = "eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA)";
@@ -98,9 +135,12 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
         what = "eglBindAPI(EGL_OPENGL_API)";
     } else {
         const EGLint cfg_attr[] = {EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        const EGLint pbuf_attr[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
         EGLConfig cfg = NULL;
         EGLint ncfg = 0;
         if (!eglChooseConfig(c->dpy, cfg_attr, &cfg, 1, &ncfg)) ncfg = 0;
+        /* a device display may list only pbuffer configs; the context still needs no surface */
+        if (!ncfg && !eglChooseConfig(c->dpy, pbuf_attr, &cfg, 1, &ncfg)) ncfg = 0;
         const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, major_want, EGL_CONTEXT_MINOR_VERSION, minor_want,
                                    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
         /* surfaceless contexts may have no config (EGL_KHR_no_config_context) */
