@@ -185,14 +185,15 @@ Test(bench, quick_ladder_every_level_checked_and_a_hash_beats_brute_force, .time
     }
 }
 
-/* Where no OpenGL 4.3 context can be made (forced here: Mesa told to offer
- * 3.3), a GL level is skipped with the reason, and that is not a failure:
- * the CPU levels are measured and the command exits 0. */
+/* Where no OpenGL 4.3 context can be made (forced here with
+ * SPHLAB_EGL_DEVICE=none, which works beside any driver), a GL level is
+ * skipped with the reason, and that is not a failure: the CPU levels are
+ * measured and the command exits 0. */
 Test(bench, gl_levels_skipped_without_gl43, .timeout = 300)
 {
     char dir[64], args[256], path[256];
     make_dir(dir, sizeof dir);
-    setenv("MESA_GL_VERSION_OVERRIDE", "3.3", 1); /* this test's process and the sphlab it runs */
+    setenv("SPHLAB_EGL_DEVICE", "none", 1); /* this test's process and the sphlab it runs */
     snprintf(args, sizeof args, "bench ladder --quick --fps 500 --at 500 --levels L0,G1 --out %s", dir);
     int rc = test_sphlab(args, g_out, sizeof g_out);
     cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);

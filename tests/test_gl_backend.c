@@ -255,6 +255,27 @@ Test(gl_backend, passes_match_cpu_interaction)
     lockstep_steps(scene_2d, sets, 1, 2);
 }
 
+/* The dense grid's row runs (gpu_walk.glsl, u_rows) in 3D, and with y and z
+ * wrapping (rows still one run each; x does not wrap) */
+Test(gl_backend, passes_match_cpu_3d_grid_rows)
+{
+    const char *sets[] = {"search.method=grid"};
+    lockstep_steps(scene_3d, sets, 1, 2);
+}
+
+Test(gl_backend, passes_match_cpu_3d_grid_periodic_yz)
+{
+    const char *sets[] = {"search.method=grid", "domain.periodic=y z"};
+    lockstep_steps(scene_3d, sets, 2, 2);
+}
+
+Test(gl_backend, passes_match_cpu_2d_grid_periodic_morris)
+{
+    const char *sets[] = {"search.method=grid", "domain.periodic=y", "physics.viscosity_form=morris",
+                          "kernels.viscosity=cubic"};
+    lockstep_steps(scene_2d, sets, 4, 2);
+}
+
 Test(gl_backend, passes_match_cpu_periodic_brute)
 {
     const char *sets[] = {"domain.periodic=x", "search.method=brute"};
@@ -289,7 +310,7 @@ Test(gl_backend, every_choice_runs_or_is_refused, .timeout = 900)
                 snprintf(set, sizeof set, "fluid.a.%s=%s", key->name, key->choices[v]);
             else
                 snprintf(set, sizeof set, "%s.%s=%s", key->section, key->name, key->choices[v]);
-            const char *sets[2] = {set, "kernels.viscosity=cubic"}; /* morris needs a smooth gradient */
+            const char *sets[2] = {set, "kernels.viscosity=cubic"}; /* morris needs W.(0) = 0 */
             sph_sim *c = NULL, *g = NULL;
             sph_error err;
             int n_sets = 1;

@@ -161,11 +161,24 @@ static const char *const variants[] = {
     "[search]\nmethod=hash\nsort=counting\ntable_size=100003\n", /* 7: more keys than particles */
     "[search]\nmethod=grid\nsort=counting\n",                   /* 8 */
     "[search]\nmethod=grid\nsort=bitonic\n",                    /* 9 */
+    /* R: the particle data reordered by cell, then searched cell by cell
+     * (rows_reordered; on the dense grid, a stencil row is one run) */
+    "[search]\nmethod=grid\nsort=counting\nreorder=on\n",                           /* 10 R */
+    "[search]\nmethod=grid\nsort=bitonic\nreorder=on\nvector=off\n",               /* 11 R */
+    "[search]\nmethod=hash\nsort=counting\nreorder=on\n",                           /* 12 R */
+    "[search]\nmethod=hash\nsort=qsort\nreorder=on\ntable_size=3\nvector=off\n",    /* 13 R */
+    /* periodic axes (not in ALL_VARIANTS: the inputs must lie in the domain) */
+    "[search]\nmethod=brute\n[domain]\nperiodic=y\n",                               /* 14 */
+    "[search]\nmethod=grid\nsort=counting\nreorder=on\n[domain]\nperiodic=y\n",     /* 15 R: rows, y wraps */
+    "[search]\nmethod=brute\n[domain]\nperiodic=x z\n",                             /* 16 */
+    "[search]\nmethod=grid\nsort=counting\nreorder=on\n[domain]\nperiodic=y z\n",   /* 17 R: rows, y z wrap */
+    "[search]\nmethod=brute\n[domain]\nperiodic=y z\n",                             /* 18 */
+    "[search]\nmethod=grid\nsort=counting\nreorder=on\n[domain]\nperiodic=x z\n",   /* 19 R: x wraps, cell by cell */
 };
 #define N_VARIANTS ((int)(sizeof variants / sizeof variants[0]))
-#define ALL_VARIANTS ((1u << N_VARIANTS) - 1)
+#define ALL_VARIANTS ((1u << 14) - 1) /* 0 to 13 */
 /* hash with counting sort and qsort and table size N, grid with counting sort */
-#define LARGE_VARIANTS ((1u << 1) | (1u << 3) | (1u << 8))
+#define LARGE_VARIANTS ((1u << 1) | (1u << 3) | (1u << 8) | (1u << 10) | (1u << 12))
 /* brute force, hash with N keys and with 1, grid */
 #define METHOD_VARIANTS ((1u << 0) | (1u << 1) | (1u << 4) | (1u << 8))
 
@@ -234,9 +247,33 @@ static sph_sim *run_search(const setup *s, int v, int threads)
 #ifdef _OPENMP
     omp_set_num_threads(sim->threads); /* as sph_sim_step_pass does before a pass */
 #endif
-    const sph_pass_id passes[] = {SPH_PASS_HASH, SPH_PASS_SORT, SPH_PASS_OFFSETS, SPH_PASS_NEIGHBOURS};
-    for (int p = 0; p < 4; p++)
+    const bool R = strstr(variants[v], "reorder=on") != NULL;
+    if (R) /* ids = creation order, to map the reordered rows back */
+        for (uint32_t i = 0; i < s->n; i++) sim->P.id[i] = i;
+    const sph_pass_id passes[] = {SPH_PASS_HASH, SPH_PASS_SORT, SPH_PASS_REORDER, SPH_PASS_OFFSETS, SPH_PASS_NEIGHBOURS};
+    for (int p = 0; p < 5; p++) {
+        if (passes[p] == SPH_PASS_REORDER && !R) continue;
         if (sim->in_pipeline[passes[p]]) test_run_pass(sim, passes[p]);
+    }
+    if (R) {
+        cr_assert(sim->S.reordered, "reorder did not run");
+        /* the rows back in creation order, entries as creation indices (ids) */
+        const uint32_t n = s->n, *id = sim->P.id;
+        uint32_t *st = calloc(n + 1, 4), *nb = malloc(((size_t)sim->S.nbr_start[n] + 1) * 4), *at = malloc(n * 4);
+        cr_assert(st && nb && at);
+        for (uint32_t i = 0; i < n; i++) at[id[i]] = i;
+        size_t len = 0;
+        for (uint32_t o = 0; o < n; o++) {
+            uint32_t i = at[o];
+            for (uint32_t k = sim->S.nbr_start[i]; k < sim->S.nbr_start[i + 1]; k++) nb[len++] = id[sim->S.nbr[k]];
+            st[o + 1] = (uint32_t)len;
+        }
+        memcpy(sim->S.nbr_start, st, (n + 1) * 4);
+        memcpy(sim->S.nbr, nb, len * 4);
+        free(st);
+        free(nb);
+        free(at);
+    }
     return sim;
 }
 
@@ -568,6 +605,7 @@ static void cell_borders(int dim)
         }
         check_variants(&s, mask, "pairs at h");
         for (int v = 0; v < N_VARIANTS; v++) {
+            if (!(mask & (1u << v))) continue;
             char name[96];
             variant_name(v, name, sizeof name);
             const sph_sim *sim = run_search(&s, v, 1);
@@ -637,4 +675,38 @@ Test(search, pair_under_h_across_the_origin_with_h_rounded)
     const float p0[2] = {-1e-9f, 0.3f};
     const float p1[2] = {0x1.eb851cp-5f, 0.3f}; /* nextafterf(0.06f, 0) = 0.0599999949 */
     check_pair(0.06f, -1.0f, 1.0f, p0, p1);
+}
+
+/* Periodic axes against brute force with the minimum image: the grid's rows
+ * when y (and z) wrap, cell by cell when x wraps; a third of the points
+ * within 0.12 of a periodic boundary, so many pairs cross it. */
+static void periodic_case(int dim, int ref, int v, const char *what)
+{
+    setup s;
+    const uint32_t n = 700;
+    setup_init(&s, dim, 0.1f, -1.0f, 1.0f, n, 7 + dim);
+    for (uint32_t i = 0; i < n; i++)
+        for (int d = 0; d < dim; d++) {
+            double u = rnd();
+            float x = (float)(-1.0 + 2.0 * u);
+            if (i % 3 == 0) x = (float)(u < 0.5 ? -1.0 + 0.12 * rnd() : 1.0 - 0.12 * rnd());
+            if (x >= 1.0f) x = nextafterf(1.0f, 0);
+            s.x[d][i] = x;
+        }
+    sph_sim *a = run_search(&s, ref, 1);
+    lists want = sorted_lists(a);
+    sph_sim *b = run_search(&s, v, 1);
+    lists got = sorted_lists(b);
+    check_same_sets(&s, &want, &got, what);
+    cr_assert_gt(want.start[n], (size_t)n, "%zu pairs", (size_t)want.start[n]);
+    lists_free(&want);
+    lists_free(&got);
+    setup_free(&s);
+    cache_clear();
+}
+Test(search, periodic_rows_and_cells_equal_brute_force)
+{
+    periodic_case(2, 14, 15, "2d periodic y");
+    periodic_case(3, 18, 17, "3d periodic y z");
+    periodic_case(3, 16, 19, "3d periodic x z");
 }

@@ -93,21 +93,33 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
 bool bench_measure_retry(const bench_config *cfg, const bench_level *L, int k, const bench_plan *plan, double fps,
                          int attempts, bench_meas *out, char *why, size_t n)
 {
-    bench_meas m;
+    bench_meas m[8];
+    if (attempts > 8) attempts = 8;
+    int got = 0;
     for (int a = 0; a < attempts; a++) {
-        if (!bench_measure(cfg, L, k, plan, &m, why, n)) return false;
-        if (a == 0 || !(m.others >= out->others)) *out = m; /* the least disturbed so far */
-        out->attempts = a + 1;
-        if (fps > 0 && m.steps_per_s >= fps) {
-            *out = m;
-            out->attempts = a + 1;
-            break;
-        }
-        /* again if others were busy, or if it missed the rate by less than 10%: a
-         * short burst of load that the average does not show can do that */
-        bool near_miss = fps > 0 && m.steps_per_s >= fps / 1.1;
-        if (!(m.others > BENCH_BUSY) && !near_miss) break;
+        if (!bench_measure(cfg, L, k, plan, &m[got], why, n)) return false;
+        got++;
+        /* again while others were busy, or (fps > 0) while the rate is within
+         * 10% of fps on either side: there a burst of load, or the page
+         * placement of a fresh simulation, can decide; a band on both sides
+         * and the median keep that from favouring a pass (or a fail) */
+        bool near = fps > 0 && m[got - 1].steps_per_s >= fps / 1.1 && m[got - 1].steps_per_s <= fps * 1.1;
+        if (!(m[got - 1].others > BENCH_BUSY) && !near) break;
     }
+    /* keep the median by steps/s among the quiet attempts (all, if none was quiet) */
+    int idx[8], c = 0;
+    for (int a = 0; a < got; a++)
+        if (!(m[a].others > BENCH_BUSY)) idx[c++] = a;
+    if (c == 0)
+        for (int a = 0; a < got; a++) idx[c++] = a;
+    for (int i = 1; i < c; i++) /* insertion sort by rate: at most 8 */
+        for (int j = i; j > 0 && m[idx[j]].steps_per_s < m[idx[j - 1]].steps_per_s; j--) {
+            int t = idx[j];
+            idx[j] = idx[j - 1];
+            idx[j - 1] = t;
+        }
+    *out = m[idx[(c - 1) / 2]]; /* the lower median for an even count: a tie does not pass */
+    out->attempts = got;
     return true;
 }
 
@@ -297,6 +309,10 @@ void bench_compare(const bench_state *ref, const bench_state *s, bench_diff *d)
     else if (d->sets_differ)
         snprintf(d->why, sizeof d->why, "%u of %u neighbour sets differ after 1 step (beyond pairs at r = h)",
                  d->sets_differ, n);
+    else if (d->edge_pairs > fmax(BENCH_EDGE_MAX, BENCH_EDGE_SHARE * d->ref_pairs))
+        snprintf(d->why, sizeof d->why,
+                 "%u pairs at r = h differ after 1 step: more than rounding explains (a search losing pairs at h?)",
+                 d->edge_pairs);
     else if (!(d->dx <= BENCH_TOL_X))
         snprintf(d->why, sizeof d->why, "positions differ by %.3g m after %d steps (tolerance %g m)", d->dx,
                  BENCH_CHECK_STEPS, BENCH_TOL_X);

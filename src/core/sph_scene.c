@@ -86,7 +86,7 @@ const sph_key sph_scene_keys[] = {
      "laplacian",
      "laplacian: Mueller's nu m_j (v_j - v_i)/rho_j lap W; smoothing: the seed's kernel-weighted velocity average; "
      "morris: nu m_j (rho_i + rho_j)/(rho_i rho_j) (x_ij . grad W)/(r^2 + 1e-4 h^2) (v_i - v_j), a Laplacian from "
-     "the kernel's gradient (needs a kernel with a smooth gradient: [kernels] viscosity = cubic, wendland, spiky or "
+     "the kernel's gradient (needs a kernel whose slope vanishes at r = 0: [kernels] viscosity = cubic, wendland or "
      "poly6)"},
     {"physics", "accumulate", SPH_KEY_CHOICE, S(accumulate), 0, 0, 0, 0, CH(sph_accumulate_names), "", "float",
      "precision of the density and force sums: float, or double (slower; shows what round-off costs)"},
@@ -793,15 +793,19 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                             "would meet its own image)",
                             def->file, def->origin[li].line, axes[a], len, 3.0 * def->h);
     }
-    if (def->viscosity_form == SPH_VFORM_MORRIS && def->kernel_viscosity == SPH_KERNEL_VISCOSITY &&
+    /* Morris's form divides x_ij . grad W = r W'(r) by r^2: it needs W'(r) / r
+     * bounded, that is W'(0) = 0, which the viscosity and spiky kernels lack */
+    if (def->viscosity_form == SPH_VFORM_MORRIS &&
+        (def->kernel_viscosity == SPH_KERNEL_VISCOSITY || def->kernel_viscosity == SPH_KERNEL_SPIKY) &&
         (def->effects & SPH_EFFECT(VISCOSITY))) {
         int li = key_index("physics", "viscosity_form");
         char loc[300];
         return sph_fail(err, SPH_ERR_RANGE,
-                        "%s: [physics] viscosity_form = morris with [kernels] viscosity = viscosity: that kernel's "
-                        "gradient grows without bound as r -> 0 (it is made for its Laplacian); set [kernels] "
-                        "viscosity = cubic, wendland, spiky or poly6",
-                        origin_text(def, def->origin[li].line, loc, sizeof loc));
+                        "%s: [physics] viscosity_form = morris with [kernels] viscosity = %s: that kernel's slope "
+                        "does not vanish at r = 0, so W'(r)/r grows without bound for close pairs; set [kernels] "
+                        "viscosity = cubic, wendland or poly6",
+                        origin_text(def, def->origin[li].line, loc, sizeof loc),
+                        sph_kernel_names[def->kernel_viscosity]);
     }
     if (def->n_blocks == 0)
         return sph_fail(err, SPH_ERR_SCENE, "%s: no particles: the scene has no [fluid NAME] block", def->file);

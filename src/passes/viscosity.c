@@ -43,9 +43,10 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
     const bool morris = sim->def.viscosity_form == SPH_VFORM_MORRIS;
     const float nu = sim->def.viscosity;
     const float *per = sim->period, *iper = sim->inv_period;
-    /* eta = 0.01 h keeps 1 / r^2 finite as r -> 0 (for spiky; W'(r) / r stays
-     * finite for cubic, Wendland, poly6). Morris's 0.1 h biases the nearest
-     * pairs (r = h/2) by 4%, and the whole sum by 3-4% at h = 2 spacings. */
+    /* eta = 0.01 h keeps the sum finite for coincident particles (the scene
+     * allows only kernels with W'(0) = 0, so W'(r) / r is bounded anyway).
+     * Morris's 0.1 h biases the nearest pairs (r = h/2) by 4%, and the whole
+     * sum by 3-4% at h = 2 spacings. */
     const float eta2 = 1e-4f * k->h * k->h;
     const float rho_i = P->rho[i];
     float xi[3], vi[3], af[3] = {0, 0, 0};

@@ -99,9 +99,14 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
 {
     /* SPHLAB_EGL_DEVICE: unset, a GPU if EGL lists one, else surfaceless;
      * "software", surfaceless only (llvmpipe even beside a GPU); "any", the
-     * first device EGL lists, software included (tests the device path). */
+     * first device EGL lists, software included (tests the device path);
+     * "none", no context at all. */
     const char *want = getenv("SPHLAB_EGL_DEVICE");
     const bool software_only = want && strcmp(want, "software") == 0, any = want && strcmp(want, "any") == 0;
+    if (want && strcmp(want, "none") == 0) { /* the paths without GL, on any machine (the tests) */
+        snprintf(err, n, "EGL: no device (SPHLAB_EGL_DEVICE=none)");
+        return NULL;
+    }
     const char *ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     EGLDisplay dpy = ext && !software_only ? device_display(ext, any) : EGL_NO_DISPLAY;
     if (dpy == EGL_NO_DISPLAY && (!ext || !has_word(ext, "EGL_MESA_platform_surfaceless"))) {
