@@ -16,6 +16,14 @@ typedef struct app_scene_opts {
     int n_sets;
 } app_scene_opts;
 
+/* Adds a --set override; false (with a message) past APP_MAX_SETS. */
+bool app_scene_add_set(app_scene_opts *o, const char *set);
+/* Checks a --backend value (cpu or gl) for command `cmd`; the override it
+ * stands for goes in after the --set options (app_scene_add_backend), so the
+ * option wins over a --set of the same key. False with a message if bad. */
+bool app_backend_valid(const char *cmd, const char *value);
+bool app_scene_add_backend(app_scene_opts *o, const char *value);
+
 /* Loads the scene, applies the --set overrides, validates; prints the error
  * and returns false on failure. */
 bool app_load_scene(const app_scene_opts *o, sph_scene_def *def);

@@ -43,11 +43,7 @@ int cmd_check(int argc, char **argv)
                 fprintf(stderr, "sphlab: --set needs section.key=value\n");
                 return 2;
             }
-            if (o.n_sets == APP_MAX_SETS) {
-                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
-                return 2;
-            }
-            o.sets[o.n_sets++] = v;
+            if (!app_scene_add_set(&o, v)) return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab check: unknown option '%s'\n", a);
             usage(stderr);

@@ -148,19 +148,9 @@ int cmd_run(int argc, char **argv)
             if (!(v = opt_value(argc, argv, &i, "--threads")) || !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
                 return 2;
         } else if (is_opt(a, "--backend")) {
-            if (!(v = opt_value(argc, argv, &i, "--backend"))) return 2;
-            if (strcmp(v, "cpu") != 0 && strcmp(v, "gl") != 0) {
-                fprintf(stderr, "sphlab run: --backend '%s': accepted: cpu, gl\n", v);
-                return 2;
-            }
-            backend = v;
+            if (!(backend = opt_value(argc, argv, &i, "--backend")) || !app_backend_valid("run", backend)) return 2;
         } else if (is_opt(a, "--set")) {
-            if (!(v = opt_value(argc, argv, &i, "--set"))) return 2;
-            if (o.n_sets == APP_MAX_SETS) {
-                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
-                return 2;
-            }
-            o.sets[o.n_sets++] = v;
+            if (!(v = opt_value(argc, argv, &i, "--set")) || !app_scene_add_set(&o, v)) return 2;
         } else if (is_opt(a, "--stats")) {
             if (!(stats_path = opt_value(argc, argv, &i, "--stats"))) return 2;
         } else if (is_opt(a, "--dump")) {
@@ -189,15 +179,7 @@ int cmd_run(int argc, char **argv)
         fprintf(stderr, "sphlab run: give --steps or --time, not both\n");
         return 2;
     }
-    char backend_set[32];
-    if (backend) { /* after the scene's own --set options, so it wins */
-        if (o.n_sets == APP_MAX_SETS) {
-            fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
-            return 2;
-        }
-        snprintf(backend_set, sizeof backend_set, "compute.backend=%s", backend);
-        o.sets[o.n_sets++] = backend_set;
-    }
+    if (!app_scene_add_backend(&o, backend)) return 2; /* after the --set options, so it wins */
     sph_scene_def def;
     int status = app_load_scene_status(&o, &def);
     if (status) return status;

@@ -55,6 +55,28 @@ fail:
     return err.code == SPH_ERR_USAGE ? 2 : 1; /* a malformed --set is a command-line error */
 }
 
+bool app_scene_add_set(app_scene_opts *o, const char *set)
+{
+    if (o->n_sets == APP_MAX_SETS) {
+        fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
+        return false;
+    }
+    o->sets[o->n_sets++] = set;
+    return true;
+}
+
+bool app_backend_valid(const char *cmd, const char *value)
+{
+    if (strcmp(value, "cpu") == 0 || strcmp(value, "gl") == 0) return true;
+    fprintf(stderr, "sphlab %s: --backend '%s': accepted: cpu, gl\n", cmd, value);
+    return false;
+}
+
+bool app_scene_add_backend(app_scene_opts *o, const char *value)
+{
+    return !value || app_scene_add_set(o, strcmp(value, "gl") == 0 ? "compute.backend=gl" : "compute.backend=cpu");
+}
+
 bool app_load_scene(const app_scene_opts *o, sph_scene_def *def)
 {
     return app_load_scene_status(o, def) == 0;

@@ -35,6 +35,7 @@ static void usage(FILE *f)
 int cmd_render(int argc, char **argv)
 {
     app_scene_opts so = {0};
+    const char *compute = NULL; /* --backend: where the passes run (the GL context is --gl) */
     view_opts vo;
     view_opts_init(&vo, 800, 600);
     const char *out = NULL, *vtk_dir = NULL, *v;
@@ -80,24 +81,10 @@ int cmd_render(int argc, char **argv)
                 return 2;
             }
         } else if (opt_is(a, "--backend")) {
-            /* shorthand for --set compute.backend=... */
-            if (!(v = opt_val("render", argc, argv, &i, "--backend"))) return 2;
-            if (strcmp(v, "cpu") != 0 && strcmp(v, "gl") != 0) {
-                fprintf(stderr, "sphlab render: --backend '%s': accepted: cpu, gl\n", v);
+            if (!(compute = opt_val("render", argc, argv, &i, "--backend")) || !app_backend_valid("render", compute))
                 return 2;
-            }
-            if (so.n_sets == APP_MAX_SETS) {
-                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
-                return 2;
-            }
-            so.sets[so.n_sets++] = strcmp(v, "gl") == 0 ? "compute.backend=gl" : "compute.backend=cpu";
         } else if (opt_is(a, "--set")) {
-            if (!(v = opt_val("render", argc, argv, &i, "--set"))) return 2;
-            if (so.n_sets == APP_MAX_SETS) {
-                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
-                return 2;
-            }
-            so.sets[so.n_sets++] = v;
+            if (!(v = opt_val("render", argc, argv, &i, "--set")) || !app_scene_add_set(&so, v)) return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab render: unknown option '%s'\n", a);
             usage(stderr);
@@ -109,6 +96,7 @@ int cmd_render(int argc, char **argv)
             return 2;
         }
     }
+    if (!app_scene_add_backend(&so, compute)) return 2; /* after the --set options, so it wins */
     if (!so.path || !out) {
         if (so.path) fprintf(stderr, "sphlab render: --out DIR is needed\n");
         usage(stderr);

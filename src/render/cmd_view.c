@@ -410,6 +410,7 @@ static bool display_check(char *err, size_t n)
 int cmd_view(int argc, char **argv)
 {
     app_scene_opts so = {0};
+    const char *backend = NULL;
     view_opts vo;
     view_opts_init(&vo, 1024, 720);
     long threads = 0, frames = -1, spf = -1;
@@ -441,24 +442,9 @@ int cmd_view(int argc, char **argv)
                 !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
                 return 2;
         } else if (opt_is(a, "--backend")) {
-            /* shorthand for --set compute.backend=... */
-            if (!(v = opt_val("view", argc, argv, &i, "--backend"))) return 2;
-            if (strcmp(v, "cpu") != 0 && strcmp(v, "gl") != 0) {
-                fprintf(stderr, "sphlab view: --backend '%s': accepted: cpu, gl\n", v);
-                return 2;
-            }
-            if (so.n_sets == APP_MAX_SETS) {
-                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
-                return 2;
-            }
-            so.sets[so.n_sets++] = strcmp(v, "gl") == 0 ? "compute.backend=gl" : "compute.backend=cpu";
+            if (!(backend = opt_val("view", argc, argv, &i, "--backend")) || !app_backend_valid("view", backend)) return 2;
         } else if (opt_is(a, "--set")) {
-            if (!(v = opt_val("view", argc, argv, &i, "--set"))) return 2;
-            if (so.n_sets == APP_MAX_SETS) {
-                fprintf(stderr, "sphlab: more than %d --set options\n", APP_MAX_SETS);
-                return 2;
-            }
-            so.sets[so.n_sets++] = v;
+            if (!(v = opt_val("view", argc, argv, &i, "--set")) || !app_scene_add_set(&so, v)) return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab view: unknown option '%s'\n", a);
             usage(stderr);
@@ -470,6 +456,7 @@ int cmd_view(int argc, char **argv)
             return 2;
         }
     }
+    if (!app_scene_add_backend(&so, backend)) return 2; /* after the --set options, so it wins */
     if (!so.path) {
         usage(stderr);
         return 2;

@@ -206,12 +206,7 @@ int cmd_study(int argc, char **argv)
                 !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
                 return 2;
         } else if (is_opt(a, "--set")) {
-            if (!(v = opt_value(argc, argv, &i, "--set"))) return 2;
-            if (o.n_sets == APP_MAX_SETS) {
-                fprintf(stderr, "sphlab study: more than %d --set options\n", APP_MAX_SETS);
-                return 2;
-            }
-            o.sets[o.n_sets++] = v;
+            if (!(v = opt_value(argc, argv, &i, "--set")) || !app_scene_add_set(&o, v)) return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab study: unknown option '%s'\n", a);
             usage(stderr);
