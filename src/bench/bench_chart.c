@@ -74,15 +74,26 @@ static void draw_ladder(const void *chart)
     plmtex("b", 2.8, 0.5, 0.5, c->bars_title);
     plschr(0, 1.0);
 
-    /* bottom: ms per pass at the fixed N, stacked; a bar far longer than the others is cut */
-    double total[BENCH_MAX_LEVELS] = {0}, big = 0, second = 0;
+    /* bottom: ms per pass at the fixed N, stacked. Bars more than 10 times the
+     * median (brute force, on the CPU and on the GL device) are cut, so that
+     * the axis shows the others' passes; their totals are written in. */
+    double total[BENCH_MAX_LEVELS] = {0}, sorted[BENCH_MAX_LEVELS];
+    int nt = 0;
     for (int i = 0; i < c->nl; i++) {
         for (int p = 0; p < c->np; p++)
             if (isfinite(c->ms[i][p]) && c->ms[i][p] > 0) total[i] += c->ms[i][p];
-        if (total[i] > big) second = big, big = total[i];
-        else if (total[i] > second) second = total[i];
+        if (total[i] > 0) sorted[nt++] = total[i];
     }
-    double xmax = big > 3 * second && second > 0 ? 1.3 * second : 1.25 * big;
+    for (int i = 1; i < nt; i++) /* insertion sort: a few dozen levels at most */
+        for (int j = i; j > 0 && sorted[j] < sorted[j - 1]; j--) {
+            double t = sorted[j];
+            sorted[j] = sorted[j - 1];
+            sorted[j - 1] = t;
+        }
+    double keep = 0; /* the longest bar drawn whole */
+    for (int i = 0; i < nt; i++)
+        if (sorted[i] <= 10 * sorted[(nt - 1) / 2]) keep = sorted[i];
+    double xmax = keep < (nt ? sorted[nt - 1] : 0) ? 1.3 * keep : 1.25 * keep;
     if (!(xmax > 0)) xmax = 1;
     plvpor(vx0, vx1, 0.10, 0.45);
     plwind(0, xmax, 0, nl);

@@ -35,7 +35,7 @@ const bench_level bench_levels[] = {
      "compute.backend=gl search.method=hash search.sort=bitonic search.reorder=off", 0},
     {"G2", "GLSL: counting sort + reorder",
      "compute.backend=gl search.method=hash search.sort=counting search.reorder=on", 0},
-    {"G3", "GLSL: dense grid: a stencil row is one run",
+    {"G3", "GLSL: dense grid: stencil rows",
      "compute.backend=gl search.method=grid search.sort=counting search.reorder=on", 0},
 };
 const int bench_level_count = (int)(sizeof bench_levels / sizeof bench_levels[0]);
