@@ -48,6 +48,10 @@ fi
 MESA_GL_VERSION_OVERRIDE=3.3 "$BIN" run "$scene" --backend gl --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "backend = gl: no OpenGL 4.3 context: " "$tmp/gl.txt" && ok || { bad "gl without OpenGL 4.3: want exit 1 and the reason"; cat "$tmp/gl.txt"; }
 # the window (SDL's offscreen driver) on the GL backend: a pass stepped, its state drawn
+# the window without OpenGL 4.3: a note on the fallback, then the backend's own refusal, exit 1
+MESA_GL_VERSION_OVERRIDE=3.3 SDL_VIDEODRIVER=offscreen "$BIN" view "$scene" --backend gl --frames 2 > "$tmp/gl.txt" 2>&1
+[ $? -eq 1 ] && grep -q "cannot make an OpenGL 4.3 core context" "$tmp/gl.txt" && grep -q "no OpenGL 4.3 context" "$tmp/gl.txt" &&
+    ok || { bad "view --backend gl without 4.3"; cat "$tmp/gl.txt"; }
 SDL_VIDEODRIVER=offscreen "$BIN" view "$scene" --backend gl --frames 3 --keys "." --overlay grid,neighbours \
     --select 50 --screenshot "$tmp/view.png" > "$tmp/gl.txt" 2>&1
 [ $? -eq 0 ] && [ -s "$tmp/view.png" ] && grep -q "pass external wrote" "$tmp/gl.txt" && ok || { bad "view --backend gl"; cat "$tmp/gl.txt"; }
