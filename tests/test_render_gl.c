@@ -246,3 +246,34 @@ Test(render_gl, a_second_simulation_in_the_context_leaves_the_first_intact)
     free(at);
     free_pair(&p);
 }
+
+/* A click names the particle under the cursor by id, also after steps that
+ * reordered the particles on the device: the pick brings back positions
+ * and ids together. Each target's screen position comes from the CPU twin
+ * (the same run within rounding), and the GL simulation's pick must name
+ * the same id. */
+Test(render_gl, picking_names_the_particle_under_the_cursor)
+{
+    pair p = make_pair(scene_2d);
+    for (int s = 0; s < 5; s++) {
+        sph_sim_step(p.gl);
+        sph_sim_step(p.cpu);
+    }
+    sph_view v = sph_view_default(p.gl);
+    char err[256];
+    cr_assert(sph_render(p.r_gl, p.gl, &v, err, sizeof err), "%s", err); /* sets the camera */
+    const sph_camera *cam = sph_renderer_camera(p.r_gl);
+    int hits = 0;
+    for (uint32_t target = 10; target < p.cpu->n; target += 37) {
+        uint32_t j = 0;
+        while (p.cpu->P.id[j] != target) j++;
+        float x[3] = {p.cpu->P.pos[0][j], p.cpu->P.pos[1][j], 0}, px[2], depth;
+        cr_assert(sph_camera_project(cam, x, px, &depth));
+        int32_t i = sph_renderer_pick(p.r_gl, p.gl, px, 12.0f);
+        cr_assert(i >= 0, "nothing picked at particle %u", target);
+        cr_expect_eq(p.gl->P.id[i], target, "the click on particle %u named particle %u", target, p.gl->P.id[i]);
+        hits++;
+    }
+    cr_assert_gt(hits, 3);
+    free_pair(&p);
+}

@@ -554,7 +554,9 @@ int cmd_view(int argc, char **argv)
     bool direct_all = true;
     double last = sph_now_ms();
     for (long frame = 0; !w.quit && (frames < 0 || frame < frames); frame++) {
-        const sph_sim *counted = w.sim; /* a reset replaces it, and its count */
+        /* a reset replaces the simulation and a variant switch its backend,
+         * each with a count of its own */
+        const void *counted = w.sim->backend;
         uint64_t bytes0 = sph_gpu_downloaded_bytes(w.sim);
         int ww, wh;
         SDL_GetWindowSize(win, &ww, &wh);
@@ -622,7 +624,8 @@ int cmd_view(int argc, char **argv)
         direct_all &= sph_renderer_drew_direct(w.r);
         if (w.scripted && w.sim->backend && used + 24 < sizeof per_frame)
             used += (size_t)snprintf(per_frame + used, sizeof per_frame - used, " %llu",
-                                     w.sim == counted ? (unsigned long long)(sph_gpu_downloaded_bytes(w.sim) - bytes0)
+                                     (const void *)w.sim->backend == counted
+                                         ? (unsigned long long)(sph_gpu_downloaded_bytes(w.sim) - bytes0)
                                                       : (unsigned long long)sph_gpu_downloaded_bytes(w.sim));
     }
     if (w.scripted && w.sim && w.sim->backend)

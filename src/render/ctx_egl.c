@@ -20,9 +20,9 @@ struct sph_glctx {
 };
 
 /* EGL displays are not reference-counted: eglTerminate ends every context on
- * the display, and the renderer and the GL compute backend share the
- * surfaceless display. The last context to go terminates it. */
-static int live_contexts;
+ * the display, also those another library made on it (SDL's offscreen driver
+ * opens the same device display). So sphlab never terminates a display: the
+ * process's exit releases it. */
 
 /* The context sphlab made current last. GL calls go to the thread's current
  * context whichever library made it current, and each library knows only its
@@ -88,9 +88,10 @@ static EGLDisplay device_display(const char *ext, bool any)
     for (EGLint k = 0; k < count; k++) {
         const char *dext = str(dev[k], EGL_EXTENSIONS);
         if (!any && dext && has_word(dext, "EGL_MESA_device_software")) continue;
-        /* not initialised here: eglTerminate would end the contexts of a display in use */
+        /* the first that starts: libglvnd may list devices of several vendors */
         EGLDisplay d = eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, dev[k], NULL);
-        if (d != EGL_NO_DISPLAY) return d;
+        EGLint major, minor;
+        if (d != EGL_NO_DISPLAY && eglInitialize(d, &major, &minor)) return d;
     }
     return EGL_NO_DISPLAY;
 }
@@ -102,7 +103,11 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
      * first device EGL lists, software included (tests the device path);
      * "none", no context at all. */
     const char *want = getenv("SPHLAB_EGL_DEVICE");
-    const bool software_only = want && strcmp(want, "software") == 0, any = want && strcmp(want, "any") == 0;
+    /* without SPHLAB_EGL_DEVICE, Mesa's LIBGL_ALWAYS_SOFTWARE also means llvmpipe
+     * (`render` sets it: the same bytes on every machine, GPU or not) */
+    const char *soft = getenv("LIBGL_ALWAYS_SOFTWARE");
+    const bool software_only = want ? strcmp(want, "software") == 0 : soft && *soft && strcmp(soft, "0") != 0,
+               any = want && strcmp(want, "any") == 0;
     if (want && strcmp(want, "none") == 0) { /* the paths without GL, on any machine (the tests) */
         snprintf(err, n, "EGL: no device (SPHLAB_EGL_DEVICE=none)");
         return NULL;
@@ -125,12 +130,7 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
     char ask[64];
     snprintf(ask, sizeof ask, "eglCreateContext (OpenGL %d.%d core)", major_want, minor_want);
     bool initialised = c->dpy != EGL_NO_DISPLAY && eglInitialize(c->dpy, &major, &minor);
-    if (!initialised && dpy != EGL_NO_DISPLAY && has_word(ext, "EGL_MESA_platform_surfaceless")) {
-        /* the device would not start: Mesa's surfaceless platform instead */
-        c->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-        initialised = c->dpy != EGL_NO_DISPLAY && eglInitialize(c->dpy, &major, &minor);
-    }
-    if (initialised) live_contexts++; /* sph_glctx_destroy counts it down */
+    const char *kind = dpy != EGL_NO_DISPLAY ? "EGL (device)" : "EGL (surfaceless)";
     if (c->dpy == EGL_NO_DISPLAY) {
         what = "eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA)";
     } else if (!initialised) {
@@ -158,7 +158,7 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
             sph_glctx_last_current = c;
     }
     if (what) {
-        snprintf(err, n, "EGL (surfaceless): %s failed: %s (no usable OpenGL %d.%d%s)", what,
+        snprintf(err, n, "%s: %s failed: %s (no usable OpenGL %d.%d%s)", kind, what,
                  egl_error_name(eglGetError()), major_want, minor_want,
                  major_want * 10 + minor_want <= 33 ? "; try --gl osmesa" : "");
         sph_glctx_destroy(c);
@@ -185,7 +185,6 @@ void sph_glctx_destroy(sph_glctx *c)
     if (c->dpy != EGL_NO_DISPLAY) {
         if (eglGetCurrentContext() == c->ctx) eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (c->ctx != EGL_NO_CONTEXT) eglDestroyContext(c->dpy, c->ctx);
-        if (--live_contexts == 0) eglTerminate(c->dpy);
     }
     free(c);
 }

@@ -1030,7 +1030,9 @@ bool sph_renderer_drew_direct(const sph_renderer *r)
 
 int32_t sph_renderer_pick(const sph_renderer *r, const sph_sim *sim, const float px[2], float max_px)
 {
-    sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_POS)); /* a click, not a frame: positions from the host */
+    /* a click, not a frame: positions from the host, and the ids the caller
+     * names the particle by (the reorder pass moves them every step) */
+    sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_POS) | SPH_SYNC_ID);
     int32_t best = -1;
     float best_d = max_px * max_px, best_depth = INFINITY;
     for (uint32_t i = 0; i < sim->n; i++) {
