@@ -15,6 +15,7 @@
 #include "gl_context.h"
 
 struct sph_glctx {
+    sph_glctx_kind kind; /* first: see gl_context.h */
     EGLDisplay dpy;
     EGLContext ctx;
 };
@@ -37,7 +38,7 @@ void sph_glctx_forget_current(void)
 sph_glctx *sph_glctx_current(void)
 {
     sph_glctx *c = sph_glctx_last_current;
-    return c && eglGetCurrentContext() == c->ctx ? c : NULL;
+    return c && *(const sph_glctx_kind *)c == SPH_GLCTX_EGL && eglGetCurrentContext() == c->ctx ? c : NULL;
 }
 
 static const char *egl_error_name(EGLint e)
@@ -124,6 +125,7 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
         snprintf(err, n, "EGL: out of memory");
         return NULL;
     }
+    c->kind = SPH_GLCTX_EGL;
     c->dpy = dpy != EGL_NO_DISPLAY ? dpy : eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
     EGLint major = 0, minor = 0;
     const char *what = NULL;

@@ -10,6 +10,7 @@
 #include "gl_context.h"
 
 typedef struct osmesa_ctx {
+    sph_glctx_kind kind; /* first: see gl_context.h */
     OSMesaContext ctx;
     unsigned char buf[16 * 16 * 4]; /* the default framebuffer; we draw into an FBO */
 } osmesa_ctx;
@@ -32,6 +33,7 @@ sph_glctx *sph_glctx_create_osmesa(sph_gl *gl, char *err, size_t n)
     const int attr[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
                         OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
                         OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+    c->kind = SPH_GLCTX_OSMESA;
     c->ctx = OSMesaCreateContextAttribs(attr, NULL);
     if (!c->ctx) {
         snprintf(err, n, "OSMesa: OSMesaCreateContextAttribs (OpenGL 3.3 core) failed (no usable OpenGL; try --gl egl)");

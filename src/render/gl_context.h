@@ -18,6 +18,9 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major, int minor, char *
  * the GL compute backend each have theirs); false if EGL refuses. */
 bool sph_glctx_make_current(sph_glctx *c);
 bool sph_glctx_make_current_osmesa(sph_glctx *c);
+/* Both kinds of context start with their kind, so that a pointer to either
+ * (sph_glctx_last_current may hold an OSMesa one) can tell which it is. */
+typedef enum sph_glctx_kind { SPH_GLCTX_EGL = 1, SPH_GLCTX_OSMESA } sph_glctx_kind;
 /* The context sphlab made current last (NULL: none or unknown). A window
  * that makes its own context current calls sph_glctx_forget_current(). */
 extern sph_glctx *sph_glctx_last_current;
