@@ -30,6 +30,12 @@ bool app_load_scene(const app_scene_opts *o, sph_scene_def *def);
 /* The same, returning the exit status: 0 loaded, 1 a bad scene, 2 a bad --set. */
 int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def);
 
+/* Command-line options, "--name value" or "--name=value": whether argument a
+ * is option `name`, and its value (advancing *i past it), or NULL with
+ * "sphlab CMD: --name needs a value" printed. */
+bool app_opt_is(const char *a, const char *name);
+const char *app_opt_value(const char *cmd, int argc, char **argv, int *i, const char *name);
+
 /* Parses a whole number / a number for option `opt`; prints the error and returns false on failure. */
 bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out);
 bool app_parse_double(const char *opt, const char *s, double lo, double hi, double *out);

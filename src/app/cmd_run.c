@@ -28,22 +28,6 @@ static void usage(FILE *f)
           f);
 }
 
-static const char *opt_value(int argc, char **argv, int *i, const char *name)
-{
-    const char *a = argv[*i];
-    size_t n = strlen(name);
-    if (a[n] == '=') return a + n + 1;
-    if (*i + 1 < argc) return argv[++*i];
-    fprintf(stderr, "sphlab run: %s needs a value\n", name);
-    return NULL;
-}
-
-static bool is_opt(const char *a, const char *name)
-{
-    size_t n = strlen(name);
-    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
-}
-
 static void write_stats_header(FILE *f, const sph_sim *sim)
 {
     fprintf(f, "step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed");
@@ -138,27 +122,27 @@ int cmd_run(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             quiet = true;
-        } else if (is_opt(a, "--steps")) {
-            if (!(v = opt_value(argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 0, 2000000000L, &steps))
+        } else if (app_opt_is(a, "--steps")) {
+            if (!(v = app_opt_value("run", argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 0, 2000000000L, &steps))
                 return 2;
-        } else if (is_opt(a, "--time")) {
-            if (!(v = opt_value(argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
+        } else if (app_opt_is(a, "--time")) {
+            if (!(v = app_opt_value("run", argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
                 return 2;
-        } else if (is_opt(a, "--threads")) {
-            if (!(v = opt_value(argc, argv, &i, "--threads")) || !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
+        } else if (app_opt_is(a, "--threads")) {
+            if (!(v = app_opt_value("run", argc, argv, &i, "--threads")) || !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
                 return 2;
-        } else if (is_opt(a, "--backend")) {
-            if (!(backend = opt_value(argc, argv, &i, "--backend")) || !app_backend_valid("run", backend)) return 2;
-        } else if (is_opt(a, "--set")) {
-            if (!(v = opt_value(argc, argv, &i, "--set")) || !app_scene_add_set(&o, v)) return 2;
-        } else if (is_opt(a, "--stats")) {
-            if (!(stats_path = opt_value(argc, argv, &i, "--stats"))) return 2;
-        } else if (is_opt(a, "--dump")) {
-            if (!(dump_path = opt_value(argc, argv, &i, "--dump"))) return 2;
-        } else if (is_opt(a, "--vtk")) {
-            if (!(vtk_dir = opt_value(argc, argv, &i, "--vtk"))) return 2;
-        } else if (is_opt(a, "--every")) {
-            if (!(v = opt_value(argc, argv, &i, "--every")) || !app_parse_int("--every", v, 1, 2000000000L, &vtk_every))
+        } else if (app_opt_is(a, "--backend")) {
+            if (!(backend = app_opt_value("run", argc, argv, &i, "--backend")) || !app_backend_valid("run", backend)) return 2;
+        } else if (app_opt_is(a, "--set")) {
+            if (!(v = app_opt_value("run", argc, argv, &i, "--set")) || !app_scene_add_set(&o, v)) return 2;
+        } else if (app_opt_is(a, "--stats")) {
+            if (!(stats_path = app_opt_value("run", argc, argv, &i, "--stats"))) return 2;
+        } else if (app_opt_is(a, "--dump")) {
+            if (!(dump_path = app_opt_value("run", argc, argv, &i, "--dump"))) return 2;
+        } else if (app_opt_is(a, "--vtk")) {
+            if (!(vtk_dir = app_opt_value("run", argc, argv, &i, "--vtk"))) return 2;
+        } else if (app_opt_is(a, "--every")) {
+            if (!(v = app_opt_value("run", argc, argv, &i, "--every")) || !app_parse_int("--every", v, 1, 2000000000L, &vtk_every))
                 return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab run: unknown option '%s'\n", a);

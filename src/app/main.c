@@ -55,6 +55,22 @@ fail:
     return err.code == SPH_ERR_USAGE ? 2 : 1; /* a malformed --set is a command-line error */
 }
 
+bool app_opt_is(const char *a, const char *name)
+{
+    size_t n = strlen(name);
+    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
+}
+
+const char *app_opt_value(const char *cmd, int argc, char **argv, int *i, const char *name)
+{
+    const char *a = argv[*i];
+    size_t n = strlen(name);
+    if (a[n] == '=') return a + n + 1;
+    if (*i + 1 < argc) return argv[++*i];
+    fprintf(stderr, "sphlab %s: %s needs a value\n", cmd, name);
+    return NULL;
+}
+
 bool app_scene_add_set(app_scene_opts *o, const char *set)
 {
     if (o->n_sets == APP_MAX_SETS) {

@@ -49,22 +49,6 @@ typedef struct bench_opts {
     bool progress;
 } bench_opts;
 
-static bool is_opt(const char *a, const char *name)
-{
-    size_t n = strlen(name);
-    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
-}
-
-static const char *opt_value(int argc, char **argv, int *i, const char *name)
-{
-    const char *a = argv[*i];
-    size_t n = strlen(name);
-    if (a[n] == '=') return a + n + 1;
-    if (*i + 1 < argc) return argv[++*i];
-    fprintf(stderr, "sphlab bench: %s needs a value\n", name);
-    return NULL;
-}
-
 static bool parse_levels(bench_opts *o)
 {
     o->nsel = 0;
@@ -157,26 +141,26 @@ static int parse_args(int argc, char **argv, bench_opts *o)
             o->cfg.watchdog = true;
         } else if (strcmp(a, "--trace") == 0) {
             o->trace = true;
-        } else if (is_opt(a, "--dim")) {
-            if (!(v = opt_value(argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 2, 3, &n)) return 2;
+        } else if (app_opt_is(a, "--dim")) {
+            if (!(v = app_opt_value("bench", argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 2, 3, &n)) return 2;
             o->cfg.dim = (int)n;
-        } else if (is_opt(a, "--fps")) {
-            if (!(v = opt_value(argc, argv, &i, "--fps")) || !app_parse_double("--fps", v, 0.01, 1e5, &o->fps))
+        } else if (app_opt_is(a, "--fps")) {
+            if (!(v = app_opt_value("bench", argc, argv, &i, "--fps")) || !app_parse_double("--fps", v, 0.01, 1e5, &o->fps))
                 return 2;
-        } else if (is_opt(a, "--at")) {
-            if (!(v = opt_value(argc, argv, &i, "--at")) || !app_parse_int("--at", v, 8, 20000000L, &n)) return 2;
+        } else if (app_opt_is(a, "--at")) {
+            if (!(v = app_opt_value("bench", argc, argv, &i, "--at")) || !app_parse_int("--at", v, 8, 20000000L, &n)) return 2;
             o->at = (double)n;
             o->at_given = true;
-        } else if (is_opt(a, "--out")) {
-            if (!(o->out = opt_value(argc, argv, &i, "--out"))) return 2;
+        } else if (app_opt_is(a, "--out")) {
+            if (!(o->out = app_opt_value("bench", argc, argv, &i, "--out"))) return 2;
             if (!*o->out) {
                 fprintf(stderr, "sphlab bench: --out: empty directory name\n");
                 return 2;
             }
-        } else if (is_opt(a, "--levels")) {
-            if (!(o->levels = opt_value(argc, argv, &i, "--levels"))) return 2;
-        } else if (is_opt(a, "--set")) {
-            if (!(v = opt_value(argc, argv, &i, "--set")) || !add_set(o, v)) return 2;
+        } else if (app_opt_is(a, "--levels")) {
+            if (!(o->levels = app_opt_value("bench", argc, argv, &i, "--levels"))) return 2;
+        } else if (app_opt_is(a, "--set")) {
+            if (!(v = app_opt_value("bench", argc, argv, &i, "--set")) || !add_set(o, v)) return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab bench: unknown option '%s'\n", a);
             usage(stderr);

@@ -45,22 +45,6 @@ typedef struct plot_opts {
     bool quiet;
 } plot_opts;
 
-static bool is_opt(const char *a, const char *name)
-{
-    size_t n = strlen(name);
-    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
-}
-
-static const char *opt_value(int argc, char **argv, int *i, const char *name)
-{
-    const char *a = argv[*i];
-    size_t n = strlen(name);
-    if (a[n] == '=') return a + n + 1;
-    if (*i + 1 < argc) return argv[++*i];
-    fprintf(stderr, "sphlab plot: %s needs a value\n", name);
-    return NULL;
-}
-
 static bool parse_size(const char *s, int *w, int *h)
 {
     char *end;
@@ -91,33 +75,33 @@ static int parse_args(int argc, char **argv, plot_opts *o)
             o->quiet = true;
         } else if (strcmp(a, "--svg") == 0) {
             plot_set_svg(true);
-        } else if (is_opt(a, "--out")) {
-            if (!(o->out = opt_value(argc, argv, &i, "--out"))) return 2;
-        } else if (is_opt(a, "--name")) {
-            if (!(o->name = opt_value(argc, argv, &i, "--name"))) return 2;
+        } else if (app_opt_is(a, "--out")) {
+            if (!(o->out = app_opt_value("plot", argc, argv, &i, "--out"))) return 2;
+        } else if (app_opt_is(a, "--name")) {
+            if (!(o->name = app_opt_value("plot", argc, argv, &i, "--name"))) return 2;
             if (!*o->name || strchr(o->name, '/') || strlen(o->name) > 200) {
                 fprintf(stderr, "sphlab plot: --name '%s': want a file name without '/' (up to 200 characters)\n",
                         o->name);
                 return 2;
             }
-        } else if (is_opt(a, "--size")) {
-            if (!(v = opt_value(argc, argv, &i, "--size")) || !parse_size(v, &o->width, &o->height)) return 2;
-        } else if (is_opt(a, "--dim")) {
-            if (!(v = opt_value(argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 2, 3, &n)) return 2;
+        } else if (app_opt_is(a, "--size")) {
+            if (!(v = app_opt_value("plot", argc, argv, &i, "--size")) || !parse_size(v, &o->width, &o->height)) return 2;
+        } else if (app_opt_is(a, "--dim")) {
+            if (!(v = app_opt_value("plot", argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 2, 3, &n)) return 2;
             o->dim = (int)n;
-        } else if (is_opt(a, "--bins")) {
-            if (!(v = opt_value(argc, argv, &i, "--bins")) || !app_parse_int("--bins", v, 1, 120, &n)) return 2;
+        } else if (app_opt_is(a, "--bins")) {
+            if (!(v = app_opt_value("plot", argc, argv, &i, "--bins")) || !app_parse_int("--bins", v, 1, 120, &n)) return 2;
             o->bins = (int)n;
-        } else if (is_opt(a, "--h")) {
-            if (!(v = opt_value(argc, argv, &i, "--h")) || !app_parse_double("--h", v, 1e-9, 1e6, &o->h)) return 2;
+        } else if (app_opt_is(a, "--h")) {
+            if (!(v = app_opt_value("plot", argc, argv, &i, "--h")) || !app_parse_double("--h", v, 1e-9, 1e6, &o->h)) return 2;
             if (o->h <= 0) {
                 fprintf(stderr, "sphlab plot: --h %s: must be above 0 m\n", v);
                 return 2;
             }
-        } else if (is_opt(a, "--y")) {
-            if (!(o->ycols = opt_value(argc, argv, &i, "--y"))) return 2;
-        } else if (is_opt(a, "--x")) {
-            if (!(o->xcol = opt_value(argc, argv, &i, "--x"))) return 2;
+        } else if (app_opt_is(a, "--y")) {
+            if (!(o->ycols = app_opt_value("plot", argc, argv, &i, "--y"))) return 2;
+        } else if (app_opt_is(a, "--x")) {
+            if (!(o->xcol = app_opt_value("plot", argc, argv, &i, "--x"))) return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab plot: unknown option '%s'\n", a);
             usage(stderr);

@@ -5,22 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-bool opt_is(const char *a, const char *name)
-{
-    size_t n = strlen(name);
-    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
-}
-
-const char *opt_val(const char *cmd, int argc, char **argv, int *i, const char *name)
-{
-    const char *a = argv[*i];
-    size_t n = strlen(name);
-    if (a[n] == '=') return a + n + 1;
-    if (*i + 1 < argc) return argv[++*i];
-    fprintf(stderr, "sphlab %s: %s needs a value\n", cmd, name);
-    return NULL;
-}
-
 void view_opts_init(view_opts *o, int w, int h)
 {
     memset(o, 0, sizeof *o);
@@ -70,8 +54,8 @@ static bool parse_pair(const char *s, float *a, float *b, float *c, char sep)
 int view_opts_parse(view_opts *o, const char *cmd, int argc, char **argv, int *i)
 {
     const char *a = argv[*i], *v;
-    if (opt_is(a, "--size")) {
-        if (!(v = opt_val(cmd, argc, argv, i, "--size"))) return -1;
+    if (app_opt_is(a, "--size")) {
+        if (!(v = app_opt_value(cmd, argc, argv, i, "--size"))) return -1;
         int w, h;
         char x;
         if (sscanf(v, "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w < 64 || h < 64 || w > 8192 || h > 8192) {
@@ -80,8 +64,8 @@ int view_opts_parse(view_opts *o, const char *cmd, int argc, char **argv, int *i
         }
         o->w = w;
         o->h = h;
-    } else if (opt_is(a, "--color") || opt_is(a, "--colour")) {
-        if (!(v = opt_val(cmd, argc, argv, i, opt_is(a, "--color") ? "--color" : "--colour"))) return -1;
+    } else if (app_opt_is(a, "--color") || app_opt_is(a, "--colour")) {
+        if (!(v = app_opt_value(cmd, argc, argv, i, app_opt_is(a, "--color") ? "--color" : "--colour"))) return -1;
         if (sph_color_field_find(v) < 0) {
             fprintf(stderr, "sphlab %s: unknown colour field '%s' (accepted:", cmd, v);
             for (int k = 0; k < SPH_COLOR_COUNT; k++) fprintf(stderr, " %s", sph_color_field_names[k]);
@@ -89,34 +73,34 @@ int view_opts_parse(view_opts *o, const char *cmd, int argc, char **argv, int *i
             return -1;
         }
         o->color = v;
-    } else if (opt_is(a, "--range")) {
-        if (!(v = opt_val(cmd, argc, argv, i, "--range"))) return -1;
+    } else if (app_opt_is(a, "--range")) {
+        if (!(v = app_opt_value(cmd, argc, argv, i, "--range"))) return -1;
         if (!parse_pair(v, &o->range[0], &o->range[1], NULL, ':') || !(o->range[1] > o->range[0])) {
             fprintf(stderr, "sphlab %s: --range '%s': want LO:HI with LO < HI\n", cmd, v);
             return -1;
         }
         o->has_range = true;
-    } else if (opt_is(a, "--overlay")) {
-        if (!(v = opt_val(cmd, argc, argv, i, "--overlay")) || !overlay_list(cmd, v, &o->ov_on, &o->ov_none)) return -1;
-    } else if (opt_is(a, "--no-overlay")) {
-        if (!(v = opt_val(cmd, argc, argv, i, "--no-overlay")) || !overlay_list(cmd, v, &o->ov_off, NULL)) return -1;
-    } else if (opt_is(a, "--select")) {
-        if (!(v = opt_val(cmd, argc, argv, i, "--select")) || !app_parse_int("--select", v, 0, 2000000000L, &o->select_id))
+    } else if (app_opt_is(a, "--overlay")) {
+        if (!(v = app_opt_value(cmd, argc, argv, i, "--overlay")) || !overlay_list(cmd, v, &o->ov_on, &o->ov_none)) return -1;
+    } else if (app_opt_is(a, "--no-overlay")) {
+        if (!(v = app_opt_value(cmd, argc, argv, i, "--no-overlay")) || !overlay_list(cmd, v, &o->ov_off, NULL)) return -1;
+    } else if (app_opt_is(a, "--select")) {
+        if (!(v = app_opt_value(cmd, argc, argv, i, "--select")) || !app_parse_int("--select", v, 0, 2000000000L, &o->select_id))
             return -1;
-    } else if (opt_is(a, "--slice")) {
-        if (!(v = opt_val(cmd, argc, argv, i, "--slice")) || !app_parse_double("--slice", v, -1e6, 1e6, &o->slice))
+    } else if (app_opt_is(a, "--slice")) {
+        if (!(v = app_opt_value(cmd, argc, argv, i, "--slice")) || !app_parse_double("--slice", v, -1e6, 1e6, &o->slice))
             return -1;
         o->has_slice = true;
-    } else if (opt_is(a, "--center")) {
-        if (!(v = opt_val(cmd, argc, argv, i, "--center"))) return -1;
+    } else if (app_opt_is(a, "--center")) {
+        if (!(v = app_opt_value(cmd, argc, argv, i, "--center"))) return -1;
         o->center[2] = 0;
         if (!parse_pair(v, &o->center[0], &o->center[1], &o->center[2], ':')) {
             fprintf(stderr, "sphlab %s: --center '%s': want X:Y or X:Y:Z in metres\n", cmd, v);
             return -1;
         }
         o->n_center = 3;
-    } else if (opt_is(a, "--camera")) {
-        if (!(v = opt_val(cmd, argc, argv, i, "--camera"))) return -1;
+    } else if (app_opt_is(a, "--camera")) {
+        if (!(v = app_opt_value(cmd, argc, argv, i, "--camera"))) return -1;
         o->zoom = 1;
         if (!parse_pair(v, &o->yaw, &o->pitch, &o->zoom, ':') || !(o->zoom > 0) || o->pitch < -89 || o->pitch > 89) {
             fprintf(stderr, "sphlab %s: --camera '%s': want YAW:PITCH[:ZOOM] in degrees, pitch within +-89, zoom > 0\n",

@@ -45,8 +45,6 @@ bool view_opts_apply(const view_opts *o, const char *cmd, const sph_sim *sim, sp
  * in memory; their id stays), or -1. */
 int32_t sim_index_of_id(const sph_sim *sim, long id);
 /* Option helpers in the style of cmd_run.c. */
-bool opt_is(const char *a, const char *name);
-const char *opt_val(const char *cmd, int argc, char **argv, int *i, const char *name);
 /* Parses a comma-separated overlay list into bits; false (message) on an unknown name. */
 bool overlay_list(const char *cmd, const char *list, unsigned *bits, bool *none);
 

@@ -53,25 +53,25 @@ int cmd_render(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             quiet = true;
-        } else if (opt_is(a, "--out")) {
-            if (!(out = opt_val("render", argc, argv, &i, "--out"))) return 2;
-        } else if (opt_is(a, "--vtk")) {
-            if (!(vtk_dir = opt_val("render", argc, argv, &i, "--vtk"))) return 2;
-        } else if (opt_is(a, "--every")) {
-            if (!(v = opt_val("render", argc, argv, &i, "--every")) || !app_parse_int("--every", v, 1, 2000000000L, &every))
+        } else if (app_opt_is(a, "--out")) {
+            if (!(out = app_opt_value("render", argc, argv, &i, "--out"))) return 2;
+        } else if (app_opt_is(a, "--vtk")) {
+            if (!(vtk_dir = app_opt_value("render", argc, argv, &i, "--vtk"))) return 2;
+        } else if (app_opt_is(a, "--every")) {
+            if (!(v = app_opt_value("render", argc, argv, &i, "--every")) || !app_parse_int("--every", v, 1, 2000000000L, &every))
                 return 2;
-        } else if (opt_is(a, "--steps")) {
-            if (!(v = opt_val("render", argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 0, 2000000000L, &steps))
+        } else if (app_opt_is(a, "--steps")) {
+            if (!(v = app_opt_value("render", argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 0, 2000000000L, &steps))
                 return 2;
-        } else if (opt_is(a, "--time")) {
-            if (!(v = opt_val("render", argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
+        } else if (app_opt_is(a, "--time")) {
+            if (!(v = app_opt_value("render", argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
                 return 2;
-        } else if (opt_is(a, "--threads")) {
-            if (!(v = opt_val("render", argc, argv, &i, "--threads")) ||
+        } else if (app_opt_is(a, "--threads")) {
+            if (!(v = app_opt_value("render", argc, argv, &i, "--threads")) ||
                 !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
                 return 2;
-        } else if (opt_is(a, "--gl")) {
-            if (!(v = opt_val("render", argc, argv, &i, "--gl"))) return 2;
+        } else if (app_opt_is(a, "--gl")) {
+            if (!(v = app_opt_value("render", argc, argv, &i, "--gl"))) return 2;
             if (strcmp(v, "egl") == 0) {
                 backend = SPH_GL_EGL;
             } else if (strcmp(v, "osmesa") == 0) {
@@ -80,11 +80,11 @@ int cmd_render(int argc, char **argv)
                 fprintf(stderr, "sphlab render: --gl '%s': accepted: egl, osmesa\n", v);
                 return 2;
             }
-        } else if (opt_is(a, "--backend")) {
-            if (!(compute = opt_val("render", argc, argv, &i, "--backend")) || !app_backend_valid("render", compute))
+        } else if (app_opt_is(a, "--backend")) {
+            if (!(compute = app_opt_value("render", argc, argv, &i, "--backend")) || !app_backend_valid("render", compute))
                 return 2;
-        } else if (opt_is(a, "--set")) {
-            if (!(v = opt_val("render", argc, argv, &i, "--set")) || !app_scene_add_set(&so, v)) return 2;
+        } else if (app_opt_is(a, "--set")) {
+            if (!(v = app_opt_value("render", argc, argv, &i, "--set")) || !app_scene_add_set(&so, v)) return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab render: unknown option '%s'\n", a);
             usage(stderr);

@@ -426,25 +426,25 @@ int cmd_view(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "--paused") == 0) {
             start_paused = true;
-        } else if (opt_is(a, "--frames")) {
-            if (!(v = opt_val("view", argc, argv, &i, "--frames")) || !app_parse_int("--frames", v, 1, 1000000, &frames))
+        } else if (app_opt_is(a, "--frames")) {
+            if (!(v = app_opt_value("view", argc, argv, &i, "--frames")) || !app_parse_int("--frames", v, 1, 1000000, &frames))
                 return 2;
-        } else if (opt_is(a, "--steps-per-frame")) {
-            if (!(v = opt_val("view", argc, argv, &i, "--steps-per-frame")) ||
+        } else if (app_opt_is(a, "--steps-per-frame")) {
+            if (!(v = app_opt_value("view", argc, argv, &i, "--steps-per-frame")) ||
                 !app_parse_int("--steps-per-frame", v, 0, 1000000, &spf))
                 return 2;
-        } else if (opt_is(a, "--screenshot")) {
-            if (!(shot = opt_val("view", argc, argv, &i, "--screenshot"))) return 2;
-        } else if (opt_is(a, "--keys")) {
-            if (!(keys = opt_val("view", argc, argv, &i, "--keys"))) return 2;
-        } else if (opt_is(a, "--threads")) {
-            if (!(v = opt_val("view", argc, argv, &i, "--threads")) ||
+        } else if (app_opt_is(a, "--screenshot")) {
+            if (!(shot = app_opt_value("view", argc, argv, &i, "--screenshot"))) return 2;
+        } else if (app_opt_is(a, "--keys")) {
+            if (!(keys = app_opt_value("view", argc, argv, &i, "--keys"))) return 2;
+        } else if (app_opt_is(a, "--threads")) {
+            if (!(v = app_opt_value("view", argc, argv, &i, "--threads")) ||
                 !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
                 return 2;
-        } else if (opt_is(a, "--backend")) {
-            if (!(backend = opt_val("view", argc, argv, &i, "--backend")) || !app_backend_valid("view", backend)) return 2;
-        } else if (opt_is(a, "--set")) {
-            if (!(v = opt_val("view", argc, argv, &i, "--set")) || !app_scene_add_set(&so, v)) return 2;
+        } else if (app_opt_is(a, "--backend")) {
+            if (!(backend = app_opt_value("view", argc, argv, &i, "--backend")) || !app_backend_valid("view", backend)) return 2;
+        } else if (app_opt_is(a, "--set")) {
+            if (!(v = app_opt_value("view", argc, argv, &i, "--set")) || !app_scene_add_set(&so, v)) return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab view: unknown option '%s'\n", a);
             usage(stderr);

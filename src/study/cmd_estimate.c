@@ -36,22 +36,6 @@ static void usage(FILE *f)
           f);
 }
 
-static bool is_opt(const char *a, const char *name)
-{
-    size_t n = strlen(name);
-    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
-}
-
-static const char *opt_value(int argc, char **argv, int *i, const char *name)
-{
-    const char *a = argv[*i];
-    size_t n = strlen(name);
-    if (a[n] == '=') return a + n + 1;
-    if (*i + 1 < argc) return argv[++*i];
-    fprintf(stderr, "sphlab estimate: %s needs a value\n", name);
-    return NULL;
-}
-
 #define MAX_LIST 16
 
 /* A comma-separated list of numbers within [lo, hi]. */
@@ -96,11 +80,11 @@ int cmd_estimate(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             quiet = true;
-        } else if (is_opt(a, "--dim")) {
-            if (!(v = opt_value(argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 1, 2, &l)) return 2;
+        } else if (app_opt_is(a, "--dim")) {
+            if (!(v = app_opt_value("estimate", argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 1, 2, &l)) return 2;
             eo.dim = (int)l;
-        } else if (is_opt(a, "--function")) {
-            if (!(v = opt_value(argc, argv, &i, "--function"))) return 2;
+        } else if (app_opt_is(a, "--function")) {
+            if (!(v = app_opt_value("estimate", argc, argv, &i, "--function"))) return 2;
             int k = -1;
             for (int f = 0; f < STUDY_FN_COUNT; f++)
                 if (strcmp(v, study_function_names[f]) == 0) k = f;
@@ -109,8 +93,8 @@ int cmd_estimate(int argc, char **argv)
                 return 2;
             }
             eo.fn = (study_function)k;
-        } else if (is_opt(a, "--kernel")) {
-            if (!(v = opt_value(argc, argv, &i, "--kernel"))) return 2;
+        } else if (app_opt_is(a, "--kernel")) {
+            if (!(v = app_opt_value("estimate", argc, argv, &i, "--kernel"))) return 2;
             int k = sph_kernel_find(v);
             if (k < 0 || k == SPH_KERNEL_VISCOSITY) {
                 fprintf(stderr, "sphlab estimate: --kernel '%s': %s (accepted: poly6, spiky, cubic, wendland)\n", v,
@@ -118,8 +102,8 @@ int cmd_estimate(int argc, char **argv)
                 return 2;
             }
             eo.kernel = (sph_kernel_kind)k;
-        } else if (is_opt(a, "--samples")) {
-            if (!(v = opt_value(argc, argv, &i, "--samples"))) return 2;
+        } else if (app_opt_is(a, "--samples")) {
+            if (!(v = app_opt_value("estimate", argc, argv, &i, "--samples"))) return 2;
             int k = -1;
             for (int s = 0; s < STUDY_SAMPLES_COUNT; s++)
                 if (strcmp(v, study_samples_names[s]) == 0) k = s;
@@ -128,20 +112,20 @@ int cmd_estimate(int argc, char **argv)
                 return 2;
             }
             eo.samples = (study_samples)k;
-        } else if (is_opt(a, "--jitter")) {
-            if (!(v = opt_value(argc, argv, &i, "--jitter")) || !app_parse_double("--jitter", v, 0, 0.5, &d)) return 2;
+        } else if (app_opt_is(a, "--jitter")) {
+            if (!(v = app_opt_value("estimate", argc, argv, &i, "--jitter")) || !app_parse_double("--jitter", v, 0, 0.5, &d)) return 2;
             eo.jitter = d;
-        } else if (is_opt(a, "--seed")) {
-            if (!(v = opt_value(argc, argv, &i, "--seed")) || !app_parse_int("--seed", v, 0, 2147483647L, &l)) return 2;
+        } else if (app_opt_is(a, "--seed")) {
+            if (!(v = app_opt_value("estimate", argc, argv, &i, "--seed")) || !app_parse_int("--seed", v, 0, 2147483647L, &l)) return 2;
             eo.seed = (uint64_t)l;
-        } else if (is_opt(a, "--h")) {
-            if (!(hs = opt_value(argc, argv, &i, "--h"))) return 2;
-        } else if (is_opt(a, "--n")) {
-            if (!(ns = opt_value(argc, argv, &i, "--n"))) return 2;
-        } else if (is_opt(a, "--out")) {
-            if (!(out = opt_value(argc, argv, &i, "--out"))) return 2;
-        } else if (is_opt(a, "--name")) {
-            if (!(base = opt_value(argc, argv, &i, "--name"))) return 2;
+        } else if (app_opt_is(a, "--h")) {
+            if (!(hs = app_opt_value("estimate", argc, argv, &i, "--h"))) return 2;
+        } else if (app_opt_is(a, "--n")) {
+            if (!(ns = app_opt_value("estimate", argc, argv, &i, "--n"))) return 2;
+        } else if (app_opt_is(a, "--out")) {
+            if (!(out = app_opt_value("estimate", argc, argv, &i, "--out"))) return 2;
+        } else if (app_opt_is(a, "--name")) {
+            if (!(base = app_opt_value("estimate", argc, argv, &i, "--name"))) return 2;
             if (!*base || strchr(base, '/') || strlen(base) > 200) {
                 fprintf(stderr, "sphlab estimate: --name '%s': want a file name without '/'\n", base);
                 return 2;

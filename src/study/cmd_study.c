@@ -40,22 +40,6 @@ static void usage(FILE *f)
           f);
 }
 
-static bool is_opt(const char *a, const char *name)
-{
-    size_t n = strlen(name);
-    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
-}
-
-static const char *opt_value(int argc, char **argv, int *i, const char *name)
-{
-    const char *a = argv[*i];
-    size_t n = strlen(name);
-    if (a[n] == '=') return a + n + 1;
-    if (*i + 1 < argc) return argv[++*i];
-    fprintf(stderr, "sphlab study: %s needs a value\n", name);
-    return NULL;
-}
-
 /* mkdir -p DIR, then check that a file can be made in it. */
 static bool prepare_dir(const char *dir)
 {
@@ -171,42 +155,42 @@ int cmd_study(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             quiet = true;
-        } else if (is_opt(a, "--vary")) {
-            if (!(v = opt_value(argc, argv, &i, "--vary"))) return 2;
+        } else if (app_opt_is(a, "--vary")) {
+            if (!(v = app_opt_value("study", argc, argv, &i, "--vary"))) return 2;
             if (!study_plan_add(&plan, v, why, sizeof why)) {
                 fprintf(stderr, "sphlab study: %s\n", why);
                 return 2;
             }
-        } else if (is_opt(a, "--out")) {
-            if (!(out = opt_value(argc, argv, &i, "--out"))) return 2;
-        } else if (is_opt(a, "--metric")) {
-            if (!(metric_name = opt_value(argc, argv, &i, "--metric"))) return 2;
-        } else if (is_opt(a, "--name")) {
-            if (!(base = opt_value(argc, argv, &i, "--name"))) return 2;
+        } else if (app_opt_is(a, "--out")) {
+            if (!(out = app_opt_value("study", argc, argv, &i, "--out"))) return 2;
+        } else if (app_opt_is(a, "--metric")) {
+            if (!(metric_name = app_opt_value("study", argc, argv, &i, "--metric"))) return 2;
+        } else if (app_opt_is(a, "--name")) {
+            if (!(base = app_opt_value("study", argc, argv, &i, "--name"))) return 2;
             if (!*base || strchr(base, '/') || strlen(base) > 200) {
                 fprintf(stderr, "sphlab study: --name '%s': want a file name without '/' (up to 200 characters)\n",
                         base);
                 return 2;
             }
-        } else if (is_opt(a, "--repeats")) {
-            if (!(v = opt_value(argc, argv, &i, "--repeats")) || !app_parse_int("--repeats", v, 1, 100, &repeats))
+        } else if (app_opt_is(a, "--repeats")) {
+            if (!(v = app_opt_value("study", argc, argv, &i, "--repeats")) || !app_parse_int("--repeats", v, 1, 100, &repeats))
                 return 2;
-        } else if (is_opt(a, "--steps")) {
-            if (!(v = opt_value(argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 1, 2000000000L, &steps))
+        } else if (app_opt_is(a, "--steps")) {
+            if (!(v = app_opt_value("study", argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 1, 2000000000L, &steps))
                 return 2;
-        } else if (is_opt(a, "--time")) {
-            if (!(v = opt_value(argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
+        } else if (app_opt_is(a, "--time")) {
+            if (!(v = app_opt_value("study", argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
                 return 2;
             if (!(until > 0)) {
                 fprintf(stderr, "sphlab study: --time %s: must be above 0 s\n", v);
                 return 2;
             }
-        } else if (is_opt(a, "--threads")) {
-            if (!(v = opt_value(argc, argv, &i, "--threads")) ||
+        } else if (app_opt_is(a, "--threads")) {
+            if (!(v = app_opt_value("study", argc, argv, &i, "--threads")) ||
                 !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
                 return 2;
-        } else if (is_opt(a, "--set")) {
-            if (!(v = opt_value(argc, argv, &i, "--set")) || !app_scene_add_set(&o, v)) return 2;
+        } else if (app_opt_is(a, "--set")) {
+            if (!(v = app_opt_value("study", argc, argv, &i, "--set")) || !app_scene_add_set(&o, v)) return 2;
         } else if (a[0] == '-' && a[1]) {
             fprintf(stderr, "sphlab study: unknown option '%s'\n", a);
             usage(stderr);
