@@ -8,7 +8,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "app.h"
@@ -40,32 +39,12 @@ static void usage(FILE *f)
           f);
 }
 
-/* mkdir -p DIR, then check that a file can be made in it. */
+/* mkdir -p DIR (plot_out_dir), then check that a file can be made in it,
+ * before any run: a bad --out fails at once, not after the study. */
 static bool prepare_dir(const char *dir)
 {
-    char path[1024];
-    if (!*dir || strlen(dir) >= sizeof path - 64) {
-        fprintf(stderr, "sphlab study: --out '%s': not a usable directory name\n", dir);
-        return false;
-    }
-    snprintf(path, sizeof path, "%s", dir);
-    for (char *p = path + 1;; p++) {
-        if (*p == '/' || *p == '\0') {
-            char keep = *p;
-            *p = '\0';
-            if (mkdir(path, 0777) != 0 && errno != EEXIST) {
-                fprintf(stderr, "sphlab study: --out %s: cannot make directory %s: %s\n", dir, path, strerror(errno));
-                return false;
-            }
-            *p = keep;
-            if (!keep) break;
-        }
-    }
-    struct stat st;
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        fprintf(stderr, "sphlab study: --out %s: not a directory\n", dir);
-        return false;
-    }
+    if (!plot_out_dir(dir)) return false;
+    char path[1100];
     snprintf(path, sizeof path, "%s/.study-probe.%ld", dir, (long)getpid());
     FILE *f = fopen(path, "w");
     if (!f) {
