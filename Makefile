@@ -14,8 +14,9 @@ CORE_LIBS   := $(shell pkg-config --libs $(PKGS_CORE) 2>/dev/null || echo -linih
 BUILD   := build
 # The binary's path: `make BUILD=build-gl BIN=build-gl/sphlab` builds beside its objects.
 BIN     ?= sphlab
-CORE    := sph_error sph_kernel sph_scene sph_sim sph_watchdog
-PASSES  := external hash sort reorder offsets neighbours density pressure pressure_force viscosity interaction integrate walls
+# Every file of src/core and src/passes is built: a new pass is a new file, no list to edit.
+CORE    := $(filter-out sph_overlay,$(sort $(basename $(notdir $(wildcard src/core/sph_*.c)))))
+PASSES  := $(sort $(basename $(notdir $(wildcard src/passes/*.c))))
 APP     := main cmd_run cmd_check cmd_hardcases
 TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 

@@ -90,21 +90,8 @@ sph_color_field sph_color_field_default(const sph_sim *sim)
 
 int sph_color_field_of_pass(const sph_sim *sim, sph_pass_id p)
 {
-    int f = -1;
-    switch (p) {
-    case SPH_PASS_HASH:
-    case SPH_PASS_SORT:
-    case SPH_PASS_OFFSETS: f = SPH_COLOR_KEY; break;
-    case SPH_PASS_NEIGHBOURS: f = SPH_COLOR_NEIGHBOURS; break;
-    case SPH_PASS_DENSITY: f = SPH_COLOR_DENSITY; break;
-    case SPH_PASS_PRESSURE: f = SPH_COLOR_PRESSURE; break;
-    case SPH_PASS_PRESSURE_FORCE: f = SPH_COLOR_ACC_P; break;
-    case SPH_PASS_VISCOSITY: f = SPH_COLOR_ACC_V; break;
-    case SPH_PASS_EXTERNAL:
-    case SPH_PASS_INTEGRATE:
-    case SPH_PASS_WALLS: f = SPH_COLOR_SPEED; break;
-    default: break;
-    }
+    const char *name = sph_passes[p]->highlight;
+    int f = name ? sph_color_field_find(name) : -1;
     return f >= 0 && !sph_color_field_missing(sim, (sph_color_field)f) ? f : -1;
 }
 
@@ -773,7 +760,9 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
     if (info && info->steps_per_s >= 0) HUD_LINE("%.0f steps/s", info->steps_per_s);
     if (info && info->last_pass >= 0 && info->last_pass < SPH_PASS_COUNT) {
         const sph_pass *p = sph_passes[info->last_pass];
-        HUD_LINE("ran pass %s: wrote %s; next: %s", p->name, p->writes,
+        char wrote[64]; /* a HUD line holds about this much */
+        sph_mask_names(p->writes, wrote, (int)sizeof wrote);
+        HUD_LINE("ran pass %s: wrote %s; next: %s", p->name, wrote,
                  sim->next_pass == 0 ? "a new step" : sph_passes[sim->next_pass]->name);
     }
     if (info && info->message && *info->message) HUD_LINE("%s", info->message);

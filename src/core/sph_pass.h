@@ -9,6 +9,7 @@
 #define SPH_PASS_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "sph_scene.h"
 
@@ -36,14 +37,34 @@ typedef enum sph_pass_id {
 
 typedef struct sph_sim sph_sim;
 
-/* What every pass provides. A pass reads the buffers it names in `reads` and
- * writes only those in `writes`; none writes a buffer that it also reads for
- * another particle in the same sweep, so thread order cannot change a result. */
+/* A set of particle fields and search data, one bit each (sph_fields.h). */
+typedef uint64_t sph_mask;
+
+/* Where a pass sits in the step, for the HUD's and the charts' grouping. */
+#define SPH_PASS_GROUPS(X) X(FORCES_EXTERNAL, "external") X(SEARCH, "search") X(DENSITY, "density") \
+    X(FORCES, "forces") X(INTEGRATE, "integrate") X(BOUNDARY, "boundary")
+typedef enum sph_pass_group {
+#define SPH_GROUP_ENUM(id, name) SPH_GROUP_##id,
+    SPH_PASS_GROUPS(SPH_GROUP_ENUM)
+#undef SPH_GROUP_ENUM
+    SPH_GROUP_COUNT
+} sph_pass_group;
+extern const char *const sph_pass_group_names[SPH_GROUP_COUNT];
+
+/* What every pass provides, written with designated initialisers. A pass
+ * reads the fields and search data in `reads` and writes only those in
+ * `writes` (SPH_BIT(RHO) | SPH_RES_LISTS ...: a misspelt field is a compile
+ * error); none writes a buffer that it also reads for another particle in
+ * the same sweep, so thread order cannot change a result. The watchdog checks
+ * what a pass writes, and a backend's host copy goes stale by it. */
 typedef struct sph_pass {
     const char *name;    /* as in CSV columns and `--set`-like toggles */
     const char *summary; /* one line for `sphlab check` and the HUD */
-    const char *reads;   /* buffers read, space-separated */
-    const char *writes;  /* buffers written */
+    sph_mask reads;      /* fields and search data read */
+    sph_mask writes;     /* fields and search data written */
+    sph_pass_group group;
+    const char *highlight; /* the colour-by name to show after this pass (a field's colour, "key",
+                              "neighbours"); NULL keeps the colour (a test checks every name exists) */
     /* NULL if the scene needs this pass, else why it is left out. */
     const char *(*skip_reason)(const sph_scene_def *def);
     /* The variant the scene selects, e.g. "bitonic" or "poly6 kernel". */

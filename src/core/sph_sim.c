@@ -46,13 +46,13 @@ void sph_backend_register(sph_backend_kind kind, sph_backend_factory make)
     if ((int)kind >= 0 && kind < SPH_BACKEND_COUNT) backend_factories[kind] = make;
 }
 
-void sph_sim_sync(const sph_sim *sim, unsigned what)
+void sph_sim_sync(const sph_sim *sim, sph_mask what)
 {
     sph_backend *b = sim->backend;
     if (!b) return;
     /* the lists are built on the host from the index and predicted positions */
     if (what & SPH_SYNC_LISTS) what |= SPH_SYNC_INDEX | SPH_SYNC_FIELD(SPH_FIELD_PRED) | SPH_SYNC_ID;
-    unsigned need = what & b->stale;
+    sph_mask need = what & b->stale;
     if (!need) return;
     /* The host arrays are a cache of the device's state: refreshing them
      * changes no state of the simulation, so a const sim may be refreshed
@@ -70,15 +70,12 @@ void sph_sim_upload(sph_sim *sim)
     sim->backend->stale &= SPH_SYNC_INDEX | SPH_SYNC_LISTS;
 }
 
-/* What a backend's pass makes stale in the host copy: the fields it writes,
- * and the index and lists when it changes them. */
-static unsigned pass_stale_bits(const sph_sim *sim, int p)
+/* What a backend's pass makes stale in the host copy: what it writes, and
+ * the lists when the positions they were built from move. */
+static sph_mask pass_stale_bits(int p)
 {
-    unsigned w = sim->pass_writes[p];
-    if (p == SPH_PASS_HASH || p == SPH_PASS_SORT || p == SPH_PASS_OFFSETS || p == SPH_PASS_REORDER)
-        w |= SPH_SYNC_INDEX | SPH_SYNC_LISTS;
-    if (p == SPH_PASS_REORDER) w |= SPH_SYNC_ID;
-    if (w & SPH_SYNC_FIELD(SPH_FIELD_PRED)) w |= SPH_SYNC_LISTS;
+    sph_mask w = sph_passes[p]->writes;
+    if (w & (SPH_BIT(PRED) | SPH_RES_ENTRIES | SPH_RES_START)) w |= SPH_RES_LISTS;
     return w;
 }
 
@@ -92,9 +89,16 @@ static void *alloc_zero(size_t count, size_t size, bool *ok)
     return p;
 }
 
-static void alloc_vec(float *v[3], int dim, uint32_t n, bool *ok)
+/* The registry's fields that the pipeline needs: those always there, and
+ * those whose pass runs. */
+static void alloc_fields(sph_sim *sim, bool *ok)
 {
-    for (int d = 0; d < dim; d++) v[d] = alloc_zero(n, sizeof(float), ok);
+    for (int f = 0; f < SPH_FIELD_COUNT; f++) {
+        const sph_field_info *info = &sph_field_infos[f];
+        if (info->made_by != SPH_PASS_COUNT && !sim->in_pipeline[info->made_by]) continue;
+        for (int d = 0; d < (info->vector ? sim->dim : 1); d++)
+            sim->P.field[f][d] = alloc_zero(sim->n, sizeof(float), ok);
+    }
 }
 
 /* splitmix64: a tiny, well-mixed generator, so a seed gives the same jitter everywhere. */
@@ -203,7 +207,6 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
     }
     sim->interaction_sign = 1.0f;
     sim->watchdog = true;
-    for (int p = 0; p < SPH_PASS_COUNT; p++) sim->pass_writes[p] = sph_watchdog_fields(sph_passes[p]->writes);
     set_bounds(sim);
     sim->k_density = sph_kernel_make(def->kernel_density, def->dim, def->h);
     sim->k_pressure = sph_kernel_make(def->kernel_pressure, def->dim, def->h);
@@ -216,21 +219,7 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
     sph_particles *P = &sim->P;
     P->n = n;
     P->id = alloc_zero(n, sizeof *P->id, &ok);
-    P->mass = alloc_zero(n, sizeof *P->mass, &ok);
-    alloc_vec(P->pos, dim, n, &ok);
-    alloc_vec(P->vel, dim, n, &ok);
-    if (sim->in_pipeline[SPH_PASS_NEIGHBOURS]) alloc_vec(P->pred, dim, n, &ok);
-    if (sim->in_pipeline[SPH_PASS_DENSITY]) {
-        P->rho = alloc_zero(n, sizeof(float), &ok);
-        P->vol = alloc_zero(n, sizeof(float), &ok);
-    }
-    if (sim->in_pipeline[SPH_PASS_PRESSURE]) {
-        P->p = alloc_zero(n, sizeof(float), &ok);
-        P->p_rho2 = alloc_zero(n, sizeof(float), &ok);
-    }
-    if (sim->in_pipeline[SPH_PASS_PRESSURE_FORCE]) alloc_vec(P->acc_p, dim, n, &ok);
-    if (sim->in_pipeline[SPH_PASS_VISCOSITY]) alloc_vec(P->acc_v, dim, n, &ok);
-    if (sim->in_pipeline[SPH_PASS_INTERACTION]) alloc_vec(P->acc_i, dim, n, &ok);
+    alloc_fields(sim, &ok);
 
     sph_search_data *S = &sim->S;
     for (int d = 0; d < dim; d++)
@@ -313,19 +302,8 @@ void sph_sim_destroy(sph_sim *sim)
     if (sim->backend) sim->backend->destroy(sim->backend);
     sph_particles *P = &sim->P;
     free(P->id);
-    free(P->mass);
-    for (int d = 0; d < 3; d++) {
-        free(P->pos[d]);
-        free(P->vel[d]);
-        free(P->pred[d]);
-        free(P->acc_p[d]);
-        free(P->acc_v[d]);
-        free(P->acc_i[d]);
-    }
-    free(P->rho);
-    free(P->vol);
-    free(P->p);
-    free(P->p_rho2);
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        for (int d = 0; d < 3; d++) free(P->field[f][d]);
     sph_search_data *S = &sim->S;
     free(S->entries);
     free(S->scratch);
@@ -344,10 +322,6 @@ void sph_sim_destroy(sph_sim *sim)
     free(sim);
 }
 
-static void copy_vec(float *dst[3], float *const src[3], int dim, uint32_t n)
-{
-    for (int d = 0; d < dim; d++) memcpy(dst[d], src[d], (size_t)n * sizeof(float));
-}
 
 sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err)
 {
@@ -360,9 +334,10 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     sph_sim_sync(sim, SPH_SYNC_ALL); /* the particles below are read from the host copy */
     uint32_t n = sim->n;
     memcpy(next->P.id, sim->P.id, (size_t)n * sizeof *next->P.id);
-    memcpy(next->P.mass, sim->P.mass, (size_t)n * sizeof *next->P.mass);
-    copy_vec(next->P.pos, sim->P.pos, sim->dim, n);
-    copy_vec(next->P.vel, sim->P.vel, sim->dim, n);
+    for (int f = 0; f < SPH_FIELD_COUNT; f++) /* the state; derived fields are made again */
+        if (sph_field_infos[f].kind == SPH_KIND_STATE)
+            for (int d = 0; d < (sph_field_infos[f].vector ? sim->dim : 1); d++)
+                memcpy(next->P.field[f][d], sim->P.field[f][d], (size_t)n * sizeof(float));
     next->t = sim->t;
     next->step = sim->step;
     next->max_speed = sim->max_speed;
@@ -405,7 +380,7 @@ static void run_timed(sph_sim *sim, int p)
     double t0 = sph_now_ms();
     if (sim->backend) {
         sim->backend->run(sim->backend, sim, (sph_pass_id)p);
-        sim->backend->stale |= pass_stale_bits(sim, p);
+        sim->backend->stale |= pass_stale_bits(p);
     } else {
         sph_passes[p]->run(sim);
     }

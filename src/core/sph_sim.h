@@ -6,29 +6,33 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "sph_fields.h"
 #include "sph_kernel.h"
 #include "sph_pass.h"
 #include "sph_scene.h"
 
 /* Particle data, one array per field ("structure of arrays") so a pass reads
- * only the fields it uses and its loops vectorise. Vector fields are one
- * array per axis; the z arrays are NULL in 2D. Arrays of effects the scene
- * does not ask for are not allocated (NULL). */
+ * only the fields it uses and its loops vectorise. The members are made from
+ * the registry (sph_fields.h): a vector field is one array per axis (the z
+ * array is NULL in 2D), a scalar field one array. Fields whose pass is not
+ * in the pipeline are not allocated (NULL). `field[f][d]` is the same
+ * storage by number, for the loops over the registry. */
+#define SPH_MEMBER_1(name) float *name; float *name##_unused_[2];
+#define SPH_MEMBER_V(name) float *name[3];
 typedef struct sph_particles {
     uint32_t n;
-    uint32_t *id;    /* [1] index at creation; stays with the particle if data are reordered */
-    float *mass;     /* [kg] (3D) or [kg/m] (2D: per metre of depth): rho0 * spacing^dim */
-    float *pos[3];   /* [m] position */
-    float *vel[3];   /* [m/s] velocity */
-    float *pred[3];  /* [m] predicted position x + v dt: where neighbours and forces are evaluated */
-    float *rho;      /* [kg/m^dim] density */
-    float *vol;      /* [m^dim] volume m / rho, written with the density (the force sums use it per pair) */
-    float *p;        /* [Pa] (3D) or [N/m] (2D) pressure */
-    float *p_rho2;   /* [Pa m^(2 dim)/kg^2] p / rho^2, written with the pressure (saves a division per pair) */
-    float *acc_p[3]; /* [m/s^2] acceleration from the pressure force */
-    float *acc_v[3]; /* [m/s^2] acceleration from viscosity */
-    float *acc_i[3]; /* [m/s^2] acceleration from the interaction (mouse) */
+    uint32_t *id; /* [1] index at creation; stays with the particle if data are reordered */
+    union {
+        float *field[SPH_FIELD_COUNT][3]; /* [field][axis]; a scalar uses [f][0] */
+        struct {
+#define SPH_FIELD_MEMBER(ID, name, comps, unit, kind, made_by, check, colour, about) SPH_MEMBER_##comps(name)
+            SPH_FIELDS(SPH_FIELD_MEMBER)
+#undef SPH_FIELD_MEMBER
+        };
+    };
 } sph_particles;
+#undef SPH_MEMBER_1
+#undef SPH_MEMBER_V
 
 /* One entry of the spatial index: the seed's (index, hash, key) triple. */
 typedef struct sph_entry {
@@ -90,27 +94,7 @@ typedef struct sph_search_data {
     size_t *tcap;
 } sph_search_data;
 
-/* Per-particle fields by name, for the watchdog, colouring and file output. */
-#define SPH_FIELDS(X)                                                 \
-    X(POS, "pos", "m", 3, "position")                                 \
-    X(VEL, "vel", "m/s", 3, "velocity")                               \
-    X(PRED, "pred", "m", 3, "predicted position")                     \
-    X(RHO, "rho", "kg/m^dim", 1, "density")                           \
-    X(VOL, "vol", "m^dim", 1, "volume m/rho")                         \
-    X(P, "p", "Pa", 1, "pressure")                                    \
-    X(PRHO2, "p_rho2", "Pa m^6/kg^2", 1, "p / rho^2")                 \
-    X(ACC_P, "acc_p", "m/s^2", 3, "pressure acceleration")            \
-    X(ACC_V, "acc_v", "m/s^2", 3, "viscous acceleration")             \
-    X(ACC_I, "acc_i", "m/s^2", 3, "interaction acceleration")         \
-    X(MASS, "mass", "kg", 1, "mass")
-
-typedef enum sph_field_id {
-#define SPH_FIELD_ENUM(id, name, unit, ncomp, about) SPH_FIELD_##id,
-    SPH_FIELDS(SPH_FIELD_ENUM)
-#undef SPH_FIELD_ENUM
-    SPH_FIELD_COUNT
-} sph_field_id;
-
+/* A field of one simulation: its registry row's text and its arrays. */
 typedef struct sph_field {
     const char *name, *unit, *about;
     int ncomp;   /* components stored (vectors: the scene's dimension) */
@@ -155,23 +139,23 @@ typedef struct sph_backend sph_backend;
 struct sph_backend {
     const char *name;    /* "gl" */
     char device[200];    /* what it measures on, e.g. "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5" */
-    unsigned stale;      /* SPH_SYNC_* bits whose host copy is older than the device's */
+    sph_mask stale;      /* SPH_SYNC_* bits whose host copy is older than the device's */
     /* Runs one pass on the device; sets sim->max_speed and max_acc after integrate. */
     void (*run)(sph_backend *b, sph_sim *sim, sph_pass_id pass);
     /* Copies the parts named by `what` (SPH_SYNC_* bits) into sim->P and sim->S. */
-    void (*download)(sph_backend *b, sph_sim *sim, unsigned what);
+    void (*download)(sph_backend *b, sph_sim *sim, sph_mask what);
     /* Sends every particle field of sim->P to the device. */
     void (*upload)(sph_backend *b, sph_sim *sim);
     void (*destroy)(sph_backend *b);
 };
 
-/* What sph_sim_sync can refresh: one bit per particle field (1 << SPH_FIELD_x),
- * then the ids, the index (entries and start table) and the neighbour lists. */
-#define SPH_SYNC_FIELD(f) (1u << (f))
-#define SPH_SYNC_ID (1u << 16)
-#define SPH_SYNC_INDEX (1u << 17)
-#define SPH_SYNC_LISTS (1u << 18)
-#define SPH_SYNC_ALL 0xFFFFFFFFu
+/* What sph_sim_sync can refresh: the bits of sph_fields.h, one per particle
+ * field, then the ids, the index (entries and start table) and the lists. */
+#define SPH_SYNC_FIELD(f) SPH_FIELD_BIT(f)
+#define SPH_SYNC_ID SPH_RES_ID
+#define SPH_SYNC_INDEX (SPH_RES_ENTRIES | SPH_RES_START)
+#define SPH_SYNC_LISTS SPH_RES_LISTS
+#define SPH_SYNC_ALL (~(sph_mask)0)
 
 /* Makes a backend for sim (its particles are placed); on failure fills err
  * with a message naming the key, value and reason. */
@@ -205,7 +189,6 @@ struct sph_sim {
     bool watchdog;        /* on by default */
     float speed_bound;    /* [m/s] a speed above this is a runaway (from c, g, the domain and the blocks) */
     float density_bound;  /* [kg/m^dim] likewise for density (100 rho0) */
-    unsigned pass_writes[SPH_PASS_COUNT]; /* field bits of each pass's `writes` */
     sph_alarm alarm;
     /* The interaction effect's point (the mouse), set by the window. */
     bool interaction_active; /* the button is down */
@@ -235,7 +218,7 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
  * copy is stale; nothing to do on the CPU. Only the host copy changes (a cache
  * of the device's state), so it takes a const sim. Costs a copy from the
  * device: about 4 bytes per particle and component. */
-void sph_sim_sync(const sph_sim *sim, unsigned what);
+void sph_sim_sync(const sph_sim *sim, sph_mask what);
 /* With a backend: sends the particles of P to the device after the caller
  * changed them (sync first, change, then upload). */
 void sph_sim_upload(sph_sim *sim);
@@ -249,9 +232,10 @@ double sph_sim_energy_drift(const sph_sim *sim);
 
 /* A field of the particles; false if the scene does not allocate it. */
 bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out);
-int sph_field_find(const char *name); /* -1 if none */
 /* The watchdog's report: step, pass, particle, its values and neighbours. */
 void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n);
+
+/* ---- the time step (sph_time_step.c) ---- */
 
 /* Largest time step the CFL conditions allow now with factor cfl; *which
  * names the condition that binds ("sound and flow", "forces", "viscosity"). */
@@ -261,7 +245,7 @@ float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which);
 const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n);
 void sph_sim_reset_timings(sph_sim *sim);
 
-/* Time-step choice (integrate.c): fixed, or the CFL conditions. */
+/* Time-step choice: fixed, or the CFL conditions. */
 float sph_time_step_choose(const sph_sim *sim);
 
 /* Calls fn(args..., dim, dbl) with the dimension and the accumulation
@@ -282,15 +266,7 @@ float sph_time_step_choose(const sph_sim *sim);
 #define sph_sim_periodic(sim) ((sim)->period[0] > 0 || (sim)->period[1] > 0 || (sim)->period[2] > 0)
 
 /* The watchdog (sph_watchdog.c), run by the pipeline after each pass. */
-unsigned sph_watchdog_fields(const char *writes); /* field bits of a pass's `writes` list */
 void sph_watchdog_check(sph_sim *sim, int pass);
-
-/* Walls of the volume model (density.c): the share of particle i's support
- * hidden behind the domain walls, 1 - prod_w (1 - psi(d_w)), which is exact at
- * one wall and at a corner's tip and counts corners once, not twice. If grad
- * is not NULL it receives the gradient of that share [1/m] with respect to
- * the particle's position. */
-float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad[3]);
 
 /* Monotonic clock [ms]. */
 double sph_now_ms(void);

@@ -1,98 +1,28 @@
 /* The watchdog: after every pass, the fields the pass wrote are checked for
-#include <stdarg.h>
  * the first non-finite value or runaway (a speed or density beyond what the
  * scene can produce). The step stops there, with the state kept as it was
  * when found, so it can be dumped and shown. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "sph_sim.h"
 
-static const char *const field_names[SPH_FIELD_COUNT] = {
-#define SPH_FIELD_NAME(id, name, unit, ncomp, about) name,
-    SPH_FIELDS(SPH_FIELD_NAME)
-#undef SPH_FIELD_NAME
-};
-static const char *const field_units[SPH_FIELD_COUNT] = {
-#define SPH_FIELD_UNIT(id, name, unit, ncomp, about) unit,
-    SPH_FIELDS(SPH_FIELD_UNIT)
-#undef SPH_FIELD_UNIT
-};
-static const char *const field_about[SPH_FIELD_COUNT] = {
-#define SPH_FIELD_ABOUT(id, name, unit, ncomp, about) about,
-    SPH_FIELDS(SPH_FIELD_ABOUT)
-#undef SPH_FIELD_ABOUT
-};
-static const int field_ncomp[SPH_FIELD_COUNT] = {
-#define SPH_FIELD_NCOMP(id, name, unit, ncomp, about) ncomp,
-    SPH_FIELDS(SPH_FIELD_NCOMP)
-#undef SPH_FIELD_NCOMP
-};
-
-int sph_field_find(const char *name)
-{
-    for (int f = 0; f < SPH_FIELD_COUNT; f++)
-        if (strcmp(name, field_names[f]) == 0) return f;
-    return -1;
-}
-
 bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out)
 {
-    const sph_particles *P = &sim->P;
-    if ((int)id >= 0 && id < SPH_FIELD_COUNT) sph_sim_sync(sim, SPH_SYNC_FIELD(id));
-    float *const *vec = NULL;
-    float *scalar = NULL;
-    switch (id) {
-    case SPH_FIELD_POS: vec = P->pos; break;
-    case SPH_FIELD_VEL: vec = P->vel; break;
-    case SPH_FIELD_PRED: vec = P->pred; break;
-    case SPH_FIELD_RHO: scalar = P->rho; break;
-    case SPH_FIELD_P: scalar = P->p; break;
-    case SPH_FIELD_VOL: scalar = P->vol; break;
-    case SPH_FIELD_PRHO2: scalar = P->p_rho2; break;
-    case SPH_FIELD_ACC_P: vec = P->acc_p; break;
-    case SPH_FIELD_ACC_V: vec = P->acc_v; break;
-    case SPH_FIELD_ACC_I: vec = P->acc_i; break;
-    case SPH_FIELD_MASS: scalar = P->mass; break;
-    default: return false;
-    }
+    if ((int)id < 0 || id >= SPH_FIELD_COUNT) return false;
+    sph_sim_sync(sim, SPH_SYNC_FIELD(id));
+    const sph_field_info *info = &sph_field_infos[id];
+    float *const *arrays = sim->P.field[id];
+    if (!arrays[0]) return false;
     memset(out, 0, sizeof *out);
-    out->name = field_names[id];
-    out->unit = field_units[id];
-    out->about = field_about[id];
-    if (vec) {
-        if (!vec[0]) return false;
-        out->ncomp = sim->dim;
-        for (int d = 0; d < sim->dim; d++) out->c[d] = vec[d];
-    } else {
-        if (!scalar) return false;
-        out->ncomp = field_ncomp[id];
-        out->c[0] = scalar;
-    }
+    out->name = info->name;
+    out->unit = info->unit;
+    out->about = info->about;
+    out->ncomp = info->vector ? sim->dim : 1;
+    for (int d = 0; d < out->ncomp; d++) out->c[d] = arrays[d];
     return true;
-}
-
-/* Field bits of a pass's `writes` list ("vel pred"); names that are not
- * particle fields (the index, the lists) are not checked. */
-unsigned sph_watchdog_fields(const char *writes)
-{
-    unsigned bits = 0;
-    char word[32];
-    const char *p = writes;
-    while (*p) {
-        while (*p == ' ') p++;
-        int n = 0;
-        while (p[n] && p[n] != ' ') n++;
-        if (n > 0 && n < (int)sizeof word) {
-            memcpy(word, p, (size_t)n);
-            word[n] = '\0';
-            int f = sph_field_find(word);
-            if (f >= 0) bits |= 1u << f;
-        }
-        p += n;
-    }
-    return bits;
 }
 
 static void raise_alarm(sph_sim *sim, int pass, uint32_t i, int field, int comp, float value, const char *what)
@@ -109,7 +39,7 @@ static void raise_alarm(sph_sim *sim, int pass, uint32_t i, int field, int comp,
 }
 
 /* Index of the first particle whose field is bad, or n. */
-static uint32_t first_bad(const sph_sim *sim, const sph_field *f, int kind)
+static uint32_t first_bad(const sph_sim *sim, const sph_field *f, sph_field_check check)
 {
     const int n = (int)sim->n, nc = f->ncomp;
     const float vb2 = sim->speed_bound * sim->speed_bound, rb = sim->density_bound;
@@ -123,8 +53,8 @@ static uint32_t first_bad(const sph_sim *sim, const sph_field *f, int kind)
             bad |= !isfinite(v);
             s2 += v * v;
         }
-        if (kind == SPH_FIELD_VEL) bad |= s2 > vb2;
-        if (kind == SPH_FIELD_RHO) bad |= !(f->c[0][i] > 0.0f) || f->c[0][i] > rb;
+        if (check == SPH_CHECK_SPEED) bad |= s2 > vb2;
+        if (check == SPH_CHECK_DENSITY) bad |= !(f->c[0][i] > 0.0f) || f->c[0][i] > rb;
         if (bad && i < first) first = i;
     }
     return (uint32_t)first;
@@ -132,11 +62,12 @@ static uint32_t first_bad(const sph_sim *sim, const sph_field *f, int kind)
 
 void sph_watchdog_check(sph_sim *sim, int pass)
 {
-    unsigned bits = sim->pass_writes[pass];
+    sph_mask bits = sph_passes[pass]->writes;
     for (int f = 0; f < SPH_FIELD_COUNT && !sim->alarm.raised; f++) {
         sph_field fd;
-        if (!(bits & (1u << f)) || !sph_sim_field(sim, (sph_field_id)f, &fd)) continue;
-        uint32_t i = first_bad(sim, &fd, f);
+        if (!(bits & SPH_FIELD_BIT(f)) || !sph_sim_field(sim, (sph_field_id)f, &fd)) continue;
+        const sph_field_check check = sph_field_infos[f].check;
+        uint32_t i = first_bad(sim, &fd, check);
         if (i >= sim->n) continue;
         char what[200];
         int comp = 0;
@@ -145,15 +76,15 @@ void sph_watchdog_check(sph_sim *sim, int pass)
         float value = fd.c[comp][i];
         if (!isfinite(value)) {
             snprintf(what, sizeof what, "%s is not finite", fd.name);
-        } else if (f == SPH_FIELD_VEL) {
+        } else if (check == SPH_CHECK_SPEED) {
             float s2 = 0;
             for (int c = 0; c < fd.ncomp; c++) s2 += fd.c[c][i] * fd.c[c][i];
             value = sqrtf(s2);
             snprintf(what, sizeof what, "speed %.4g m/s is above the bound %.4g m/s the scene implies", value,
                      sim->speed_bound);
         } else {
-            snprintf(what, sizeof what, "density %.4g is outside (0, %.4g], the bound the scene implies", value,
-                     sim->density_bound);
+            snprintf(what, sizeof what, "%s %.4g is outside (0, %.4g], the bound the scene implies", fd.about,
+                     value, sim->density_bound);
         }
         raise_alarm(sim, pass, i, f, comp, value, what);
     }

@@ -495,7 +495,7 @@ static int field_arrays(sph_sim *sim, int f, float ***vec, float **scalar)
     }
 }
 
-static void download(sph_backend *b, sph_sim *sim, unsigned what)
+static void download(sph_backend *b, sph_sim *sim, sph_mask what)
 {
     gpu *g = (gpu *)b;
     current(g);

@@ -5,6 +5,7 @@
  * a wall is not missing half its neighbours. */
 #include "simd.h"
 #include "sph_search.h"
+#include "sph_walls.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -18,41 +19,6 @@ static void describe(const sph_scene_def *def, char *out, int n)
 {
     snprintf(out, (size_t)n, "summation with the %s kernel%s", sph_kernel_names[def->kernel_density],
              sph_scene_wall_volume(def) ? ", walls count as fluid at rest" : "");
-}
-
-float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad[3])
-{
-    const int dim = sim->dim;
-    float vis[6], dvis[6]; /* per wall: visible share 1 - psi, and its derivative along the axis */
-    float all = 1.0f;
-    for (int d = 0; d < dim; d++) {
-        if (sim->period[d] > 0) { /* no walls on a periodic axis */
-            vis[2 * d] = vis[2 * d + 1] = 1.0f;
-            dvis[2 * d] = dvis[2 * d + 1] = 0.0f;
-            continue;
-        }
-        float x = sim->P.pred[d][i], area;
-        float lo = sph_kernel_wall(k, x - sim->def.domain_min[d], &area);
-        vis[2 * d] = 1.0f - lo;
-        dvis[2 * d] = area; /* moving away from the low wall uncovers support */
-        float hi = sph_kernel_wall(k, sim->def.domain_max[d] - x, &area);
-        vis[2 * d + 1] = 1.0f - hi;
-        dvis[2 * d + 1] = -area;
-        all *= vis[2 * d] * vis[2 * d + 1];
-    }
-    if (grad) {
-        for (int d = 0; d < dim; d++) {
-            float g = 0;
-            for (int w = 2 * d; w <= 2 * d + 1; w++) {
-                float others = 1.0f; /* product of the other walls' visible shares */
-                for (int o = 0; o < 2 * dim; o++)
-                    if (o != w) others *= vis[o];
-                g += dvis[w] * others;
-            }
-            grad[d] = -g; /* hidden = 1 - visible */
-        }
-    }
-    return 1.0f - all;
 }
 
 /* The sum for one particle; dim and dbl are constants (SPH_SPECIALISE). */
@@ -128,5 +94,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_density = {
-    "density", "density by kernel summation", "pred mass nbr", "rho vol", skip_reason, describe, run,
+    .name = "density",
+    .summary = "density by kernel summation",
+    .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_RES_LISTS,
+    .writes = SPH_BIT(RHO) | SPH_BIT(VOL),
+    .group = SPH_GROUP_DENSITY,
+    .highlight = "density",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

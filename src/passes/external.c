@@ -48,5 +48,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_external = {
-    "external", "external forces and predicted positions", "pos vel", "vel pred", skip_reason, describe, run,
+    .name = "external",
+    .summary = "external forces and predicted positions",
+    .reads = SPH_BIT(POS) | SPH_BIT(VEL),
+    .writes = SPH_BIT(VEL) | SPH_BIT(PRED),
+    .group = SPH_GROUP_FORCES_EXTERNAL,
+    .highlight = "speed",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

@@ -44,5 +44,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_hash = {
-    "hash", "cell, hash and key of each particle", "pred", "entries", skip_reason, describe, run,
+    .name = "hash",
+    .summary = "cell, hash and key of each particle",
+    .reads = SPH_BIT(PRED),
+    .writes = SPH_RES_ENTRIES,
+    .group = SPH_GROUP_SEARCH,
+    .highlight = "key",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

@@ -51,5 +51,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_interaction = {
-    "interaction", "push or pull around the mouse", "pred vel", "acc_i", skip_reason, describe, run,
+    .name = "interaction",
+    .summary = "push or pull around the mouse",
+    .reads = SPH_BIT(PRED) | SPH_BIT(VEL),
+    .writes = SPH_BIT(ACC_I),
+    .group = SPH_GROUP_FORCES,
+    .highlight = NULL,
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

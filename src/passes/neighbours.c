@@ -374,5 +374,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_neighbours = {
-    "neighbours", "neighbour lists within h", "pred entries start", "nbr_start nbr", skip_reason, describe, run,
+    .name = "neighbours",
+    .summary = "neighbour lists within h",
+    .reads = SPH_BIT(PRED) | SPH_RES_ENTRIES | SPH_RES_START,
+    .writes = SPH_RES_LISTS,
+    .group = SPH_GROUP_SEARCH,
+    .highlight = "neighbours",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

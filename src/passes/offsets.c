@@ -53,5 +53,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_offsets = {
-    "offsets", "start of each key in the sorted entries", "entries", "start", skip_reason, describe, run,
+    .name = "offsets",
+    .summary = "start of each key in the sorted entries",
+    .reads = SPH_RES_ENTRIES,
+    .writes = SPH_RES_START,
+    .group = SPH_GROUP_SEARCH,
+    .highlight = "key",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

@@ -46,5 +46,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_pressure = {
-    "pressure", "pressure from the equation of state", "rho", "p p_rho2", skip_reason, describe, run,
+    .name = "pressure",
+    .summary = "pressure from the equation of state",
+    .reads = SPH_BIT(RHO),
+    .writes = SPH_BIT(P) | SPH_BIT(PRHO2),
+    .group = SPH_GROUP_DENSITY,
+    .highlight = "pressure",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

@@ -11,6 +11,7 @@
  * (see below), else they would never separate. */
 #include "simd.h"
 #include "sph_search.h"
+#include "sph_walls.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -151,5 +152,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_pressure_force = {
-    "pressure_force", "pressure force (acceleration)", "pred mass rho vol p p_rho2 nbr", "acc_p", skip_reason, describe, run,
+    .name = "pressure_force",
+    .summary = "pressure force (acceleration)",
+    .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(RHO) | SPH_BIT(VOL) | SPH_BIT(P) | SPH_BIT(PRHO2) | SPH_RES_LISTS,
+    .writes = SPH_BIT(ACC_P),
+    .group = SPH_GROUP_FORCES,
+    .highlight = "pressure-acc",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

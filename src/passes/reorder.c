@@ -64,6 +64,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_reorder = {
-    "reorder", "store particles in cell order", "entries id mass pos vel pred", "id mass pos vel pred entries",
-    skip_reason, describe, run,
+    .name = "reorder",
+    .summary = "store particles in cell order",
+    .reads = SPH_RES_ENTRIES | SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED),
+    .writes = SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED) | SPH_RES_ENTRIES,
+    .group = SPH_GROUP_SEARCH,
+    .highlight = NULL,
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

@@ -92,5 +92,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_sort = {
-    "sort", "sort the entries by key", "entries", "entries", skip_reason, describe, run,
+    .name = "sort",
+    .summary = "sort the entries by key",
+    .reads = SPH_RES_ENTRIES,
+    .writes = SPH_RES_ENTRIES,
+    .group = SPH_GROUP_SEARCH,
+    .highlight = "key",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

@@ -131,5 +131,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_viscosity = {
-    "viscosity", "viscous force (acceleration)", "pred mass vol rho vel nbr", "acc_v", skip_reason, describe, run,
+    .name = "viscosity",
+    .summary = "viscous force (acceleration)",
+    .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VOL) | SPH_BIT(RHO) | SPH_BIT(VEL) | SPH_RES_LISTS,
+    .writes = SPH_BIT(ACC_V),
+    .group = SPH_GROUP_FORCES,
+    .highlight = "viscosity-acc",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

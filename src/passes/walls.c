@@ -39,5 +39,13 @@ static void run(sph_sim *sim)
 }
 
 const sph_pass sph_pass_walls = {
-    "walls", "domain walls: damped reflection", "pos vel", "pos vel", skip_reason, describe, run,
+    .name = "walls",
+    .summary = "domain walls: damped reflection",
+    .reads = SPH_BIT(POS) | SPH_BIT(VEL),
+    .writes = SPH_BIT(POS) | SPH_BIT(VEL),
+    .group = SPH_GROUP_BOUNDARY,
+    .highlight = "speed",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
 };

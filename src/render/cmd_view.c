@@ -214,7 +214,9 @@ static void step_pass(viewer *w)
     /* the index passes write the arrays the strip shows */
     bool strip = (p == SPH_PASS_HASH || p == SPH_PASS_SORT || p == SPH_PASS_OFFSETS) && !(w->v.overlays & SPH_OV_BIT(INDEX));
     if (strip) w->v.overlays |= SPH_OV_BIT(INDEX);
-    say(w, "pass %s wrote %s%s%s%s", sph_passes[p]->name, sph_passes[p]->writes, f >= 0 ? "; colour: " : "",
+    char wrote[160];
+    sph_mask_names(sph_passes[p]->writes, wrote, (int)sizeof wrote);
+    say(w, "pass %s wrote %s%s%s%s", sph_passes[p]->name, wrote, f >= 0 ? "; colour: " : "",
         f >= 0 ? sph_color_field_names[f] : "", strip ? "; index strip on" : "");
 }
 

@@ -1,0 +1,105 @@
+/* The registry of particle fields: every per-particle array of the
+ * simulation, described once.
+ *
+ * SPH_FIELDS below is the only list. The storage (sph_particles' members),
+ * allocation and freeing, the watchdog's checks, CPU<->GPU sync bits,
+ * --dump/VTK columns, colour-by-field, force arrows, the inspector and the
+ * integration's sum of accelerations are loops over it. A new force adds one
+ * row of kind ACCELERATION: it is then allocated when its pass runs,
+ * integrated, checked, dumped, coloured and drawn as arrows.
+ *
+ * A row: X(ID, name, comps, unit, kind, made_by, check, colour, about)
+ *   ID       the enum suffix (SPH_FIELD_ID) and mask bit (SPH_BIT(ID))
+ *   name     the member of sph_particles and the column name in files
+ *   comps    1 (a scalar) or V (a vector: one array per axis, the scene's dimension)
+ *   unit     SI unit in 3D ("dim" stands for the dimension)
+ *   kind     STATE (carried from step to step), DERIVED (recomputed each step),
+ *            ACCELERATION (summed by integration), WALL (a wall model's own data)
+ *   made_by  the pass whose presence in the pipeline allocates the field; NONE: always there
+ *   check    what the watchdog checks besides finiteness: NONE, SPEED (|v| under the
+ *            scene's bound), DENSITY (in (0, 100 rho0])
+ *   colour   the name particles are coloured by (the window's and `render`'s
+ *            --color), "" for none; vectors are coloured by their magnitude
+ *   about    what it means, for the inspector and `sphlab keys`-like listings */
+#ifndef SPH_FIELDS_H
+#define SPH_FIELDS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "sph_pass.h"
+
+#define SPH_FIELDS(X)                                                                                          \
+    X(POS, pos, V, "m", STATE, NONE, NONE, "", "position")                                                     \
+    X(VEL, vel, V, "m/s", STATE, NONE, SPEED, "speed", "velocity")                                              \
+    X(PRED, pred, V, "m", DERIVED, NEIGHBOURS, NONE, "", "predicted position x + v dt")                          \
+    X(RHO, rho, 1, "kg/m^dim", DERIVED, DENSITY, DENSITY, "density", "density")                                  \
+    X(VOL, vol, 1, "m^dim", DERIVED, DENSITY, NONE, "", "volume m/rho")                                          \
+    X(P, p, 1, "Pa", DERIVED, PRESSURE, NONE, "pressure", "pressure")                                            \
+    X(PRHO2, p_rho2, 1, "Pa m^6/kg^2", DERIVED, PRESSURE, NONE, "", "p / rho^2")                                 \
+    X(ACC_P, acc_p, V, "m/s^2", ACCELERATION, PRESSURE_FORCE, NONE, "pressure-acc", "pressure acceleration")     \
+    X(ACC_V, acc_v, V, "m/s^2", ACCELERATION, VISCOSITY, NONE, "viscosity-acc", "viscous acceleration")          \
+    X(ACC_I, acc_i, V, "m/s^2", ACCELERATION, INTERACTION, NONE, "", "interaction acceleration")                 \
+    X(MASS, mass, 1, "kg", STATE, NONE, NONE, "", "mass")
+
+typedef enum sph_field_id {
+#define SPH_FIELD_ENUM(ID, name, comps, unit, kind, made_by, check, colour, about) SPH_FIELD_##ID,
+    SPH_FIELDS(SPH_FIELD_ENUM)
+#undef SPH_FIELD_ENUM
+    SPH_FIELD_COUNT
+} sph_field_id;
+
+typedef enum sph_field_kind {
+    SPH_KIND_STATE,
+    SPH_KIND_DERIVED,
+    SPH_KIND_ACCELERATION,
+    SPH_KIND_WALL,
+} sph_field_kind;
+
+typedef enum sph_field_check {
+    SPH_CHECK_NONE,  /* finite only */
+    SPH_CHECK_SPEED, /* |value| under the scene's speed bound */
+    SPH_CHECK_DENSITY, /* in (0, the scene's density bound] */
+} sph_field_check;
+
+/* What a pass reads or writes: one bit per field, then the search's own data
+ * (above every field bit). The same bits say what a backend's host copy lacks
+ * (sph_sim_sync). */
+#define SPH_BIT(ID) ((sph_mask)1 << SPH_FIELD_##ID)
+#define SPH_FIELD_BIT(f) ((sph_mask)1 << (f))
+#define SPH_RES_ID ((sph_mask)1 << 56)      /* creation ids (the reorder pass permutes them) */
+#define SPH_RES_ENTRIES ((sph_mask)1 << 57) /* the index's (key, hash, particle) entries */
+#define SPH_RES_START ((sph_mask)1 << 58)   /* the start-offset table */
+#define SPH_RES_LISTS ((sph_mask)1 << 59)   /* the neighbour lists (nbr_start, nbr) */
+#define SPH_FIELD_MASK_ALL (((sph_mask)1 << SPH_FIELD_COUNT) - 1)
+/* Every field of kind ACCELERATION: what integration sums. */
+#define SPH_KIND_IS_ACC_STATE 0
+#define SPH_KIND_IS_ACC_DERIVED 0
+#define SPH_KIND_IS_ACC_ACCELERATION 1
+#define SPH_KIND_IS_ACC_WALL 0
+#define SPH_ACC_BIT_(ID, name, comps, unit, kind, made_by, check, colour, about) \
+    | (SPH_KIND_IS_ACC_##kind ? SPH_BIT(ID) : 0)
+#define SPH_MASK_ACCELERATIONS ((sph_mask)0 SPH_FIELDS(SPH_ACC_BIT_))
+_Static_assert(SPH_FIELD_COUNT <= 56, "field bits would run into the resource bits");
+
+/* One row of the registry. */
+typedef struct sph_field_info {
+    const char *name;   /* as in the struct, in files and in messages */
+    const char *unit;   /* SI, 3D; "dim" is the dimension */
+    const char *about;
+    const char *colour; /* colour-by name, "" if particles are not coloured by it */
+    bool vector;        /* one array per axis (the scene's dimension), else one array */
+    sph_field_kind kind;
+    sph_pass_id made_by; /* SPH_PASS_COUNT: always allocated */
+    sph_field_check check;
+} sph_field_info;
+
+extern const sph_field_info sph_field_infos[SPH_FIELD_COUNT];
+
+/* -1 if no field has that name. */
+int sph_field_find(const char *name);
+/* The names of the fields and resources in `m`, space-separated in registry
+ * order ("vel pos", "nbr_start nbr"), for the HUD and `sphlab check`. */
+void sph_mask_names(sph_mask m, char *out, int n);
+
+#endif

@@ -1,0 +1,61 @@
+/* The time step: fixed, or chosen by the CFL conditions from the latest
+ * maxima of speed and acceleration (which integration measures). Here, in
+ * the core, because the step loop chooses dt before the first pass runs. */
+#include <math.h>
+#include <stdio.h>
+
+#include "sph_sim.h"
+
+/* The CFL conditions, with h_s = h / 2 the smoothing length:
+ *   sound and flow:  dt <= cfl h_s / (c + |v|max)   (c = sqrt(k) with pressure)
+ *   forces:          dt <= cfl sqrt(h_s / |a|max)
+ *   viscosity:       dt <= cfl h_s^2 / nu
+ * An explicit step longer than these lets a signal cross more than a particle
+ * spacing in one step, and the scheme blows up. */
+float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which)
+{
+    const sph_scene_def *def = &sim->def;
+    double hs = 0.5 * def->h, dt = INFINITY;
+    const char *w = "none";
+    double c = (def->effects & SPH_EFFECT(PRESSURE)) ? sqrt(def->stiffness) : 0.0;
+    double speed = c + sim->max_speed;
+    if (speed > 0) {
+        dt = cfl * hs / speed;
+        w = "sound and flow: dt <= cfl (h/2) / (c + |v|max)";
+    }
+    if (sim->max_acc > 0 && cfl * sqrt(hs / sim->max_acc) < dt) {
+        dt = cfl * sqrt(hs / sim->max_acc);
+        w = "forces: dt <= cfl sqrt((h/2) / |a|max)";
+    }
+    if ((def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity > 0 && cfl * hs * hs / def->viscosity < dt) {
+        dt = cfl * hs * hs / def->viscosity;
+        w = "viscosity: dt <= cfl (h/2)^2 / nu";
+    }
+    if (which) *which = w;
+    return (float)dt;
+}
+
+/* The step: fixed with cfl = 0; otherwise the CFL limit, within [dt_min, dt]. */
+float sph_time_step_choose(const sph_sim *sim)
+{
+    const sph_scene_def *def = &sim->def;
+    if (def->cfl <= 0) return def->dt;
+    float dt = fminf(def->dt, sph_time_step_limit(sim, def->cfl, NULL));
+    if (!(dt >= def->dt_min)) dt = def->dt_min; /* also catches NaN from a blown-up state */
+    return dt;
+}
+
+const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n)
+{
+    const float ref = 0.4f;
+    if (sim->def.cfl > 0) return NULL;
+    const char *which;
+    float limit = sph_time_step_limit(sim, ref, &which);
+    if (!(sim->def.dt > limit)) return NULL;
+    snprintf(buf, n,
+             "fixed dt = %g s breaks the CFL condition of %s with cfl = %g at step %llu; the largest stable dt is "
+             "about %.3g s: lower [time] dt, or set [time] cfl = 0.4 for an adaptive step",
+             sim->def.dt, which, ref, (unsigned long long)sim->step, limit);
+    return buf;
+}
+
