@@ -16,7 +16,7 @@ BUILD   := build
 BIN     ?= sphlab
 CORE    := sph_error sph_kernel sph_scene sph_sim sph_watchdog
 PASSES  := external hash sort reorder offsets neighbours density pressure pressure_force viscosity interaction integrate walls
-APP     := main cmd_run cmd_check cmd_hardcases
+APP     := main app_options cmd_run cmd_check cmd_hardcases
 TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 
 # Modules above the core (rendering, plotting) add objects, flags and libraries
