@@ -32,6 +32,10 @@ MOD_TEST_LIBS :=
 CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
 APP_OBJ  := $(APP:%=$(BUILD)/app/%.o) $(MOD_OBJ)
 TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
+# The option table is tested in-process (tests/test_options.c).
+TEST_APP_OBJ := $(BUILD)/app/app_options.o
+$(BUILD)/tests/test_options.o: CORE_CFLAGS += -Isrc/app
+$(BUILD)/tests/test_options.o: src/app/app_options.h src/app/commands.h
 
 .PHONY: all demo test check-tests check-clang asan asan-run fuzz deps clean
 
@@ -55,8 +59,8 @@ $(BUILD)/tests/%.o: tests/%.c tests/*.h src/core/*.h | $(BUILD)/tests
 $(BUILD)/core $(BUILD)/passes $(BUILD)/app $(BUILD)/tests:
 	mkdir -p $@
 
-$(BUILD)/sphlab-tests: $(TEST_OBJ) $(BUILD)/libsphcore.a
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_TEST_LIBS) \
+$(BUILD)/sphlab-tests: $(TEST_OBJ) $(TEST_APP_OBJ) $(BUILD)/libsphcore.a
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(TEST_APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_TEST_LIBS) \
 	    $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null || echo -lcriterion)
 
 # Installs what is missing (Debian packages); does nothing when all are there.
