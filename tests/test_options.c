@@ -1,8 +1,11 @@
 /* The option table (src/app/app_options.c): its rows are consistent, the
  * parser stores what they say, every command's --help lists every option the
- * table gives it, and docs/commands.md is the table's current Markdown. */
+ * table gives it, docs/commands.md is the table's current Markdown, and the docs
+ * name no option the table does not know. */
 #include <criterion/criterion.h>
 #include <criterion/redirect.h>
+#include <ctype.h>
+#include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -186,4 +189,43 @@ Test(options, docs_commands_md_is_current)
               "docs/commands.md is not the table's: run ./sphlab help --markdown > docs/commands.md");
     free(have);
     free(want);
+}
+
+static bool known_spelling(const char *word)
+{
+    if (strcmp(word, "--markdown") == 0 || strcmp(word, "--options") == 0) return true; /* sphlab help's */
+    for (int k = 0; k < app_option_count; k++)
+        if (strcmp(word, app_options[k].name) == 0 || (app_options[k].alias && strcmp(word, app_options[k].alias) == 0))
+            return true;
+    return false;
+}
+
+/* Every --option the README, docs/ and the lessons mention is one the table
+ * knows: a renamed or removed option leaves no stale docs behind. */
+Test(options, docs_name_only_known_options)
+{
+    glob_t g;
+    cr_assert_eq(glob("README.md", 0, NULL, &g), 0, "run the tests from the repository root");
+    glob("docs/*.md", GLOB_APPEND, NULL, &g);
+    glob("lessons/*/README*.md", GLOB_APPEND, NULL, &g);
+    int files = 0;
+    for (size_t i = 0; i < g.gl_pathc; i++) {
+        FILE *f = fopen(g.gl_pathv[i], "r");
+        if (!f) continue;
+        files++;
+        char line[4096];
+        for (int ln = 1; fgets(line, sizeof line, f); ln++)
+            for (char *p = line; (p = strstr(p, "--")); p += 2) {
+                if ((p > line && (isalnum((unsigned char)p[-1]) || p[-1] == '-')) || !islower((unsigned char)p[2]))
+                    continue;
+                char word[64];
+                size_t n = 2;
+                while (n < sizeof word - 1 && (islower((unsigned char)p[n]) || p[n] == '-')) n++;
+                snprintf(word, sizeof word, "%.*s", (int)n, p);
+                cr_expect(known_spelling(word), "%s:%d names %s, which no command takes", g.gl_pathv[i], ln, word);
+            }
+        fclose(f);
+    }
+    globfree(&g);
+    cr_assert_gt(files, 5, "README.md and docs/*.md not found");
 }
