@@ -17,7 +17,7 @@ BIN     ?= sphlab
 # Every file of src/core and src/passes is built: a new pass is a new file, no list to edit.
 CORE    := $(filter-out sph_overlay,$(sort $(basename $(notdir $(wildcard src/core/sph_*.c)))))
 PASSES  := $(sort $(basename $(notdir $(wildcard src/passes/*.c))))
-APP     := main cmd_run cmd_check cmd_hardcases
+APP     := main app_options cmd_run cmd_check cmd_hardcases
 TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 
 # Modules above the core (rendering, plotting) add objects, flags and libraries
@@ -33,6 +33,10 @@ MOD_TEST_LIBS :=
 CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
 APP_OBJ  := $(APP:%=$(BUILD)/app/%.o) $(MOD_OBJ)
 TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
+# The option table is tested in-process (tests/test_options.c).
+TEST_APP_OBJ := $(BUILD)/app/app_options.o
+$(BUILD)/tests/test_options.o: CORE_CFLAGS += -Isrc/app
+$(BUILD)/tests/test_options.o: src/app/app_options.h src/app/commands.h
 
 .PHONY: all demo test check-tests check-clang asan asan-run fuzz deps clean
 
@@ -56,8 +60,8 @@ $(BUILD)/tests/%.o: tests/%.c tests/*.h src/core/*.h | $(BUILD)/tests
 $(BUILD)/core $(BUILD)/passes $(BUILD)/app $(BUILD)/tests:
 	mkdir -p $@
 
-$(BUILD)/sphlab-tests: $(TEST_OBJ) $(BUILD)/libsphcore.a
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_TEST_LIBS) \
+$(BUILD)/sphlab-tests: $(TEST_OBJ) $(TEST_APP_OBJ) $(BUILD)/libsphcore.a
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(TEST_APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_TEST_LIBS) \
 	    $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null || echo -lcriterion)
 
 # Installs what is missing (Debian packages); does nothing when all are there.

@@ -5,6 +5,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "app_options.h"
 #include "sph_sim.h"
 
 #define APP_MAX_SETS 64
@@ -18,10 +19,11 @@ typedef struct app_scene_opts {
 
 /* Adds a --set override; false (with a message) past APP_MAX_SETS. */
 bool app_scene_add_set(app_scene_opts *o, const char *set);
-/* Checks a --backend value (cpu or gl) for command `cmd`; the override it
- * stands for goes in after the --set options (app_scene_add_backend), so the
- * option wins over a --set of the same key. False with a message if bad. */
-bool app_backend_valid(const char *cmd, const char *value);
+/* The scene of a command's options: its one positional argument and its
+ * --set list, then the override --backend (cpu or gl, checked by the option
+ * table) stands for, after the --set options so that it wins over a --set
+ * of the same key. False (with a message) past APP_MAX_SETS. */
+bool app_scene_from_opts(app_scene_opts *so, const app_opts *o);
 bool app_scene_add_backend(app_scene_opts *o, const char *value);
 
 /* Loads the scene, applies the --set overrides, validates; prints the error
@@ -30,15 +32,6 @@ bool app_load_scene(const app_scene_opts *o, sph_scene_def *def);
 /* The same, returning the exit status: 0 loaded, 1 a bad scene, 2 a bad --set. */
 int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def);
 
-/* Command-line options, "--name value" or "--name=value": whether argument a
- * is option `name`, and its value (advancing *i past it), or NULL with
- * "sphlab CMD: --name needs a value" printed. */
-bool app_opt_is(const char *a, const char *name);
-const char *app_opt_value(const char *cmd, int argc, char **argv, int *i, const char *name);
-
-/* Parses a whole number / a number for option `opt`; prints the error and returns false on failure. */
-bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out);
-bool app_parse_double(const char *opt, const char *s, double lo, double hi, double *out);
 
 /* Output files are written to PATH.tmp and renamed on success, so a failed
  * run never leaves a half-written file behind. */

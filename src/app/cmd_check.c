@@ -21,42 +21,26 @@ void app_print_pipeline(FILE *f, const sph_sim *sim)
     }
 }
 
-static void usage(FILE *f)
-{
-    fputs("usage: sphlab check SCENE.ini [--set section.key=value ...]\n"
-          "Validates the scene and prints the passes it runs, in order, with their variants,\n"
-          "and the passes left out with the reason.\n",
-          f);
-}
+static const app_cmd_spec spec = {
+    .name = "check",
+    .cmd = APP_CMD(check),
+    .synopsis = "usage: sphlab check SCENE.ini [--set section.key=value ...]\n"
+                "Validates the scene and prints the passes it runs, in order, with their variants,\n"
+                "and the passes left out with the reason.\n",
+    .max_pos = 1,
+    .extra_pos = "more than one scene file",
+};
 
 int cmd_check(int argc, char **argv)
 {
-    app_scene_opts o = {0};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--set") == 0 || strncmp(a, "--set=", 6) == 0) {
-            const char *v = a[5] == '=' ? a + 6 : (i + 1 < argc ? argv[++i] : NULL);
-            if (!v) {
-                fprintf(stderr, "sphlab: --set needs section.key=value\n");
-                return 2;
-            }
-            if (!app_scene_add_set(&o, v)) return 2;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "sphlab check: unknown option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        } else if (!o.path) {
-            o.path = a;
-        } else {
-            fprintf(stderr, "sphlab check: more than one scene file ('%s')\n", a);
-            return 2;
-        }
-    }
+    app_opts opt;
+    app_opts_init(&opt);
+    int rc = app_opts_parse(&spec, argc, argv, &opt);
+    if (rc >= 0) return rc;
+    app_scene_opts o;
+    if (!app_scene_from_opts(&o, &opt)) return 2;
     if (!o.path) {
-        usage(stderr);
+        app_opts_usage(&spec, stderr);
         return 2;
     }
     sph_scene_def def;

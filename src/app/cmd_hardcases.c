@@ -246,38 +246,26 @@ static bool judge(const hardcase *c, const outcome *o, int steps, char *why, siz
     return why[0] == '\0';
 }
 
-static void usage(FILE *f)
-{
-    fputs("usage: sphlab hardcases [--quick] [--only NAME] [--list] [--verbose]\n"
-          "Runs scenes that break naive SPH codes and prints a verdict for each: max density error\n"
-          "(rho_max - rho0)/rho0, energy change relative to its scale, particles lost, whether the\n"
-          "watchdog stopped it, steps run. Exit status 1 if any case fails.\n"
-          "  --quick     a quarter of the steps of the long cases (at least 1500), for CI\n"
-          "  --only NAME run one case\n"
-          "  --list      list the cases\n"
-          "  --verbose   print the watchdog's report of cases it stopped\n",
-          f);
-}
+static const app_cmd_spec spec = {
+    .name = "hardcases",
+    .cmd = APP_CMD(hardcases),
+    .synopsis = "usage: sphlab hardcases [--quick] [--only NAME] [--list] [--verbose]\n"
+                "Runs scenes that break naive SPH codes and prints a verdict for each: max density error\n"
+                "(rho_max - rho0)/rho0, energy change relative to its scale, particles lost, whether the\n"
+                "watchdog stopped it, steps run. Exit status 1 if any case fails.\n",
+};
 
 int cmd_hardcases(int argc, char **argv)
 {
-    bool quick = false, verbose = false;
-    const char *only = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--quick") == 0) quick = true;
-        else if (strcmp(argv[i], "--verbose") == 0) verbose = true;
-        else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
-        else if (strcmp(argv[i], "--list") == 0) {
-            for (int k = 0; k < N_CASES; k++) printf("%-22s %s\n", cases[k].name, cases[k].about);
-            return 0;
-        } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else {
-            fprintf(stderr, "sphlab hardcases: unknown option '%s'\n", argv[i]);
-            usage(stderr);
-            return 2;
-        }
+    app_opts opt;
+    app_opts_init(&opt);
+    int rc = app_opts_parse(&spec, argc, argv, &opt);
+    if (rc >= 0) return rc;
+    bool quick = opt.quick, verbose = opt.verbose;
+    const char *only = opt.only;
+    if (opt.list) {
+        for (int k = 0; k < N_CASES; k++) printf("%-22s %s\n", cases[k].name, cases[k].about);
+        return 0;
     }
     int passed = 0, failed = 0;
     printf("%-22s %7s %9s %9s %5s %8s  %s\n", "case", "steps", "rho err", "energy", "lost", "watchdog", "verdict");

@@ -7,26 +7,15 @@
 #include "app.h"
 #include "../render/vtk.h"
 
-static void usage(FILE *f)
-{
-    fputs("usage: sphlab run SCENE.ini [options]\n"
-          "  --steps N           run N steps (default: the scene's duration or steps)\n"
-          "  --time T            run until T simulated seconds\n"
-          "  --set S.K=V         override scene key K of section S (repeatable)\n"
-          "  --stats FILE.csv    one row per step: step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed,\n"
-          "                      then the milliseconds of each pass in the pipeline\n"
-          "  --dump FILE.csv     final particles: id,x,y,z,vx,vy,vz,rho,p\n"
-          "  --vtk DIR           particles and all their fields as DIR/particles_NNNNN.vtk (ParaView)\n"
-          "  --every K           with --vtk: a file every K steps, the first at step 0 (default 10)\n"
-          "  --threads N         worker threads (default: one per core)\n"
-          "  --backend cpu|gl    where the passes run (overrides [compute] backend): gl runs them as\n"
-          "                      OpenGL 4.3 compute shaders (the GPU, or Mesa's llvmpipe without one)\n"
-          "  --quiet             no progress line, no tables\n"
-          "  --help              this text\n"
-          "exit status: 0 done; 1 bad scene or output; 2 bad command line; 4 the watchdog stopped the run\n"
-          "(a non-finite or runaway value: the report names the step, pass and particle; --dump keeps that state)\n",
-          f);
-}
+static const app_cmd_spec spec = {
+    .name = "run",
+    .cmd = APP_CMD(run),
+    .synopsis = "usage: sphlab run SCENE.ini [options]\n",
+    .footer = "exit status: 0 done; 1 bad scene or output; 2 bad command line; 4 the watchdog stopped the run\n"
+              "(a non-finite or runaway value: the report names the step, pass and particle; --dump keeps that state)\n",
+    .max_pos = 1,
+    .extra_pos = "more than one scene file",
+};
 
 static void write_stats_header(FILE *f, const sph_sim *sim)
 {
@@ -108,62 +97,25 @@ static void print_report(const sph_sim *sim, double wall_ms)
 
 int cmd_run(int argc, char **argv)
 {
-    app_scene_opts o = {0};
-    long steps = -1, threads = 0;
-    double until = -1;
-    const char *stats_path = NULL, *dump_path = NULL, *vtk_dir = NULL;
-    long vtk_every = 10;
-    bool quiet = false;
-    const char *backend = NULL;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            quiet = true;
-        } else if (app_opt_is(a, "--steps")) {
-            if (!(v = app_opt_value("run", argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 0, 2000000000L, &steps))
-                return 2;
-        } else if (app_opt_is(a, "--time")) {
-            if (!(v = app_opt_value("run", argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
-                return 2;
-        } else if (app_opt_is(a, "--threads")) {
-            if (!(v = app_opt_value("run", argc, argv, &i, "--threads")) || !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
-                return 2;
-        } else if (app_opt_is(a, "--backend")) {
-            if (!(backend = app_opt_value("run", argc, argv, &i, "--backend")) || !app_backend_valid("run", backend)) return 2;
-        } else if (app_opt_is(a, "--set")) {
-            if (!(v = app_opt_value("run", argc, argv, &i, "--set")) || !app_scene_add_set(&o, v)) return 2;
-        } else if (app_opt_is(a, "--stats")) {
-            if (!(stats_path = app_opt_value("run", argc, argv, &i, "--stats"))) return 2;
-        } else if (app_opt_is(a, "--dump")) {
-            if (!(dump_path = app_opt_value("run", argc, argv, &i, "--dump"))) return 2;
-        } else if (app_opt_is(a, "--vtk")) {
-            if (!(vtk_dir = app_opt_value("run", argc, argv, &i, "--vtk"))) return 2;
-        } else if (app_opt_is(a, "--every")) {
-            if (!(v = app_opt_value("run", argc, argv, &i, "--every")) || !app_parse_int("--every", v, 1, 2000000000L, &vtk_every))
-                return 2;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "sphlab run: unknown option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        } else if (!o.path) {
-            o.path = a;
-        } else {
-            fprintf(stderr, "sphlab run: more than one scene file ('%s')\n", a);
-            return 2;
-        }
-    }
-    if (!o.path) {
-        usage(stderr);
+    app_opts opt;
+    app_opts_init(&opt);
+    opt.every = 10;
+    int rc = app_opts_parse(&spec, argc, argv, &opt);
+    if (rc >= 0) return rc;
+    long steps = opt.steps, threads = opt.threads, vtk_every = opt.every;
+    double until = opt.time;
+    const char *stats_path = opt.stats, *dump_path = opt.dump, *vtk_dir = opt.vtk;
+    bool quiet = opt.quiet;
+    if (!opt.n_pos) {
+        app_opts_usage(&spec, stderr);
         return 2;
     }
     if (steps >= 0 && until >= 0) {
         fprintf(stderr, "sphlab run: give --steps or --time, not both\n");
         return 2;
     }
-    if (!app_scene_add_backend(&o, backend)) return 2; /* after the --set options, so it wins */
+    app_scene_opts o;
+    if (!app_scene_from_opts(&o, &opt)) return 2;
     sph_scene_def def;
     int status = app_load_scene_status(&o, &def);
     if (status) return status;

@@ -16,7 +16,9 @@ static void usage(FILE *f)
 #define SPH_COMMAND_HELP(name, args, about) fprintf(f, "  %-10s %-10s %s\n", #name, args, about);
     SPH_COMMANDS(SPH_COMMAND_HELP)
 #undef SPH_COMMAND_HELP
-    fputs("\n`sphlab COMMAND --help` describes a command's options.\n", f);
+    fputs("\n`sphlab COMMAND --help` (or `sphlab help COMMAND`) describes a command's options;\n"
+          "`sphlab help --markdown` prints them all as docs/commands.md.\n",
+          f);
 }
 
 int cmd_keys(int argc, char **argv)
@@ -55,22 +57,6 @@ fail:
     return err.code == SPH_ERR_USAGE ? 2 : 1; /* a malformed --set is a command-line error */
 }
 
-bool app_opt_is(const char *a, const char *name)
-{
-    size_t n = strlen(name);
-    return strncmp(a, name, n) == 0 && (a[n] == '\0' || a[n] == '=');
-}
-
-const char *app_opt_value(const char *cmd, int argc, char **argv, int *i, const char *name)
-{
-    const char *a = argv[*i];
-    size_t n = strlen(name);
-    if (a[n] == '=') return a + n + 1;
-    if (*i + 1 < argc) return argv[++*i];
-    fprintf(stderr, "sphlab %s: %s needs a value\n", cmd, name);
-    return NULL;
-}
-
 bool app_scene_add_set(app_scene_opts *o, const char *set)
 {
     if (o->n_sets == APP_MAX_SETS) {
@@ -81,54 +67,23 @@ bool app_scene_add_set(app_scene_opts *o, const char *set)
     return true;
 }
 
-bool app_backend_valid(const char *cmd, const char *value)
-{
-    if (strcmp(value, "cpu") == 0 || strcmp(value, "gl") == 0) return true;
-    fprintf(stderr, "sphlab %s: --backend '%s': accepted: cpu, gl\n", cmd, value);
-    return false;
-}
-
 bool app_scene_add_backend(app_scene_opts *o, const char *value)
 {
     return !value || app_scene_add_set(o, strcmp(value, "gl") == 0 ? "compute.backend=gl" : "compute.backend=cpu");
 }
 
+bool app_scene_from_opts(app_scene_opts *so, const app_opts *o)
+{
+    memset(so, 0, sizeof *so);
+    so->path = o->n_pos ? o->pos[0] : NULL;
+    for (int i = 0; i < o->sets.n; i++)
+        if (!app_scene_add_set(so, o->sets.v[i])) return false;
+    return app_scene_add_backend(so, o->backend);
+}
+
 bool app_load_scene(const app_scene_opts *o, sph_scene_def *def)
 {
     return app_load_scene_status(o, def) == 0;
-}
-
-bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out)
-{
-    char *end;
-    errno = 0;
-    long v = s ? strtol(s, &end, 10) : 0;
-    if (!s || end == s || *end || errno) {
-        fprintf(stderr, "sphlab: %s '%s': not a whole number\n", opt, s ? s : "");
-        return false;
-    }
-    if (v < lo || v > hi) {
-        fprintf(stderr, "sphlab: %s %ld: out of range (accepted: %ld to %ld)\n", opt, v, lo, hi);
-        return false;
-    }
-    *out = v;
-    return true;
-}
-
-bool app_parse_double(const char *opt, const char *s, double lo, double hi, double *out)
-{
-    char *end;
-    double v = s ? strtod(s, &end) : 0;
-    if (!s || end == s || *end) {
-        fprintf(stderr, "sphlab: %s '%s': not a number\n", opt, s ? s : "");
-        return false;
-    }
-    if (!isfinite(v) || v < lo || v > hi) {
-        fprintf(stderr, "sphlab: %s %s: out of range (accepted: %g to %g)\n", opt, s, lo, hi);
-        return false;
-    }
-    *out = v;
-    return true;
 }
 
 bool app_out_open(app_out *o, const char *path)
@@ -184,6 +139,27 @@ int main(int argc, char **argv)
     sph_gpu_register(); /* scenes may ask for [compute] backend = gl */
     const char *cmd = argv[1];
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+        /* sphlab help CMD: that command's --help */
+        const char *what = argc > 2 && strcmp(cmd, "help") == 0 ? argv[2] : NULL;
+        char help_arg[] = "--help";
+        char *help_argv[] = {what ? argv[2] : NULL, help_arg, NULL};
+        if (what && strcmp(what, "--markdown") == 0) {
+            app_opts_markdown(stdout);
+            return 0;
+        }
+        if (what && strcmp(what, "--options") == 0) {
+            app_opts_list(stdout);
+            return 0;
+        }
+#define SPH_COMMAND_HELP(name, args, about) \
+    if (what && strcmp(what, #name) == 0) return cmd_##name(2, help_argv);
+        SPH_COMMANDS(SPH_COMMAND_HELP)
+#undef SPH_COMMAND_HELP
+        if (what) {
+            fprintf(stderr, "sphlab help: unknown command '%s'\n", what);
+            usage(stderr);
+            return 2;
+        }
         usage(stdout);
         return 0;
     }

@@ -15,30 +15,21 @@
 #include "gpu.h"
 #include "plot.h"
 
-static void usage(FILE *f)
-{
-    fputs("usage: sphlab bench WHAT [options]\n"
-          "  ladder      for each level of the ladder: the largest N that runs at F steps/s or more\n"
-          "              (bisection over block sizes, median of repeats), ms per pass at a fixed N,\n"
-          "              and a check against the reference level; table, CSV, JSON, chart\n"
-          "  scaling     time per step against N for each level (log-log): O(N^2) against O(N)\n"
-          "  machine     the machine's limits: memory bandwidth (streaming loops), float peak (FMA loop)\n"
-          "  levels      the levels and the scene keys that make each\n"
-          "options:\n"
-          "  --dim 2|3             dimension of the scene (default 3)\n"
-          "  --fps F               ladder: the frame rate to reach, steps/s (default 60)\n"
-          "  --at N                ladder: particle count of the per-pass table (default 20000; --quick 6000)\n"
-          "  --quick               small sizes, few repeats (for CI: ladder and scaling in well under a minute)\n"
-          "  --out DIR             where the CSV, JSON and charts go (made if missing; default .)\n"
-          "  --levels L0,L3,...    only these levels (default: all)\n"
-          "  --set [LEVEL:]S.K=V   override scene key K of section S, for one level or all (repeatable)\n"
-          "  --watchdog            keep the watchdog's checks on while timing (default off: a debugging aid)\n"
-          "  --trace               one line per measurement on stderr (size, steps/s, repeats, others)\n"
-          "  --quiet               no progress line, no table (files are still written)\n"
-          "Files: DIR/ladder-3d.{csv,json,png,pdf}, DIR/scaling-3d.{csv,png,pdf}, DIR/machine.json (2d likewise).\n"
-          "Exit status: 0 done; 1 a level failed its check, or an output could not be written; 2 bad command line.\n",
-          f);
-}
+static const app_cmd_spec spec = {
+    .name = "bench",
+    .cmd = APP_CMD(bench),
+    .synopsis = "usage: sphlab bench WHAT [options]\n"
+                "  ladder      for each level of the ladder: the largest N that runs at F steps/s or more\n"
+                "              (bisection over block sizes, median of repeats), ms per pass at a fixed N,\n"
+                "              and a check against the reference level; table, CSV, JSON, chart\n"
+                "  scaling     time per step against N for each level (log-log): O(N^2) against O(N)\n"
+                "  machine     the machine's limits: memory bandwidth (streaming loops), float peak (FMA loop)\n"
+                "  levels      the levels and the scene keys that make each\n"
+                "options:\n",
+    .footer = "Files: DIR/ladder-3d.{csv,json,png,pdf}, DIR/scaling-3d.{csv,png,pdf}, DIR/machine.json (2d likewise).\n"
+              "Exit status: 0 done; 1 a level failed its check, or an output could not be written; 2 bad command line.\n",
+    .max_pos = 1,
+};
 
 typedef struct bench_opts {
     const char *what, *out, *levels;
@@ -125,55 +116,27 @@ static bool add_set(bench_opts *o, const char *v)
 
 static int parse_args(int argc, char **argv, bench_opts *o)
 {
-    o->fps = 60;
-    o->cfg.dim = 3;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        long n;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--quick") == 0) {
-            o->quick = true;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            o->quiet = true;
-        } else if (strcmp(a, "--watchdog") == 0) {
-            o->cfg.watchdog = true;
-        } else if (strcmp(a, "--trace") == 0) {
-            o->trace = true;
-        } else if (app_opt_is(a, "--dim")) {
-            if (!(v = app_opt_value("bench", argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 2, 3, &n)) return 2;
-            o->cfg.dim = (int)n;
-        } else if (app_opt_is(a, "--fps")) {
-            if (!(v = app_opt_value("bench", argc, argv, &i, "--fps")) || !app_parse_double("--fps", v, 0.01, 1e5, &o->fps))
-                return 2;
-        } else if (app_opt_is(a, "--at")) {
-            if (!(v = app_opt_value("bench", argc, argv, &i, "--at")) || !app_parse_int("--at", v, 8, 20000000L, &n)) return 2;
-            o->at = (double)n;
-            o->at_given = true;
-        } else if (app_opt_is(a, "--out")) {
-            if (!(o->out = app_opt_value("bench", argc, argv, &i, "--out"))) return 2;
-            if (!*o->out) {
-                fprintf(stderr, "sphlab bench: --out: empty directory name\n");
-                return 2;
-            }
-        } else if (app_opt_is(a, "--levels")) {
-            if (!(o->levels = app_opt_value("bench", argc, argv, &i, "--levels"))) return 2;
-        } else if (app_opt_is(a, "--set")) {
-            if (!(v = app_opt_value("bench", argc, argv, &i, "--set")) || !add_set(o, v)) return 2;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "sphlab bench: unknown option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        } else if (!o->what) {
-            o->what = a;
-        } else {
-            fprintf(stderr, "sphlab bench: unexpected argument '%s'\n", a);
-            return 2;
-        }
-    }
+    app_opts opt;
+    app_opts_init(&opt);
+    opt.fps = 60;
+    opt.dim = 3;
+    int rc = app_opts_parse(&spec, argc, argv, &opt);
+    if (rc >= 0) return rc;
+    o->what = opt.n_pos ? opt.pos[0] : NULL;
+    o->fps = opt.fps;
+    o->cfg.dim = (int)opt.dim;
+    o->at_given = opt.at >= 0;
+    o->at = (double)opt.at;
+    o->out = opt.out;
+    o->levels = opt.levels;
+    o->quick = opt.quick;
+    o->quiet = opt.quiet;
+    o->trace = opt.trace;
+    o->cfg.watchdog = opt.watchdog;
+    for (int i = 0; i < opt.sets.n; i++)
+        if (!add_set(o, opt.sets.v[i])) return 2;
     if (!o->what) {
-        usage(stderr);
+        app_opts_usage(&spec, stderr);
         return 2;
     }
     if (!parse_levels(o)) return 2;

@@ -74,26 +74,21 @@ bool lx_has_command(lx *x, const char *cmd)
     return have_command(cmd);
 }
 
-static void usage(FILE *f)
-{
-    fputs("usage: sphlab lesson --list\n"
-          "       sphlab lesson N [VIEW OPTIONS ...]   open lesson N in the window\n"
-          "       sphlab lesson N --export DIR [--quick] [--quiet]\n"
-          "       sphlab lesson N --dry-run            print the window's command instead of running it\n"
-          "The course: one lesson per folder in lessons/ (README.md, README.fr.md, lesson.ini).\n"
-          "  --list          the lessons, their level and what each is about\n"
-          "  N               opens the lesson's scene with `sphlab view` at its starting state, with\n"
-          "                  its overlays on; further options go to `sphlab view` (see its --help)\n"
-          "  --export DIR    without a display: runs the lesson's experiments with this binary's own\n"
-          "                  commands, writes its figures (PNG; charts also as PDF, each beside its\n"
-          "                  CSV) and DIR/report.md with the parameters and the measured numbers;\n"
-          "                  the commands' outputs go to DIR/logs/\n"
-          "  --quick         fewer steps and variants (for tests: a few seconds a lesson)\n"
-          "  --quiet         do not print the commands as they run\n"
-          "The lessons are found in ./lessons, in $SPHLAB_LESSONS, or beside this binary.\n"
-          "exit status: 0 done; 1 a command of the lesson failed, or no display; 2 bad command line\n",
-          f);
-}
+static const app_cmd_spec spec = {
+    .name = "lesson",
+    .cmd = APP_CMD(lesson),
+    .synopsis = "usage: sphlab lesson --list\n"
+                "       sphlab lesson N [VIEW OPTIONS ...]   open lesson N in the window\n"
+                "       sphlab lesson N --export DIR [--quick] [--quiet]\n"
+                "       sphlab lesson N --dry-run            print the window's command instead of running it\n"
+                "The course: one lesson per folder in lessons/ (README.md, README.fr.md, lesson.ini).\n"
+                "  N                    opens the lesson's scene with `sphlab view` at its starting state, with\n"
+                "                       its overlays on; further options go to `sphlab view` (see its --help)\n",
+    .footer = "The lessons are found in ./lessons, in $SPHLAB_LESSONS, or beside this binary.\n"
+              "exit status: 0 done; 1 a command of the lesson failed, or no display; 2 bad command line\n",
+    .max_pos = 1,
+    .flags = APP_SPEC_PASS_ON,
+};
 
 static bool is_file(const char *path)
 {
@@ -315,63 +310,39 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
 
 int cmd_lesson(int argc, char **argv)
 {
-    if (argc < 2) {
-        usage(stderr);
-        return 2;
-    }
-    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
-        usage(stdout);
-        return 0;
-    }
-    if (strcmp(argv[1], "--list") == 0) {
-        if (argc > 2) {
-            fprintf(stderr, "sphlab lesson: --list takes no argument ('%s')\n", argv[2]);
+    /* lesson's own options; the others (and their values) go to `sphlab view` */
+    app_opts opt;
+    app_opts_init(&opt);
+    int rc = app_opts_parse(&spec, argc, argv, &opt);
+    if (rc >= 0) return rc;
+    if (opt.list) {
+        if (opt.n_pos || opt.n_rest) {
+            fprintf(stderr, "sphlab lesson: --list takes no argument ('%s')\n", opt.n_pos ? opt.pos[0] : opt.rest[0]);
             return 2;
         }
         return list();
     }
+    if (!opt.n_pos) {
+        app_opts_usage(&spec, stderr);
+        return 2;
+    }
     long num;
-    if (!app_parse_int("lesson", argv[1], 1, sph_lesson_count, &num)) {
+    if (!app_parse_int("lesson", opt.pos[0], 1, sph_lesson_count, &num)) {
         fprintf(stderr, "sphlab lesson: want a lesson number from 1 to %d (sphlab lesson --list)\n",
                 sph_lesson_count);
         return 2;
     }
     const lesson *L = &sph_lessons[num - 1];
-    const char *dir = NULL;
-    bool quick = false, quiet = false, dry = false, has_export_opts = false;
-    for (int i = 2; i < argc; i++) {
-        if (strcmp(argv[i], "--export") == 0) {
-            if (i + 1 >= argc || !*argv[i + 1]) {
-                fprintf(stderr, "sphlab lesson: --export needs a directory\n");
-                return 2;
-            }
-            dir = argv[++i];
-        } else if (strcmp(argv[i], "--quick") == 0) {
-            quick = has_export_opts = true;
-        } else if (strcmp(argv[i], "--quiet") == 0) {
-            quiet = has_export_opts = true;
-        } else if (strcmp(argv[i], "--dry-run") == 0) {
-            dry = true;
-        } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else {
-            if (dir) {
-                fprintf(stderr, "sphlab lesson: unknown option '%s' with --export\n", argv[i]);
-                return 2;
-            }
-            continue; /* goes to view */
-        }
+    const char *dir = opt.export_dir;
+    bool quick = opt.quick, quiet = opt.quiet, dry = opt.dry_run;
+    if (dir && opt.n_rest) {
+        fprintf(stderr, "sphlab lesson: unknown option '%s' with --export\n", opt.rest[0]);
+        return 2;
     }
     if (dir) return export_lesson(L, dir, quick, quiet);
-    if (has_export_opts) {
+    if (quick || quiet) {
         fprintf(stderr, "sphlab lesson: --quick and --quiet go with --export DIR\n");
         return 2;
     }
-    /* the view options: every argument but --dry-run */
-    char *vargs[128];
-    int nv = 0;
-    for (int i = 2; i < argc && nv < 127; i++)
-        if (strcmp(argv[i], "--dry-run") != 0) vargs[nv++] = argv[i];
-    return open_window(L, nv, vargs, dry);
+    return open_window(L, opt.n_rest, opt.rest, dry);
 }

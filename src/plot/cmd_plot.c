@@ -13,30 +13,20 @@
 #include "sph_kernel.h"
 #include "sph_scene.h"
 
-static void usage(FILE *f)
-{
-    fputs("usage: sphlab plot WHAT [options]\n"
-          "  passes STATS.csv         milliseconds per pass from `sphlab run --stats`: median per step\n"
-          "                           (bars, BASE = passes) and over time (stacked, BASE-time)\n"
-          "  series STATS.csv --y C[,C...]\n"
-          "                           columns of the stats CSV against t (one panel per unit)\n"
-          "  kernel NAME              a kernel W, dW/dr and its Laplacian against r/h\n"
-          "  kernels                  every kernel (one chart each) and all five compared\n"
-          "options:\n"
-          "  --out DIR                where to write (made if missing; default: the CSV's\n"
-          "                           directory for passes/series, . for kernels)\n"
-          "  --name BASE              file name without extension (default: passes, series-COLS,\n"
-          "                           kernel-NAME-2d, kernels-2d)\n"
-          "  --size WxH               PNG size in pixels (the PDF is WxH/2 points, same layout)\n"
-          "  --dim 2|3                kernels: dimension (default 2); series: units of ekin, rho\n"
-          "  --h H                    kernels: support radius in m (default: the scene default)\n"
-          "  --x t|step               series: the x axis (default t)\n"
-          "  --bins N                 passes: time bins of the stacked chart (default 100)\n"
-          "  --svg                    also write BASE.svg\n"
-          "  --quiet                  do not list the files written\n"
-          "Each chart is written as BASE.png and BASE.pdf (and BASE.svg) beside BASE.csv, the data it shows.\n",
-          f);
-}
+static const app_cmd_spec spec = {
+    .name = "plot",
+    .cmd = APP_CMD(plot),
+    .synopsis = "usage: sphlab plot WHAT [options]\n"
+                "  passes STATS.csv         milliseconds per pass from `sphlab run --stats`: median per step\n"
+                "                           (bars, BASE = passes) and over time (stacked, BASE-time)\n"
+                "  series STATS.csv --y C[,C...]\n"
+                "                           columns of the stats CSV against t (one panel per unit)\n"
+                "  kernel NAME              a kernel W, dW/dr and its Laplacian against r/h\n"
+                "  kernels                  every kernel (one chart each) and all five compared\n"
+                "options:\n",
+    .footer = "Each chart is written as BASE.png and BASE.pdf (and BASE.svg) beside BASE.csv, the data it shows.\n",
+    .max_pos = 2,
+};
 
 typedef struct plot_opts {
     const char *what, *input, *out, *name, *ycols, *xcol;
@@ -45,76 +35,25 @@ typedef struct plot_opts {
     bool quiet;
 } plot_opts;
 
-static bool parse_size(const char *s, int *w, int *h)
-{
-    char *end;
-    long a = strtol(s, &end, 10), b = -1;
-    if (end != s && (*end == 'x' || *end == 'X')) {
-        const char *t = end + 1;
-        b = strtol(t, &end, 10);
-        if (end == t || *end) b = -1;
-    }
-    if (a < 200 || a > 8000 || b < 200 || b > 8000) {
-        fprintf(stderr, "sphlab plot: --size '%s': want WxH in pixels, each 200 to 8000 (e.g. 1000x700)\n", s);
-        return false;
-    }
-    *w = (int)a;
-    *h = (int)b;
-    return true;
-}
-
 static int parse_args(int argc, char **argv, plot_opts *o)
 {
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        long n;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            o->quiet = true;
-        } else if (strcmp(a, "--svg") == 0) {
-            plot_set_svg(true);
-        } else if (app_opt_is(a, "--out")) {
-            if (!(o->out = app_opt_value("plot", argc, argv, &i, "--out"))) return 2;
-        } else if (app_opt_is(a, "--name")) {
-            if (!(o->name = app_opt_value("plot", argc, argv, &i, "--name"))) return 2;
-            if (!*o->name || strchr(o->name, '/') || strlen(o->name) > 200) {
-                fprintf(stderr, "sphlab plot: --name '%s': want a file name without '/' (up to 200 characters)\n",
-                        o->name);
-                return 2;
-            }
-        } else if (app_opt_is(a, "--size")) {
-            if (!(v = app_opt_value("plot", argc, argv, &i, "--size")) || !parse_size(v, &o->width, &o->height)) return 2;
-        } else if (app_opt_is(a, "--dim")) {
-            if (!(v = app_opt_value("plot", argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 2, 3, &n)) return 2;
-            o->dim = (int)n;
-        } else if (app_opt_is(a, "--bins")) {
-            if (!(v = app_opt_value("plot", argc, argv, &i, "--bins")) || !app_parse_int("--bins", v, 1, 120, &n)) return 2;
-            o->bins = (int)n;
-        } else if (app_opt_is(a, "--h")) {
-            if (!(v = app_opt_value("plot", argc, argv, &i, "--h")) || !app_parse_double("--h", v, 1e-9, 1e6, &o->h)) return 2;
-            if (o->h <= 0) {
-                fprintf(stderr, "sphlab plot: --h %s: must be above 0 m\n", v);
-                return 2;
-            }
-        } else if (app_opt_is(a, "--y")) {
-            if (!(o->ycols = app_opt_value("plot", argc, argv, &i, "--y"))) return 2;
-        } else if (app_opt_is(a, "--x")) {
-            if (!(o->xcol = app_opt_value("plot", argc, argv, &i, "--x"))) return 2;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "sphlab plot: unknown option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        } else if (!o->what) {
-            o->what = a;
-        } else if (!o->input) {
-            o->input = a;
-        } else {
-            fprintf(stderr, "sphlab plot: unexpected argument '%s'\n", a);
-            return 2;
-        }
-    }
+    app_opts opt;
+    app_opts_init(&opt);
+    int rc = app_opts_parse(&spec, argc, argv, &opt);
+    if (rc >= 0) return rc;
+    o->what = opt.pos[0];
+    o->input = opt.pos[1];
+    o->out = opt.out;
+    o->name = opt.name;
+    o->ycols = opt.ycols;
+    o->xcol = opt.xcol;
+    o->width = (int)opt.size[0];
+    o->height = (int)opt.size[1];
+    o->dim = opt.dim < 0 ? 0 : (int)opt.dim;
+    o->bins = opt.bins < 0 ? 0 : (int)opt.bins;
+    o->h = opt.h < 0 ? 0 : opt.h;
+    o->quiet = opt.quiet;
+    if (opt.svg) plot_set_svg(true);
     return -1; /* go on */
 }
 
@@ -601,7 +540,7 @@ int cmd_plot(int argc, char **argv)
     int rc = parse_args(argc, argv, &o);
     if (rc >= 0) return rc;
     if (!o.what) {
-        usage(stderr);
+        app_opts_usage(&spec, stderr);
         return 2;
     }
     bool from_csv = strcmp(o.what, "passes") == 0 || strcmp(o.what, "series") == 0;

@@ -1,6 +1,7 @@
 /* Options shared by `sphlab render` and `sphlab view` (see cmd_common.h). */
 #include "cmd_common.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,67 +52,56 @@ static bool parse_pair(const char *s, float *a, float *b, float *c, char sep)
     return end != t && *end == '\0';
 }
 
-int view_opts_parse(view_opts *o, const char *cmd, int argc, char **argv, int *i)
+bool view_opts_take(view_opts *vo, const app_opts *o, const char *cmd)
 {
-    const char *a = argv[*i], *v;
-    if (app_opt_is(a, "--size")) {
-        if (!(v = app_opt_value(cmd, argc, argv, i, "--size"))) return -1;
-        int w, h;
-        char x;
-        if (sscanf(v, "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w < 64 || h < 64 || w > 8192 || h > 8192) {
-            fprintf(stderr, "sphlab %s: --size '%s': want WxH, 64 to 8192 pixels a side\n", cmd, v);
-            return -1;
-        }
-        o->w = w;
-        o->h = h;
-    } else if (app_opt_is(a, "--color") || app_opt_is(a, "--colour")) {
-        if (!(v = app_opt_value(cmd, argc, argv, i, app_opt_is(a, "--color") ? "--color" : "--colour"))) return -1;
-        if (sph_color_field_find(v) < 0) {
-            fprintf(stderr, "sphlab %s: unknown colour field '%s' (accepted:", cmd, v);
+    if (o->size[0]) {
+        vo->w = (int)o->size[0];
+        vo->h = (int)o->size[1];
+    }
+    if (o->color) {
+        if (sph_color_field_find(o->color) < 0) {
+            fprintf(stderr, "sphlab %s: unknown colour field '%s' (accepted:", cmd, o->color);
             for (int k = 0; k < SPH_COLOR_COUNT; k++) fprintf(stderr, " %s", sph_color_field_names[k]);
             fprintf(stderr, ")\n");
-            return -1;
+            return false;
         }
-        o->color = v;
-    } else if (app_opt_is(a, "--range")) {
-        if (!(v = app_opt_value(cmd, argc, argv, i, "--range"))) return -1;
-        if (!parse_pair(v, &o->range[0], &o->range[1], NULL, ':') || !(o->range[1] > o->range[0])) {
-            fprintf(stderr, "sphlab %s: --range '%s': want LO:HI with LO < HI\n", cmd, v);
-            return -1;
-        }
-        o->has_range = true;
-    } else if (app_opt_is(a, "--overlay")) {
-        if (!(v = app_opt_value(cmd, argc, argv, i, "--overlay")) || !overlay_list(cmd, v, &o->ov_on, &o->ov_none)) return -1;
-    } else if (app_opt_is(a, "--no-overlay")) {
-        if (!(v = app_opt_value(cmd, argc, argv, i, "--no-overlay")) || !overlay_list(cmd, v, &o->ov_off, NULL)) return -1;
-    } else if (app_opt_is(a, "--select")) {
-        if (!(v = app_opt_value(cmd, argc, argv, i, "--select")) || !app_parse_int("--select", v, 0, 2000000000L, &o->select_id))
-            return -1;
-    } else if (app_opt_is(a, "--slice")) {
-        if (!(v = app_opt_value(cmd, argc, argv, i, "--slice")) || !app_parse_double("--slice", v, -1e6, 1e6, &o->slice))
-            return -1;
-        o->has_slice = true;
-    } else if (app_opt_is(a, "--center")) {
-        if (!(v = app_opt_value(cmd, argc, argv, i, "--center"))) return -1;
-        o->center[2] = 0;
-        if (!parse_pair(v, &o->center[0], &o->center[1], &o->center[2], ':')) {
-            fprintf(stderr, "sphlab %s: --center '%s': want X:Y or X:Y:Z in metres\n", cmd, v);
-            return -1;
-        }
-        o->n_center = 3;
-    } else if (app_opt_is(a, "--camera")) {
-        if (!(v = app_opt_value(cmd, argc, argv, i, "--camera"))) return -1;
-        o->zoom = 1;
-        if (!parse_pair(v, &o->yaw, &o->pitch, &o->zoom, ':') || !(o->zoom > 0) || o->pitch < -89 || o->pitch > 89) {
-            fprintf(stderr, "sphlab %s: --camera '%s': want YAW:PITCH[:ZOOM] in degrees, pitch within +-89, zoom > 0\n",
-                    cmd, v);
-            return -1;
-        }
-        o->has_orbit = true;
-    } else {
-        return 0;
+        vo->color = o->color;
     }
-    return 1;
+    if (o->range) {
+        if (!parse_pair(o->range, &vo->range[0], &vo->range[1], NULL, ':') || !(vo->range[1] > vo->range[0])) {
+            fprintf(stderr, "sphlab %s: --range '%s': want LO:HI with LO < HI\n", cmd, o->range);
+            return false;
+        }
+        vo->has_range = true;
+    }
+    for (int i = 0; i < o->overlay.n; i++)
+        if (!overlay_list(cmd, o->overlay.v[i], &vo->ov_on, &vo->ov_none)) return false;
+    for (int i = 0; i < o->no_overlay.n; i++)
+        if (!overlay_list(cmd, o->no_overlay.v[i], &vo->ov_off, NULL)) return false;
+    if (o->select >= 0) vo->select_id = o->select;
+    if (!isnan(o->slice)) {
+        vo->slice = o->slice;
+        vo->has_slice = true;
+    }
+    if (o->center) {
+        vo->center[2] = 0;
+        if (!parse_pair(o->center, &vo->center[0], &vo->center[1], &vo->center[2], ':')) {
+            fprintf(stderr, "sphlab %s: --center '%s': want X:Y or X:Y:Z in metres\n", cmd, o->center);
+            return false;
+        }
+        vo->n_center = 3;
+    }
+    if (o->camera) {
+        vo->zoom = 1;
+        if (!parse_pair(o->camera, &vo->yaw, &vo->pitch, &vo->zoom, ':') || !(vo->zoom > 0) || vo->pitch < -89 ||
+            vo->pitch > 89) {
+            fprintf(stderr, "sphlab %s: --camera '%s': want YAW:PITCH[:ZOOM] in degrees, pitch within +-89, zoom > 0\n",
+                    cmd, o->camera);
+            return false;
+        }
+        vo->has_orbit = true;
+    }
+    return true;
 }
 
 int32_t sim_index_of_id(const sph_sim *sim, long id)

@@ -11,95 +11,39 @@
 #include "gpu.h"
 #include "vtk.h"
 
-static void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: sphlab render SCENE.ini --out DIR [options]\n"
-            "Simulates the scene and writes DIR/frame_00000.png, one every K steps (the first\n"
-            "is the initial state), without a display or a GPU. The same scene and options give\n"
-            "the same bytes.\n"
-            "  --out DIR           where the frames go (made if missing)\n"
-            "  --every K           a frame every K steps (default 10)\n"
-            "  --steps N           simulate N steps (default: the scene's duration or steps)\n"
-            "  --time T            simulate until T seconds\n"
-            "  --gl egl|osmesa     GL backend (default egl: EGL surfaceless; osmesa: Mesa's OSMesa)\n"
-            "  --vtk DIR           also write DIR/particles_NNNNN.vtk for each frame (ParaView)\n"
-            "  --set S.K=V         override a scene key (repeatable)\n"
-            "  --backend cpu|gl    where the passes run (the scene's [compute] backend otherwise)\n"
-            "  --threads N         simulation threads (default: one per core)\n"
-            "  --quiet             no progress line, no summary\n" VIEW_OPTS_HELP "  --help              this text\n"
-            "Rendering is in software (llvmpipe) unless LIBGL_ALWAYS_SOFTWARE is set to 0.\n",
-            800, 600);
-}
+static const app_cmd_spec spec = {
+    .name = "render",
+    .cmd = APP_CMD(render),
+    .synopsis = "usage: sphlab render SCENE.ini --out DIR [options]\n"
+                "Simulates the scene and writes DIR/frame_00000.png, one every K steps (the first\n"
+                "is the initial state), without a display or a GPU. The same scene and options give\n"
+                "the same bytes.\n",
+    .footer = "Rendering is in software (llvmpipe) unless LIBGL_ALWAYS_SOFTWARE is set to 0.\n",
+    .max_pos = 1,
+    .extra_pos = "more than one scene file",
+};
 
 int cmd_render(int argc, char **argv)
 {
-    app_scene_opts so = {0};
-    const char *compute = NULL; /* --backend: where the passes run (the GL context is --gl) */
+    app_opts opt;
+    app_opts_init(&opt);
+    opt.every = 10;
+    int rc = app_opts_parse(&spec, argc, argv, &opt);
+    if (rc >= 0) return rc;
     view_opts vo;
     view_opts_init(&vo, 800, 600);
-    const char *out = NULL, *vtk_dir = NULL, *v;
-    long every = 10, steps = -1, threads = 0;
-    double until = -1;
-    sph_gl_backend backend = SPH_GL_EGL;
-    bool quiet = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int taken = view_opts_parse(&vo, "render", argc, argv, &i);
-        if (taken < 0) return 2;
-        if (taken) continue;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            quiet = true;
-        } else if (app_opt_is(a, "--out")) {
-            if (!(out = app_opt_value("render", argc, argv, &i, "--out"))) return 2;
-        } else if (app_opt_is(a, "--vtk")) {
-            if (!(vtk_dir = app_opt_value("render", argc, argv, &i, "--vtk"))) return 2;
-        } else if (app_opt_is(a, "--every")) {
-            if (!(v = app_opt_value("render", argc, argv, &i, "--every")) || !app_parse_int("--every", v, 1, 2000000000L, &every))
-                return 2;
-        } else if (app_opt_is(a, "--steps")) {
-            if (!(v = app_opt_value("render", argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 0, 2000000000L, &steps))
-                return 2;
-        } else if (app_opt_is(a, "--time")) {
-            if (!(v = app_opt_value("render", argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
-                return 2;
-        } else if (app_opt_is(a, "--threads")) {
-            if (!(v = app_opt_value("render", argc, argv, &i, "--threads")) ||
-                !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
-                return 2;
-        } else if (app_opt_is(a, "--gl")) {
-            if (!(v = app_opt_value("render", argc, argv, &i, "--gl"))) return 2;
-            if (strcmp(v, "egl") == 0) {
-                backend = SPH_GL_EGL;
-            } else if (strcmp(v, "osmesa") == 0) {
-                backend = SPH_GL_OSMESA;
-            } else {
-                fprintf(stderr, "sphlab render: --gl '%s': accepted: egl, osmesa\n", v);
-                return 2;
-            }
-        } else if (app_opt_is(a, "--backend")) {
-            if (!(compute = app_opt_value("render", argc, argv, &i, "--backend")) || !app_backend_valid("render", compute))
-                return 2;
-        } else if (app_opt_is(a, "--set")) {
-            if (!(v = app_opt_value("render", argc, argv, &i, "--set")) || !app_scene_add_set(&so, v)) return 2;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "sphlab render: unknown option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        } else if (!so.path) {
-            so.path = a;
-        } else {
-            fprintf(stderr, "sphlab render: more than one scene file ('%s')\n", a);
-            return 2;
-        }
-    }
-    if (!app_scene_add_backend(&so, compute)) return 2; /* after the --set options, so it wins */
+    if (!view_opts_take(&vo, &opt, "render")) return 2;
+    const char *out = opt.out, *vtk_dir = opt.vtk;
+    long every = opt.every, steps = opt.steps, threads = opt.threads;
+    double until = opt.time;
+    /* --gl: the GL context; --backend: where the passes run */
+    sph_gl_backend backend = opt.gl && strcmp(opt.gl, "osmesa") == 0 ? SPH_GL_OSMESA : SPH_GL_EGL;
+    bool quiet = opt.quiet;
+    app_scene_opts so;
+    if (!app_scene_from_opts(&so, &opt)) return 2; /* --backend after the --set options, so it wins */
     if (!so.path || !out) {
         if (so.path) fprintf(stderr, "sphlab render: --out DIR is needed\n");
-        usage(stderr);
+        app_opts_usage(&spec, stderr);
         return 2;
     }
     if (steps >= 0 && until >= 0) {

@@ -55,25 +55,22 @@ static const char *const key_about[] = {
 };
 #define N_KEYS ((int)(sizeof key_names / sizeof *key_names))
 
-static void usage(FILE *f)
+static void print_keys(FILE *f)
 {
-    fprintf(f,
-            "usage: sphlab view SCENE.ini [options]\n"
-            "Opens a window and runs the scene live.\n"
-            "  --set S.K=V         override a scene key (repeatable)\n"
-            "  --backend cpu|gl    where the passes run (the scene's [compute] backend otherwise)\n"
-            "  --threads N         simulation threads (default: one per core)\n"
-            "  --paused            start paused\n"
-            "  --steps-per-frame K steps between frames (default: as many as fit in 15 ms; 1 when scripted)\n"
-            "  --frames N          scripted: draw N frames, then exit\n"
-            "  --keys KEYS         scripted: press one key of KEYS before each frame\n"
-            "  --screenshot FILE   scripted: save the last frame as a PNG\n" VIEW_OPTS_HELP
-            "  --help              this text\n"
-            "Needs a display (X11 or Wayland). Without one, SDL_VIDEODRIVER=offscreen runs the\n"
-            "scripted mode headless.\n\nkeys:\n",
-            1024, 720);
     for (int k = 0; k < N_KEYS; k++) fprintf(f, "  %-18s %s\n", key_names[k], key_about[k]);
 }
+
+static const app_cmd_spec spec = {
+    .name = "view",
+    .cmd = APP_CMD(view),
+    .synopsis = "usage: sphlab view SCENE.ini [options]\n"
+                "Opens a window and runs the scene live.\n",
+    .footer = "Needs a display (X11 or Wayland). Without one, SDL_VIDEODRIVER=offscreen runs the\n"
+              "scripted mode headless.\n\nkeys:\n",
+    .more = print_keys,
+    .max_pos = 1,
+    .extra_pos = "more than one scene file",
+};
 
 typedef struct viewer {
     sph_scene_def def;   /* current definition: variants switched here */
@@ -411,56 +408,20 @@ static bool display_check(char *err, size_t n)
 
 int cmd_view(int argc, char **argv)
 {
-    app_scene_opts so = {0};
-    const char *backend = NULL;
+    app_opts opt;
+    app_opts_init(&opt);
+    int parsed = app_opts_parse(&spec, argc, argv, &opt);
+    if (parsed >= 0) return parsed;
     view_opts vo;
     view_opts_init(&vo, 1024, 720);
-    long threads = 0, frames = -1, spf = -1;
-    const char *shot = NULL, *keys = "", *v;
-    bool start_paused = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int taken = view_opts_parse(&vo, "view", argc, argv, &i);
-        if (taken < 0) return 2;
-        if (taken) continue;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--paused") == 0) {
-            start_paused = true;
-        } else if (app_opt_is(a, "--frames")) {
-            if (!(v = app_opt_value("view", argc, argv, &i, "--frames")) || !app_parse_int("--frames", v, 1, 1000000, &frames))
-                return 2;
-        } else if (app_opt_is(a, "--steps-per-frame")) {
-            if (!(v = app_opt_value("view", argc, argv, &i, "--steps-per-frame")) ||
-                !app_parse_int("--steps-per-frame", v, 0, 1000000, &spf))
-                return 2;
-        } else if (app_opt_is(a, "--screenshot")) {
-            if (!(shot = app_opt_value("view", argc, argv, &i, "--screenshot"))) return 2;
-        } else if (app_opt_is(a, "--keys")) {
-            if (!(keys = app_opt_value("view", argc, argv, &i, "--keys"))) return 2;
-        } else if (app_opt_is(a, "--threads")) {
-            if (!(v = app_opt_value("view", argc, argv, &i, "--threads")) ||
-                !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
-                return 2;
-        } else if (app_opt_is(a, "--backend")) {
-            if (!(backend = app_opt_value("view", argc, argv, &i, "--backend")) || !app_backend_valid("view", backend)) return 2;
-        } else if (app_opt_is(a, "--set")) {
-            if (!(v = app_opt_value("view", argc, argv, &i, "--set")) || !app_scene_add_set(&so, v)) return 2;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "sphlab view: unknown option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        } else if (!so.path) {
-            so.path = a;
-        } else {
-            fprintf(stderr, "sphlab view: more than one scene file ('%s')\n", a);
-            return 2;
-        }
-    }
-    if (!app_scene_add_backend(&so, backend)) return 2; /* after the --set options, so it wins */
+    if (!view_opts_take(&vo, &opt, "view")) return 2;
+    long threads = opt.threads, frames = opt.frames, spf = opt.steps_per_frame;
+    const char *shot = opt.screenshot, *keys = opt.keys ? opt.keys : "";
+    bool start_paused = opt.paused;
+    app_scene_opts so;
+    if (!app_scene_from_opts(&so, &opt)) return 2; /* --backend after the --set options, so it wins */
     if (!so.path) {
-        usage(stderr);
+        app_opts_usage(&spec, stderr);
         return 2;
     }
     if ((shot || *keys) && frames < 0) {

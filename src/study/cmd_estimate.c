@@ -12,29 +12,14 @@
 #include "study.h"
 #include "study_plot.h"
 
-static void usage(FILE *f)
-{
-    fputs("usage: sphlab estimate [options]\n"
-          "Estimates a known function from samples over the unit interval (1D) or square (2D) with the SPH sum\n"
-          "<f>(x) = sum_j (m_j/rho_j) f(x_j) W(x - x_j, h), rho_j by summation, and prints the RMS error over\n"
-          "the centre [0.25, 0.75]^dim for each h and sample count (docs/accuracy.md).\n"
-          "  --dim 1|2               dimension (default 1; 1D kernels: the same shapes, 1D normalisation)\n"
-          "  --function sin|gauss    sin(2 pi x) [x sin(2 pi y)], or a Gaussian bump of width 0.1 (default sin)\n"
-          "  --kernel K              poly6, spiky, cubic or wendland (default poly6)\n"
-          "  --samples lattice|jitter|random\n"
-          "                          sample positions: lattice nodes, nodes moved up to --jitter spacings,\n"
-          "                          or uniform random (default random)\n"
-          "  --jitter J              largest offset of jittered samples, in spacings (default 0.3)\n"
-          "  --seed S                random seed (default 1)\n"
-          "  --h H1,H2,...           support radii, each up to 0.125 (default 0.005,0.01,0.02,0.04,0.08,0.125\n"
-          "                          in 1D; 0.01,0.02,0.04,0.08,0.125 in 2D)\n"
-          "  --n N1,N2,...           samples per unit length (n^dim in all; default 100,1000,10000 in 1D;\n"
-          "                          50,100,200 in 2D)\n"
-          "  --out DIR               also write DIR/estimate.csv and the chart DIR/estimate.png, .pdf\n"
-          "  --name BASE             file names (default estimate)\n"
-          "  --quiet                 no table, no list of files\n",
-          f);
-}
+static const app_cmd_spec spec = {
+    .name = "estimate",
+    .cmd = APP_CMD(estimate),
+    .synopsis = "usage: sphlab estimate [options]\n"
+                "Estimates a known function from samples over the unit interval (1D) or square (2D) with the SPH sum\n"
+                "<f>(x) = sum_j (m_j/rho_j) f(x_j) W(x - x_j, h), rho_j by summation, and prints the RMS error over\n"
+                "the centre [0.25, 0.75]^dim for each h and sample count (docs/accuracy.md).\n",
+};
 
 #define MAX_LIST 16
 
@@ -69,73 +54,45 @@ static int parse_list(const char *opt, const char *s, double lo, double hi, bool
 int cmd_estimate(int argc, char **argv)
 {
     study_est_opts eo = {1, STUDY_FN_SIN, SPH_KERNEL_POLY6, STUDY_SAMPLES_RANDOM, 0.3, 1};
-    const char *hs = NULL, *ns = NULL, *out = NULL, *base = "estimate";
-    bool quiet = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        long l;
-        double d;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            quiet = true;
-        } else if (app_opt_is(a, "--dim")) {
-            if (!(v = app_opt_value("estimate", argc, argv, &i, "--dim")) || !app_parse_int("--dim", v, 1, 2, &l)) return 2;
-            eo.dim = (int)l;
-        } else if (app_opt_is(a, "--function")) {
-            if (!(v = app_opt_value("estimate", argc, argv, &i, "--function"))) return 2;
-            int k = -1;
-            for (int f = 0; f < STUDY_FN_COUNT; f++)
-                if (strcmp(v, study_function_names[f]) == 0) k = f;
-            if (k < 0) {
-                fprintf(stderr, "sphlab estimate: --function '%s': unknown (accepted: sin, gauss)\n", v);
-                return 2;
-            }
-            eo.fn = (study_function)k;
-        } else if (app_opt_is(a, "--kernel")) {
-            if (!(v = app_opt_value("estimate", argc, argv, &i, "--kernel"))) return 2;
-            int k = sph_kernel_find(v);
-            if (k < 0 || k == SPH_KERNEL_VISCOSITY) {
-                fprintf(stderr, "sphlab estimate: --kernel '%s': %s (accepted: poly6, spiky, cubic, wendland)\n", v,
-                        k < 0 ? "unknown" : "meant for its Laplacian, singular at r = 0");
-                return 2;
-            }
-            eo.kernel = (sph_kernel_kind)k;
-        } else if (app_opt_is(a, "--samples")) {
-            if (!(v = app_opt_value("estimate", argc, argv, &i, "--samples"))) return 2;
-            int k = -1;
-            for (int s = 0; s < STUDY_SAMPLES_COUNT; s++)
-                if (strcmp(v, study_samples_names[s]) == 0) k = s;
-            if (k < 0) {
-                fprintf(stderr, "sphlab estimate: --samples '%s': unknown (accepted: lattice, jitter, random)\n", v);
-                return 2;
-            }
-            eo.samples = (study_samples)k;
-        } else if (app_opt_is(a, "--jitter")) {
-            if (!(v = app_opt_value("estimate", argc, argv, &i, "--jitter")) || !app_parse_double("--jitter", v, 0, 0.5, &d)) return 2;
-            eo.jitter = d;
-        } else if (app_opt_is(a, "--seed")) {
-            if (!(v = app_opt_value("estimate", argc, argv, &i, "--seed")) || !app_parse_int("--seed", v, 0, 2147483647L, &l)) return 2;
-            eo.seed = (uint64_t)l;
-        } else if (app_opt_is(a, "--h")) {
-            if (!(hs = app_opt_value("estimate", argc, argv, &i, "--h"))) return 2;
-        } else if (app_opt_is(a, "--n")) {
-            if (!(ns = app_opt_value("estimate", argc, argv, &i, "--n"))) return 2;
-        } else if (app_opt_is(a, "--out")) {
-            if (!(out = app_opt_value("estimate", argc, argv, &i, "--out"))) return 2;
-        } else if (app_opt_is(a, "--name")) {
-            if (!(base = app_opt_value("estimate", argc, argv, &i, "--name"))) return 2;
-            if (!*base || strchr(base, '/') || strlen(base) > 200) {
-                fprintf(stderr, "sphlab estimate: --name '%s': want a file name without '/'\n", base);
-                return 2;
-            }
-        } else {
-            fprintf(stderr, "sphlab estimate: unknown option '%s'\n", a);
-            usage(stderr);
+    app_opts opt;
+    app_opts_init(&opt);
+    int rc = app_opts_parse(&spec, argc, argv, &opt);
+    if (rc >= 0) return rc;
+    const char *hs = opt.h_list, *ns = opt.n_list, *out = opt.out, *base = opt.name ? opt.name : "estimate";
+    bool quiet = opt.quiet;
+    if (opt.dim >= 0) eo.dim = (int)opt.dim;
+    if (opt.function) {
+        int k = -1;
+        for (int f = 0; f < STUDY_FN_COUNT; f++)
+            if (strcmp(opt.function, study_function_names[f]) == 0) k = f;
+        if (k < 0) {
+            fprintf(stderr, "sphlab estimate: --function '%s': unknown (accepted: sin, gauss)\n", opt.function);
             return 2;
         }
+        eo.fn = (study_function)k;
     }
+    if (opt.kernel) {
+        int k = sph_kernel_find(opt.kernel);
+        if (k < 0 || k == SPH_KERNEL_VISCOSITY) {
+            fprintf(stderr, "sphlab estimate: --kernel '%s': %s (accepted: poly6, spiky, cubic, wendland)\n",
+                    opt.kernel, k < 0 ? "unknown" : "meant for its Laplacian, singular at r = 0");
+            return 2;
+        }
+        eo.kernel = (sph_kernel_kind)k;
+    }
+    if (opt.samples) {
+        int k = -1;
+        for (int s = 0; s < STUDY_SAMPLES_COUNT; s++)
+            if (strcmp(opt.samples, study_samples_names[s]) == 0) k = s;
+        if (k < 0) {
+            fprintf(stderr, "sphlab estimate: --samples '%s': unknown (accepted: lattice, jitter, random)\n",
+                    opt.samples);
+            return 2;
+        }
+        eo.samples = (study_samples)k;
+    }
+    if (opt.jitter >= 0) eo.jitter = opt.jitter;
+    if (opt.seed >= 0) eo.seed = (uint64_t)opt.seed;
     double hv[MAX_LIST], nv[MAX_LIST];
     int nh, nn;
     if (hs)

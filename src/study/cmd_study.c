@@ -15,29 +15,17 @@
 #include "study.h"
 #include "study_plot.h"
 
-static void usage(FILE *f)
-{
-    fputs("usage: sphlab study SCENE.ini --vary KEY=V1,V2,... [--vary ...] --out DIR [options]\n"
-          "Runs every combination of the --vary lists on a reference problem, measures its error and its\n"
-          "wall time, and writes DIR/study.csv, DIR/study.png and DIR/study.pdf (error against time, log-log,\n"
-          "Pareto front marked) and a table. docs/accuracy.md defines each error.\n"
-          "  --vary KEY=V1,V2,...  a knob and its values (repeatable, up to 8): any scene key as for --set\n"
-          "                        (fluid.spacing, kernels.h, kernels.density, time.cfl, time.dt,\n"
-          "                        physics.stiffness, physics.accumulate, ...), or\n"
-          "                          h_over_spacing  kernels.h = value x the (finest) fluid spacing\n"
-          "                          kernel          one kernel for density, pressure and viscosity\n"
-          "  --out DIR             where to write (made if missing)\n"
-          "  --metric NAME         density | density-surface | hydrostatic | taylor-green\n"
-          "                        (default: guessed from the scene)\n"
-          "  --repeats N           runs per combination; the time is their median (default 3)\n"
-          "  --steps N | --time T  run length (default: the scene's duration or steps)\n"
-          "  --set S.K=V           override a scene key before the knobs (repeatable)\n"
-          "  --threads N           worker threads (default: one per core)\n"
-          "  --name BASE           file names BASE.csv, BASE.png, BASE.pdf (default study)\n"
-          "  --quiet               no progress line, no table, no list of files\n"
-          "exit status: 0 done; 1 bad scene, knob value or output directory; 2 bad command line\n",
-          f);
-}
+static const app_cmd_spec spec = {
+    .name = "study",
+    .cmd = APP_CMD(study),
+    .synopsis = "usage: sphlab study SCENE.ini --vary KEY=V1,V2,... [--vary ...] --out DIR [options]\n"
+                "Runs every combination of the --vary lists on a reference problem, measures its error and its\n"
+                "wall time, and writes DIR/study.csv, DIR/study.png and DIR/study.pdf (error against time, log-log,\n"
+                "Pareto front marked) and a table. docs/accuracy.md defines each error.\n",
+    .footer = "exit status: 0 done; 1 bad scene, knob value or output directory; 2 bad command line\n",
+    .max_pos = 1,
+    .extra_pos = "more than one scene file",
+};
 
 /* mkdir -p DIR (plot_out_dir), then check that a file can be made in it,
  * before any run: a bad --out fails at once, not after the study. */
@@ -119,71 +107,32 @@ static void print_table(const study_plan *p, const study_row *rows, int n)
 
 int cmd_study(int argc, char **argv)
 {
-    app_scene_opts o = {0};
     study_plan plan;
     memset(&plan, 0, sizeof plan);
-    const char *out = NULL, *metric_name = NULL, *base = "study";
-    long repeats = 3, steps = -1, threads = 0;
-    double until = -1;
-    bool quiet = false;
     char why[1024];
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
-            quiet = true;
-        } else if (app_opt_is(a, "--vary")) {
-            if (!(v = app_opt_value("study", argc, argv, &i, "--vary"))) return 2;
-            if (!study_plan_add(&plan, v, why, sizeof why)) {
-                fprintf(stderr, "sphlab study: %s\n", why);
-                return 2;
-            }
-        } else if (app_opt_is(a, "--out")) {
-            if (!(out = app_opt_value("study", argc, argv, &i, "--out"))) return 2;
-        } else if (app_opt_is(a, "--metric")) {
-            if (!(metric_name = app_opt_value("study", argc, argv, &i, "--metric"))) return 2;
-        } else if (app_opt_is(a, "--name")) {
-            if (!(base = app_opt_value("study", argc, argv, &i, "--name"))) return 2;
-            if (!*base || strchr(base, '/') || strlen(base) > 200) {
-                fprintf(stderr, "sphlab study: --name '%s': want a file name without '/' (up to 200 characters)\n",
-                        base);
-                return 2;
-            }
-        } else if (app_opt_is(a, "--repeats")) {
-            if (!(v = app_opt_value("study", argc, argv, &i, "--repeats")) || !app_parse_int("--repeats", v, 1, 100, &repeats))
-                return 2;
-        } else if (app_opt_is(a, "--steps")) {
-            if (!(v = app_opt_value("study", argc, argv, &i, "--steps")) || !app_parse_int("--steps", v, 1, 2000000000L, &steps))
-                return 2;
-        } else if (app_opt_is(a, "--time")) {
-            if (!(v = app_opt_value("study", argc, argv, &i, "--time")) || !app_parse_double("--time", v, 0, 1e6, &until))
-                return 2;
-            if (!(until > 0)) {
-                fprintf(stderr, "sphlab study: --time %s: must be above 0 s\n", v);
-                return 2;
-            }
-        } else if (app_opt_is(a, "--threads")) {
-            if (!(v = app_opt_value("study", argc, argv, &i, "--threads")) ||
-                !app_parse_int("--threads", v, 1, SPH_MAX_THREADS, &threads))
-                return 2;
-        } else if (app_opt_is(a, "--set")) {
-            if (!(v = app_opt_value("study", argc, argv, &i, "--set")) || !app_scene_add_set(&o, v)) return 2;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "sphlab study: unknown option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        } else if (!o.path) {
-            o.path = a;
-        } else {
-            fprintf(stderr, "sphlab study: more than one scene file ('%s')\n", a);
+    app_opts opt;
+    app_opts_init(&opt);
+    opt.repeats = 3;
+    int rc = app_opts_parse(&spec, argc, argv, &opt);
+    if (rc >= 0) return rc;
+    const char *out = opt.out, *metric_name = opt.metric, *base = opt.name ? opt.name : "study";
+    long repeats = opt.repeats, steps = opt.steps, threads = opt.threads;
+    double until = opt.time;
+    bool quiet = opt.quiet;
+    for (int i = 0; i < opt.vary.n; i++)
+        if (!study_plan_add(&plan, opt.vary.v[i], why, sizeof why)) {
+            fprintf(stderr, "sphlab study: %s\n", why);
             return 2;
         }
+    if (until >= 0 && !(until > 0)) {
+        fprintf(stderr, "sphlab study: --time %g: must be above 0 s\n", until);
+        return 2;
     }
+    app_scene_opts o;
+    if (!app_scene_from_opts(&o, &opt)) return 2;
     if (!o.path) {
         fprintf(stderr, "sphlab study: no scene file\n");
-        usage(stderr);
+        app_opts_usage(&spec, stderr);
         return 2;
     }
     if (!out) {

@@ -1,0 +1,511 @@
+/* The option table of every sphlab command, its parser and its help (app_options.h). */
+#include "app_options.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sph_sim.h"
+
+/* The offset of a field of app_opts, and a compile-time check of its type:
+ * comparing pointers to different types is an error, so a row cannot store
+ * a long where a double is. */
+#define AT(field, type) (offsetof(app_opts, field) + 0 * sizeof(&((app_opts *)0)->field == (type *)0))
+
+#define HELP .kind = APP_OPT_HELP
+#define FLAG(f) .kind = APP_OPT_FLAG, .at = AT(f, bool)
+#define INT(f, l, u) .kind = APP_OPT_INT, .at = AT(f, long), .lo = (l), .hi = (u)
+#define DOUBLE(f, l, u) .kind = APP_OPT_DOUBLE, .at = AT(f, double), .lo = (l), .hi = (u)
+#define STRING(f) .kind = APP_OPT_STRING, .at = AT(f, const char *)
+#define PATH(f) .kind = APP_OPT_STRING, .at = AT(f, const char *), .lo = 1 /* not empty */
+#define CHOICE(f, words) .kind = APP_OPT_CHOICE, .at = AT(f, const char *), .choices = (words)
+#define BASENAME(f) .kind = APP_OPT_BASENAME, .at = AT(f, const char *)
+#define SIZE(f, l, u) .kind = APP_OPT_SIZE, .at = AT(f[0], long), .lo = (l), .hi = (u)
+#define LIST(f) .kind = APP_OPT_LIST, .at = AT(f, app_list)
+
+#define RUN APP_CMD(run)
+#define CHECK APP_CMD(check)
+#define PLOT APP_CMD(plot)
+#define RENDER APP_CMD(render)
+#define VIEW APP_CMD(view)
+#define HARDCASES APP_CMD(hardcases)
+#define STUDY APP_CMD(study)
+#define ESTIMATE APP_CMD(estimate)
+#define LESSON APP_CMD(lesson)
+#define BENCH APP_CMD(bench)
+#define MANY 2000000000L
+
+/* A command's --help lists its options in this order. Two rows may share a
+ * name when no command takes both (tests/test_options.c checks it). */
+const app_opt app_options[] = {
+    /* the scene and the run */
+    {"--set", NULL, "S.K=V", "override scene key K of section S (repeatable; `sphlab keys` lists them)",
+     RUN | CHECK | RENDER | VIEW | STUDY, LIST(sets)},
+    {"--set", NULL, "[LEVEL:]S.K=V", "override scene key K of section S, for one level or all (repeatable)", BENCH,
+     LIST(sets)},
+    {"--steps", NULL, "N", "simulate N steps (default: the scene's duration or steps)", RUN | RENDER,
+     INT(steps, 0, MANY)},
+    {"--steps", NULL, "N", "run length in steps (default: the scene's duration or steps)", STUDY, INT(steps, 1, MANY)},
+    {"--time", NULL, "T", "simulate until T seconds (instead of --steps)", RUN | RENDER | STUDY, DOUBLE(time, 0, 1e6)},
+    {"--threads", NULL, "N", "worker threads (default: one per core)", RUN | RENDER | VIEW | STUDY,
+     INT(threads, 1, SPH_MAX_THREADS)},
+    {"--backend", NULL, "cpu|gl",
+     "where the passes run (overrides [compute] backend): gl runs them as\n"
+     "OpenGL 4.3 compute shaders (the GPU, or Mesa's llvmpipe without one)",
+     RUN | RENDER | VIEW, CHOICE(backend, "cpu|gl")},
+    /* run's outputs */
+    {"--stats", NULL, "FILE.csv",
+     "one row per step: step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed,\n"
+     "then the milliseconds of each pass in the pipeline",
+     RUN, STRING(stats)},
+    {"--dump", NULL, "FILE.csv", "final particles: id,x,y,z,vx,vy,vz,rho,p", RUN,
+     STRING(dump)},
+    {"--out", NULL, "DIR", "where the frames go, DIR/frame_NNNNN.png (made if missing)", RENDER, STRING(out)},
+    {"--vtk", NULL, "DIR", "particles and all their fields as DIR/particles_NNNNN.vtk (ParaView)", RUN | RENDER,
+     STRING(vtk)},
+    {"--every", NULL, "K", "a frame (render) or a --vtk file every K steps, the first at step 0 (default 10)",
+     RUN | RENDER, INT(every, 1, MANY)},
+    {"--gl", NULL, "egl|osmesa", "GL context (default egl: EGL surfaceless; osmesa: Mesa's OSMesa)", RENDER,
+     CHOICE(gl, "egl|osmesa")},
+    /* what render and view draw */
+    {"--size", NULL, "WxH", "image size in pixels (default: render 800x600, view 1024x720)", RENDER | VIEW,
+     SIZE(size, 64, 8192)},
+    {"--color", "--colour", "FIELD",
+     "colour by: density pressure speed key neighbours pressure-acc viscosity-acc", RENDER | VIEW, STRING(color)},
+    {"--range", NULL, "LO:HI", "fixed colour range (default: each frame's min and max)", RENDER | VIEW, STRING(range)},
+    {"--overlay", NULL, "NAME,...", "switch overlays on (repeatable; 'all', 'none'); default: hud,legend",
+     RENDER | VIEW, LIST(overlay)},
+    {"--no-overlay", NULL, "NAME,...", "switch overlays off (repeatable)", RENDER | VIEW, LIST(no_overlay)},
+    {"--select", NULL, "ID", "the particle the neighbours overlay and the index strip follow", RENDER | VIEW,
+     INT(select, 0, MANY)},
+    {"--slice", NULL, "Z", "3D: the plane z = Z [m] the grid, keys and collisions show on", RENDER | VIEW,
+     DOUBLE(slice, -1e6, 1e6)},
+    {"--camera", NULL, "Y:P[:Z]", "orbit yaw and pitch [deg] (3D) and zoom (default 30:25:1)", RENDER | VIEW,
+     STRING(camera)},
+    {"--center", NULL, "X:Y[:Z]", "the point [m] the view centres on (default: the domain's centre)", RENDER | VIEW,
+     STRING(center)},
+    /* the window */
+    {"--paused", NULL, NULL, "start paused", VIEW, FLAG(paused)},
+    {"--steps-per-frame", NULL, "K", "steps between frames (default: as many as fit in 15 ms; 1 when scripted)", VIEW,
+     INT(steps_per_frame, 0, 1000000)},
+    {"--frames", NULL, "N", "scripted: draw N frames, then exit", VIEW, INT(frames, 1, 1000000)},
+    {"--keys", NULL, "KEYS", "scripted: press one key of KEYS before each frame", VIEW, STRING(keys)},
+    {"--screenshot", NULL, "FILE", "scripted: save the last frame as a PNG", VIEW, STRING(screenshot)},
+    /* plot */
+    {"--out", NULL, "DIR",
+     "where to write (made if missing; default: the CSV's directory for\n"
+     "passes and series, . for kernels)",
+     PLOT, STRING(out)},
+    {"--name", NULL, "BASE", "file name without extension (default: passes, series-COLS,\nkernel-NAME-2d, kernels-2d)",
+     PLOT, BASENAME(name)},
+    {"--size", NULL, "WxH", "PNG size in pixels (the PDF is WxH/2 points, same layout)", PLOT, SIZE(size, 200, 8000)},
+    {"--dim", NULL, "2|3", "kernels: dimension (default 2); series: units of ekin, rho", PLOT, INT(dim, 2, 3)},
+    {"--h", NULL, "H", "kernels: support radius in m (default: the scene default)", PLOT, DOUBLE(h, 1e-9, 1e6)},
+    {"--y", NULL, "C[,C...]", "series: the columns to draw", PLOT, STRING(ycols)},
+    {"--x", NULL, "t|step", "series: the x axis (default t)", PLOT, STRING(xcol)},
+    {"--bins", NULL, "N", "passes: time bins of the stacked chart (default 100)", PLOT, INT(bins, 1, 120)},
+    {"--svg", NULL, NULL, "also write BASE.svg", PLOT, FLAG(svg)},
+    /* hardcases */
+    {"--quick", NULL, NULL, "a quarter of the steps of the long cases (at least 1500), for CI", HARDCASES, FLAG(quick)},
+    {"--only", NULL, "NAME", "run one case", HARDCASES, STRING(only)},
+    {"--list", NULL, NULL, "list the cases", HARDCASES, FLAG(list)},
+    {"--verbose", NULL, NULL, "print the watchdog's report of cases it stopped", HARDCASES, FLAG(verbose)},
+    /* study */
+    {"--vary", NULL, "KEY=V1,V2,...",
+     "a knob and its values (repeatable, up to 8): any scene key as for --set\n"
+     "(fluid.spacing, kernels.h, kernels.density, time.cfl, time.dt,\n"
+     "physics.stiffness, physics.accumulate, ...), or\n"
+     "  h_over_spacing  kernels.h = value x the (finest) fluid spacing\n"
+     "  kernel          one kernel for density, pressure and viscosity",
+     STUDY, LIST(vary)},
+    {"--out", NULL, "DIR", "where to write (made if missing)", STUDY, STRING(out)},
+    {"--metric", NULL, "NAME", "density | density-surface | hydrostatic | taylor-green\n(default: guessed from the scene)",
+     STUDY, STRING(metric)},
+    {"--repeats", NULL, "N", "runs per combination; the time is their median (default 3)", STUDY,
+     INT(repeats, 1, 100)},
+    {"--name", NULL, "BASE", "file names BASE.csv, BASE.png, BASE.pdf (default study)", STUDY, BASENAME(name)},
+    /* estimate */
+    {"--dim", NULL, "1|2", "dimension (default 1; 1D kernels: the same shapes, 1D normalisation)", ESTIMATE,
+     INT(dim, 1, 2)},
+    {"--function", NULL, "sin|gauss", "sin(2 pi x) [x sin(2 pi y)], or a Gaussian bump of width 0.1 (default sin)",
+     ESTIMATE, STRING(function)},
+    {"--kernel", NULL, "K", "poly6, spiky, cubic or wendland (default poly6)", ESTIMATE, STRING(kernel)},
+    {"--samples", NULL, "lattice|jitter|random",
+     "sample positions: lattice nodes, nodes moved up to --jitter spacings,\nor uniform random (default random)",
+     ESTIMATE, STRING(samples)},
+    {"--jitter", NULL, "J", "largest offset of jittered samples, in spacings (default 0.3)", ESTIMATE,
+     DOUBLE(jitter, 0, 0.5)},
+    {"--seed", NULL, "S", "random seed (default 1)", ESTIMATE, INT(seed, 0, 2147483647L)},
+    {"--h", NULL, "H1,H2,...",
+     "support radii, each up to 0.125 (default 0.005,0.01,0.02,0.04,0.08,0.125\nin 1D; 0.01,0.02,0.04,0.08,0.125 in 2D)",
+     ESTIMATE, STRING(h_list)},
+    {"--n", NULL, "N1,N2,...",
+     "samples per unit length (n^dim in all; default 100,1000,10000 in 1D;\n50,100,200 in 2D)", ESTIMATE,
+     STRING(n_list)},
+    {"--out", NULL, "DIR", "also write DIR/estimate.csv and the chart DIR/estimate.png, .pdf", ESTIMATE, STRING(out)},
+    {"--name", NULL, "BASE", "file names (default estimate)", ESTIMATE, BASENAME(name)},
+    /* lesson */
+    {"--list", NULL, NULL, "the lessons, their level and what each is about", LESSON, FLAG(list)},
+    {"--export", NULL, "DIR",
+     "without a display: runs the lesson's experiments with this binary's own\n"
+     "commands, writes its figures (PNG; charts also as PDF, each beside its\n"
+     "CSV) and DIR/report.md with the parameters and the measured numbers;\n"
+     "the commands' outputs go to DIR/logs/",
+     LESSON, PATH(export_dir)},
+    {"--quick", NULL, NULL, "with --export: fewer steps and variants (for tests: a few seconds a lesson)", LESSON,
+     FLAG(quick)},
+    {"--quiet", NULL, NULL, "with --export: do not print the commands as they run", LESSON, FLAG(quiet)},
+    {"--dry-run", NULL, NULL, "print the window's command instead of running it", LESSON, FLAG(dry_run)},
+    /* bench */
+    {"--dim", NULL, "2|3", "dimension of the scene (default 3)", BENCH, INT(dim, 2, 3)},
+    {"--fps", NULL, "F", "ladder: the frame rate to reach, steps/s (default 60)", BENCH, DOUBLE(fps, 0.01, 1e5)},
+    {"--at", NULL, "N", "ladder: particle count of the per-pass table (default 20000; --quick 6000)", BENCH,
+     INT(at, 8, 20000000L)},
+    {"--quick", NULL, NULL, "small sizes, few repeats (for CI: ladder and scaling in well under a minute)", BENCH,
+     FLAG(quick)},
+    {"--out", NULL, "DIR", "where the CSV, JSON and charts go (made if missing; default .)", BENCH, PATH(out)},
+    {"--levels", NULL, "L0,L3,...", "only these levels (default: all)", BENCH, STRING(levels)},
+    {"--watchdog", NULL, NULL, "keep the watchdog's checks on while timing (default off: a debugging aid)", BENCH,
+     FLAG(watchdog)},
+    {"--trace", NULL, NULL, "one line per measurement on stderr (size, steps/s, repeats, others)", BENCH,
+     FLAG(trace)},
+    /* every command */
+    {"--quiet", "-q", NULL, "no progress line, no tables, no list of files written (files are still written)",
+     RUN | RENDER | PLOT | STUDY | ESTIMATE | BENCH, FLAG(quiet)},
+    {"--help", "-h", NULL, "this text", RUN | CHECK | PLOT | RENDER | VIEW | HARDCASES | STUDY | ESTIMATE | LESSON | BENCH,
+     HELP},
+};
+const int app_option_count = (int)(sizeof app_options / sizeof app_options[0]);
+
+void app_opts_init(app_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->steps = o->every = o->frames = o->steps_per_frame = o->repeats = o->dim = o->bins = o->seed = o->at = -1;
+    o->select = -1;
+    o->threads = 0; /* one per core */
+    o->time = -1;
+    o->h = o->jitter = o->fps = -1;
+    o->slice = NAN;
+}
+
+bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = s ? strtol(s, &end, 10) : 0;
+    if (!s || end == s || *end || errno) {
+        fprintf(stderr, "sphlab: %s '%s': not a whole number\n", opt, s ? s : "");
+        return false;
+    }
+    if (v < lo || v > hi) {
+        fprintf(stderr, "sphlab: %s %ld: out of range (accepted: %ld to %ld)\n", opt, v, lo, hi);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+bool app_parse_double(const char *opt, const char *s, double lo, double hi, double *out)
+{
+    char *end;
+    double v = s ? strtod(s, &end) : 0;
+    if (!s || end == s || *end) {
+        fprintf(stderr, "sphlab: %s '%s': not a number\n", opt, s ? s : "");
+        return false;
+    }
+    if (!isfinite(v) || v < lo || v > hi) {
+        fprintf(stderr, "sphlab: %s %s: out of range (accepted: %g to %g)\n", opt, s, lo, hi);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+/* Whether `word` is one of the '|'-separated words of `choices`. */
+static bool choice_has(const char *choices, const char *word)
+{
+    size_t n = strlen(word);
+    for (const char *c = choices; *c;) {
+        const char *bar = strchr(c, '|');
+        size_t len = bar ? (size_t)(bar - c) : strlen(c);
+        if (len == n && strncmp(c, word, n) == 0) return true;
+        if (!bar) break;
+        c = bar + 1;
+    }
+    return false;
+}
+
+static bool parse_size(const char *s, long lo, long hi, long out[2])
+{
+    char *end;
+    errno = 0;
+    long w = strtol(s, &end, 10), h = -1;
+    if (end != s && (*end == 'x' || *end == 'X')) {
+        const char *t = end + 1;
+        h = strtol(t, &end, 10);
+        if (end == t || *end) h = -1;
+    }
+    if (errno || w < lo || w > hi || h < lo || h > hi) return false;
+    out[0] = w;
+    out[1] = h;
+    return true;
+}
+
+/* Stores the value of option `r` for command `cmd`; false with a message. */
+static bool opt_store(const app_opt *r, const char *cmd, const char *v, app_opts *o)
+{
+    void *dst = (char *)o + r->at;
+    switch (r->kind) {
+    case APP_OPT_INT: return app_parse_int(r->name, v, (long)r->lo, (long)r->hi, dst);
+    case APP_OPT_DOUBLE: return app_parse_double(r->name, v, r->lo, r->hi, dst);
+    case APP_OPT_STRING:
+        if (strlen(v) < (size_t)r->lo) {
+            fprintf(stderr, "sphlab %s: %s: empty, want %s\n", cmd, r->name, r->arg);
+            return false;
+        }
+        *(const char **)dst = v;
+        return true;
+    case APP_OPT_CHOICE:
+        if (!choice_has(r->choices, v)) {
+            fprintf(stderr, "sphlab %s: %s '%s': accepted: ", cmd, r->name, v);
+            for (const char *c = r->choices; *c; c++) fputs(*c == '|' ? ", " : (char[2]){*c, 0}, stderr);
+            fputc('\n', stderr);
+            return false;
+        }
+        *(const char **)dst = v;
+        return true;
+    case APP_OPT_BASENAME:
+        if (!*v || strchr(v, '/') || strlen(v) > 200) {
+            fprintf(stderr, "sphlab %s: %s '%s': want a file name without '/' (up to 200 characters)\n", cmd, r->name,
+                    v);
+            return false;
+        }
+        *(const char **)dst = v;
+        return true;
+    case APP_OPT_SIZE:
+        if (!parse_size(v, (long)r->lo, (long)r->hi, dst)) {
+            fprintf(stderr, "sphlab %s: %s '%s': want WxH in pixels, each %ld to %ld (e.g. 1000x700)\n", cmd, r->name,
+                    v, (long)r->lo, (long)r->hi);
+            return false;
+        }
+        return true;
+    case APP_OPT_LIST: {
+        app_list *l = dst;
+        if (l->n == APP_LIST_MAX) {
+            fprintf(stderr, "sphlab %s: more than %d %s options\n", cmd, APP_LIST_MAX, r->name);
+            return false;
+        }
+        l->v[l->n++] = v;
+        return true;
+    }
+    case APP_OPT_HELP:
+    case APP_OPT_FLAG: break;
+    }
+    return false;
+}
+
+/* The row of `cmd` that argument `a` names ("--name", "--name=value" or
+ * the alias), or NULL; *value points after '=' if there is one. */
+static const app_opt *opt_find(unsigned cmd, const char *a, const char **value)
+{
+    for (int k = 0; k < app_option_count; k++) {
+        const app_opt *r = &app_options[k];
+        if (!(r->cmds & cmd)) continue;
+        const char *names[2] = {r->name, r->alias};
+        for (int j = 0; j < 2 && names[j]; j++) {
+            size_t n = strlen(names[j]);
+            if (strncmp(a, names[j], n) != 0 || (a[n] != '\0' && a[n] != '=')) continue;
+            *value = a[n] == '=' ? a + n + 1 : NULL;
+            return r;
+        }
+    }
+    return NULL;
+}
+
+/* Edit distance between two short strings (typos: a letter wrong, missing, extra or swapped). */
+static int edit_distance(const char *a, const char *b)
+{
+    enum { MAXLEN = 48 };
+    size_t na = strlen(a), nb = strlen(b);
+    if (na >= MAXLEN || nb >= MAXLEN) return MAXLEN;
+    int d[MAXLEN][MAXLEN];
+    for (size_t i = 0; i <= na; i++) d[i][0] = (int)i;
+    for (size_t j = 0; j <= nb; j++) d[0][j] = (int)j;
+    for (size_t i = 1; i <= na; i++)
+        for (size_t j = 1; j <= nb; j++) {
+            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            if (d[i - 1][j] + 1 < best) best = d[i - 1][j] + 1;
+            if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
+        }
+    return d[na][nb];
+}
+
+const char *app_opts_closest(unsigned cmd, const char *arg)
+{
+    char a[64];
+    snprintf(a, sizeof a, "%s", arg);
+    char *eq = strchr(a, '=');
+    if (eq) *eq = '\0';
+    const char *best = NULL;
+    int best_d = 1 << 30;
+    size_t na = strlen(a);
+    for (int k = 0; k < app_option_count; k++) {
+        const app_opt *r = &app_options[k];
+        if (!(r->cmds & cmd)) continue;
+        int d = edit_distance(a, r->name);
+        /* a prefix of a longer option ("--step" for "--steps-per-frame") counts as close */
+        if (na > 3 && strncmp(r->name, a, na) == 0 && d > 2) d = 2;
+        if (d < best_d) {
+            best_d = d;
+            best = r->name;
+        }
+    }
+    size_t limit = na / 3 > 2 ? na / 3 : 2;
+    return best && (size_t)best_d <= limit ? best : NULL;
+}
+
+int app_opts_parse(const app_cmd_spec *spec, int argc, char **argv, app_opts *o)
+{
+    const char *cmd = spec->name;
+    for (int i = 1; i < argc; i++) {
+        char *a = argv[i];
+        const char *v = NULL;
+        const app_opt *r = a[0] == '-' && a[1] ? opt_find(spec->cmd, a, &v) : NULL;
+        if (r && r->kind == APP_OPT_HELP) {
+            app_opts_usage(spec, stdout);
+            return 0;
+        }
+        if (r && r->kind == APP_OPT_FLAG) {
+            if (v) {
+                fprintf(stderr, "sphlab %s: %s takes no value ('%s')\n", cmd, r->name, a);
+                return 2;
+            }
+            *(bool *)((char *)o + r->at) = true;
+        } else if (r) {
+            if (!v) {
+                if (i + 1 >= argc) {
+                    fprintf(stderr, "sphlab %s: %s needs a value (%s)\n", cmd, r->name, r->arg);
+                    return 2;
+                }
+                v = argv[++i];
+            }
+            if (!opt_store(r, cmd, v, o)) return 2;
+        } else if ((a[0] == '-' && a[1]) || o->n_pos == spec->max_pos) {
+            if (spec->flags & APP_SPEC_PASS_ON) {
+                if (o->n_rest == APP_REST_MAX) {
+                    fprintf(stderr, "sphlab %s: more than %d arguments\n", cmd, APP_REST_MAX);
+                    return 2;
+                }
+                o->rest[o->n_rest++] = a;
+            } else if (a[0] == '-' && a[1]) {
+                const char *near = app_opts_closest(spec->cmd, a);
+                fprintf(stderr, "sphlab %s: unknown option '%s'", cmd, a);
+                if (near) fprintf(stderr, " (did you mean %s?)", near);
+                fprintf(stderr, "\n");
+                app_opts_usage(spec, stderr);
+                return 2;
+            } else {
+                if (spec->extra_pos)
+                    fprintf(stderr, "sphlab %s: %s ('%s')\n", cmd, spec->extra_pos, a);
+                else
+                    fprintf(stderr, "sphlab %s: unexpected argument '%s'\n", cmd, a);
+                return 2;
+            }
+        } else {
+            o->pos[o->n_pos++] = a;
+        }
+    }
+    return -1;
+}
+
+/* "--name ARG", or "--name, -a ARG" with the alias. */
+static void opt_label(const app_opt *r, char *buf, size_t cap)
+{
+    snprintf(buf, cap, "%s%s%s%s%s", r->name, r->alias ? ", " : "", r->alias ? r->alias : "", r->arg ? " " : "",
+             r->arg ? r->arg : "");
+}
+
+void app_opts_usage(const app_cmd_spec *spec, FILE *f)
+{
+    fputs(spec->synopsis, f);
+    for (int k = 0; k < app_option_count; k++) {
+        const app_opt *r = &app_options[k];
+        if (!(r->cmds & spec->cmd)) continue;
+        char label[96];
+        opt_label(r, label, sizeof label);
+        /* a long label gets its own line; continuation lines line up under the help */
+        if (strlen(label) > 20) fprintf(f, "  %s\n  %-20s ", label, "");
+        else fprintf(f, "  %-20s ", label);
+        for (const char *h = r->help; *h; h++) {
+            fputc(*h, f);
+            if (*h == '\n') fprintf(f, "  %-20s ", "");
+        }
+        fputc('\n', f);
+    }
+    if (spec->footer) fputs(spec->footer, f);
+    if (spec->more) spec->more(f);
+}
+
+static const char *const command_names[] = {
+#define APP_CMD_NAME(name, args, about) #name,
+    SPH_COMMANDS(APP_CMD_NAME)
+#undef APP_CMD_NAME
+};
+static const char *const command_about[] = {
+#define APP_CMD_ABOUT(name, args, about) about,
+    SPH_COMMANDS(APP_CMD_ABOUT)
+#undef APP_CMD_ABOUT
+};
+
+void app_opts_list(FILE *f)
+{
+    for (int c = 0; c < APP_CMD_COUNT; c++)
+        for (int k = 0; k < app_option_count; k++)
+            if (app_options[k].cmds & (1u << c)) fprintf(f, "%s %s\n", command_names[c], app_options[k].name);
+}
+
+/* Text in a Markdown table cell: one line, '|' escaped (also inside code). */
+static void md_cell(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        if (*s == '\n')
+            fputc(' ', f);
+        else if (*s == '|')
+            fputs("\\|", f);
+        else
+            fputc(*s, f);
+    }
+}
+
+void app_opts_markdown(FILE *f)
+{
+    fputs("# Command-line options\n\n"
+          "<!-- Generated from the option table (src/app/app_options.c) by\n"
+          "     `sphlab help --markdown > docs/commands.md`; tests/test_options.c checks it is current. -->\n\n"
+          "Every option takes its value as `--name value` or `--name=value`. `sphlab CMD --help`\n"
+          "(or `sphlab help CMD`) prints the same list with the command's usage. A misspelt option\n"
+          "is refused with exit status 2, naming the closest known one.\n",
+          f);
+    for (int c = 0; c < APP_CMD_COUNT; c++) {
+        bool any = false;
+        for (int k = 0; k < app_option_count; k++) {
+            const app_opt *r = &app_options[k];
+            if (!(r->cmds & (1u << c))) continue;
+            if (!any) fprintf(f, "\n## sphlab %s\n\n%s.\n\n| option | meaning |\n|---|---|\n", command_names[c],
+                              command_about[c]);
+            any = true;
+            char label[96];
+            opt_label(r, label, sizeof label);
+            fputs("| `", f);
+            md_cell(f, label);
+            fputs("` | ", f);
+            md_cell(f, r->help);
+            fputs(" |\n", f);
+        }
+        if (!any) fprintf(f, "\n## sphlab %s\n\n%s. No options.\n", command_names[c], command_about[c]);
+    }
+}
