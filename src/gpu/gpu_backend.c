@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "gl_context.h"
+#include "gl_fields.h"
 #include "gpu.h"
 #include "gpu_shaders.h"
 #include "sph_search.h"
@@ -73,9 +74,9 @@ static const char *const uniform_names[U_TOTAL] = {
 
 typedef struct gpu {
     sph_backend base; /* first: the core's table */
-    sph_glctx *ctx;           /* NULL: the caller's context, adopted (sph_gpu_adopt_current_context) */
-    bool adopted;
-    sph_glctx *borrowed;      /* the adopted context, if sphlab made it (the renderer's): made current again */
+    sph_glctx *ctx;           /* its own context; NULL when it runs in a shared one */
+    sph_glctx *share;         /* the shared context (the window's, the renderer's), or NULL */
+    sph_gl_fields fields;     /* its buffers for a drawer (sph_gpu_fields) */
     sph_gl gl;
     sph_gl_compute gc;
     uint32_t n, table; /* particles, hash keys */
@@ -90,9 +91,6 @@ typedef struct gpu {
     GLuint range;             /* a field's min and max, as ordered keys (sph_gpu_field_range) */
     uint64_t downloaded;      /* bytes copied to the host: sph_sim_sync, range reads */
 } gpu;
-
-/* Whether sph_gpu_backend_create adopts the caller's current context. */
-static bool adopt_current;
 
 /* ---- set-up --------------------------------------------------------------- */
 
@@ -262,8 +260,8 @@ static void bind(gpu *g, int binding, GLuint b)
 
 static void current(gpu *g)
 {
-    /* an adopted context that is not sphlab's (SDL's) is the caller's to keep current */
-    if (g->ctx || g->borrowed) sph_glctx_make_current(g->ctx ? g->ctx : g->borrowed);
+    /* a caller's context (SDL's) is the caller's to keep current: nothing done */
+    sph_glctx_make_current(g->ctx ? g->ctx : g->share);
 }
 
 /* ---- dispatch ------------------------------------------------------------- */
@@ -392,7 +390,7 @@ static void integrate(gpu *g, sph_sim *sim)
 }
 
 /* Storage buffer bindings are the context's state, not the program's: in an
- * adopted context another simulation (a reset or a variant switch in the
+ * shared context another simulation (a reset or a variant switch in the
  * window) may have rebound them, or unbound them by deleting its buffers. */
 static void rebind(gpu *g)
 {
@@ -404,7 +402,7 @@ static void run(sph_backend *b, sph_sim *sim, sph_pass_id pass)
 {
     gpu *g = (gpu *)b;
     current(g);
-    if (g->adopted) rebind(g);
+    if (g->share) rebind(g);
     int simple = -1; /* a pass that is one dispatch over the particles */
     switch (pass) {
     case SPH_PASS_EXTERNAL:
@@ -544,7 +542,7 @@ static void destroy(sph_backend *b)
 {
     gpu *g = (gpu *)b;
     if (!g) return;
-    if (g->ctx || g->adopted) {
+    if (g->ctx || g->share) {
         current(g);
         for (int p = 0; p < PROG_TOTAL; p++)
             if (g->prog[p]) g->gl.DeleteProgram(g->prog[p]);
@@ -698,14 +696,23 @@ static sph_glctx *make_context(sph_gl *gl, sph_gl_compute *gc, char *why, size_t
     return NULL;
 }
 
-/* The caller's current context (a window's, the renderer's), if it can run
- * the passes; false with the reason. */
-static bool adopt_context(sph_gl *gl, sph_gl_compute *gc, char *why, size_t n)
+/* A shared context (a window's, the renderer's), if it can run the passes;
+ * false with the reason. Its functions come from libepoxy, which cannot
+ * serve an OSMesa context (src/gl/gl_table.h). */
+static bool share_context(sph_glctx *share, sph_gl *gl, sph_gl_compute *gc, char *why, size_t n)
 {
+    if (sph_glctx_kind_of(share) == SPH_GLCTX_OSMESA) {
+        snprintf(why, n, "an OSMesa context cannot be shared (OpenGL 3.3, no libepoxy)");
+        return false;
+    }
+    if (!sph_glctx_make_current(share)) {
+        snprintf(why, n, "the shared context cannot be made current");
+        return false;
+    }
     sph_gl_load_epoxy(gl);
     sph_gl_load_compute_epoxy(gc);
     if (!gl->GetString(GL_VERSION)) {
-        snprintf(why, n, "no OpenGL context is current to adopt");
+        snprintf(why, n, "the shared context is not current");
         return false;
     }
     return context_usable(gl, why, n);
@@ -732,7 +739,11 @@ bool sph_gpu_probe(char *device, size_t n)
     return true;
 }
 
-sph_error_code sph_gpu_backend_create(sph_sim *sim, sph_backend **out, sph_error *err)
+/* The drawer's calls (sph_gl_fields), defined with sph_gpu_field_buffer and _range. */
+static bool fields_buffer(const sph_sim *sim, int field, unsigned *gl_name);
+static bool fields_range(const sph_sim *sim, int field, bool norm, unsigned *gl_name, float lo_hi[2]);
+
+sph_error_code sph_gpu_backend_create(sph_sim *sim, void *share, sph_backend **out, sph_error *err)
 {
     *out = NULL;
     sph_error_code c = check_scene(sim, err);
@@ -749,17 +760,17 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, sph_backend **out, sph_error
     g->table = sim->S.table_size ? sim->S.table_size : 1;
     g->pass_sync = true;
     char why[1024];
-    if (adopt_current) {
-        g->borrowed = sph_glctx_current();
-        g->adopted = adopt_context(&g->gl, &g->gc, why, sizeof why);
-    }
-    else
+    if (share) {
+        if (share_context(share, &g->gl, &g->gc, why, sizeof why)) g->share = share;
+    } else {
         g->ctx = make_context(&g->gl, &g->gc, why, sizeof why);
-    if (!g->ctx && !g->adopted) {
+    }
+    if (!g->ctx && !g->share) {
         free(g);
         return sph_fail(err, SPH_ERR_SCENE, "%s: [compute] backend = gl: no OpenGL 4.3 context%s: %s", sim->def.file,
-                        adopt_current ? " (adopting the current one)" : "", why);
+                        share ? " (in the shared one)" : "", why);
     }
+    g->fields = (sph_gl_fields){.ctx = g->ctx ? g->ctx : g->share, .buffer = fields_buffer, .range = fields_range};
     device_name(&g->gl, g->base.device, sizeof g->base.device);
     GLint max_block = 0;
     g->gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
@@ -799,27 +810,15 @@ void sph_gpu_set_pass_sync(sph_sim *sim, bool on)
     if (sim->backend && sim->backend->run == run) ((gpu *)sim->backend)->pass_sync = on;
 }
 
-void sph_gpu_adopt_current_context(bool on)
-{
-    adopt_current = on;
-}
-
 static gpu *gpu_of(const sph_sim *sim)
 {
     return sim->backend && sim->backend->run == run ? (gpu *)sim->backend : NULL;
 }
 
-bool sph_gpu_context_adopted(const sph_sim *sim)
+const sph_gl_fields *sph_gpu_fields(const sph_sim *sim)
 {
     gpu *g = gpu_of(sim);
-    return g && g->adopted;
-}
-
-bool sph_gpu_context_is_current(const sph_sim *sim)
-{
-    gpu *g = gpu_of(sim);
-    /* SDL's context is no sphlab context: then none of sphlab's must be current */
-    return g && g->adopted && sph_glctx_current() == g->borrowed;
+    return g ? &g->fields : NULL;
 }
 
 bool sph_gpu_field_buffer(const sph_sim *sim, sph_field_id f, unsigned *gl_name)
@@ -863,6 +862,16 @@ bool sph_gpu_field_range(const sph_sim *sim, sph_field_id f, bool norm, unsigned
         lo_hi[1] = k[0] > k[1] ? 0.0f : key_float(k[1]);
     }
     return true;
+}
+
+static bool fields_buffer(const sph_sim *sim, int field, unsigned *gl_name)
+{
+    return sph_gpu_field_buffer(sim, (sph_field_id)field, gl_name);
+}
+
+static bool fields_range(const sph_sim *sim, int field, bool norm, unsigned *gl_name, float lo_hi[2])
+{
+    return sph_gpu_field_range(sim, (sph_field_id)field, norm, gl_name, lo_hi);
 }
 
 uint64_t sph_gpu_downloaded_bytes(const sph_sim *sim)
