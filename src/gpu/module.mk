@@ -3,7 +3,7 @@
 # its EGL context or one shared with it, its GL table and program builder).
 # Included by the top Makefile.
 
-GPU_OBJ := $(BUILD)/gpu/gpu_backend.o
+GPU_OBJ := $(BUILD)/gpu/gpu_backend.o $(BUILD)/gpu/gpu_passes.o $(BUILD)/gpu/gpu_program.o
 
 MOD_OBJ       += $(GPU_OBJ)
 # A module library: linked before the GL layer (libsphgl.a) and the core.
