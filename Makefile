@@ -26,9 +26,20 @@ TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c)
 DEB_PKGS := build-essential clang pkg-config libinih-dev libcriterion-dev libomp-dev libclang-rt-14-dev
 MOD_OBJ  :=
 MOD_LIBS :=
+# The tests link the modules' libraries in layers, each before what it
+# stands on, and name every library once: the modules' own (render, gpu,
+# study: MOD_TEST_LIBS, none using another), then the layers below them (gl,
+# overlay: BASE_TEST_LIBS, which use only the core), then the core, then the
+# system's libraries (MOD_TEST_SYS_LIBS, repeats dropped).
 MOD_TEST_LIBS :=
+BASE_TEST_LIBS :=
+MOD_TEST_SYS_LIBS :=
 -include $(wildcard src/*/module.mk)
 .DEFAULT_GOAL := all
+
+# A list without its repeats, each kept where it first appears (-lm from the
+# core and from a module is named once on a link line).
+uniq = $(if $1,$(firstword $1) $(call uniq,$(filter-out $(firstword $1),$1)))
 
 CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
 APP_OBJ  := $(APP:%=$(BUILD)/app/%.o) $(MOD_OBJ)
@@ -43,7 +54,7 @@ $(BUILD)/tests/test_options.o: src/app/app_options.h src/app/commands.h
 all: $(BIN)
 
 $(BIN): $(BUILD)/libsphcore.a $(APP_OBJ)
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_LIBS)
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(call uniq,$(CORE_LIBS) $(MOD_LIBS))
 
 $(BUILD)/libsphcore.a: $(CORE_OBJ)
 	ar rcs $@ $^
@@ -61,8 +72,8 @@ $(BUILD)/core $(BUILD)/passes $(BUILD)/app $(BUILD)/tests:
 	mkdir -p $@
 
 $(BUILD)/sphlab-tests: $(TEST_OBJ) $(TEST_APP_OBJ) $(BUILD)/libsphcore.a
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(TEST_APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_TEST_LIBS) \
-	    $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null || echo -lcriterion)
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(TEST_APP_OBJ) $(MOD_TEST_LIBS) $(BASE_TEST_LIBS) $(BUILD)/libsphcore.a \
+	    $(call uniq,$(CORE_LIBS) $(MOD_TEST_SYS_LIBS) $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null || echo -lcriterion))
 
 # Installs what is missing (Debian packages); does nothing when all are there.
 deps:
@@ -110,7 +121,7 @@ asan-run:
 	    $(MAKE) BUILD=build-asan SPHLAB_BIN=./sphlab-asan check-tests-asan
 
 sphlab-asan: $(BUILD)/libsphcore.a $(APP_OBJ)
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_LIBS)
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(call uniq,$(CORE_LIBS) $(MOD_LIBS))
 
 check-tests-asan:
 	SPHLAB=./sphlab-asan $(BUILD)/sphlab-tests --jobs 2

@@ -5,45 +5,14 @@
 // Each vector field is one buffer holding the x values, then y, then z (the
 // CPU's one-array-per-axis layout end to end): component d of particle i is
 // at d * N + i. A pass's first line lists the buffers it uses ("// uses: POS
-// VEL"); the host defines USE_POS and so on, and only those blocks are
-// declared, since Mesa counts every declared block against the limit of 16
-// per shader.
+// VEL ENTRIES"). The particle fields' blocks (pos_, vel_, rho_, acc_v_, ...:
+// the registry's names, src/core/sph_fields.h) are written by the host
+// before this file (gpu_program.c); for the others below it defines USE_X.
+// Only the buffers a pass lists are declared, since Mesa counts every
+// declared block against the limit of 16 per shader.
 
 #if USE_ID
 layout(std430, binding = B_ID) buffer BufId { uint id_[]; };
-#endif
-#if USE_MASS
-layout(std430, binding = B_MASS) buffer BufMass { float mass_[]; };
-#endif
-#if USE_POS
-layout(std430, binding = B_POS) buffer BufPos { float pos_[]; };
-#endif
-#if USE_VEL
-layout(std430, binding = B_VEL) buffer BufVel { float vel_[]; };
-#endif
-#if USE_PRED
-layout(std430, binding = B_PRED) buffer BufPred { float pred_[]; };
-#endif
-#if USE_RHO
-layout(std430, binding = B_RHO) buffer BufRho { float rho_[]; };
-#endif
-#if USE_VOL
-layout(std430, binding = B_VOL) buffer BufVol { float vol_[]; };
-#endif
-#if USE_P
-layout(std430, binding = B_P) buffer BufP { float p_[]; };
-#endif
-#if USE_PRHO2
-layout(std430, binding = B_PRHO2) buffer BufPrho2 { float prho2_[]; };
-#endif
-#if USE_ACC_P
-layout(std430, binding = B_ACC_P) buffer BufAccP { float accp_[]; };
-#endif
-#if USE_ACC_V
-layout(std430, binding = B_ACC_V) buffer BufAccV { float accv_[]; };
-#endif
-#if USE_ACC_I
-layout(std430, binding = B_ACC_I) buffer BufAccI { float acci_[]; };
 #endif
 // The seed's (key, hash, index) entries: 12 bytes each, as sph_entry.
 struct Entry { uint key; uint hash; uint index; };

@@ -1,5 +1,6 @@
-// uses: POS VEL ACC_P ACC_V ACC_I REDUCE
-// Pass integrate (src/passes/integrate.c): symplectic Euler, periodic wrap,
+// uses: POS VEL ACCELERATIONS REDUCE
+// Pass integrate (src/passes/integrate.c): symplectic Euler with the sum of
+// every acceleration field (ACC_SUM, written by the host), periodic wrap,
 // and the largest |v|^2 and |a|^2 for the CFL step: reduced per group in
 // shared memory, then one atomicMax per group on the float bits (non-negative
 // floats order as their bits do; a NaN's bits exceed every finite value's, so
@@ -14,16 +15,7 @@ void main()
     if (i < N) {
         for (int d = 0; d < DIM; d++) {
             uint k = uint(d) * N + i;
-            float a = 0.0;
-#if HAS_ACC_P
-            a = accp_[k];
-#endif
-#if HAS_ACC_V
-            a = a + accv_[k];
-#endif
-#if HAS_ACC_I
-            a = a + acci_[k];
-#endif
+            float a = ACC_SUM(k); // every acceleration field, as the CPU sums them
             precise float v = vel_[k] + u_dt * a;
             vel_[k] = v;
             precise float x = pos_[k] + u_dt * v;

@@ -27,5 +27,5 @@ void main()
             for (int d = 0; d < DIM; d++) a[d] = toward * dx[d] - fall * v[d];
         }
     }
-    for (int d = 0; d < DIM; d++) acci_[uint(d) * N + i] = a[d];
+    for (int d = 0; d < DIM; d++) acc_i_[uint(d) * N + i] = a[d];
 }

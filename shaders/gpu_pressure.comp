@@ -15,5 +15,5 @@ void main()
     p = max(0.0, p);
 #endif
     p_[i] = p;
-    prho2_[i] = p / (rho * rho);
+    p_rho2_[i] = p / (rho * rho);
 }

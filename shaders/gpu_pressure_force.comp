@@ -15,7 +15,7 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
     }
     float dw_over_r = kernel_dw(KP, SIG_P, r) / r;
 #if PFORM_SYM
-    float coef = mass_[j] * (pi_over + prho2_[j]);
+    float coef = mass_[j] * (pi_over + p_rho2_[j]);
 #else
     float coef = vol_[j] * 0.5 * (p_i + p_[j]) / rho_i;
 #endif
@@ -28,7 +28,7 @@ void main()
     if (i >= N) return;
     vec3 xi = PRED3(i);
     acc = vec3(0.0);
-    pi_over = prho2_[i];
+    pi_over = p_rho2_[i];
     p_i = p_[i];
     rho_i = rho_[i];
     sph_walk(i, xi);
@@ -37,5 +37,5 @@ void main()
     wall_hidden(xi, grad);
     for (int d = 0; d < DIM; d++) acc[d] -= RHO0 * pi_over * grad[d];
 #endif
-    for (int d = 0; d < DIM; d++) accp_[uint(d) * N + i] = acc[d];
+    for (int d = 0; d < DIM; d++) acc_p_[uint(d) * N + i] = acc[d];
 }

@@ -38,5 +38,5 @@ void main()
 #else
     float s = NU * 2.0 * float(DIM) / M2_V;
 #endif
-    for (int d = 0; d < DIM; d++) accv_[uint(d) * N + i] = s * acc[d];
+    for (int d = 0; d < DIM; d++) acc_v_[uint(d) * N + i] = s * acc[d];
 }

@@ -1,6 +1,7 @@
 /* The GL backend drawn straight from its buffers: a renderer with an OpenGL
- * 4.3 EGL context, a GL simulation that adopted it (sph_gpu_adopt_current_
- * context). Frames without host overlays download nothing from the device,
+ * 4.3 EGL context, a GL simulation created sharing it (sph_sim_create_shared
+ * with sph_renderer_context), its buffers handed to the renderer in the view
+ * (sph_view.device = sph_gpu_fields). Frames without host overlays download nothing from the device,
  * and they look like the CPU backend's frames of the same scene. Needs EGL
  * (Mesa's llvmpipe), no GPU and no display. */
 #define _GNU_SOURCE /* setenv, dl_iterate_phdr */
@@ -11,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl_fields.h"
 #include "gpu.h"
 #include "render.h"
 #include "test_util.h"
@@ -65,11 +67,10 @@ static pair make_pair(const char *ini)
     sph_scene_def def = test_scene(ini);
     def.backend = SPH_BACKEND_GL;
     sph_error e;
-    sph_gpu_adopt_current_context(true);
-    sph_error_code c = sph_sim_create(&def, 1, &p.gl, &e);
-    sph_gpu_adopt_current_context(false);
+    sph_error_code c = sph_sim_create_shared(&def, 1, sph_renderer_context(p.r_gl), &p.gl, &e);
     cr_assert_eq(c, SPH_ERR_OK, "%s", e.msg);
-    cr_assert(sph_gpu_context_adopted(p.gl));
+    cr_assert_not_null(sph_gpu_fields(p.gl));
+    cr_assert(sph_gpu_fields(p.gl)->ctx == (const void *)sph_renderer_context(p.r_gl), "runs in the renderer's context");
     p.r_cpu = sph_renderer_create(SPH_GL_EGL, W, H, err, sizeof err);
     cr_assert_not_null(p.r_cpu, "%s", err);
     def.backend = SPH_BACKEND_CPU;
@@ -85,10 +86,13 @@ static void free_pair(pair *p)
     sph_renderer_destroy(p->r_gl);
 }
 
+/* Draws v with the simulation's device buffers handed over, as the commands do. */
 static void frame(sph_renderer *r, const sph_sim *sim, const sph_view *v, uint8_t *rgb)
 {
     char err[512];
-    cr_assert(sph_render(r, sim, v, err, sizeof err), "%s", err);
+    sph_view with = *v;
+    with.device = sph_gpu_fields(sim);
+    cr_assert(sph_render(r, sim, &with, err, sizeof err), "%s", err);
     sph_renderer_read_rgb(r, rgb);
 }
 
@@ -203,8 +207,38 @@ Test(render_gl, field_buffers_are_swapped_by_the_reorder_pass)
     free_pair(&p);
 }
 
+/* The direct path needs both halves of the handle: the buffers handed over
+ * in the view, and the simulation running in the renderer's very context. */
+Test(render_gl, direct_drawing_needs_the_buffers_and_the_same_context)
+{
+    pair p = make_pair(scene_2d);
+    sph_sim_step(p.gl);
+    uint8_t *a = malloc((size_t)W * H * 3);
+    cr_assert_not_null(a);
+    sph_view v = sph_view_default(p.gl);
+    v.overlays = 0;
+    char err[512];
+    cr_assert(sph_render(p.r_gl, p.gl, &v, err, sizeof err), "%s", err);
+    cr_expect(!sph_renderer_drew_direct(p.r_gl), "no buffers handed over: the host copy is drawn");
+    frame(p.r_gl, p.gl, &v, a);
+    cr_expect(sph_renderer_drew_direct(p.r_gl), "buffers in the renderer's context: drawn from them");
+    /* a GL simulation with a context of its own is drawn through the host */
+    sph_scene_def def = test_scene(scene_2d);
+    def.backend = SPH_BACKEND_GL;
+    sph_error e;
+    sph_sim *own;
+    cr_assert_eq(sph_sim_create(&def, 1, &own, &e), SPH_ERR_OK, "%s", e.msg);
+    cr_assert_not_null(sph_gpu_fields(own));
+    cr_expect(sph_gpu_fields(own)->ctx != (const void *)sph_renderer_context(p.r_gl));
+    frame(p.r_gl, own, &v, a);
+    cr_expect(!sph_renderer_drew_direct(p.r_gl), "buffers of another context: the host copy is drawn");
+    sph_sim_destroy(own);
+    free(a);
+    free_pair(&p);
+}
+
 /* Storage buffer bindings belong to the context: a second simulation made in
- * the same adopted context (the window's reset or variant switch) rebinds
+ * the same shared context (the window's reset or variant switch) rebinds
  * them, and deleting its buffers unbinds them. The first must still compute
  * on its own buffers afterwards: it matches the CPU as if nothing happened. */
 Test(render_gl, a_second_simulation_in_the_context_leaves_the_first_intact)
@@ -218,9 +252,7 @@ Test(render_gl, a_second_simulation_in_the_context_leaves_the_first_intact)
     def.backend = SPH_BACKEND_GL;
     sph_error e;
     sph_sim *other;
-    sph_gpu_adopt_current_context(true);
-    sph_error_code c = sph_sim_create(&def, 1, &other, &e);
-    sph_gpu_adopt_current_context(false);
+    sph_error_code c = sph_sim_create_shared(&def, 1, sph_renderer_context(p.r_gl), &other, &e);
     cr_assert_eq(c, SPH_ERR_OK, "%s", e.msg);
     sph_sim_step(other);
     sph_sim_destroy(other);
@@ -260,8 +292,10 @@ Test(render_gl, picking_names_the_particle_under_the_cursor)
         sph_sim_step(p.cpu);
     }
     sph_view v = sph_view_default(p.gl);
+    v.device = sph_gpu_fields(p.gl);
     char err[256];
     cr_assert(sph_render(p.r_gl, p.gl, &v, err, sizeof err), "%s", err); /* sets the camera */
+    cr_assert(sph_renderer_drew_direct(p.r_gl), "drawn from the buffers: the host copy is stale before the pick");
     const sph_camera *cam = sph_renderer_camera(p.r_gl);
     int hits = 0;
     for (uint32_t target = 10; target < p.cpu->n; target += 37) {

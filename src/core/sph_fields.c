@@ -11,7 +11,8 @@
 
 const sph_field_info sph_field_infos[SPH_FIELD_COUNT] = {
 #define SPH_FIELD_ROW(ID, name_, comps, unit_, kind_, made_by_, check_, colour_, about_)                        \
-    [SPH_FIELD_##ID] = {.name = #name_,                                                                            \
+    [SPH_FIELD_##ID] = {.id = #ID,                                                                                 \
+                        .name = #name_,                                                                            \
                         .unit = unit_,                                                                             \
                         .about = about_,                                                                           \
                         .colour = colour_,                                                                         \

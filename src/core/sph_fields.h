@@ -84,6 +84,8 @@ _Static_assert(SPH_FIELD_COUNT <= 56, "field bits would run into the resource bi
 
 /* One row of the registry. */
 typedef struct sph_field_info {
+    const char *id;     /* "RHO": the GL backend's binding B_RHO (the field's number) and the name in a
+                           shader's "// uses:" line */
     const char *name;   /* as in the struct, in files and in messages */
     const char *unit;   /* SI, 3D; "dim" is the dimension */
     const char *about;

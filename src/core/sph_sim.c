@@ -182,12 +182,19 @@ static void set_bounds(sph_sim *sim)
 
 sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **out, sph_error *err)
 {
+    return sph_sim_create_shared(def, threads, NULL, out, err);
+}
+
+sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void *share, sph_sim **out,
+                                     sph_error *err)
+{
     *out = NULL;
     sph_error_code c = sph_scene_validate(def, err);
     if (c) return c;
     sph_sim *sim = calloc(1, sizeof *sim);
     if (!sim) return sph_fail(err, SPH_ERR_MEMORY, "out of memory");
     sim->def = *def;
+    sim->backend_share = share;
     sim->dim = def->dim;
     if (def->dim == 2) { /* a 2D scene has no z: keep stray z values out of every formula */
         sim->def.gravity[2] = 0;
@@ -285,7 +292,7 @@ sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **o
             return sph_fail(err, SPH_ERR_SCENE, "%s: [compute] backend = %s: this program was built without it",
                             def->file, sph_backend_names[def->backend]);
         }
-        c = make(sim, &sim->backend, err);
+        c = make(sim, share, &sim->backend, err);
         if (c) {
             sph_sim_destroy(sim);
             return c;
@@ -329,7 +336,7 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
         sph_scene_particle_count(def) != (double)sim->n)
         return sph_fail(err, SPH_ERR_SCENE, "this change makes other particles: reset the scene instead");
     sph_sim *next;
-    sph_error_code c = sph_sim_create(def, sim->threads, &next, err);
+    sph_error_code c = sph_sim_create_shared(def, sim->threads, sim->backend_share, &next, err);
     if (c) return c;
     sph_sim_sync(sim, SPH_SYNC_ALL); /* the particles below are read from the host copy */
     uint32_t n = sim->n;

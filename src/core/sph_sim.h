@@ -158,8 +158,10 @@ struct sph_backend {
 #define SPH_SYNC_ALL (~(sph_mask)0)
 
 /* Makes a backend for sim (its particles are placed); on failure fills err
- * with a message naming the key, value and reason. */
-typedef sph_error_code (*sph_backend_factory)(sph_sim *sim, sph_backend **out, sph_error *err);
+ * with a message naming the key, value and reason. share is what the caller
+ * of sph_sim_create_shared handed over (the GL backend: an OpenGL context to
+ * run in, src/gl/gl_context.h), NULL for a backend on its own. */
+typedef sph_error_code (*sph_backend_factory)(sph_sim *sim, void *share, sph_backend **out, sph_error *err);
 /* Registers the factory of a backend kind (the app does this at start-up). */
 void sph_backend_register(sph_backend_kind kind, sph_backend_factory make);
 
@@ -196,10 +198,16 @@ struct sph_sim {
     float interaction_sign;  /* +1 pull, -1 push (times the scene's strength) */
     int threads;
     sph_backend *backend; /* NULL: the passes run here, on P and S */
+    void *backend_share;  /* what the backend was made to share (sph_sim_create_shared); reconfigure keeps it */
 };
 
 /* threads <= 0: one per core; at most SPH_MAX_THREADS. */
 sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **out, sph_error *err);
+/* The same, handing share to the backend's factory: the window or the
+ * renderer passes its OpenGL context, so that the GL backend runs in it and
+ * its buffers can be drawn without a copy. Ignored on the CPU. */
+sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void *share, sph_sim **out,
+                                     sph_error *err);
 void sph_sim_destroy(sph_sim *sim);
 
 /* Runs the rest of the current time step (all of it if none is under way). */

@@ -13,14 +13,20 @@
 
 #include "sph_sim.h"
 
+/* src/gl/gl_fields.h; only a pointer to it passes through here. */
+typedef struct sph_gl_fields sph_gl_fields;
+
 /* Registers the GL backend with the core, so that scenes with
  * [compute] backend = gl (or --backend gl) run on it. */
 void sph_gpu_register(void);
 
-/* The factory sph_sim_create calls (registered by sph_gpu_register). Refuses,
- * naming the key and value, scene options it does not implement, and a
- * machine without an OpenGL 4.3 context, naming the reason. */
-sph_error_code sph_gpu_backend_create(sph_sim *sim, sph_backend **out, sph_error *err);
+/* The factory sph_sim_create calls (registered by sph_gpu_register). share:
+ * NULL, an EGL surfaceless context of its own; else an sph_glctx
+ * (src/gl/gl_context.h) to run in, OpenGL 4.3 core or later, which the caller
+ * (the window, the renderer) keeps alive until the simulation is destroyed.
+ * Refuses, naming the key and value, scene options it does not implement,
+ * and a machine or shared context without OpenGL 4.3, naming the reason. */
+sph_error_code sph_gpu_backend_create(sph_sim *sim, void *share, sph_backend **out, sph_error *err);
 
 /* Whether an OpenGL 4.3 context can be made here: true with the device
  * ("GL_RENDERER, OpenGL GL_VERSION") in device; false with the reason in device. */
@@ -32,22 +38,13 @@ bool sph_gpu_probe(char *device, size_t n);
  * default; a benchmark of whole steps may switch it off. */
 void sph_gpu_set_pass_sync(sph_sim *sim, bool on);
 
-/* ---- drawing from the device's buffers (src/render/) ------------------------
+/* ---- drawing from the device's buffers ------------------------------------
  * A window or renderer that draws in the simulation's own context reads the
  * particles where they are: any buffer object can be a vertex source. */
 
-/* On: GL simulations created from now on (sph_sim_create, reconfigure) adopt
- * the OpenGL context current on the calling thread (4.3 core or later,
- * made by the caller: the window's, the renderer's) instead of making an EGL
- * context of their own. The caller keeps that context current whenever the
- * simulation runs or is destroyed, and destroys the context after it. Off
- * (the default): an EGL surfaceless context each. */
-void sph_gpu_adopt_current_context(bool on);
-/* Whether sim runs on the GL backend in an adopted context. */
-bool sph_gpu_context_adopted(const sph_sim *sim);
-/* Whether sim adopted the context that is current now, so that its buffer
- * names are valid there (a renderer asks after making its own current). */
-bool sph_gpu_context_is_current(const sph_sim *sim);
+/* The buffers of sim for a drawer (src/gl/gl_fields.h: their context, and
+ * the two calls below); NULL if sim is not on the GL backend. */
+const sph_gl_fields *sph_gpu_fields(const sph_sim *sim);
 /* The GL name (a plain unsigned: no GL header here) of the buffer holding
  * field f now, laid out as component d of particle i at float d * N + i.
  * The reorder pass swaps buffers every step, so ask for it every frame;

@@ -21,7 +21,7 @@ $(BUILD)/lesson:
 	mkdir -p $@
 
 # The lesson tests (tests/test_lesson*.c) decode the exported PNGs with
-# stb_image (linked through the plot module's MOD_TEST_LIBS, -lstb).
+# stb_image (linked through the plot module's MOD_TEST_SYS_LIBS, -lstb).
 $(BUILD)/tests/test_lesson.o $(BUILD)/tests/test_lesson%.o: CFLAGS += $(LESSON_STB)
 
 # `make test` compiles the library, app and tests with clang as well; this module's objects too.

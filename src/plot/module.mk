@@ -11,7 +11,7 @@ STB_LIBS    := $(shell pkg-config --libs stb 2>/dev/null || echo -lstb)
 DEB_PKGS      += libplplot-dev plplot-driver-cairo fonts-dejavu-core libstb-dev
 MOD_OBJ       += $(PLOT_SRC:%=$(BUILD)/plot/%.o)
 MOD_LIBS      += $(PLOT_LIBS)
-MOD_TEST_LIBS += $(STB_LIBS)
+MOD_TEST_SYS_LIBS += $(STB_LIBS)
 
 $(BUILD)/plot/%.o: src/plot/%.c src/plot/*.h src/app/*.h src/core/*.h | $(BUILD)/plot
 	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app $(PLOT_CFLAGS) -c -o $@ $<

@@ -75,11 +75,9 @@ int cmd_render(int argc, char **argv)
             fprintf(stderr, "sphlab render: note: %s; the frames are copied from the GL backend through the host\n",
                     err);
     }
-    sph_gpu_adopt_current_context(r != NULL);
     sph_sim *sim;
     sph_error serr;
-    sph_error_code made = sph_sim_create(&def, (int)threads, &sim, &serr);
-    sph_gpu_adopt_current_context(false);
+    sph_error_code made = sph_sim_create_shared(&def, (int)threads, r ? sph_renderer_context(r) : NULL, &sim, &serr);
     if (made != SPH_ERR_OK) {
         fprintf(stderr, "sphlab: %s\n", serr.msg);
         sph_renderer_destroy(r);
@@ -109,6 +107,7 @@ int cmd_render(int argc, char **argv)
     unsigned frame = 0;
     for (;;) {
         view.selected = sim_index_of_id(sim, vo.select_id); /* the reorder pass moves particles */
+        view.device = sph_gpu_fields(sim);
         if (!sph_render(r, sim, &view, err, sizeof err)) {
             fprintf(stderr, "sphlab render: %s\n", err);
             ok = false;

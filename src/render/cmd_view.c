@@ -134,7 +134,8 @@ static void reset(viewer *w)
 {
     sph_sim *fresh;
     sph_error err;
-    if (sph_sim_create(&w->def, w->threads, &fresh, &err) != SPH_ERR_OK) {
+    /* in the context the simulation it replaces ran in (the window's, if shared) */
+    if (sph_sim_create_shared(&w->def, w->threads, w->sim->backend_share, &fresh, &err) != SPH_ERR_OK) {
         say(w, "reset: %s", err.msg);
         return;
     }
@@ -446,10 +447,10 @@ int cmd_view(int argc, char **argv)
     SDL_Window *win = NULL;
     SDL_GLContext ctx = NULL;
     /* On the GL backend the window asks for OpenGL 4.3, and the simulation
-     * adopts the window's context: the particles are then drawn from its
+     * shares the window's context: the particles are then drawn from its
      * buffers, with no copy through the host. */
     const bool want_gl43 = w.def.backend == SPH_BACKEND_GL;
-    bool adopt = false;
+    bool shared = false;
     if (SDL_Init(SDL_INIT_VIDEO) != 0) {
         fprintf(stderr, "sphlab view: SDL cannot open the video subsystem: %s\n", SDL_GetError());
         goto out;
@@ -469,7 +470,7 @@ int cmd_view(int argc, char **argv)
     }
     SDL_SetWindowMinimumSize(win, 160, 120);
     ctx = SDL_GL_CreateContext(win);
-    adopt = want_gl43 && ctx;
+    shared = want_gl43 && ctx;
     if (want_gl43 && !ctx) {
         fprintf(stderr,
                 "sphlab view: note: SDL (%s driver) cannot make an OpenGL 4.3 core context (%s); the GL backend "
@@ -491,9 +492,10 @@ int cmd_view(int argc, char **argv)
         fprintf(stderr, "sphlab view: no usable OpenGL: %s\n", err);
         goto out;
     }
-    /* on for the whole session: a reset or a variant makes a new backend, in this context too */
-    sph_gpu_adopt_current_context(adopt);
-    if (sph_sim_create(&w.def, w.threads, &w.sim, &serr) != SPH_ERR_OK) {
+    /* the renderer's handle on the window's context; a reset or a variant
+     * makes its new backend in the same one (reset, sph_sim_reconfigure) */
+    if (sph_sim_create_shared(&w.def, w.threads, shared ? sph_renderer_context(w.r) : NULL, &w.sim, &serr) !=
+        SPH_ERR_OK) {
         fprintf(stderr, "sphlab: %s\n", serr.msg);
         goto out;
     }
@@ -508,7 +510,7 @@ int cmd_view(int argc, char **argv)
     w.sel_id = vo.select_id;
     if (!w.scripted) {
         printf("sphlab view: %s%s; press h for the keys\n", sph_renderer_info(w.r),
-               adopt ? "; the GL backend runs in this context, drawn from its buffers" : "");
+               shared ? "; the GL backend runs in this context, drawn from its buffers" : "");
         fflush(stdout);
     }
     /* bytes read back from the GL backend, per frame, for a scripted run's report */
@@ -567,7 +569,7 @@ int cmd_view(int argc, char **argv)
         w.v.hud.message = now < w.msg_until ? w.msg : NULL;
         w.v.selected = sim_index_of_id(w.sim, w.sel_id);
         fill_panel(&w);
-        if (w.sim->backend && !sph_gpu_context_adopted(w.sim)) {
+        if (w.sim->backend && !w.sim->backend_share) {
             /* read the backend's buffers back now, while its context is the
              * current one (sph_render would otherwise switch to it) */
             sph_sim_sync(w.sim, SPH_SYNC_ALL);
@@ -578,6 +580,7 @@ int cmd_view(int argc, char **argv)
             SDL_GL_MakeCurrent(win, ctx);
             sph_glctx_forget_current();
         }
+        w.v.device = sph_gpu_fields(w.sim);
         if (!sph_render(w.r, w.sim, &w.v, err, sizeof err)) {
             fprintf(stderr, "sphlab view: %s\n", err);
             goto out;
@@ -593,7 +596,7 @@ int cmd_view(int argc, char **argv)
     }
     if (w.scripted && w.sim && w.sim->backend)
         fprintf(stderr, "sphlab view: GL backend %s; bytes read back from it per frame:%s\n",
-                !adopt ? "in a context of its own, frames copied through the host"
+                !shared ? "in a context of its own, frames copied through the host"
                 : direct_all ? "in the window's context, particles drawn from its buffers"
                              : "in the window's context, some frames copied through the host (colour field or overlays)",
                 per_frame);
@@ -604,9 +607,8 @@ int cmd_view(int argc, char **argv)
         if (strncmp(w.msg, "saved", 5) != 0) rc = 1;
     }
 out:
-    /* the simulation first: an adopted context must still be there */
+    /* the simulation first: a shared context must still be there */
     sph_sim_destroy(w.sim);
-    sph_gpu_adopt_current_context(false);
     if (ctx) { /* a backend of its own may have taken the thread's GL */
         SDL_GL_MakeCurrent(win, NULL);
         SDL_GL_MakeCurrent(win, ctx);

@@ -1,7 +1,8 @@
 /* The renderer: draws a simulation's state (particles, overlays, HUD,
  * legend) into an offscreen framebuffer, headless (EGL surfaceless or
- * OSMesa) or in the current context of a window (SDL). All GL code of sphlab
- * lives in src/render/; this header has no GL type in it. */
+ * OSMesa) or in the current context of a window (SDL). It stands on the GL
+ * platform layer (src/gl/) and draws the overlay lists of src/overlay/; this
+ * header has no GL type in it. */
 #ifndef SPH_RENDER_H
 #define SPH_RENDER_H
 
@@ -12,6 +13,10 @@
 #include "camera.h"
 #include "sph_overlay.h"
 #include "sph_sim.h"
+
+/* src/gl/gl_context.h and gl_fields.h; only pointers to them pass through here. */
+typedef struct sph_glctx sph_glctx;
+typedef struct sph_gl_fields sph_gl_fields;
 
 #define SPH_GL_BACKENDS(X)                                     \
     X(EGL, "egl", "EGL surfaceless, GL through libepoxy")       \
@@ -40,6 +45,11 @@ typedef struct sph_view {
      * list); NULL or 0 lines: none. */
     const char (*panel)[128];
     int panel_lines;
+    /* The GL backend's buffers of the simulation drawn (sph_gpu_fields in
+     * src/gpu/gpu.h), or NULL: the particles are drawn straight from them
+     * when they live in the renderer's own context. Set it before each
+     * frame (a reset makes another simulation). */
+    const sph_gl_fields *device;
 } sph_view;
 
 sph_view sph_view_default(const sph_sim *sim);
@@ -50,10 +60,13 @@ typedef struct sph_renderer sph_renderer;
  * w x h framebuffer. NULL on failure, with the reason in err. */
 sph_renderer *sph_renderer_create(sph_gl_backend backend, int w, int h, char *err, size_t n);
 /* The same with an OpenGL 4.3 core context (EGL; CURRENT: the caller's must
- * be 4.3), which a GL simulation may then adopt (sph_gpu_adopt_current_context
- * in src/gpu/gpu.h): sph_render then draws its particles straight from the
- * backend's buffers. */
+ * be 4.3), which a GL simulation may then share (sph_sim_create_shared with
+ * sph_renderer_context(r)): sph_render then draws its particles straight
+ * from the backend's buffers (sph_view.device). */
 sph_renderer *sph_renderer_create_gl43(sph_gl_backend backend, int w, int h, char *err, size_t n);
+/* The context it draws in: its own (EGL, OSMesa) or the caller's (CURRENT),
+ * valid until sph_renderer_destroy. */
+sph_glctx *sph_renderer_context(const sph_renderer *r);
 bool sph_renderer_resize(sph_renderer *r, int w, int h, char *err, size_t n);
 void sph_renderer_destroy(sph_renderer *r);
 /* "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5 (Core Profile) Mesa 22.3.6" */

@@ -20,8 +20,8 @@
 
 #include "font.h"
 #include "gl_context.h"
+#include "gl_fields.h"
 #include "gl_table.h"
-#include "gpu.h"
 #include "shaders.h" /* generated from shaders/ by src/render/module.mk */
 
 const char *const sph_gl_backend_names[SPH_GL_BACKEND_COUNT] = {
@@ -48,7 +48,7 @@ typedef struct ploc {
 struct sph_renderer {
     sph_gl gl;
     sph_gl_backend backend;
-    sph_glctx *ctx;
+    sph_glctx *ctx; /* its own (EGL, OSMesa), or the caller's (CURRENT) */
     char info[256];
     int w, h;
     GLuint fbo, rb_color, rb_depth;
@@ -186,8 +186,8 @@ static sph_renderer *create(sph_gl_backend backend, int w, int h, bool gl43, cha
     else if (backend == SPH_GL_OSMESA)
         r->ctx = sph_glctx_create_osmesa(&r->gl, err, n);
     else
-        sph_gl_load_epoxy(&r->gl);
-    if (backend != SPH_GL_CURRENT && !r->ctx) {
+        r->ctx = sph_glctx_create_caller(&r->gl, err, n);
+    if (!r->ctx) {
         free(r);
         return NULL;
     }
@@ -303,8 +303,7 @@ static bool make_direct(sph_renderer *r, char *err, size_t n)
  * (the window's is, by the window: cmd_view.c). */
 static void make_current(sph_renderer *r)
 {
-    if (r->backend == SPH_GL_EGL) sph_glctx_make_current(r->ctx);
-    if (r->backend == SPH_GL_OSMESA) sph_glctx_make_current_osmesa(r->ctx);
+    sph_glctx_make_current(r->ctx);
 }
 
 bool sph_renderer_resize(sph_renderer *r, int w, int h, char *err, size_t n)
@@ -336,14 +335,18 @@ void sph_renderer_destroy(sph_renderer *r)
         if (r->vbo_corner) gl->DeleteBuffers(3, bufs);
         if (r->vao_p) gl->DeleteVertexArrays(2, vaos);
     }
-    if (r->backend == SPH_GL_EGL) sph_glctx_destroy(r->ctx);
-    if (r->backend == SPH_GL_OSMESA) sph_glctx_destroy_osmesa(r->ctx);
+    sph_glctx_destroy(r->ctx);
     if (r->have_font) sph_font_free(&r->font);
     sph_overlay_free(&r->ov);
     free(r->inst);
     free(r->vals);
     free(r->v);
     free(r);
+}
+
+sph_glctx *sph_renderer_context(const sph_renderer *r)
+{
+    return r->ctx;
 }
 
 const char *sph_renderer_info(const sph_renderer *r)
@@ -780,12 +783,14 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     bool norm;
     const int df = device_field(f, &norm);
     /* Straight from the GL backend's buffers when the simulation runs in this
-     * renderer's context (sph_gpu_adopt_current_context: the caller's
-     * contract) and the colour field is on the device. Otherwise the host
-     * copy is refreshed (a copy per frame; nothing to do on the CPU backend),
-     * and so it is for overlays that show the particles' data. */
+     * renderer's context (created sharing sph_renderer_context; the view
+     * hands over its buffers in v->device) and the colour field is on the
+     * device. Otherwise the host copy is refreshed (a copy per frame; nothing
+     * to do on the CPU backend), and so it is for overlays that show the
+     * particles' data. */
     make_current(r);
-    const bool direct = r->gl43 && df >= 0 && sph_gpu_context_is_current(sim);
+    const sph_gl_fields *dev = v->device;
+    const bool direct = r->gl43 && df >= 0 && dev && dev->ctx == r->ctx;
     r->drew_direct = direct;
     if (!direct || (L & HOST_LAYERS))
         sph_sim_sync(sim, SPH_SYNC_ALL);
@@ -833,9 +838,8 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
          * back (8 bytes) only for the legend's numbers */
         float lo_hi[2] = {0, 0};
         bool need = legend_w && !v->fixed_range;
-        if (!sph_gpu_field_range(sim, (sph_field_id)df, norm, &range_buf, need ? lo_hi : NULL) ||
-            !sph_gpu_field_buffer(sim, SPH_FIELD_POS, &pos_buf) ||
-            !sph_gpu_field_buffer(sim, (sph_field_id)df, &val_buf)) {
+        if (!dev->range(sim, df, norm, &range_buf, need ? lo_hi : NULL) || !dev->buffer(sim, SPH_FIELD_POS, &pos_buf) ||
+            !dev->buffer(sim, df, &val_buf)) {
             snprintf(err, n, "the GL backend has no buffer for %s", sph_color_field_names[f]);
             return false;
         }

@@ -12,8 +12,9 @@ STUDY_PLOT_CFLAGS := $(shell pkg-config --cflags plplot 2>/dev/null || echo -I/u
 # PLplot and its cairo driver come with src/plot's packages.
 DEB_PKGS      += libplplot-dev plplot-driver-cairo fonts-dejavu-core
 MOD_OBJ       += $(STUDY_LIB_SRC:%=$(BUILD)/study/%.o) $(STUDY_CMD_SRC:%=$(BUILD)/study/%.o)
-# The tests link the study library after the core library, so the core comes again after it.
-MOD_TEST_LIBS += $(BUILD)/study/libstudy.a $(BUILD)/libsphcore.a -lm
+# A module library: linked before the core (the Makefile's link line).
+MOD_TEST_LIBS += $(BUILD)/study/libstudy.a
+MOD_TEST_SYS_LIBS += -lm
 
 $(BUILD)/sphlab-tests: $(BUILD)/study/libstudy.a
 

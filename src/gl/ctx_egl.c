@@ -25,22 +25,6 @@ struct sph_glctx {
  * opens the same device display). So sphlab never terminates a display: the
  * process's exit releases it. */
 
-/* The context sphlab made current last. GL calls go to the thread's current
- * context whichever library made it current, and each library knows only its
- * own: after OSMesaMakeCurrent, EGL still reports its context as current. */
-sph_glctx *sph_glctx_last_current;
-
-void sph_glctx_forget_current(void)
-{
-    sph_glctx_last_current = NULL;
-}
-
-sph_glctx *sph_glctx_current(void)
-{
-    sph_glctx *c = sph_glctx_last_current;
-    return c && *(const sph_glctx_kind *)c == SPH_GLCTX_EGL && eglGetCurrentContext() == c->ctx ? c : NULL;
-}
-
 static const char *egl_error_name(EGLint e)
 {
     switch (e) {
@@ -163,14 +147,14 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
         snprintf(err, n, "%s: %s failed: %s (no usable OpenGL %d.%d%s)", kind, what,
                  egl_error_name(eglGetError()), major_want, minor_want,
                  major_want * 10 + minor_want <= 33 ? "; try --gl osmesa" : "");
-        sph_glctx_destroy(c);
+        sph_glctx_destroy_egl(c);
         return NULL;
     }
     sph_gl_load_epoxy(gl);
     return c;
 }
 
-bool sph_glctx_make_current(sph_glctx *c)
+bool sph_glctx_make_current_egl(sph_glctx *c)
 {
     if (sph_glctx_last_current == c && eglGetCurrentContext() == c->ctx) return true;
     sph_glctx_last_current = c;
@@ -180,7 +164,7 @@ bool sph_glctx_make_current(sph_glctx *c)
     return eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, c->ctx);
 }
 
-void sph_glctx_destroy(sph_glctx *c)
+void sph_glctx_destroy_egl(sph_glctx *c)
 {
     if (!c) return;
     if (sph_glctx_last_current == c) sph_glctx_last_current = NULL;

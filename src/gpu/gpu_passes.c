@@ -1,0 +1,264 @@
+/* The GL backend's table of passes: one row per pass of the time step (its
+ * shader, its dispatches if more than one, the helpers it needs), and the
+ * dispatches of the passes that are more than one shader run once. A pass
+ * added to SPH_PASSES runs on GL with a shader and a row here; without a row
+ * the backend refuses a scene that needs it, by name. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu_internal.h"
+#include "gpu_shaders.h"
+
+const char *const gpu_common_source = shader_gpu_common_glsl;
+const char *const gpu_walk_source = shader_gpu_walk_glsl;
+
+const char *const gpu_helper_names[H_TOTAL] = {
+#define GPU_H_NAME(name) #name,
+    GPU_HELPERS(GPU_H_NAME)
+#undef GPU_H_NAME
+};
+const char *const gpu_helper_sources[H_TOTAL] = {
+#define GPU_H_SRC(name) shader_gpu_##name##_comp,
+    GPU_HELPERS(GPU_H_SRC)
+#undef GPU_H_SRC
+};
+
+/* ---- helpers: fill, prefix sum, sorts -------------------------------------- */
+
+static void fill(gpu *g, GLuint b, uint32_t count, uint32_t value)
+{
+    gpu_use(g, PROG_H(fill));
+    gpu_bind(g, B_SCAN, b);
+    gpu_set_u(g, PROG_H(fill), U_count, count);
+    gpu_set_u(g, PROG_H(fill), U_value, value);
+    gpu_dispatch(g, count);
+}
+
+/* Inclusive prefix sum of count values of b, in place. */
+static void scan(gpu *g, GLuint b, uint32_t count, int level)
+{
+    gpu_use(g, PROG_H(scan_block));
+    gpu_bind(g, B_SCAN, b);
+    gpu_bind(g, B_SUMS, g->levels[level]);
+    gpu_set_u(g, PROG_H(scan_block), U_count, count);
+    gpu_dispatch(g, count);
+    uint32_t groups = (count + WG - 1) / WG;
+    if (groups <= 1) return;
+    scan(g, g->levels[level], groups, level + 1);
+    gpu_use(g, PROG_H(scan_add));
+    gpu_bind(g, B_SCAN, b);
+    gpu_bind(g, B_SUMS, g->levels[level]);
+    gpu_set_u(g, PROG_H(scan_add), U_count, count);
+    gpu_dispatch(g, count);
+}
+
+static void sort_bitonic(gpu *g)
+{
+    uint32_t P = 1;
+    while (P < g->n) P <<= 1;
+    gpu_use(g, PROG_H(bitonic));
+    gpu_set_u(g, PROG_H(bitonic), U_count, P / 2);
+    for (uint32_t w0 = 1; w0 < P; w0 <<= 1)
+        for (uint32_t w = w0; w >= 1; w >>= 1) {
+            gpu_set_u(g, PROG_H(bitonic), U_w, w);
+            gpu_set_u(g, PROG_H(bitonic), U_flip, w == w0);
+            gpu_dispatch(g, P / 2);
+        }
+}
+
+/* Counting sort with a prefix sum: histogram of keys, inclusive scan (each
+ * key's first slot), atomic scatter, then each run put in index order. */
+static void sort_counting(gpu *g)
+{
+    fill(g, g->buf[B_COUNT], g->table + 1, 0);
+    gpu_use(g, PROG_H(histogram));
+    gpu_dispatch(g, g->n);
+    scan(g, g->buf[B_COUNT], g->table + 1, 0);
+    gpu_use(g, PROG_H(scatter));
+    gpu_dispatch(g, g->n);
+    gpu_use(g, PROG_H(rank));
+    gpu_dispatch(g, g->n);
+}
+
+/* ---- the passes' dispatches ------------------------------------------------ */
+
+static void run_external(gpu *g, sph_sim *sim)
+{
+    gpu_use(g, SPH_PASS_EXTERNAL);
+    gpu_set_f(g, SPH_PASS_EXTERNAL, U_dt, sim->dt);
+    gpu_dispatch(g, g->n);
+}
+
+static void run_hash(gpu *g, sph_sim *sim)
+{
+    (void)sim;
+    g->reordered = false;
+    gpu_use(g, SPH_PASS_HASH);
+    gpu_dispatch(g, g->n);
+}
+
+static void run_sort(gpu *g, sph_sim *sim)
+{
+    if (sim->def.sort == SPH_SORT_BITONIC)
+        sort_bitonic(g);
+    else
+        sort_counting(g);
+}
+
+static unsigned sort_helpers(const sph_scene_def *def)
+{
+    if (def->sort == SPH_SORT_BITONIC) return HELPER_BIT(bitonic);
+    return HELPER_BIT(fill) | HELPER_BIT(histogram) | HELPER_BIT(scan_block) | HELPER_BIT(scan_add) |
+           HELPER_BIT(scatter) | HELPER_BIT(rank);
+}
+
+/* Gathers the ids and every field the CPU's reorder pass moves into sorted
+ * order; each gathered copy becomes the field, the old buffer the spare. */
+static void run_reorder(gpu *g, sph_sim *sim)
+{
+    gpu_use(g, PROG_H(gather));
+    const sph_mask moved = sph_passes[SPH_PASS_REORDER]->writes;
+    for (int b = 0; b < B_TOTAL; b++) {
+        bool field = b < SPH_FIELD_COUNT;
+        if (field ? !(moved & SPH_FIELD_BIT(b)) : b != B_ID) continue;
+        if (!g->buf[b]) continue;
+        gpu_bind(g, B_SRC, g->buf[b]);
+        gpu_bind(g, B_DST, g->spare);
+        gpu_set_u(g, PROG_H(gather), U_count, field && sph_field_infos[b].vector ? (uint32_t)sim->dim : 1u);
+        gpu_dispatch(g, g->n);
+        GLuint t = g->buf[b];
+        g->buf[b] = g->spare;
+        g->spare = t;
+        gpu_bind(g, b, g->buf[b]);
+    }
+    gpu_use(g, PROG_H(reindex));
+    gpu_dispatch(g, g->n);
+    g->reordered = true;
+}
+
+static unsigned reorder_helpers(const sph_scene_def *def)
+{
+    (void)def;
+    return HELPER_BIT(gather) | HELPER_BIT(reindex);
+}
+
+static void run_offsets(gpu *g, sph_sim *sim)
+{
+    (void)sim;
+    fill(g, g->buf[B_START], g->table, SPH_EMPTY);
+    gpu_use(g, SPH_PASS_OFFSETS);
+    gpu_dispatch(g, g->n);
+}
+
+static unsigned offsets_helpers(const sph_scene_def *def)
+{
+    (void)def;
+    return HELPER_BIT(fill);
+}
+
+/* The force passes walk the cells themselves (gpu_walk.glsl): no lists on
+ * the device; the host builds them from the index when a reader asks. */
+static void run_neighbours(gpu *g, sph_sim *sim)
+{
+    (void)g;
+    (void)sim;
+}
+
+static void run_interaction(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_INTERACTION;
+    gpu_use(g, p);
+    gpu_set_u(g, p, U_count, sim->interaction_active);
+    gpu_set_f(g, p, U_value, sim->def.interaction_strength * sim->interaction_sign);
+    if (g->loc[p][U_point] >= 0)
+        g->gl.Uniform3f(g->loc[p][U_point], sim->interaction_point[0], sim->interaction_point[1],
+                        sim->interaction_point[2]);
+    gpu_dispatch(g, g->n);
+}
+
+static void run_integrate(gpu *g, sph_sim *sim)
+{
+    static const uint32_t zero[4] = {0, 0, 0, 0};
+    gpu_send(g, g->buf[B_REDUCE], 0, sizeof zero, zero);
+    gpu_use(g, SPH_PASS_INTEGRATE);
+    gpu_set_f(g, SPH_PASS_INTEGRATE, U_dt, sim->dt);
+    gpu_dispatch(g, g->n);
+    /* the only read-back of a step: two floats for the CFL step and the watchdog */
+    uint32_t bits[2] = {0x7fc00000u, 0x7fc00000u}; /* NaN if the read fails: the watchdog stops the run */
+    g->gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, g->buf[B_REDUCE]);
+    g->gc.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof bits, bits);
+    float v2, a2, g2 = 0;
+    memcpy(&v2, &bits[0], sizeof v2);
+    memcpy(&a2, &bits[1], sizeof a2);
+    if (sim->def.effects & SPH_EFFECT(GRAVITY))
+        for (int d = 0; d < sim->dim; d++) g2 += sim->def.gravity[d] * sim->def.gravity[d];
+    sim->max_speed = sqrtf(v2);
+    sim->max_acc = sqrtf(a2) + sqrtf(g2);
+}
+
+/* ---- the table ------------------------------------------------------------- */
+
+const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
+    [SPH_PASS_EXTERNAL] = {.source = shader_gpu_external_comp, .run = run_external},
+    [SPH_PASS_HASH] = {.source = shader_gpu_hash_comp, .run = run_hash},
+    [SPH_PASS_SORT] = {.run = run_sort, .helpers = sort_helpers},
+    [SPH_PASS_REORDER] = {.run = run_reorder, .helpers = reorder_helpers},
+    [SPH_PASS_OFFSETS] = {.source = shader_gpu_offsets_comp, .run = run_offsets, .helpers = offsets_helpers},
+    [SPH_PASS_NEIGHBOURS] = {.run = run_neighbours},
+    [SPH_PASS_DENSITY] = {.source = shader_gpu_density_comp},
+    [SPH_PASS_PRESSURE] = {.source = shader_gpu_pressure_comp},
+    [SPH_PASS_PRESSURE_FORCE] = {.source = shader_gpu_pressure_force_comp},
+    [SPH_PASS_VISCOSITY] = {.source = shader_gpu_viscosity_comp},
+    [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
+    [SPH_PASS_INTEGRATE] = {.source = shader_gpu_integrate_comp, .run = run_integrate},
+    [SPH_PASS_WALLS] = {.source = shader_gpu_walls_comp},
+};
+
+void gpu_needed_programs(const sph_sim *sim, bool need[PROG_TOTAL])
+{
+    memset(need, 0, PROG_TOTAL * sizeof *need);
+    need[PROG_H(range)] = true; /* the window's colour scale */
+    need[SPH_PASS_INTEGRATE] = true;
+    for (int p = 0; p < SPH_PASS_COUNT; p++) {
+        if (!sim->in_pipeline[p]) continue;
+        const gpu_pass_row *row = &gpu_pass_rows[p];
+        if (row->source) need[p] = true;
+        unsigned h = row->helpers ? row->helpers(&sim->def) : 0;
+        for (int k = 0; k < H_TOTAL; k++)
+            if (h & (1u << k)) need[SPH_PASS_COUNT + k] = true;
+    }
+}
+
+/* Storage buffer bindings are the context's state, not the program's: in a
+ * shared context another simulation (a reset or a variant switch in the
+ * window) may have rebound them, or unbound them by deleting its buffers. */
+static void rebind(gpu *g)
+{
+    for (int k = 0; k < B_TOTAL; k++)
+        if (g->buf[k]) gpu_bind(g, k, g->buf[k]);
+}
+
+void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass)
+{
+    gpu *g = (gpu *)b;
+    gpu_current(g);
+    if (g->share) rebind(g);
+    const gpu_pass_row *row = (unsigned)pass < SPH_PASS_COUNT ? &gpu_pass_rows[pass] : NULL;
+    if (!row || (!row->run && !row->source)) { /* the backend refuses such a pipeline when it is made */
+        fprintf(stderr, "sphlab: the GL backend has no pass %d (%s)\n", (int)pass,
+                (unsigned)pass < SPH_PASS_COUNT ? sph_passes[pass]->name : "unknown");
+        abort();
+    }
+    if (row->run) {
+        row->run(g, sim);
+    } else {
+        gpu_use(g, pass);
+        /* the walk's row runs need this step's particles in cell order (the
+         * reorder pass may be switched off in the window) */
+        gpu_set_u(g, pass, U_rows, g->reordered && sim->S.cells.dense);
+        gpu_dispatch(g, g->n);
+    }
+    if (g->pass_sync) g->gl.Finish();
+}

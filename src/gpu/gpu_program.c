@@ -1,0 +1,210 @@
+/* The GL backend's programs: the scene's constants as GLSL #defines before
+ * the shared GLSL (shaders/gpu_common.glsl), floats as their exact bits, and
+ * the storage blocks each program uses, the fields' written from the
+ * registry (sph_fields.h). Each program is compiled for one scene: loops over
+ * axes unroll and unused options vanish, as SPH_SPECIALISE does on the CPU. */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu_internal.h"
+
+const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT] = {
+#define GPU_B_NAME(name) #name,
+    GPU_OTHER_BINDINGS(GPU_B_NAME)
+#undef GPU_B_NAME
+};
+
+static const char *const uniform_names[U_TOTAL] = {
+#define GPU_U_NAME(name) "u_" #name,
+    GPU_UNIFORMS(GPU_U_NAME)
+#undef GPU_U_NAME
+};
+
+
+typedef struct text {
+    char *s;
+    size_t len, cap;
+    bool failed;
+} text;
+
+static void put(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void put(text *t, const char *fmt, ...)
+{
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int k = vsnprintf(t->s ? t->s + t->len : NULL, t->s ? t->cap - t->len : 0, fmt, ap);
+        va_end(ap);
+        if (k < 0) {
+            t->failed = true;
+            return;
+        }
+        if (t->s && t->len + (size_t)k < t->cap) {
+            t->len += (size_t)k;
+            return;
+        }
+        size_t cap = t->cap ? t->cap * 2 : 4096;
+        while (cap < t->len + (size_t)k + 1) cap *= 2;
+        char *s = realloc(t->s, cap);
+        if (!s) {
+            t->failed = true;
+            return;
+        }
+        t->s = s;
+        t->cap = cap;
+    }
+}
+
+/* A float as GLSL that has exactly its bits (a decimal literal would be
+ * rounded by the shader compiler, perhaps not as the C compiler did). */
+static void put_float(text *t, const char *name, float v)
+{
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    put(t, "#define %s uintBitsToFloat(0x%08xu)\n", name, u);
+}
+
+static void put_vec3(text *t, const char *name, const float v[3])
+{
+    uint32_t u[3];
+    memcpy(u, v, sizeof u);
+    put(t, "#define %s vec3(uintBitsToFloat(0x%08xu), uintBitsToFloat(0x%08xu), uintBitsToFloat(0x%08xu))\n", name,
+        u[0], u[1], u[2]);
+}
+
+/* The scene's constants, put before gpu_common.glsl in every program. */
+char *gpu_prelude(const gpu *g, const sph_sim *sim)
+{
+    const sph_scene_def *def = &sim->def;
+    const sph_cells *c = &sim->S.cells;
+    text t = {0};
+    put(&t, "#version 430\n#define WG %d\n#define N %uu\n#define T %uu\n#define DIM %d\n#define WALL_TABLE %d\n", WG,
+        g->n, g->table, g->dim, SPH_WALL_TABLE);
+    /* a field's binding is its number; HAS_X: this scene allocates field X */
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        put(&t, "#define B_%s %d\n#define HAS_%s %d\n", sph_field_infos[f].id, f, sph_field_infos[f].id,
+            sim->P.field[f][0] != NULL);
+    for (int b = SPH_FIELD_COUNT; b < B_TOTAL; b++)
+        put(&t, "#define B_%s %d\n", gpu_other_binding_names[b - SPH_FIELD_COUNT], b);
+    /* integration's sum of every acceleration field the scene has, in the
+     * registry's order as on the CPU (integrate.c) */
+    put(&t, "#define ACC_SUM(k) (0.0");
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        if (sph_field_infos[f].kind == SPH_KIND_ACCELERATION && sim->P.field[f][0])
+            put(&t, " + %s_[k]", sph_field_infos[f].name);
+    put(&t, ")\n");
+    put_float(&t, "H", def->h);
+    put_float(&t, "H2", def->h * def->h);
+    put_float(&t, "INV_H", sim->k_density.inv_h);
+    put_float(&t, "R_MIN", SPH_KERNEL_R_MIN * def->h);
+    put(&t, "#define KD %d\n#define KP %d\n#define KV %d\n", (int)sim->k_density.kind, (int)sim->k_pressure.kind,
+        (int)sim->k_viscosity.kind);
+    put_float(&t, "SIG_D", sim->k_density.sigma);
+    put_float(&t, "SIG_P", sim->k_pressure.sigma);
+    put_float(&t, "SIG_V", sim->k_viscosity.sigma);
+    put_float(&t, "M2_V", sim->k_viscosity.m2);
+    put_vec3(&t, "CELL_ORIGIN", c->origin);
+    put_vec3(&t, "CELL_INV", c->inv_size);
+    put(&t, "#define CELL_COUNT ivec3(%d, %d, %d)\n", c->count[0], c->count[1], c->count[2]);
+    put(&t, "#define CELL_WRAP ivec3(%d, %d, %d)\n", c->wrap[0], c->wrap[1], c->wrap[2]);
+    put(&t, "#define DENSE %d\n#define SEARCH_BRUTE %d\n", c->dense, def->search == SPH_SEARCH_BRUTE);
+    put(&t, "#define PERIODIC %d\n", sph_sim_periodic(sim));
+    put_vec3(&t, "PER", sim->period);
+    put_vec3(&t, "INV_PER", sim->inv_period);
+    put_vec3(&t, "DOM_MIN", sim->def.domain_min);
+    put_vec3(&t, "DOM_MAX", sim->def.domain_max);
+    put(&t, "#define HAS_GRAVITY %d\n", (def->effects & SPH_EFFECT(GRAVITY)) != 0);
+    put_vec3(&t, "GRAVITY", sim->def.gravity);
+    put(&t, "#define WALL_VOLUME %d\n", sph_sim_wall_volume(sim));
+    put_float(&t, "RHO0", def->rest_density);
+    put_float(&t, "STIFF", def->stiffness);
+    put(&t, "#define EOS_TAIT %d\n#define CLAMP_NEG %d\n", def->eos == SPH_EOS_TAIT,
+        def->negative_pressure == SPH_NEGP_CLAMP);
+    put_float(&t, "GAMMA", def->tait_gamma);
+    put_float(&t, "TAIT_B", def->stiffness * def->rest_density / def->tait_gamma);
+    /* the form as its enum value: the shader names each one it implements and
+     * stops with #error on any other, so a form added on the CPU is never
+     * silently computed as another on GL */
+    put(&t, "#define PFORM_SYM %d\n#define VFORM %d\n#define VFORM_LAPLACIAN %d\n#define VFORM_SMOOTHING %d\n"
+            "#define VFORM_MORRIS %d\n",
+        def->pressure_form == SPH_PFORM_SYMMETRIC, (int)def->viscosity_form, (int)SPH_VFORM_LAPLACIAN,
+        (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS);
+    put_float(&t, "NU", def->viscosity);
+    put_float(&t, "DAMP", def->wall_damping);
+    put_float(&t, "INTER_R", def->interaction_radius);
+    if (t.failed) {
+        free(t.s);
+        return NULL;
+    }
+    return t.s;
+}
+
+/* Whether `name` is a word of the "// uses:" line [line, eol). */
+static bool uses_word(const char *line, const char *eol, const char *name)
+{
+    size_t len = strlen(name);
+    for (const char *at = line; (at = strstr(at, name)) && at < eol; at += len)
+        if (at[-1] == ' ' && (at[len] == ' ' || at[len] == '\n')) return true;
+    return false;
+}
+
+/* The storage blocks a program declares: its first line, "// uses: POS VEL
+ * ...", names fields by their registry id and the other buffers by binding
+ * name; ACCELERATIONS stands for every acceleration field. Only buffers this
+ * scene has (or that are bound per dispatch) are declared, since Mesa counts
+ * every declared block against its limit of 16 per shader. A field's block is
+ * written here from the registry: `float NAME_[]`, component d of particle i
+ * at d * N + i. */
+static void declare_buffers(const gpu *g, const char *src, text *t)
+{
+    const char *line = strstr(src, "// uses:"), *eol = line ? strchr(line, '\n') : NULL;
+    if (!line || !eol) return;
+    bool accs = uses_word(line, eol, "ACCELERATIONS");
+    for (int f = 0; f < SPH_FIELD_COUNT; f++) {
+        const sph_field_info *fi = &sph_field_infos[f];
+        bool listed = uses_word(line, eol, fi->id) || (accs && fi->kind == SPH_KIND_ACCELERATION);
+        if (listed && g->buf[f])
+            put(t, "layout(std430, binding = B_%s) buffer Buf_%s { float %s_[]; };\n", fi->id, fi->id, fi->name);
+    }
+    for (int b = SPH_FIELD_COUNT; b < B_TOTAL; b++) {
+        const char *name = gpu_other_binding_names[b - SPH_FIELD_COUNT];
+        bool dynamic = b == B_SRC || b == B_DST || b == B_SCAN || b == B_SUMS;
+        if (uses_word(line, eol, name) && (g->buf[b] || dynamic)) put(t, "#define USE_%s 1\n", name);
+    }
+}
+
+bool gpu_compile(gpu *g, int p, const char *pre, char *why, size_t n)
+{
+    sph_gl *gl = &g->gl;
+    const bool helper = p >= SPH_PASS_COUNT;
+    const char *src = helper ? gpu_helper_sources[p - SPH_PASS_COUNT] : gpu_pass_rows[p].source;
+    /* "#include_walk" in a pass's source stands for gpu_walk.glsl */
+    const char *mark = strstr(src, "#include_walk\n");
+    text uses = {0};
+    declare_buffers(g, src, &uses);
+    if (uses.failed) {
+        free(uses.s);
+        snprintf(why, n, "out of memory");
+        return false;
+    }
+    const char *parts[6] = {pre, uses.s ? uses.s : "", gpu_common_source, src, "", ""};
+    GLint lens[6] = {-1, -1, -1, -1, -1, -1};
+    int count = 4;
+    if (mark) {
+        lens[3] = (GLint)(mark - src);
+        parts[4] = gpu_walk_source;
+        parts[5] = mark + strlen("#include_walk\n");
+        count = 6;
+    }
+    const sph_gl_stage stage = {GL_COMPUTE_SHADER, count, parts, lens};
+    char what[96];
+    snprintf(what, sizeof what, "shaders/gpu_%s.comp", helper ? gpu_helper_names[p - SPH_PASS_COUNT] : sph_passes[p]->name);
+    GLuint prog = sph_gl_program(gl, &stage, 1, what, why, n);
+    free(uses.s);
+    if (!prog) return false;
+    g->prog[p] = prog;
+    for (int u = 0; u < U_TOTAL; u++) g->loc[p][u] = gl->GetUniformLocation(prog, uniform_names[u]);
+    return true;
+}
