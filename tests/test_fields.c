@@ -16,7 +16,7 @@ static const char *const FULL =
 Test(fields, named_members_are_the_registry_arrays)
 {
     /* the union's two views must be the same storage, member by member */
-#define CHECK_MEMBER(ID, name, comps, unit, kind, made_by, check, colour, about)                                    \
+#define CHECK_MEMBER(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about)                                    \
     cr_assert_eq(offsetof(sph_particles, name), offsetof(sph_particles, field[SPH_FIELD_##ID]), #name);
     SPH_FIELDS(CHECK_MEMBER)
 #undef CHECK_MEMBER

@@ -10,10 +10,12 @@
 #define SPH_COMPS_V true
 
 const sph_field_info sph_field_infos[SPH_FIELD_COUNT] = {
-#define SPH_FIELD_ROW(ID, name_, comps, unit_, kind_, made_by_, check_, colour_, about_)                        \
+#define SPH_FIELD_ROW(ID, name_, comps, unit_, unit2_, kind_, made_by_, check_, colour_, label_, about_)                        \
     [SPH_FIELD_##ID] = {.id = #ID,                                                                                 \
                         .name = #name_,                                                                            \
                         .unit = unit_,                                                                             \
+                        .unit2 = unit2_,                                                                           \
+                        .label = label_,                                                                             \
                         .about = about_,                                                                           \
                         .colour = colour_,                                                                         \
                         .vector = SPH_COMPS_##comps,                                                               \
@@ -29,6 +31,11 @@ const char *const sph_pass_group_names[SPH_GROUP_COUNT] = {
     SPH_PASS_GROUPS(SPH_GROUP_NAME)
 #undef SPH_GROUP_NAME
 };
+
+const char *sph_field_unit(int f, int dim)
+{
+    return dim == 2 ? sph_field_infos[f].unit2 : sph_field_infos[f].unit;
+}
 
 int sph_field_find(const char *name)
 {

@@ -8,11 +8,12 @@
  * row of kind ACCELERATION: it is then allocated when its pass runs,
  * integrated, checked, dumped, coloured and drawn as arrows.
  *
- * A row: X(ID, name, comps, unit, kind, made_by, check, colour, about)
+ * A row: X(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about)
  *   ID       the enum suffix (SPH_FIELD_ID) and mask bit (SPH_BIT(ID))
  *   name     the member of sph_particles and the column name in files
  *   comps    1 (a scalar) or V (a vector: one array per axis, the scene's dimension)
- *   unit     SI unit in 3D ("dim" stands for the dimension)
+ *   unit     SI unit in 3D
+ *   unit2    SI unit in 2D (per metre of depth: a mass is kg/m, a pressure N/m)
  *   kind     STATE (carried from step to step), DERIVED (recomputed each step),
  *            ACCELERATION (summed by integration), WALL (a wall model's own data)
  *   made_by  the pass whose presence in the pipeline allocates the field; NONE: always there
@@ -20,6 +21,7 @@
  *            scene's bound), DENSITY (in (0, 100 rho0])
  *   colour   the name particles are coloured by (the window's and `render`'s
  *            --color), "" for none; vectors are coloured by their magnitude
+ *   label    its row in the window's inspector ("" for none); accelerations are drawn as arrows
  *   about    what it means, for the inspector and `sphlab keys`-like listings */
 #ifndef SPH_FIELDS_H
 #define SPH_FIELDS_H
@@ -30,20 +32,22 @@
 #include "sph_pass.h"
 
 #define SPH_FIELDS(X)                                                                                          \
-    X(POS, pos, V, "m", STATE, NONE, NONE, "", "position")                                                     \
-    X(VEL, vel, V, "m/s", STATE, NONE, SPEED, "speed", "velocity")                                              \
-    X(PRED, pred, V, "m", DERIVED, NEIGHBOURS, NONE, "", "predicted position x + v dt")                          \
-    X(RHO, rho, 1, "kg/m^dim", DERIVED, DENSITY, DENSITY, "density", "density")                                  \
-    X(VOL, vol, 1, "m^dim", DERIVED, DENSITY, NONE, "", "volume m/rho")                                          \
-    X(P, p, 1, "Pa", DERIVED, PRESSURE, NONE, "pressure", "pressure")                                            \
-    X(PRHO2, p_rho2, 1, "Pa m^6/kg^2", DERIVED, PRESSURE, NONE, "", "p / rho^2")                                 \
-    X(ACC_P, acc_p, V, "m/s^2", ACCELERATION, PRESSURE_FORCE, NONE, "pressure-acc", "pressure acceleration")     \
-    X(ACC_V, acc_v, V, "m/s^2", ACCELERATION, VISCOSITY, NONE, "viscosity-acc", "viscous acceleration")          \
-    X(ACC_I, acc_i, V, "m/s^2", ACCELERATION, INTERACTION, NONE, "", "interaction acceleration")                 \
-    X(MASS, mass, 1, "kg", STATE, NONE, NONE, "", "mass")
+    X(POS, pos, V, "m", "m", STATE, NONE, NONE, "", "x", "position")                                             \
+    X(VEL, vel, V, "m/s", "m/s", STATE, NONE, SPEED, "speed", "v", "velocity")                                   \
+    X(PRED, pred, V, "m", "m", DERIVED, NEIGHBOURS, NONE, "", "", "predicted position x + v dt")                 \
+    X(RHO, rho, 1, "kg/m^3", "kg/m^2", DERIVED, DENSITY, DENSITY, "density", "rho", "density")                   \
+    X(VOL, vol, 1, "m^3", "m^2", DERIVED, DENSITY, NONE, "", "", "volume m/rho")                                 \
+    X(P, p, 1, "Pa", "N/m", DERIVED, PRESSURE, NONE, "pressure", "p", "pressure")                                \
+    X(PRHO2, p_rho2, 1, "Pa m^6/kg^2", "N m^3/kg^2", DERIVED, PRESSURE, NONE, "", "", "p / rho^2")               \
+    X(ACC_P, acc_p, V, "m/s^2", "m/s^2", ACCELERATION, PRESSURE_FORCE, NONE, "pressure-acc", "a pressure",       \
+      "pressure acceleration")                                                                                   \
+    X(ACC_V, acc_v, V, "m/s^2", "m/s^2", ACCELERATION, VISCOSITY, NONE, "viscosity-acc", "a viscosity",          \
+      "viscous acceleration")                                                                                    \
+    X(ACC_I, acc_i, V, "m/s^2", "m/s^2", ACCELERATION, INTERACTION, NONE, "", "a mouse", "interaction acceleration") \
+    X(MASS, mass, 1, "kg", "kg/m", STATE, NONE, NONE, "", "", "mass")
 
 typedef enum sph_field_id {
-#define SPH_FIELD_ENUM(ID, name, comps, unit, kind, made_by, check, colour, about) SPH_FIELD_##ID,
+#define SPH_FIELD_ENUM(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) SPH_FIELD_##ID,
     SPH_FIELDS(SPH_FIELD_ENUM)
 #undef SPH_FIELD_ENUM
     SPH_FIELD_COUNT
@@ -77,7 +81,7 @@ typedef enum sph_field_check {
 #define SPH_KIND_IS_ACC_DERIVED 0
 #define SPH_KIND_IS_ACC_ACCELERATION 1
 #define SPH_KIND_IS_ACC_WALL 0
-#define SPH_ACC_BIT_(ID, name, comps, unit, kind, made_by, check, colour, about) \
+#define SPH_ACC_BIT_(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) \
     | (SPH_KIND_IS_ACC_##kind ? SPH_BIT(ID) : 0)
 #define SPH_MASK_ACCELERATIONS ((sph_mask)0 SPH_FIELDS(SPH_ACC_BIT_))
 _Static_assert(SPH_FIELD_COUNT <= 56, "field bits would run into the resource bits");
@@ -87,7 +91,9 @@ typedef struct sph_field_info {
     const char *id;     /* "RHO": the GL backend's binding B_RHO (the field's number) and the name in a
                            shader's "// uses:" line */
     const char *name;   /* as in the struct, in files and in messages */
-    const char *unit;   /* SI, 3D; "dim" is the dimension */
+    const char *unit;   /* SI, 3D */
+    const char *unit2;  /* SI, 2D (per metre of depth) */
+    const char *label;  /* the inspector's row, "" for none */
     const char *about;
     const char *colour; /* colour-by name, "" if particles are not coloured by it */
     bool vector;        /* one array per axis (the scene's dimension), else one array */
@@ -98,6 +104,8 @@ typedef struct sph_field_info {
 
 extern const sph_field_info sph_field_infos[SPH_FIELD_COUNT];
 
+/* The field's unit in a scene of dimension dim. */
+const char *sph_field_unit(int f, int dim);
 /* -1 if no field has that name. */
 int sph_field_find(const char *name);
 /* The names of the fields and resources in `m`, space-separated in registry

@@ -25,7 +25,7 @@ typedef struct sph_particles {
     union {
         float *field[SPH_FIELD_COUNT][3]; /* [field][axis]; a scalar uses [f][0] */
         struct {
-#define SPH_FIELD_MEMBER(ID, name, comps, unit, kind, made_by, check, colour, about) SPH_MEMBER_##comps(name)
+#define SPH_FIELD_MEMBER(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) SPH_MEMBER_##comps(name)
             SPH_FIELDS(SPH_FIELD_MEMBER)
 #undef SPH_FIELD_MEMBER
         };

@@ -18,7 +18,7 @@ bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out)
     if (!arrays[0]) return false;
     memset(out, 0, sizeof *out);
     out->name = info->name;
-    out->unit = info->unit;
+    out->unit = sph_field_unit(id, sim->dim);
     out->about = info->about;
     out->ncomp = info->vector ? sim->dim : 1;
     for (int d = 0; d < out->ncomp; d++) out->c[d] = arrays[d];

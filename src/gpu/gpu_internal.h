@@ -25,7 +25,7 @@
 #define GPU_OTHER_BINDINGS(X) \
     X(ID) X(ENTRIES) X(SCRATCH) X(START) X(COUNT) X(REDUCE) X(WALL) X(SRC) X(DST) X(SCAN) X(SUMS)
 enum {
-#define GPU_FIELD_B(ID, name, comps, unit, kind, made_by, check, colour, about) B_##ID,
+#define GPU_FIELD_B(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) B_##ID,
     SPH_FIELDS(GPU_FIELD_B)
 #undef GPU_FIELD_B
 #define GPU_B_ENUM(name) B_##name,

@@ -30,26 +30,23 @@ int sph_overlay_find(const char *name)
 /* ---- colour fields ------------------------------------------------------- */
 
 const char *const sph_color_field_names[SPH_COLOR_COUNT] = {
-#define SPH_COLOR_NAME(id, name, u2, u3, about) name,
-    SPH_COLOR_FIELDS(SPH_COLOR_NAME)
+#define SPH_COLOR_NAME(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) colour,
+    SPH_FIELDS(SPH_COLOR_NAME)
 #undef SPH_COLOR_NAME
-};
-static const char *const color_units[SPH_COLOR_COUNT][2] = {
-#define SPH_COLOR_UNITS(id, name, u2, u3, about) {u2, u3},
-    SPH_COLOR_FIELDS(SPH_COLOR_UNITS)
-#undef SPH_COLOR_UNITS
+    [SPH_COLOR_KEY] = "key",
+    [SPH_COLOR_NEIGHBOURS] = "neighbours",
 };
 
 int sph_color_field_find(const char *name)
 {
     for (int i = 0; i < SPH_COLOR_COUNT; i++)
-        if (strcmp(name, sph_color_field_names[i]) == 0) return i;
+        if (*sph_color_field_names[i] && strcmp(name, sph_color_field_names[i]) == 0) return i;
     return -1;
 }
 
 const char *sph_color_field_unit(sph_color_field f, int dim)
 {
-    return color_units[f][dim == 3];
+    return (int)f < SPH_FIELD_COUNT ? sph_field_unit((int)f, dim) : "1";
 }
 
 bool sph_color_field_categorical(sph_color_field f)
@@ -71,14 +68,17 @@ static bool lists_built(const sph_sim *sim)
 
 const char *sph_color_field_missing(const sph_sim *sim, sph_color_field f)
 {
+    if ((int)f >= 0 && (int)f < SPH_FIELD_COUNT) {
+        const sph_field_info *fi = &sph_field_infos[f];
+        if (!*fi->colour) return "not a colour";
+        if (sim->P.field[f][0]) return NULL;
+        /* the reason its pass is left out, e.g. "the scene has no viscosity effect" */
+        const char *why = fi->made_by < SPH_PASS_COUNT ? sph_passes[fi->made_by]->skip_reason(&sim->def) : NULL;
+        return why ? why : "the scene does not compute it";
+    }
     switch (f) {
-    case SPH_COLOR_DENSITY: return sim->P.rho ? NULL : "no effect of the scene needs density";
-    case SPH_COLOR_PRESSURE: return sim->P.p ? NULL : "the scene has no pressure effect";
-    case SPH_COLOR_SPEED: return NULL;
     case SPH_COLOR_KEY: return sim->in_pipeline[SPH_PASS_HASH] ? NULL : "the scene has no spatial hash (no neighbours, or search = brute)";
     case SPH_COLOR_NEIGHBOURS: return sim->in_pipeline[SPH_PASS_NEIGHBOURS] ? NULL : "no effect of the scene needs neighbours";
-    case SPH_COLOR_ACC_P: return sim->P.acc_p[0] ? NULL : "the scene has no pressure effect";
-    case SPH_COLOR_ACC_V: return sim->P.acc_v[0] ? NULL : "the scene has no viscosity effect";
     default: return "unknown field";
     }
 }
@@ -107,18 +107,13 @@ bool sph_color_field_values(const sph_sim *sim, sph_color_field f, float *out, f
     if (sph_color_field_missing(sim, f)) return false;
     const sph_particles *P = &sim->P;
     const uint32_t n = sim->n;
+    if ((int)f < SPH_FIELD_COUNT) { /* a field: a scalar as it is, a vector by its length */
+        if (sph_field_infos[f].vector)
+            for (uint32_t i = 0; i < n; i++) out[i] = vec_norm(P->field[f], sim->dim, i);
+        else
+            memcpy(out, P->field[f][0], n * sizeof *out);
+    }
     switch (f) {
-    case SPH_COLOR_DENSITY: memcpy(out, P->rho, n * sizeof *out); break;
-    case SPH_COLOR_PRESSURE: memcpy(out, P->p, n * sizeof *out); break;
-    case SPH_COLOR_SPEED:
-        for (uint32_t i = 0; i < n; i++) out[i] = vec_norm(P->vel, sim->dim, i);
-        break;
-    case SPH_COLOR_ACC_P:
-        for (uint32_t i = 0; i < n; i++) out[i] = vec_norm(P->acc_p, sim->dim, i);
-        break;
-    case SPH_COLOR_ACC_V:
-        for (uint32_t i = 0; i < n; i++) out[i] = vec_norm(P->acc_v, sim->dim, i);
-        break;
     case SPH_COLOR_KEY:
         memset(out, 0, n * sizeof *out);
         if (index_built(sim))
@@ -132,7 +127,9 @@ bool sph_color_field_values(const sph_sim *sim, sph_color_field f, float *out, f
         if (lists_built(sim))
             for (uint32_t i = 0; i < n; i++) out[i] = (float)(sim->S.nbr_start[i + 1] - sim->S.nbr_start[i]);
         break;
-    default: return false;
+    default:
+        if ((int)f >= SPH_FIELD_COUNT) return false;
+        break;
     }
     float a = INFINITY, b = -INFINITY;
     for (uint32_t i = 0; i < n; i++) {
@@ -532,6 +529,18 @@ static void build_neighbours(builder *b, const sph_sim *sim, const sph_overlay_o
     add_disc(b, xi, 0, 6.0f, 0, SPH_RGBA(255, 255, 255, 255));
 }
 
+/* An acceleration field's arrow colour: pressure red, viscosity blue (as the
+ * overlay's legend says), other forces from a palette by their number;
+ * gravity is green. */
+static uint32_t arrow_colour(int f)
+{
+    static const uint32_t palette[] = {SPH_RGBA(255, 170, 40, 230), SPH_RGBA(220, 90, 220, 230),
+                                       SPH_RGBA(60, 220, 220, 230), SPH_RGBA(240, 240, 90, 230)};
+    if (f == SPH_FIELD_ACC_P) return SPH_RGBA(255, 80, 70, 230);
+    if (f == SPH_FIELD_ACC_V) return SPH_RGBA(80, 160, 255, 230);
+    return palette[f % (int)(sizeof palette / sizeof palette[0])];
+}
+
 static void build_forces(builder *b, const sph_sim *sim, const sph_overlay_opts *o, float slice_zm)
 {
     sph_overlay *ov = b->ov;
@@ -547,12 +556,19 @@ static void build_forces(builder *b, const sph_sim *sim, const sph_overlay_opts 
     gn = sqrtf(gn);
     int max_arrows = o->max_arrows > 0 ? o->max_arrows : 400;
     uint32_t stride = sim->n > (uint32_t)max_arrows ? (sim->n + (uint32_t)max_arrows - 1) / (uint32_t)max_arrows : 1;
+    /* every acceleration field of the registry the scene has, then gravity */
+    float *const *acc[SPH_FIELD_COUNT];
+    uint32_t col[SPH_FIELD_COUNT + 1];
+    int n_acc = 0;
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        if (sph_field_infos[f].kind == SPH_KIND_ACCELERATION && P->field[f][0]) {
+            col[n_acc] = arrow_colour(f);
+            acc[n_acc++] = P->field[f];
+        }
     float ref = gn;
     if (!(ref > 0)) { /* no gravity: the largest drawn acceleration sets the scale */
-        for (uint32_t i = 0; i < sim->n; i += stride) {
-            if (P->acc_p[0]) ref = fmaxf(ref, vec_norm(P->acc_p, dim, i));
-            if (P->acc_v[0]) ref = fmaxf(ref, vec_norm(P->acc_v, dim, i));
-        }
+        for (uint32_t i = 0; i < sim->n; i += stride)
+            for (int k = 0; k < n_acc; k++) ref = fmaxf(ref, vec_norm(acc[k], dim, i));
     }
     if (!(ref > 0)) {
         note(ov, "no forces to draw");
@@ -565,13 +581,12 @@ static void build_forces(builder *b, const sph_sim *sim, const sph_overlay_opts 
         float x[3];
         particle_pos(sim, i, x, false);
         if (dim == 3 && fabsf(x[2] - slice_zm) > 0.5f * h && (int32_t)i != o->selected) continue;
-        float *const *acc[2] = {P->acc_p[0] ? P->acc_p : NULL, P->acc_v[0] ? P->acc_v : NULL};
-        const uint32_t col[3] = {SPH_RGBA(255, 80, 70, 230), SPH_RGBA(80, 160, 255, 230), SPH_RGBA(90, 220, 90, 230)};
-        for (int f = 0; f < 3; f++) {
+        for (int k = 0; k <= n_acc; k++) {
             float a[3] = {0, 0, 0};
-            if (f < 2) {
-                if (!acc[f]) continue;
-                for (int d = 0; d < dim; d++) a[d] = acc[f][d][i];
+            uint32_t c = SPH_RGBA(90, 220, 90, 230); /* gravity */
+            if (k < n_acc) {
+                for (int d = 0; d < dim; d++) a[d] = acc[k][d][i];
+                c = col[k];
             } else {
                 if (!(gn > 0)) continue;
                 memcpy(a, g, sizeof a);
@@ -581,7 +596,7 @@ static void build_forces(builder *b, const sph_sim *sim, const sph_overlay_opts 
             float s = len > cap ? cap / len : 1.0f;
             float e[3];
             for (int d = 0; d < 3; d++) e[d] = x[d] + a[d] * ov->arrow_m_per_acc * s;
-            add_line(b, x, e, col[f], 1.5f, SPH_SPACE_WORLD, true);
+            add_line(b, x, e, c, 1.5f, SPH_SPACE_WORLD, true);
         }
     }
     if (stride > 1) note(ov, "forces: arrows on a regular subset of particles");
@@ -813,19 +828,16 @@ int sph_inspect_lines(const sph_sim *sim, uint32_t i, char lines[][128], int max
         INSPECT("cell (%d, %d)  (no hash: search = brute)", c[0], c[1]);
     }
     if (lists_built(sim)) INSPECT("neighbours %u", sim->S.nbr_start[i + 1] - sim->S.nbr_start[i]);
-    if (P->rho) INSPECT("rho %.6g %s", P->rho[i], dim == 3 ? "kg/m^3" : "kg/m^2");
-    if (P->p) INSPECT("p   %.6g %s", P->p[i], dim == 3 ? "Pa" : "N/m");
-    if (P->acc_p[0]) {
-        vec_text(buf, sizeof buf, P->acc_p, dim, i);
-        INSPECT("a pressure   %s m/s^2", buf);
-    }
-    if (P->acc_v[0]) {
-        vec_text(buf, sizeof buf, P->acc_v, dim, i);
-        INSPECT("a viscosity  %s m/s^2", buf);
-    }
-    if (P->acc_i[0]) {
-        vec_text(buf, sizeof buf, P->acc_i, dim, i);
-        INSPECT("a mouse      %s m/s^2", buf);
+    /* the registry's computed fields that have an inspector row */
+    for (int f = 0; f < SPH_FIELD_COUNT; f++) {
+        const sph_field_info *fi = &sph_field_infos[f];
+        if (fi->kind == SPH_KIND_STATE || !*fi->label || !P->field[f][0]) continue;
+        if (fi->vector) {
+            vec_text(buf, sizeof buf, P->field[f], dim, i);
+            INSPECT("%-12s %s %s", fi->label, buf, sph_field_unit(f, dim));
+        } else {
+            INSPECT("%-3s %.6g %s", fi->label, P->field[f][0][i], sph_field_unit(f, dim));
+        }
     }
     if (sim->def.effects & SPH_EFFECT(GRAVITY)) {
         const float *g = sim->def.gravity;

@@ -48,23 +48,22 @@ int sph_overlay_find(const char *name);
 
 /* ---- colour fields ------------------------------------------------------- */
 
-/* Fields particles can be coloured by: (id, name, unit in 2D, unit in 3D, about). */
-#define SPH_COLOR_FIELDS(X)                                                                  \
-    X(DENSITY, "density", "kg/m^2", "kg/m^3", "rho, from the density pass")            \
-    X(PRESSURE, "pressure", "N/m", "Pa", "p, from the equation of state")              \
-    X(SPEED, "speed", "m/s", "m/s", "|v|")                                             \
-    X(KEY, "key", "1", "1", "the cell's key in the hash table (categorical colours)")  \
-    X(NEIGHBOURS, "neighbours", "1", "1", "number of neighbours within h")             \
-    X(ACC_P, "pressure-acc", "m/s^2", "m/s^2", "|a| of the pressure force")            \
-    X(ACC_V, "viscosity-acc", "m/s^2", "m/s^2", "|a| of the viscous force")
-
+/* What particles can be coloured by: every field of the registry that has a
+ * colour name (sph_fields.h; a vector by its length), numbered as the field,
+ * then what the index gives each particle. A colour number below
+ * SPH_FIELD_COUNT whose field has no colour name is not a colour. */
 typedef enum sph_color_field {
-#define SPH_COLOR_ENUM(id, name, u2, u3, about) SPH_COLOR_##id,
-    SPH_COLOR_FIELDS(SPH_COLOR_ENUM)
-#undef SPH_COLOR_ENUM
+    SPH_COLOR_KEY = SPH_FIELD_COUNT, /* the cell's key in the hash table (categorical colours) */
+    SPH_COLOR_NEIGHBOURS,            /* number of neighbours within h */
     SPH_COLOR_COUNT
 } sph_color_field;
+#define SPH_COLOR_DENSITY ((sph_color_field)SPH_FIELD_RHO)
+#define SPH_COLOR_PRESSURE ((sph_color_field)SPH_FIELD_P)
+#define SPH_COLOR_SPEED ((sph_color_field)SPH_FIELD_VEL)
+#define SPH_COLOR_ACC_P ((sph_color_field)SPH_FIELD_ACC_P)
+#define SPH_COLOR_ACC_V ((sph_color_field)SPH_FIELD_ACC_V)
 
+/* Names by colour number ("" for a field without a colour). */
 extern const char *const sph_color_field_names[SPH_COLOR_COUNT];
 int sph_color_field_find(const char *name);
 const char *sph_color_field_unit(sph_color_field f, int dim);

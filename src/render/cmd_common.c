@@ -61,7 +61,8 @@ bool view_opts_take(view_opts *vo, const app_opts *o, const char *cmd)
     if (o->color) {
         if (sph_color_field_find(o->color) < 0) {
             fprintf(stderr, "sphlab %s: unknown colour field '%s' (accepted:", cmd, o->color);
-            for (int k = 0; k < SPH_COLOR_COUNT; k++) fprintf(stderr, " %s", sph_color_field_names[k]);
+            for (int k = 0; k < SPH_COLOR_COUNT; k++)
+                if (*sph_color_field_names[k]) fprintf(stderr, " %s", sph_color_field_names[k]);
             fprintf(stderr, ")\n");
             return false;
         }

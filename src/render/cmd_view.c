@@ -151,7 +151,7 @@ static void cycle_field(viewer *w, int dir)
     int f = (int)w->v.field;
     for (int k = 0; k < SPH_COLOR_COUNT; k++) {
         f = (f + dir + SPH_COLOR_COUNT) % SPH_COLOR_COUNT;
-        if (!sph_color_field_missing(w->sim, (sph_color_field)f)) break;
+        if (!sph_color_field_missing(w->sim, (sph_color_field)f)) break; /* also skips fields without a colour */
     }
     w->v.field = w->user_field = (sph_color_field)f;
     say(w, "colour: %s", sph_color_field_names[f]);

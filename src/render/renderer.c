@@ -741,15 +741,8 @@ static void clip_to_view(sph_renderer *r, bool on)
  * -1 for those the device does not hold (keys, neighbour counts). */
 static int device_field(sph_color_field f, bool *norm)
 {
-    *norm = f == SPH_COLOR_SPEED || f == SPH_COLOR_ACC_P || f == SPH_COLOR_ACC_V;
-    switch (f) {
-    case SPH_COLOR_DENSITY: return SPH_FIELD_RHO;
-    case SPH_COLOR_PRESSURE: return SPH_FIELD_P;
-    case SPH_COLOR_SPEED: return SPH_FIELD_VEL;
-    case SPH_COLOR_ACC_P: return SPH_FIELD_ACC_P;
-    case SPH_COLOR_ACC_V: return SPH_FIELD_ACC_V;
-    default: return -1;
-    }
+    *norm = (int)f < SPH_FIELD_COUNT && sph_field_infos[f].vector;
+    return (int)f < SPH_FIELD_COUNT ? (int)f : -1;
 }
 
 /* Overlays built from the particles' data on the host (the grid needs only
