@@ -1,11 +1,14 @@
 /* sphlab bench, through the binary: the quick ladder's CSV and JSON (every
- * level present and checked, max N positive, a hash beating brute force),
- * a level that computes something else failing its check, the scaling and
- * machine outputs, and bad command lines.
+ * level present and checked against its reference, max N reported), a level
+ * that computes something else failing its check, the scaling and machine
+ * outputs, and bad command lines.
  *
- * No assertion depends on timings except one that survives any load: the
- * spatial hash (O(N)) reaches a larger N than brute force (O(N^2)). */
+ * No assertion depends on timings: a slow or busy machine (software GL, a
+ * loaded classroom machine) gives small numbers, not a failure. A level that
+ * reaches no size at the target rate reports max N 0; speed is what
+ * `sphlab bench` measures, not what the suite asserts. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -142,15 +145,11 @@ Test(bench, quick_ladder_every_level_checked_and_a_hash_beats_brute_force, .time
         cr_assert(c.cell[r][cref][0] == 'L', "level %s: no reference named", names[i]);
         cr_assert_str_eq(c.cell[r][csets], "0", "level %s: neighbour sets differ", names[i]);
         cr_assert(atof(c.cell[r][cdx]) <= 1e-4, "level %s: dx %s", names[i], c.cell[r][cdx]);
+        /* searched, so a count (0: no size reached the rate on this machine, reported, not failed) */
         max_n[i] = atof(c.cell[r][cmax]);
-        cr_assert(max_n[i] > 0, "level %s: max N %s", names[i], c.cell[r][cmax]);
+        cr_assert(c.cell[r][cmax][0] != '\0' && max_n[i] >= 0, "level %s: max N '%s'", names[i], c.cell[r][cmax]);
         cr_assert(atof(c.cell[r][cms]) > 0, "level %s: ms per step %s", names[i], c.cell[r][cms]);
     }
-    /* the one timing assertion: O(N) against O(N^2), a factor of several at 60 steps/s */
-    cr_assert_str_eq(names[0], "L0");
-    cr_assert(max_n[1] >= max_n[0] && max_n[2] >= max_n[0],
-              "max N: L0 %g, L1 %g, L2 %g: the hash should reach at least brute force's N", max_n[0], max_n[1],
-              max_n[2]);
     free(c.text);
 
     snprintf(path, sizeof path, "%s/ladder-3d.json", dir);
@@ -204,9 +203,31 @@ Test(bench, gl_levels_skipped_without_gl43, .timeout = 300)
     int r0 = csv_row(&c, "L0"), r1 = csv_row(&c, "G1"), ccheck = csv_col(&c, "check"), cmax = csv_col(&c, "max_n");
     cr_assert(r0 > 0 && r1 > 0);
     cr_assert_str_eq(c.cell[r0][ccheck], "PASS");
-    cr_assert(atof(c.cell[r0][cmax]) > 0);
+    cr_assert(c.cell[r0][cmax][0] != '\0', "a measured level has a max N (0 when no size reached the rate)");
     cr_assert_str_eq(c.cell[r1][ccheck], "SKIP");
     cr_assert_str_eq(c.cell[r1][cmax], "", "a skipped level has no max N");
+    free(c.text);
+}
+
+/* A level that reaches no size at the target rate (a slow machine, software
+ * GL; forced here by asking 100,000 steps/s) is reported as such, with its
+ * check, and the command exits 0: speed is measured, never a failure. */
+Test(bench, a_level_reaching_no_size_is_reported_not_failed, .timeout = 300)
+{
+    char dir[64], args[256], path[256];
+    make_dir(dir, sizeof dir);
+    snprintf(args, sizeof args, "bench ladder --quick --fps 100000 --at 500 --levels L0 --out %s", dir);
+    int rc = test_sphlab(args, g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
+    csv c;
+    snprintf(path, sizeof path, "%s/ladder-3d.csv", dir);
+    csv_read(&c, path);
+    int r0 = csv_row(&c, "L0"), cmax = csv_col(&c, "max_n");
+    cr_assert(r0 > 0);
+    cr_assert_str_eq(c.cell[r0][csv_col(&c, "check")], "PASS");
+    if (atof(c.cell[r0][cmax]) == 0) /* a machine that reaches 100,000 steps/s has a count there instead */
+        cr_assert(strstr(g_out, "  none ") && strstr(g_out, "none: not even the smallest block"),
+                  "no size reached, not said so:\n%s", g_out);
     free(c.text);
 }
 
@@ -240,7 +261,7 @@ Test(bench, quick_scaling_has_every_level_in_2d, .timeout = 300)
 {
     char dir[64], args[256], path[256];
     make_dir(dir, sizeof dir);
-    snprintf(args, sizeof args, "bench scaling --quick --quiet --dim 2 --out %s", dir);
+    snprintf(args, sizeof args, "bench scaling --quick --dim 2 --out %s", dir); /* not quiet: says if GL is skipped */
     int rc = test_sphlab(args, g_out, sizeof g_out);
     cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
     char names[32][16];
@@ -249,18 +270,30 @@ Test(bench, quick_scaling_has_every_level_in_2d, .timeout = 300)
     snprintf(path, sizeof path, "%s/scaling-2d.csv", dir);
     csv_read(&c, path);
     int cn = csv_col(&c, "n"), cms = csv_col(&c, "ms_per_step");
+    /* How many sizes a level gets depends on the machine: --quick stops a level after the first size slower
+     * than 150 ms per step, so a slow machine has fewer rows. Asserted: the rows follow that rule. */
+    const double stop_ms = 150;
+    double top_n = 0;
+    for (int r = 1; r < c.nrows; r++) top_n = fmax(top_n, atof(c.cell[r][cn]));
     for (int i = 0; i < nl; i++) {
         int rows = 0;
-        double last_n = 0;
+        double last_n = 0, last_ms = 0;
         for (int r = 1; r < c.nrows; r++) {
             if (strcmp(c.cell[r][0], names[i]) != 0) continue;
+            cr_assert(rows == 0 || last_ms <= stop_ms, "level %s: a size after one of %g ms (over %g)", names[i],
+                      last_ms, stop_ms);
             rows++;
             double n = atof(c.cell[r][cn]);
             cr_assert(n > last_n, "level %s: N not increasing", names[i]);
-            cr_assert(atof(c.cell[r][cms]) > 0);
+            last_ms = atof(c.cell[r][cms]);
+            cr_assert(last_ms > 0, "level %s: ms per step %s", names[i], c.cell[r][cms]);
             last_n = n;
         }
-        cr_assert(rows >= 3, "level %s: %d sizes", names[i], rows);
+        if (rows == 0 && names[i][0] == 'G' && strstr(g_out, "skipped, no OpenGL 4.3 device")) continue;
+        cr_assert(rows >= 1, "level %s: no size", names[i]);
+        cr_assert(last_n == top_n || last_ms > stop_ms * (1 - 1e-5),
+                  "level %s: stopped at N = %g (%g ms per step) before the largest size %g", names[i], last_n, last_ms,
+                  top_n);
     }
     free(c.text);
     snprintf(path, sizeof path, "%s/scaling-2d.png", dir);

@@ -9,6 +9,7 @@
 #define _DEFAULT_SOURCE /* mkdtemp, setenv */
 #include <criterion/criterion.h>
 #include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -376,7 +377,12 @@ Test(lesson, export_6_sorting_offsets)
         for (int i = 0; i < 6; i++) check_png(dir, shots[i], 1100, 760);
     }
     check_csv(dir, "sort-time.csv", "particles,bitonic_ms,counting_ms,qsort_ms", 2, &c);
-    cr_expect(field(c.line[2], 1) > field(c.line[2], 2), "bitonic not slower than counting: %s", c.line[2]);
+    /* which sort is faster is the lesson's finding, not the test's: a busy machine may reorder them */
+    cr_expect(field(c.line[2], 0) > field(c.line[1], 0), "a smaller spacing gave no more particles: %s / %s",
+              c.line[1], c.line[2]);
+    for (int i = 1; i < c.nlines; i++)
+        for (int k = 1; k <= 3; k++)
+            cr_expect(field(c.line[i], k) >= 0, "sort %d: no time in %s", k, c.line[i]);
     free(c.text);
     check_png(dir, "sort-time.png", 1000, 650);
     remove_dir(dir);
@@ -412,9 +418,20 @@ Test(lesson, export_8_optimisation_ladder)
     if (has_command("bench")) {
         csv c;
         check_csv(dir, "levels.csv", "level,threads,particles,ms_per_step,neighbours_ms,speedup,steps_per_s", 7, &c);
-        /* brute force is the slowest level */
+        /* every level runs the same scene; its speed is measured, not asserted (a busy machine may reorder
+         * the levels), only that the speed-up and steps/s columns follow from the milliseconds */
         double l0 = field(c.line[1], 3);
-        for (int i = 2; i < c.nlines; i++) cr_expect(field(c.line[i], 3) < l0, "%s not faster than L0", c.line[i]);
+        for (int i = 1; i < c.nlines; i++) {
+            double ms = field(c.line[i], 3);
+            cr_expect(field(c.line[i], 2) == field(c.line[1], 2), "%s: not the particles of L0", c.line[i]);
+            cr_expect(ms > 0, "%s: no positive ms per step", c.line[i]);
+            /* the CSV rounds ms to 4 decimals: allow twice what that rounding can move a ratio */
+            double rel = 1e-4 / ms + 1e-4 / l0;
+            cr_expect(fabs(field(c.line[i], 5) - l0 / ms) <= rel * (l0 / ms) + 1e-4, "%s: speedup is not L0's ms / ms",
+                      c.line[i]);
+            cr_expect(fabs(field(c.line[i], 6) - 1000 / ms) <= 1e-4 / ms * (1000 / ms) + 0.01,
+                      "%s: steps/s is not 1000 / ms", c.line[i]);
+        }
         free(c.text);
         check_png(dir, "levels.png", 1000, 600);
         check_pdf(dir, "levels.pdf");

@@ -718,7 +718,10 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
             const level_result *r = &res[s];
             char maxn[40] = "-", sp[16] = "-", ms[16] = "-", top[128] = "";
             if (r->searched) {
-                bench_fmt_count(maxn, sizeof maxn, r->max_n);
+                if (r->max_n > 0)
+                    bench_fmt_count(maxn, sizeof maxn, r->max_n);
+                else /* a slow machine or software GL: reported, not a failure */
+                    snprintf(maxn, sizeof maxn, "none");
                 if (r->capped) strcat(maxn, "+");
                 if (s > 0 && prev > 0) snprintf(sp, sizeof sp, "x%.2f", r->max_n / prev);
                 prev = r->max_n;
@@ -730,7 +733,8 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
             printf("%-5s %-42s %3d %12s %8s %10s  %-44s %-5s %.2f\n", L->name, L->about,
                    r->at.threads ? r->at.threads : L->threads, maxn, sp, ms, top, check_word(r), r->others);
         }
-        printf("\nmax N: the largest block with %g steps/s or more (bisection over block sizes, median of repeats);\n"
+        printf("\nmax N: the largest block with %g steps/s or more (bisection over block sizes, median of repeats;\n"
+               "none: not even the smallest block reached it on this machine, which is no failure);\n"
                "ms/step and passes: medians at N = %s; others: cores that other processes kept busy meanwhile\n",
                fps, nat);
         printf("\nwhere the time goes at N = %s (pairs: neighbour-list entries per step, i->j and j->i):\n", nat);
