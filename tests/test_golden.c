@@ -12,9 +12,13 @@
  * (neighbour lists, sorts by key then index), so the thread count changes no
  * bit. The scene pins search.vector = off: the AVX-512 neighbour scan exists
  * only in -march=native builds on CPUs that have it, and the sanitizer build
- * has no -march, so the scalar path is the one every build runs. The other
- * keys are written out too, so a change of a default does not move the hash
- * by itself (the defaults have their own tests).
+ * has no -march, so the scalar path is the one every build runs (the vector
+ * path gives another hash, measured). The main physics and search keys are
+ * written out, so changing one of those defaults does not move the hash by
+ * itself (the defaults have their own tests). Left to the platform: the C
+ * library's pow() (the kernels' constants, in double, then rounded to float)
+ * and IEEE float; another libm or CPU family may need its own value, which
+ * this test would then show.
  *
  * When the hash changes on purpose (a pass computes differently, a kernel is
  * corrected), print the new value and store it in GOLDEN_HASH below, saying
