@@ -23,7 +23,7 @@
 #define TOL_EXACT_KINEMATICS 1e-6 /* external, integrate, walls: the same operations in the same order */
 #define TOL_DENSITY 1e-5          /* rho, vol */
 #define TOL_PRESSURE 1e-5         /* p, p / rho^2 (from identical densities) */
-#define TOL_FORCE 1e-5            /* acc_p, acc_v */
+#define TOL_FORCE 1e-5            /* the accelerations (acc_p, acc_v, acc_c, ...) */
 #define TOL_POS_RUN 1e-4          /* [m] positions after a whole run of separate simulations */
 
 /* 2D, 225 particles in a box reaching below zero on both axes (negative
@@ -75,23 +75,14 @@ static void copy_f(float *dst, const float *src, uint32_t n)
     if (dst && src) memcpy(dst, src, (size_t)n * sizeof(float));
 }
 
-/* The GL simulation takes the CPU's particles, time step and CFL maxima. */
+/* The GL simulation takes the CPU's particles (every field of the
+ * registry), time step and CFL maxima. */
 static void copy_state(sph_sim *g, const sph_sim *c)
 {
     uint32_t n = c->n;
     memcpy(g->P.id, c->P.id, (size_t)n * sizeof *g->P.id);
-    copy_f(g->P.mass, c->P.mass, n);
-    for (int d = 0; d < c->dim; d++) {
-        copy_f(g->P.pos[d], c->P.pos[d], n);
-        copy_f(g->P.vel[d], c->P.vel[d], n);
-        copy_f(g->P.pred[d], c->P.pred[d], n);
-        copy_f(g->P.acc_p[d], c->P.acc_p[d], n);
-        copy_f(g->P.acc_v[d], c->P.acc_v[d], n);
-    }
-    copy_f(g->P.rho, c->P.rho, n);
-    copy_f(g->P.vol, c->P.vol, n);
-    copy_f(g->P.p, c->P.p, n);
-    copy_f(g->P.p_rho2, c->P.p_rho2, n);
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        for (int d = 0; d < 3; d++) copy_f(g->P.field[f][d], c->P.field[f][d], n);
     g->dt = c->dt;
     g->max_speed = c->max_speed;
     g->max_acc = c->max_acc;
@@ -185,10 +176,10 @@ static void lockstep(sph_sim *c, sph_sim *g)
             expect_field(c, g, SPH_FIELD_P, TOL_PRESSURE, name);
             expect_field(c, g, SPH_FIELD_PRHO2, TOL_PRESSURE, name);
             break;
-        case SPH_PASS_PRESSURE_FORCE: expect_field(c, g, SPH_FIELD_ACC_P, TOL_FORCE, name); break;
-        case SPH_PASS_VISCOSITY: expect_field(c, g, SPH_FIELD_ACC_V, TOL_FORCE, name); break;
-        case SPH_PASS_INTERACTION: expect_field(c, g, SPH_FIELD_ACC_I, TOL_FORCE, name); break;
-        default: break;
+        default: /* a force pass: every field it writes (the registry's masks) */
+            for (int f = 0; f < SPH_FIELD_COUNT; f++)
+                if (sph_passes[pc]->writes & SPH_FIELD_BIT(f)) expect_field(c, g, (sph_field_id)f, TOL_FORCE, name);
+            break;
         }
     } while (c->next_pass != 0);
 }
@@ -247,6 +238,21 @@ Test(gl_backend, passes_match_cpu_other_forms)
                           "domain.wall_model=reflect",     "search.method=grid",              "kernels.density=wendland",
                           "kernels.pressure=cubic",        "kernels.viscosity=cubic"};
     lockstep_steps(scene_2d, sets, 8, 1);
+}
+
+/* Every effect at once, so every pass of the pipeline runs: a pass without
+ * a row in the GL table is refused and fails here, one whose shader differs
+ * from its C fails the lockstep. */
+Test(gl_backend, every_effect_matches_cpu)
+{
+    char effects[512] = "scene.effects=";
+    for (int e = 0; e < SPH_EFFECT_COUNT; e++) {
+        strcat(effects, sph_effect_names[e]);
+        strcat(effects, " ");
+    }
+    const char *sets[] = {effects};
+    lockstep_steps(scene_2d, sets, 1, 2);
+    lockstep_steps(scene_3d, sets, 1, 1);
 }
 
 Test(gl_backend, passes_match_cpu_interaction)

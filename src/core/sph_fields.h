@@ -43,6 +43,8 @@
       "pressure acceleration")                                                                                   \
     X(ACC_V, acc_v, V, "m/s^2", "m/s^2", ACCELERATION, VISCOSITY, NONE, "viscosity-acc", "a viscosity",          \
       "viscous acceleration")                                                                                    \
+    X(ACC_C, acc_c, V, "m/s^2", "m/s^2", ACCELERATION, COHESION, NONE, "cohesion-acc", "a cohesion",            \
+      "cohesion acceleration (surface tension)")                                                                 \
     X(ACC_I, acc_i, V, "m/s^2", "m/s^2", ACCELERATION, INTERACTION, NONE, "", "a mouse", "interaction acceleration") \
     X(MASS, mass, 1, "kg", "kg/m", STATE, NONE, NONE, "", "", "mass")
 

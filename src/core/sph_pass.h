@@ -24,6 +24,7 @@
     X(PRESSURE, pressure)  \
     X(PRESSURE_FORCE, pressure_force) \
     X(VISCOSITY, viscosity) \
+    X(COHESION, cohesion)  \
     X(INTERACTION, interaction) \
     X(INTEGRATE, integrate) \
     X(WALLS, walls)

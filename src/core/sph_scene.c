@@ -88,6 +88,8 @@ const sph_key sph_scene_keys[] = {
      "morris: nu m_j (rho_i + rho_j)/(rho_i rho_j) (x_ij . grad W)/(r^2 + 1e-4 h^2) (v_i - v_j), a Laplacian from "
      "the kernel's gradient (needs a kernel whose slope vanishes at r = 0: [kernels] viscosity = cubic, wendland or "
      "poly6)"},
+    {"physics", "cohesion", SPH_KEY_FLOAT, S(cohesion), 0, 1e6, 0, 0, NULL, 0, "m^4/(kg s^2)", "1",
+     "gamma of the cohesion effect (Akinci 2013): a_i = -gamma sum_j 2 rho0/(rho_i + rho_j) m_j C(r) x_ij/r"},
     {"physics", "accumulate", SPH_KEY_CHOICE, S(accumulate), 0, 0, 0, 0, CH(sph_accumulate_names), "", "float",
      "precision of the density and force sums: float, or double (slower; shows what round-off costs)"},
     {"physics", "gravity", SPH_KEY_VEC, S(gravity), -1e4, 1e4, 0, 0, NULL, 0, "m/s^2", "0 -9.81 0", "g"},

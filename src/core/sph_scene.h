@@ -22,6 +22,7 @@
     X(DENSITY, "density", "density by kernel summation (nothing moves by it)") \
     X(PRESSURE, "pressure", "equation of state and pressure force")     \
     X(VISCOSITY, "viscosity", "viscous force")                          \
+    X(COHESION, "cohesion", "attraction between particles that makes a surface contract (surface tension)") \
     X(WALLS, "walls", "the domain box reflects particles")               \
     X(INTERACTION, "interaction", "push or pull the fluid around a point (the mouse)")
 
@@ -124,6 +125,7 @@ typedef struct sph_scene_def {
     sph_negative_pressure negative_pressure;
     sph_pressure_form pressure_form;
     float viscosity;    /* [m^2/s] kinematic viscosity nu */
+    float cohesion;     /* [m^4/(kg s^2)] Akinci's cohesion coefficient gamma (effect cohesion) */
     sph_viscosity_form viscosity_form;
     sph_accumulate accumulate;  /* sums in float (fast) or double (accurate) */
     float gravity[3];   /* [m/s^2] */

@@ -132,6 +132,7 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
         def->pressure_form == SPH_PFORM_SYMMETRIC, (int)def->viscosity_form, (int)SPH_VFORM_LAPLACIAN,
         (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS);
     put_float(&t, "NU", def->viscosity);
+    put_float(&t, "COHESION", def->cohesion);
     put_float(&t, "DAMP", def->wall_damping);
     put_float(&t, "INTER_R", def->interaction_radius);
     if (t.failed) {
