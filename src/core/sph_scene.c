@@ -27,10 +27,10 @@ const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)}
 const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
 const char *const sph_backend_names[SPH_BACKEND_COUNT] = {SPH_BACKEND_CHOICES(NAMES)};
 #undef NAMES
-#define EFFECT_NAME(id, name, about) name,
+#define EFFECT_NAME(id, name, about, needs) name,
 const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
 #undef EFFECT_NAME
-#define EFFECT_ABOUT(id, name, about) about,
+#define EFFECT_ABOUT(id, name, about, needs) about,
 const char *const sph_effect_about[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_ABOUT)};
 #undef EFFECT_ABOUT
 

@@ -16,23 +16,30 @@
 #define SPH_MAX_BLOCKS 32
 #define SPH_MAX_KEYS 64
 
-/* Effects a scene can ask for; each pulls in the passes it needs. */
-#define SPH_EFFECTS(X)                                                  \
-    X(GRAVITY, "gravity", "uniform body force g")                       \
-    X(DENSITY, "density", "density by kernel summation (nothing moves by it)") \
-    X(PRESSURE, "pressure", "equation of state and pressure force")     \
-    X(VISCOSITY, "viscosity", "viscous force")                          \
-    X(COHESION, "cohesion", "attraction between particles that makes a surface contract (surface tension)") \
-    X(WALLS, "walls", "the domain box reflects particles")               \
-    X(INTERACTION, "interaction", "push or pull the fluid around a point (the mouse)")
+/* Effects a scene can ask for; each pulls in the passes it needs. The last
+ * column says whether it needs each particle's density (and so the
+ * neighbour search): DENSITY, or NONE. */
+#define SPH_EFFECTS(X)                                                                                 \
+    X(GRAVITY, "gravity", "uniform body force g", NONE)                                                \
+    X(DENSITY, "density", "density by kernel summation (nothing moves by it)", DENSITY)                \
+    X(PRESSURE, "pressure", "equation of state and pressure force", DENSITY)                           \
+    X(VISCOSITY, "viscosity", "viscous force", DENSITY)                                                \
+    X(COHESION, "cohesion", "attraction between particles that makes a surface contract (surface tension)", DENSITY) \
+    X(WALLS, "walls", "the domain box reflects particles", NONE)                                       \
+    X(INTERACTION, "interaction", "push or pull the fluid around a point (the mouse)", NONE)
 
 enum {
-#define SPH_EFFECT_BIT(id, name, about) SPH_EFFECT_BIT_##id,
+#define SPH_EFFECT_BIT(id, name, about, needs) SPH_EFFECT_BIT_##id,
     SPH_EFFECTS(SPH_EFFECT_BIT)
 #undef SPH_EFFECT_BIT
     SPH_EFFECT_COUNT
 };
 #define SPH_EFFECT(id) (1u << SPH_EFFECT_BIT_##id)
+/* The effects that need density: a constant made from the list's last column. */
+#define SPH_EFFECT_NEEDS_DENSITY_ 1
+#define SPH_EFFECT_NEEDS_NONE_ 0
+#define SPH_EFFECT_DENSITY_BIT_(id, name, about, needs) | (SPH_EFFECT_NEEDS_##needs##_ ? SPH_EFFECT(id) : 0u)
+#define SPH_EFFECTS_NEEDING_DENSITY (0u SPH_EFFECTS(SPH_EFFECT_DENSITY_BIT_))
 extern const char *const sph_effect_names[SPH_EFFECT_COUNT];
 extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 

@@ -17,8 +17,7 @@ const sph_pass *const sph_passes[SPH_PASS_COUNT] = {
 
 bool sph_scene_needs_density(const sph_scene_def *def)
 {
-    return (def->effects &
-            (SPH_EFFECT(DENSITY) | SPH_EFFECT(PRESSURE) | SPH_EFFECT(VISCOSITY) | SPH_EFFECT(COHESION))) != 0;
+    return (def->effects & SPH_EFFECTS_NEEDING_DENSITY) != 0;
 }
 
 bool sph_scene_wall_volume(const sph_scene_def *def)

@@ -12,7 +12,7 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    return sph_scene_needs_density(def) ? NULL : "no effect needs density (density, pressure, viscosity, cohesion)";
+    return sph_scene_needs_density(def) ? NULL : "no effect of the scene needs density (the neighbour search)";
 }
 
 static void describe(const sph_scene_def *def, char *out, int n)

@@ -10,7 +10,7 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    if (!sph_scene_needs_neighbours(def)) return "no effect needs neighbours (density, pressure, viscosity, cohesion)";
+    if (!sph_scene_needs_neighbours(def)) return "no effect of the scene needs neighbours (density and the forces from it)";
     if (def->search == SPH_SEARCH_BRUTE) return "search = brute compares all pairs, without an index";
     return NULL;
 }

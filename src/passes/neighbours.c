@@ -23,7 +23,7 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    return sph_scene_needs_neighbours(def) ? NULL : "no effect needs neighbours (density, pressure, viscosity, cohesion)";
+    return sph_scene_needs_neighbours(def) ? NULL : "no effect of the scene needs neighbours (density and the forces from it)";
 }
 
 static void describe(const sph_scene_def *def, char *out, int n)
