@@ -1,11 +1,12 @@
-/* The GL entry points the renderer uses, as one table of function pointers.
+/* The GL entry points the renderer (src/render/) and the compute backend
+ * (src/gpu/) use, as one table of function pointers.
  *
  * Why a table and not libepoxy everywhere: libepoxy resolves a GL function on
  * its first call by asking the current GLX or EGL context for it. Under an
  * OSMesa context there is neither, so epoxy's resolver finds nothing and
  * aborts the process. The OSMesa backend therefore links libOSMesa directly
  * and gets each function from OSMesaGetProcAddress, while the EGL and SDL
- * backends get them from libepoxy. The drawing code (renderer.c) never calls
+ * backends get them from libepoxy. The drawing code (src/render/) never calls
  * a GL symbol by name: it calls only through this table, so one renderer runs
  * under all three, and the two ways of loading are each a few lines.
  *

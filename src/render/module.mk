@@ -7,14 +7,16 @@
 # src/gpu/gpu.h, to create simulations that share their context.
 
 RENDER_PKGS   := sdl2 stb
-RENDER_CFLAGS := $(GL_CFLAGS) $(shell pkg-config --cflags $(RENDER_PKGS) 2>/dev/null || echo -I/usr/include/stb -I/usr/include/SDL2)
+RENDER_PKG_CFLAGS := $(shell pkg-config --cflags $(RENDER_PKGS) 2>/dev/null || echo -I/usr/include/stb -I/usr/include/SDL2)
+# expanded when used: src/gl/module.mk (GL_CFLAGS) may be read after this one
+RENDER_CFLAGS = $(GL_CFLAGS) $(RENDER_PKG_CFLAGS)
 RENDER_LIBS   := $(shell pkg-config --libs $(RENDER_PKGS) 2>/dev/null || echo -lSDL2 -lstb) -lm
 
 # SDL2, stb, the font (the GL packages come with src/gl/module.mk). xauth and
 # xvfb are not needed: the window test uses SDL's offscreen video driver.
 DEB_PKGS += libstb-dev libsdl2-dev fonts-dejavu-core
 
-RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font vtk renderer)
+RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font vtk renderer canvas hud)
 RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view)
 
 MOD_OBJ       += $(RENDER_LIB_OBJ) $(RENDER_CMD_OBJ)

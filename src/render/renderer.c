@@ -18,63 +18,14 @@
 
 #include <stb_image_write.h>
 
-#include "font.h"
-#include "gl_context.h"
 #include "gl_fields.h"
-#include "gl_table.h"
+#include "renderer_impl.h"
 #include "shaders.h" /* generated from shaders/ by src/render/module.mk */
 
 const char *const sph_gl_backend_names[SPH_GL_BACKEND_COUNT] = {
 #define SPH_GL_BACKEND_NAME(id, name, about) name,
     SPH_GL_BACKENDS(SPH_GL_BACKEND_NAME)
 #undef SPH_GL_BACKEND_NAME
-};
-
-typedef struct vtx {
-    float x, y, u, v; /* [px], atlas */
-    uint32_t rgba;
-} vtx;
-
-typedef struct inst {
-    float x, y, z; /* [m] */
-    uint32_t rgba;
-} inst;
-
-/* Uniforms of a particle program. */
-typedef struct ploc {
-    GLint view, proj, radius, sphere, cut, rim, dim, comps, fixed, range;
-} ploc;
-
-struct sph_renderer {
-    sph_gl gl;
-    sph_gl_backend backend;
-    sph_glctx *ctx; /* its own (EGL, OSMesa), or the caller's (CURRENT) */
-    char info[256];
-    int w, h;
-    GLuint fbo, rb_color, rb_depth;
-    GLuint prog_p, prog_c;
-    ploc lp;
-    GLint uc_size, uc_atlas;
-    GLuint vao_p, vbo_corner, vbo_inst, vao_c, vbo_c, tex;
-    /* Drawing from the GL backend's buffers (OpenGL 4.3): its program, with
-     * the colour map as a texture, made on first use. */
-    bool gl43;
-    sph_gl_compute gc;
-    GLuint prog_d, vao_d, tex_cmap;
-    ploc ld;
-    bool drew_direct;
-    sph_font font;
-    bool have_font;
-    inst *inst;
-    float *vals;
-    size_t cap_inst;
-    vtx *v;
-    size_t nv, cap_v;
-    bool oom;
-    sph_camera cam;
-    sph_overlay ov;
-    float radius_px;
-    int strip[4], legend[4];
 };
 
 static const uint32_t BG = SPH_RGBA(30, 32, 38, 255);
@@ -393,311 +344,6 @@ float sph_particle_radius(const sph_sim *sim)
     return 0.5f * s;
 }
 
-/* ---- the canvas: triangles in pixels -------------------------------------- */
-
-static void push(sph_renderer *r, float x, float y, float u, float v, uint32_t c)
-{
-    if (r->nv == r->cap_v) {
-        size_t cap = r->cap_v ? 2 * r->cap_v : 4096;
-        vtx *p = realloc(r->v, cap * sizeof *p);
-        if (!p) {
-            r->oom = true;
-            return;
-        }
-        r->v = p;
-        r->cap_v = cap;
-    }
-    r->v[r->nv++] = (vtx){x, y, u, v, c};
-}
-
-static void tri(sph_renderer *r, float x0, float y0, float x1, float y1, float x2, float y2, uint32_t c)
-{
-    float u = r->font.white_uv[0], v = r->font.white_uv[1];
-    push(r, x0, y0, u, v, c);
-    push(r, x1, y1, u, v, c);
-    push(r, x2, y2, u, v, c);
-}
-
-static void rect(sph_renderer *r, float x0, float y0, float x1, float y1, uint32_t c)
-{
-    tri(r, x0, y0, x1, y0, x1, y1, c);
-    tri(r, x0, y0, x1, y1, x0, y1, c);
-}
-
-static void line(sph_renderer *r, float ax, float ay, float bx, float by, float w, uint32_t c)
-{
-    float dx = bx - ax, dy = by - ay, len = sqrtf(dx * dx + dy * dy);
-    if (!(len > 0)) return;
-    float nx = -dy / len * 0.5f * w, ny = dx / len * 0.5f * w;
-    tri(r, ax + nx, ay + ny, bx + nx, by + ny, bx - nx, by - ny, c);
-    tri(r, ax + nx, ay + ny, bx - nx, by - ny, ax - nx, ay - ny, c);
-}
-
-static void arrow_head(sph_renderer *r, float ax, float ay, float bx, float by, float size, uint32_t c)
-{
-    float dx = bx - ax, dy = by - ay, len = sqrtf(dx * dx + dy * dy);
-    if (!(len > 0)) return;
-    float s = fminf(size, 0.5f * len);
-    float ux = dx / len, uy = dy / len;
-    tri(r, bx, by, bx - s * ux - 0.5f * s * uy, by - s * uy + 0.5f * s * ux, bx - s * ux + 0.5f * s * uy,
-        by - s * uy - 0.5f * s * ux, c);
-}
-
-static int segments(float rad)
-{
-    int k = (int)(rad * 1.5f);
-    return k < 12 ? 12 : k > 96 ? 96 : k;
-}
-
-static void disc(sph_renderer *r, float cx, float cy, float rad, uint32_t fill, uint32_t edge)
-{
-    const int k = segments(rad);
-    const float step = 6.2831853f / (float)k;
-    for (int i = 0; i < k; i++) {
-        float a0 = step * (float)i, a1 = step * (float)(i + 1);
-        float x0 = cx + rad * cosf(a0), y0 = cy + rad * sinf(a0), x1 = cx + rad * cosf(a1), y1 = cy + rad * sinf(a1);
-        if (fill >> 24) tri(r, cx, cy, x0, y0, x1, y1, fill);
-        if (edge >> 24) line(r, x0, y0, x1, y1, 1.5f, edge);
-    }
-}
-
-static void outline(sph_renderer *r, float x0, float y0, float x1, float y1, float w, uint32_t c)
-{
-    rect(r, x0, y0, x1, y0 + w, c);
-    rect(r, x0, y1 - w, x1, y1, c);
-    rect(r, x0, y0 + w, x0 + w, y1 - w, c);
-    rect(r, x1 - w, y0 + w, x1, y1 - w, c);
-}
-
-/* Text with its top-left at (x, y). */
-static void text(sph_renderer *r, int size, float x, float y, uint32_t c, const char *s)
-{
-    sph_glyph_quad q[128];
-    int n = sph_font_quads(&r->font, size, x, y, s, q, 128);
-    for (int i = 0; i < n; i++) {
-        push(r, q[i].x0, q[i].y0, q[i].s0, q[i].t0, c);
-        push(r, q[i].x1, q[i].y0, q[i].s1, q[i].t0, c);
-        push(r, q[i].x1, q[i].y1, q[i].s1, q[i].t1, c);
-        push(r, q[i].x0, q[i].y0, q[i].s0, q[i].t0, c);
-        push(r, q[i].x1, q[i].y1, q[i].s1, q[i].t1, c);
-        push(r, q[i].x0, q[i].y1, q[i].s0, q[i].t1, c);
-    }
-}
-
-/* Text centred vertically on y, aligned on x; an optional dark backdrop. */
-static void text_at(sph_renderer *r, int size, float x, float y, sph_align al, uint32_t c, const char *s,
-                    bool backdrop)
-{
-    float w = sph_font_width(&r->font, size, s), hgt = r->font.px[size];
-    float x0 = al == SPH_ALIGN_CENTER ? x - 0.5f * w : al == SPH_ALIGN_RIGHT ? x - w : x;
-    float y0 = y - 0.5f * hgt;
-    x0 = roundf(x0);
-    y0 = roundf(y0);
-    if (backdrop) rect(r, x0 - 2, y0, x0 + w + 2, y0 + hgt, SPH_RGBA(0, 0, 0, 150));
-    text(r, size, x0, y0, c, s);
-}
-
-static bool flush(sph_renderer *r)
-{
-    if (r->oom) return false;
-    if (!r->nv) return true;
-    sph_gl *gl = &r->gl;
-    gl->UseProgram(r->prog_c);
-    gl->Uniform2f(r->uc_size, (float)r->w, (float)r->h);
-    gl->Uniform1i(r->uc_atlas, 0);
-    gl->ActiveTexture(GL_TEXTURE0);
-    gl->BindTexture(GL_TEXTURE_2D, r->tex);
-    gl->Disable(GL_DEPTH_TEST);
-    gl->Enable(GL_BLEND);
-    gl->BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    gl->BindVertexArray(r->vao_c);
-    gl->BindBuffer(GL_ARRAY_BUFFER, r->vbo_c);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(r->nv * sizeof(vtx)), r->v, GL_STREAM_DRAW);
-    gl->DrawArrays(GL_TRIANGLES, 0, (GLsizei)r->nv);
-    gl->Disable(GL_BLEND);
-    r->nv = 0;
-    return true;
-}
-
-/* ---- world and strip primitives ------------------------------------------ */
-
-static bool to_px(const sph_renderer *r, const float x[3], sph_space sp, float px[2])
-{
-    if (sp == SPH_SPACE_STRIP) {
-        const sph_overlay *ov = &r->ov;
-        px[0] = (float)r->strip[0] + x[0] * (float)r->strip[2] / (float)(ov->strip_cols ? ov->strip_cols : 1);
-        px[1] = (float)r->strip[1] + x[1] * (float)r->strip[3] / (float)(ov->strip_rows ? ov->strip_rows : 1);
-        return true;
-    }
-    return sph_camera_project(&r->cam, x, px, NULL);
-}
-
-/* [px per m] at a world point (perspective: varies with depth). */
-static float scale_at(const sph_renderer *r, const float x[3])
-{
-    if (r->cam.dim != 3) return r->cam.px_per_m;
-    float a[2], b[2], y[3];
-    /* along the camera's right axis (first row of the view's rotation) */
-    for (int k = 0; k < 3; k++) y[k] = x[k] + r->cam.view[k * 4];
-    if (!sph_camera_project(&r->cam, x, a, NULL) || !sph_camera_project(&r->cam, y, b, NULL)) return 0;
-    return sqrtf((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]));
-}
-
-/* The primitives of one space: the world's (clipped to the view) or the strip's. */
-static void draw_overlay(sph_renderer *r, sph_space space)
-{
-    const sph_overlay *ov = &r->ov;
-    for (int i = 0; i < ov->n_boxes; i++) {
-        const sph_ov_box *b = &ov->boxes[i];
-        if (b->space != space) continue;
-        float c[4][3] = {{b->min[0], b->min[1], b->z}, {b->max[0], b->min[1], b->z},
-                         {b->max[0], b->max[1], b->z}, {b->min[0], b->max[1], b->z}};
-        float p[4][2];
-        bool ok = true;
-        for (int k = 0; k < 4; k++) ok &= to_px(r, c[k], (sph_space)b->space, p[k]);
-        if (!ok) continue;
-        if (b->fill >> 24) {
-            tri(r, p[0][0], p[0][1], p[1][0], p[1][1], p[2][0], p[2][1], b->fill);
-            tri(r, p[0][0], p[0][1], p[2][0], p[2][1], p[3][0], p[3][1], b->fill);
-        }
-        if (b->edge >> 24) {
-            if (b->space == SPH_SPACE_STRIP) {
-                outline(r, p[0][0], p[0][1], p[2][0], p[2][1], 1.0f, b->edge);
-            } else {
-                for (int k = 0; k < 4; k++) line(r, p[k][0], p[k][1], p[(k + 1) % 4][0], p[(k + 1) % 4][1], 1.0f, b->edge);
-            }
-        }
-    }
-    for (int i = 0; i < ov->n_lines; i++) {
-        const sph_ov_line *l = &ov->lines[i];
-        if (l->space != space) continue;
-        float a[2], b[2];
-        if (!to_px(r, l->a, (sph_space)l->space, a) || !to_px(r, l->b, (sph_space)l->space, b)) continue;
-        line(r, a[0], a[1], b[0], b[1], l->width, l->rgba);
-        if (l->arrow) arrow_head(r, a[0], a[1], b[0], b[1], 3.0f + 2.5f * l->width, l->rgba);
-    }
-    for (int i = 0; i < ov->n_discs; i++) {
-        const sph_ov_disc *d = &ov->discs[i];
-        if (d->space != space) continue;
-        float c[2];
-        if (!to_px(r, d->c, (sph_space)d->space, c)) continue;
-        float rad = fmaxf(d->r * scale_at(r, d->c), d->r_min_px);
-        disc(r, c[0], c[1], rad, d->fill, d->edge);
-    }
-    for (int i = 0; i < ov->n_labels; i++) {
-        const sph_ov_label *l = &ov->labels[i];
-        if (l->space != space) continue;
-        float p[2];
-        if (!to_px(r, l->pos, (sph_space)l->space, p)) continue;
-        text_at(r, l->size, p[0], p[1], (sph_align)l->align, l->rgba, l->text, l->space == SPH_SPACE_WORLD);
-    }
-}
-
-/* ---- HUD, legend --------------------------------------------------------- */
-
-static void draw_hud(sph_renderer *r, const sph_sim *sim, const sph_view *v)
-{
-    const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
-    const bool timings = v->overlays & SPH_OV_BIT(TIMINGS), hud = v->overlays & SPH_OV_BIT(HUD);
-    char lines[10][128];
-    int nl = 0;
-    if (hud) {
-        sph_hud_info info = v->hud;
-        if (!timings) info.steps_per_s = -1; /* changes from run to run: only with the timings */
-        nl = sph_hud_lines(sim, &info, lines, 10);
-    }
-    int bars = 0;
-    double mx = 0;
-    if (timings)
-        for (int p = 0; p < SPH_PASS_COUNT; p++)
-            if (sim->in_pipeline[p]) {
-                bars++;
-                if (sim->timing[p].last_ms > mx) mx = sim->timing[p].last_ms;
-            }
-    if (!nl && !bars) return;
-    float w = 0;
-    for (int i = 0; i < nl; i++) w = fmaxf(w, sph_font_width(&r->font, SPH_TEXT_NORMAL, lines[i]));
-    const float name_w = sph_font_width(&r->font, SPH_TEXT_SMALL, "pressure_force  "), bar_w = 6.0f * fn;
-    const float ms_w = sph_font_width(&r->font, SPH_TEXT_SMALL, " 00.000 ms");
-    if (bars) w = fmaxf(w, name_w + bar_w + ms_w);
-    float x0 = (float)r->cam.rect[0] + 4, y0 = (float)r->cam.rect[1] + 4;
-    float hgt = (float)nl * fn * 1.2f + (float)bars * fs * 1.25f + (bars ? 0.3f * fn : 0) + 8;
-    rect(r, x0, y0, x0 + w + 12, y0 + hgt, SPH_RGBA(0, 0, 0, 160));
-    float y = y0 + 4;
-    for (int i = 0; i < nl; i++, y += fn * 1.2f) text(r, SPH_TEXT_NORMAL, x0 + 6, y, SPH_RGBA(235, 235, 240, 255), lines[i]);
-    if (bars) y += 0.3f * fn;
-    for (int p = 0; p < SPH_PASS_COUNT && bars; p++) {
-        if (!sim->in_pipeline[p]) continue;
-        bool on = sim->enabled[p];
-        uint32_t col = on ? SPH_RGBA(220, 220, 225, 255) : SPH_RGBA(120, 120, 125, 255);
-        text(r, SPH_TEXT_SMALL, x0 + 6, y, col, sph_passes[p]->name);
-        double ms = sim->timing[p].last_ms;
-        float bw = mx > 0 ? (float)(ms / mx) * bar_w : 0;
-        float bx = x0 + 6 + name_w;
-        rect(r, bx, y + 0.2f * fs, bx + bar_w, y + 1.0f * fs, SPH_RGBA(60, 60, 70, 255));
-        if (on) rect(r, bx, y + 0.2f * fs, bx + roundf(bw), y + 1.0f * fs, SPH_RGBA(240, 160, 60, 255));
-        char ms_s[32];
-        snprintf(ms_s, sizeof ms_s, " %.3f ms", ms);
-        text(r, SPH_TEXT_SMALL, bx + bar_w, y, col, on ? ms_s : " off");
-        y += fs * 1.25f;
-    }
-}
-
-/* A box of text lines at the view's top-right corner. */
-static void draw_panel(sph_renderer *r, const char (*lines)[128], int n)
-{
-    const float fs = r->font.px[SPH_TEXT_SMALL];
-    float w = 0;
-    for (int i = 0; i < n; i++) w = fmaxf(w, sph_font_width(&r->font, SPH_TEXT_SMALL, lines[i]));
-    float x1 = (float)(r->cam.rect[0] + r->cam.rect[2]) - 4, x0 = x1 - w - 12, y0 = (float)r->cam.rect[1] + 4;
-    rect(r, x0, y0, x1, y0 + (float)n * 1.25f * fs + 8, SPH_RGBA(0, 0, 0, 185));
-    for (int i = 0; i < n; i++)
-        text(r, SPH_TEXT_SMALL, x0 + 6, y0 + 4 + (float)i * 1.25f * fs, SPH_RGBA(235, 235, 240, 255), lines[i]);
-}
-
-static void fmt_num(char *out, size_t n, float v)
-{
-    snprintf(out, n, "%.4g", (double)v);
-}
-
-static void draw_legend(sph_renderer *r, const sph_sim *sim, sph_color_field f, float lo, float hi)
-{
-    const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
-    const float x0 = (float)r->legend[0], y0 = (float)r->legend[1], w = (float)r->legend[2], hgt = (float)r->legend[3];
-    const uint32_t white = SPH_RGBA(235, 235, 240, 255), grey = SPH_RGBA(170, 170, 180, 255);
-    char unit[48];
-    snprintf(unit, sizeof unit, "[%s]", sph_color_field_unit(f, sim->dim));
-    text_at(r, SPH_TEXT_NORMAL, x0 + 0.5f * w, y0 + 0.6f * fn, SPH_ALIGN_CENTER, white, sph_color_field_names[f], false);
-    text_at(r, SPH_TEXT_SMALL, x0 + 0.5f * w, y0 + 0.6f * fn + 1.2f * fs, SPH_ALIGN_CENTER, grey, unit, false);
-    float top = y0 + 1.4f * fn + 1.6f * fs, bot = y0 + hgt - fs;
-    float bx0 = x0 + 4, bx1 = bx0 + fn;
-    if (bot - top < 20) return;
-    char s[32];
-    if (sph_color_field_categorical(f)) {
-        float cell = (bot - top) / 10.0f;
-        for (int k = 0; k < 10; k++) {
-            float ya = top + cell * (float)k;
-            rect(r, bx0, ya + 1, bx1, ya + cell - 1, sph_colormap_category((uint32_t)k));
-            snprintf(s, sizeof s, "%d", k);
-            text_at(r, SPH_TEXT_SMALL, bx1 + 4, ya + 0.5f * cell, SPH_ALIGN_LEFT, white, s, false);
-        }
-        text_at(r, SPH_TEXT_SMALL, x0 + 0.5f * w, bot + 0.5f * fs, SPH_ALIGN_CENTER, grey, "key mod 10", false);
-        return;
-    }
-    /* the bar, top = max; one band per pixel row */
-    for (float y = top; y < bot; y += 1.0f) {
-        float t = 1.0f - (y + 0.5f - top) / (bot - top);
-        rect(r, bx0, y, bx1, fminf(y + 1.0f, bot), sph_colormap_viridis(t));
-    }
-    outline(r, bx0 - 1, top - 1, bx1 + 1, bot + 1, 1, grey);
-    fmt_num(s, sizeof s, hi);
-    text_at(r, SPH_TEXT_SMALL, bx1 + 4, top + 0.5f * fs, SPH_ALIGN_LEFT, white, s, false);
-    fmt_num(s, sizeof s, 0.5f * (lo + hi));
-    text_at(r, SPH_TEXT_SMALL, bx1 + 4, 0.5f * (top + bot), SPH_ALIGN_LEFT, white, s, false);
-    fmt_num(s, sizeof s, lo);
-    text_at(r, SPH_TEXT_SMALL, bx1 + 4, bot - 0.5f * fs, SPH_ALIGN_LEFT, white, s, false);
-}
-
 /* ---- the frame ----------------------------------------------------------- */
 
 static bool grow_particles(sph_renderer *r, uint32_t n)
@@ -791,23 +437,10 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_RHO)); /* the density error; sph_sim_stats syncs the rest */
     make_current(r);
     if (direct && !make_direct(r, err, n)) return false;
-    const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
-    /* layout: legend on the right, index strip at the bottom, the view in the rest */
-    const int pad = (int)roundf(0.6f * fn);
-    const int legend_w = (L & SPH_OV_BIT(LEGEND)) ? (int)roundf(6.0f * fn) : 0;
-    const bool strip = (L & SPH_OV_BIT(INDEX)) && sim->in_pipeline[SPH_PASS_HASH];
-    const int row_h = (int)roundf(1.5f * fs);
-    const int strip_h = strip ? 6 * row_h + pad : 0;
-    int rc[4] = {pad, pad, r->w - legend_w - 2 * pad, r->h - strip_h - 2 * pad};
+    const float fs = r->font.px[SPH_TEXT_SMALL];
+    int rc[4], legend_w;
+    const bool strip = hud_layout(r, sim, L, rc, &legend_w);
     sph_camera_fit(&r->cam, sim->dim, sim->def.domain_min, sim->def.domain_max, &v->orbit, r->w, r->h, rc);
-    r->legend[0] = r->w - legend_w;
-    r->legend[1] = pad;
-    r->legend[2] = legend_w - pad / 2;
-    r->legend[3] = r->h - strip_h - 2 * pad;
-    r->strip[0] = pad;
-    r->strip[1] = r->h - strip_h;
-    r->strip[2] = r->w - 2 * pad;
-    r->strip[3] = strip_h - pad;
 
     /* overlays (GL-free) */
     sph_overlay_opts oo = {.layers = L, .selected = v->selected, .slice_z = v->slice_z, .px_per_m = r->cam.px_per_m};
@@ -875,8 +508,8 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         float p0[3] = {dl[0], dl[1], 0}, p1[3] = {dh[0], dh[1], 0};
         sph_camera_project(&r->cam, p0, a, NULL);
         sph_camera_project(&r->cam, p1, b, NULL);
-        rect(r, a[0], b[1], b[0], a[1], SPH_RGBA(42, 45, 54, 255));
-        outline(r, a[0] - 1, b[1] - 1, b[0] + 1, a[1] + 1, 1, SPH_RGBA(110, 115, 130, 255));
+        canvas_rect(r, a[0], b[1], b[0], a[1], SPH_RGBA(42, 45, 54, 255));
+        canvas_outline(r, a[0] - 1, b[1] - 1, b[0] + 1, a[1] + 1, 1, SPH_RGBA(110, 115, 130, 255));
     } else {
         for (int e = 0; e < 12; e++) { /* the 12 edges of the box */
             int axis = e / 4, o1 = e & 1, o2 = (e >> 1) & 1;
@@ -887,7 +520,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
             a[u] = b[u] = o1 ? dh[u] : dl[u];
             a[w] = b[w] = o2 ? dh[w] : dl[w];
             if (sph_camera_project(&r->cam, a, pa, NULL) && sph_camera_project(&r->cam, b, pb, NULL))
-                line(r, pa[0], pa[1], pb[0], pb[1], 1.0f, SPH_RGBA(110, 115, 130, 255));
+                canvas_line(r, pa[0], pa[1], pb[0], pb[1], 1.0f, SPH_RGBA(110, 115, 130, 255));
         }
         if (L & (SPH_OV_BIT(GRID) | SPH_OV_BIT(KEYS) | SPH_OV_BIT(COLLISIONS))) {
             float c[4][3] = {{dl[0], dl[1], v->slice_z}, {dh[0], dl[1], v->slice_z}, {dh[0], dh[1], v->slice_z},
@@ -896,12 +529,12 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
             bool ok = true;
             for (int k = 0; k < 4; k++) ok &= sph_camera_project(&r->cam, c[k], p[k], NULL);
             if (ok) {
-                tri(r, p[0][0], p[0][1], p[1][0], p[1][1], p[2][0], p[2][1], SPH_RGBA(80, 90, 120, 60));
-                tri(r, p[0][0], p[0][1], p[2][0], p[2][1], p[3][0], p[3][1], SPH_RGBA(80, 90, 120, 60));
+                canvas_tri(r, p[0][0], p[0][1], p[1][0], p[1][1], p[2][0], p[2][1], SPH_RGBA(80, 90, 120, 60));
+                canvas_tri(r, p[0][0], p[0][1], p[2][0], p[2][1], p[3][0], p[3][1], SPH_RGBA(80, 90, 120, 60));
             }
         }
     }
-    if (!flush(r)) goto oom;
+    if (!canvas_flush(r)) goto oom;
 
     /* particles: one instanced draw */
     float rad = sph_particle_radius(sim);
@@ -949,26 +582,15 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     }
 
     /* canvas over: world overlays (clipped), then the strip, notes, HUD, legend */
-    draw_overlay(r, SPH_SPACE_WORLD);
-    if (!flush(r)) goto oom;
+    canvas_overlay(r, SPH_SPACE_WORLD);
+    if (!canvas_flush(r)) goto oom;
     clip_to_view(r, false);
-    draw_overlay(r, SPH_SPACE_STRIP);
-    if (r->ov.note[0] && (L & ~(SPH_OV_BIT(HUD) | SPH_OV_BIT(LEGEND) | SPH_OV_BIT(TIMINGS)))) {
-        /* the builder joins its notes with "; ": one line each, upwards from the view's bottom */
-        char notes[sizeof r->ov.note];
-        snprintf(notes, sizeof notes, "%s", r->ov.note);
-        float y = (float)(rc[1] + rc[3]) - 0.8f * fs;
-        char *parts[8];
-        int np = 0;
-        for (char *save = NULL, *t = strtok_r(notes, ";", &save); t && np < 8; t = strtok_r(NULL, ";", &save))
-            parts[np++] = t + (*t == ' ');
-        for (int k = np - 1; k >= 0; k--, y -= 1.3f * fs)
-            text_at(r, SPH_TEXT_SMALL, (float)rc[0] + 4, y, SPH_ALIGN_LEFT, SPH_RGBA(255, 220, 120, 255), parts[k], true);
-    }
-    if (L & (SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS))) draw_hud(r, sim, v);
-    if (legend_w) draw_legend(r, sim, f, lo, hi);
-    if (v->panel && v->panel_lines > 0) draw_panel(r, v->panel, v->panel_lines);
-    if (!flush(r)) goto oom;
+    canvas_overlay(r, SPH_SPACE_STRIP);
+    if (L & ~(SPH_OV_BIT(HUD) | SPH_OV_BIT(LEGEND) | SPH_OV_BIT(TIMINGS))) hud_notes(r, rc);
+    if (L & (SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS))) hud_draw(r, sim, v);
+    if (legend_w) hud_legend(r, sim, f, lo, hi);
+    if (v->panel && v->panel_lines > 0) hud_panel(r, v->panel, v->panel_lines);
+    if (!canvas_flush(r)) goto oom;
     gl->BindVertexArray(0);
     GLenum e = gl->GetError();
     if (e != GL_NO_ERROR) {

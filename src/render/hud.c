@@ -1,0 +1,154 @@
+/* The renderer's text and layout (see renderer_impl.h): where the view,
+ * legend and index strip go, the HUD with its pass timings, the window's
+ * panel, the colour legend and the overlay builder's notes. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "renderer_impl.h"
+
+/* ---- layout, notes --------------------------------------------------------- */
+
+bool hud_layout(sph_renderer *r, const sph_sim *sim, unsigned layers, int rc[4], int *legend_w)
+{
+    const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
+    const int pad = (int)roundf(0.6f * fn);
+    const int lw = (layers & SPH_OV_BIT(LEGEND)) ? (int)roundf(6.0f * fn) : 0;
+    const bool strip = (layers & SPH_OV_BIT(INDEX)) && sim->in_pipeline[SPH_PASS_HASH];
+    const int row_h = (int)roundf(1.5f * fs);
+    const int strip_h = strip ? 6 * row_h + pad : 0;
+    rc[0] = pad;
+    rc[1] = pad;
+    rc[2] = r->w - lw - 2 * pad;
+    rc[3] = r->h - strip_h - 2 * pad;
+    r->legend[0] = r->w - lw;
+    r->legend[1] = pad;
+    r->legend[2] = lw - pad / 2;
+    r->legend[3] = r->h - strip_h - 2 * pad;
+    r->strip[0] = pad;
+    r->strip[1] = r->h - strip_h;
+    r->strip[2] = r->w - 2 * pad;
+    r->strip[3] = strip_h - pad;
+    *legend_w = lw;
+    return strip;
+}
+
+void hud_notes(sph_renderer *r, const int rc[4])
+{
+    if (!r->ov.note[0]) return;
+    const float fs = r->font.px[SPH_TEXT_SMALL];
+    /* the builder joins its notes with "; ": one line each, upwards from the view's bottom */
+    char notes[sizeof r->ov.note];
+    snprintf(notes, sizeof notes, "%s", r->ov.note);
+    float y = (float)(rc[1] + rc[3]) - 0.8f * fs;
+    char *parts[8];
+    int np = 0;
+    for (char *save = NULL, *t = strtok_r(notes, ";", &save); t && np < 8; t = strtok_r(NULL, ";", &save))
+        parts[np++] = t + (*t == ' ');
+    for (int k = np - 1; k >= 0; k--, y -= 1.3f * fs)
+        canvas_text_at(r, SPH_TEXT_SMALL, (float)rc[0] + 4, y, SPH_ALIGN_LEFT, SPH_RGBA(255, 220, 120, 255), parts[k], true);
+}
+
+/* ---- HUD, panel, legend ------------------------------------------------------ */
+
+void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
+{
+    const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
+    const bool timings = v->overlays & SPH_OV_BIT(TIMINGS), hud = v->overlays & SPH_OV_BIT(HUD);
+    char lines[10][128];
+    int nl = 0;
+    if (hud) {
+        sph_hud_info info = v->hud;
+        if (!timings) info.steps_per_s = -1; /* changes from run to run: only with the timings */
+        nl = sph_hud_lines(sim, &info, lines, 10);
+    }
+    int bars = 0;
+    double mx = 0;
+    if (timings)
+        for (int p = 0; p < SPH_PASS_COUNT; p++)
+            if (sim->in_pipeline[p]) {
+                bars++;
+                if (sim->timing[p].last_ms > mx) mx = sim->timing[p].last_ms;
+            }
+    if (!nl && !bars) return;
+    float w = 0;
+    for (int i = 0; i < nl; i++) w = fmaxf(w, sph_font_width(&r->font, SPH_TEXT_NORMAL, lines[i]));
+    const float name_w = sph_font_width(&r->font, SPH_TEXT_SMALL, "pressure_force  "), bar_w = 6.0f * fn;
+    const float ms_w = sph_font_width(&r->font, SPH_TEXT_SMALL, " 00.000 ms");
+    if (bars) w = fmaxf(w, name_w + bar_w + ms_w);
+    float x0 = (float)r->cam.rect[0] + 4, y0 = (float)r->cam.rect[1] + 4;
+    float hgt = (float)nl * fn * 1.2f + (float)bars * fs * 1.25f + (bars ? 0.3f * fn : 0) + 8;
+    canvas_rect(r, x0, y0, x0 + w + 12, y0 + hgt, SPH_RGBA(0, 0, 0, 160));
+    float y = y0 + 4;
+    for (int i = 0; i < nl; i++, y += fn * 1.2f) canvas_text(r, SPH_TEXT_NORMAL, x0 + 6, y, SPH_RGBA(235, 235, 240, 255), lines[i]);
+    if (bars) y += 0.3f * fn;
+    for (int p = 0; p < SPH_PASS_COUNT && bars; p++) {
+        if (!sim->in_pipeline[p]) continue;
+        bool on = sim->enabled[p];
+        uint32_t col = on ? SPH_RGBA(220, 220, 225, 255) : SPH_RGBA(120, 120, 125, 255);
+        canvas_text(r, SPH_TEXT_SMALL, x0 + 6, y, col, sph_passes[p]->name);
+        double ms = sim->timing[p].last_ms;
+        float bw = mx > 0 ? (float)(ms / mx) * bar_w : 0;
+        float bx = x0 + 6 + name_w;
+        canvas_rect(r, bx, y + 0.2f * fs, bx + bar_w, y + 1.0f * fs, SPH_RGBA(60, 60, 70, 255));
+        if (on) canvas_rect(r, bx, y + 0.2f * fs, bx + roundf(bw), y + 1.0f * fs, SPH_RGBA(240, 160, 60, 255));
+        char ms_s[32];
+        snprintf(ms_s, sizeof ms_s, " %.3f ms", ms);
+        canvas_text(r, SPH_TEXT_SMALL, bx + bar_w, y, col, on ? ms_s : " off");
+        y += fs * 1.25f;
+    }
+}
+
+void hud_panel(sph_renderer *r, const char (*lines)[128], int n)
+{
+    const float fs = r->font.px[SPH_TEXT_SMALL];
+    float w = 0;
+    for (int i = 0; i < n; i++) w = fmaxf(w, sph_font_width(&r->font, SPH_TEXT_SMALL, lines[i]));
+    float x1 = (float)(r->cam.rect[0] + r->cam.rect[2]) - 4, x0 = x1 - w - 12, y0 = (float)r->cam.rect[1] + 4;
+    canvas_rect(r, x0, y0, x1, y0 + (float)n * 1.25f * fs + 8, SPH_RGBA(0, 0, 0, 185));
+    for (int i = 0; i < n; i++)
+        canvas_text(r, SPH_TEXT_SMALL, x0 + 6, y0 + 4 + (float)i * 1.25f * fs, SPH_RGBA(235, 235, 240, 255), lines[i]);
+}
+
+static void fmt_num(char *out, size_t n, float v)
+{
+    snprintf(out, n, "%.4g", (double)v);
+}
+
+void hud_legend(sph_renderer *r, const sph_sim *sim, sph_color_field f, float lo, float hi)
+{
+    const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
+    const float x0 = (float)r->legend[0], y0 = (float)r->legend[1], w = (float)r->legend[2], hgt = (float)r->legend[3];
+    const uint32_t white = SPH_RGBA(235, 235, 240, 255), grey = SPH_RGBA(170, 170, 180, 255);
+    char unit[48];
+    snprintf(unit, sizeof unit, "[%s]", sph_color_field_unit(f, sim->dim));
+    canvas_text_at(r, SPH_TEXT_NORMAL, x0 + 0.5f * w, y0 + 0.6f * fn, SPH_ALIGN_CENTER, white, sph_color_field_names[f], false);
+    canvas_text_at(r, SPH_TEXT_SMALL, x0 + 0.5f * w, y0 + 0.6f * fn + 1.2f * fs, SPH_ALIGN_CENTER, grey, unit, false);
+    float top = y0 + 1.4f * fn + 1.6f * fs, bot = y0 + hgt - fs;
+    float bx0 = x0 + 4, bx1 = bx0 + fn;
+    if (bot - top < 20) return;
+    char s[32];
+    if (sph_color_field_categorical(f)) {
+        float cell = (bot - top) / 10.0f;
+        for (int k = 0; k < 10; k++) {
+            float ya = top + cell * (float)k;
+            canvas_rect(r, bx0, ya + 1, bx1, ya + cell - 1, sph_colormap_category((uint32_t)k));
+            snprintf(s, sizeof s, "%d", k);
+            canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, ya + 0.5f * cell, SPH_ALIGN_LEFT, white, s, false);
+        }
+        canvas_text_at(r, SPH_TEXT_SMALL, x0 + 0.5f * w, bot + 0.5f * fs, SPH_ALIGN_CENTER, grey, "key mod 10", false);
+        return;
+    }
+    /* the bar, top = max; one band per pixel row */
+    for (float y = top; y < bot; y += 1.0f) {
+        float t = 1.0f - (y + 0.5f - top) / (bot - top);
+        canvas_rect(r, bx0, y, bx1, fminf(y + 1.0f, bot), sph_colormap_viridis(t));
+    }
+    canvas_outline(r, bx0 - 1, top - 1, bx1 + 1, bot + 1, 1, grey);
+    fmt_num(s, sizeof s, hi);
+    canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, top + 0.5f * fs, SPH_ALIGN_LEFT, white, s, false);
+    fmt_num(s, sizeof s, 0.5f * (lo + hi));
+    canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, 0.5f * (top + bot), SPH_ALIGN_LEFT, white, s, false);
+    fmt_num(s, sizeof s, lo);
+    canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, bot - 0.5f * fs, SPH_ALIGN_LEFT, white, s, false);
+}
