@@ -20,7 +20,8 @@ APP     := main cmd_run cmd_check cmd_hardcases
 TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 
 # Modules above the core (rendering, plotting) add objects, flags and libraries
-# to these from their own fragment, src/MODULE/module.mk.
+# to these from their own fragment, src/MODULE/module.mk. The I/O layer's
+# library (IO_LIBS, src/io/module.mk) goes last on the link lines: every module may use it.
 # Debian packages the build and tests need; modules append theirs.
 DEB_PKGS := build-essential clang pkg-config libinih-dev libcriterion-dev libomp-dev libclang-rt-14-dev
 MOD_OBJ  :=
@@ -38,7 +39,7 @@ TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
 all: $(BIN)
 
 $(BIN): $(BUILD)/libsphcore.a $(APP_OBJ)
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_LIBS)
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_LIBS) $(IO_LIBS)
 
 $(BUILD)/libsphcore.a: $(CORE_OBJ)
 	ar rcs $@ $^
@@ -56,7 +57,7 @@ $(BUILD)/core $(BUILD)/passes $(BUILD)/app $(BUILD)/tests:
 	mkdir -p $@
 
 $(BUILD)/sphlab-tests: $(TEST_OBJ) $(BUILD)/libsphcore.a
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_TEST_LIBS) \
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_TEST_LIBS) $(IO_LIBS) \
 	    $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null || echo -lcriterion)
 
 # Installs what is missing (Debian packages); does nothing when all are there.
@@ -94,6 +95,7 @@ check-clang:
 check-tests:
 	SPHLAB=./$(BIN) $(BUILD)/sphlab-tests --jobs 2
 	sh tests/cli.sh ./$(BIN)
+	sh tests/cli_io.sh ./$(BIN)
 
 asan: deps
 	$(MAKE) asan-run
@@ -105,11 +107,12 @@ asan-run:
 	    $(MAKE) BUILD=build-asan SPHLAB_BIN=./sphlab-asan check-tests-asan
 
 sphlab-asan: $(BUILD)/libsphcore.a $(APP_OBJ)
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_LIBS)
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(CORE_LIBS) $(MOD_LIBS) $(IO_LIBS)
 
 check-tests-asan:
 	SPHLAB=./sphlab-asan $(BUILD)/sphlab-tests --jobs 2
 	sh tests/cli.sh ./sphlab-asan
+	sh tests/cli_io.sh ./sphlab-asan
 
 # Fuzzing the scene parser with libFuzzer (clang, ASan, UBSan). FUZZ_SECONDS
 # bounds the run; the corpus starts from the shipped scenes and grows in build-fuzz/corpus.

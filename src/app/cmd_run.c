@@ -5,7 +5,7 @@
 #include <unistd.h>
 
 #include "app.h"
-#include "../render/vtk.h"
+#include "../io/vtk.h"
 
 static void usage(FILE *f)
 {

@@ -1,8 +1,8 @@
-# Rendering module (src/render/): sphlab render and view, PNG frames, VTK
-# files. Included by the top Makefile; adds objects, libraries and packages.
-# GL code lives only in src/render/. The GL-free part (the overlay builder
-# src/core/sph_overlay.c, the camera, the font, the VTK writer) is also what
-# the tests link without a window.
+# Rendering module (src/render/): sphlab render and view, PNG frames (written
+# by the I/O layer, src/io/). Included by the top Makefile; adds objects,
+# libraries and packages. GL code lives only in src/render/. The GL-free part
+# (the overlay builder src/core/sph_overlay.c, the camera, the font) is also
+# what the tests link without a window.
 
 RENDER_PKGS   := epoxy egl osmesa sdl2 stb
 RENDER_CFLAGS := $(shell pkg-config --cflags $(RENDER_PKGS) 2>/dev/null || echo -I/usr/include/stb -I/usr/include/SDL2)
@@ -15,7 +15,7 @@ DEB_PKGS += libepoxy-dev libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri libos
             libsdl2-dev fonts-dejavu-core
 
 RENDER_LIB_OBJ := $(BUILD)/core/sph_overlay.o \
-    $(patsubst %,$(BUILD)/render/%.o,camera font vtk gl_epoxy gl_program ctx_egl ctx_osmesa renderer)
+    $(patsubst %,$(BUILD)/render/%.o,camera font gl_epoxy gl_program ctx_egl ctx_osmesa renderer)
 RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view)
 
 MOD_OBJ       += $(RENDER_LIB_OBJ) $(RENDER_CMD_OBJ)
@@ -34,8 +34,8 @@ SHADERS := $(wildcard shaders/*.vert shaders/*.frag)
 $(BUILD)/render/shaders.h: $(SHADERS) src/render/embed-shaders.sh | $(BUILD)/render
 	sh src/render/embed-shaders.sh $(SHADERS) > $@.tmp && mv $@.tmp $@
 
-$(BUILD)/render/%.o: src/render/%.c src/render/*.h src/gpu/gpu.h src/core/*.h src/app/*.h | $(BUILD)/render
-	$(CC) $(CFLAGS) $(CORE_CFLAGS) $(RENDER_CFLAGS) -Isrc/render -Isrc/gpu -Isrc/app -I$(BUILD)/render -c -o $@ $<
+$(BUILD)/render/%.o: src/render/%.c src/render/*.h src/io/*.h src/gpu/gpu.h src/core/*.h src/app/*.h | $(BUILD)/render
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) $(RENDER_CFLAGS) -Isrc/render -Isrc/gpu -Isrc/app -Isrc/io -I$(BUILD)/render -c -o $@ $<
 $(BUILD)/render/renderer.o: $(BUILD)/render/shaders.h
 
 $(BUILD)/render:
