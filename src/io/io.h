@@ -68,7 +68,7 @@ void sph_io_catch_signals(void);
 
 /* mkdir -p: makes DIR and its missing parents; false unless DIR ends up a directory. */
 bool sph_mkdir_p(const char *dir, char *err, size_t n);
-/* mkdir -p DIR, then checks that files can be made in it. */
+/* mkdir -p DIR, then checks that a file can be made in it (one is made and removed). */
 bool sph_output_dir(const char *dir, char *err, size_t n);
 
 /* An RGB image (w x h, rows top first, 3 bytes a pixel) as a PNG through the writer. */

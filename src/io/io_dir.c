@@ -2,6 +2,7 @@
 #include "io.h"
 
 #include <errno.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -37,9 +38,16 @@ bool sph_mkdir_p(const char *dir, char *err, size_t n)
 bool sph_output_dir(const char *dir, char *err, size_t n)
 {
     if (!sph_mkdir_p(dir, err, n)) return false;
-    if (access(dir, W_OK | X_OK) != 0) {
+    /* a file made and removed: access(2) says yes to root on a folder where
+     * nothing can be made (/proc/self) */
+    char probe[SPH_IO_PATH + 32];
+    snprintf(probe, sizeof probe, "%s/.sphlab-probe-XXXXXX", dir);
+    int fd = mkstemp(probe);
+    if (fd < 0) {
         if (err && n) snprintf(err, n, "%s: cannot write there: %s", dir, strerror(errno));
         return false;
     }
+    close(fd);
+    unlink(probe);
     return true;
 }

@@ -34,3 +34,4 @@ check-clang-io:
 
 # The commands in src/app include io.h (through app.h) and vtk.h.
 $(APP:%=$(BUILD)/app/%.o): $(wildcard src/io/*.h)
+$(BUILD)/plot/plot_out.o $(BUILD)/lesson/lesson_export.o $(BUILD)/lesson/lesson_steps.o $(BUILD)/bench/bench_machine.o $(BUILD)/bench/bench_levels.o: $(wildcard src/io/*.h)
