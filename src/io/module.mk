@@ -13,7 +13,7 @@ IO_LIBS   := $(BUILD)/io/libio.a $(shell pkg-config --libs libcjson 2>/dev/null 
 DEB_PKGS += libcjson-dev libstb-dev
 
 $(BUILD)/io/libio.a: $(IO_SRC:%=$(BUILD)/io/%.o)
-	ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $^
 
 $(BIN) sphlab-asan $(BUILD)/sphlab-tests: $(BUILD)/io/libio.a
 
