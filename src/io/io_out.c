@@ -76,7 +76,10 @@ void sph_io_set_fsync(bool on)
 bool sph_io_add_input(const char *path)
 {
     struct stat st;
-    if (g_n_inputs == MAX_INPUTS || stat(path, &st) != 0) return false;
+    if (stat(path, &st) != 0) return false;
+    for (int i = 0; i < g_n_inputs; i++)
+        if (g_inputs[i].dev == st.st_dev && g_inputs[i].ino == st.st_ino) return true; /* loaded again */
+    if (g_n_inputs == MAX_INPUTS) return false;
     g_inputs[g_n_inputs].dev = st.st_dev;
     g_inputs[g_n_inputs].ino = st.st_ino;
     snprintf(g_inputs[g_n_inputs].path, sizeof g_inputs[0].path, "%s", path);
