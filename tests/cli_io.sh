@@ -2,7 +2,8 @@
 # End-to-end checks of the outputs' guarantees (docs/robustness.md, "Outputs"):
 # nothing but a regular file is replaced, an input is never overwritten, two
 # runs writing one path do not mix, a full disk is an error, and a signal
-# leaves no temporary behind. Runnable from any directory.
+# leaves no temporary behind; a long run off a terminal still reports.
+# Runnable from any directory.
 set -u
 BIN=${1:-./sphlab}
 case $BIN in /*) ;; *) BIN=$(pwd)/$BIN ;; esac
@@ -86,6 +87,15 @@ wait $pid 2>/dev/null; rc=$?
 left=$(leftovers "$tmp")
 [ $i -lt 100 ] && [ -z "$left" ] && [ ! -e "$tmp/term.csv" ] && grep -q "interrupted; partial outputs removed" "$tmp/term.txt" && ok ||
     { bad "SIGTERM: want the temporaries removed and a message (exit $rc, left '$left')"; cat "$tmp/term.txt"; }
+
+# Off a terminal a long run still reports: a progress line at a steady rate
+# (SPHLAB_PROGRESS_MS shortens the 10 s between lines for the test).
+SPHLAB_PROGRESS_MS=200 timeout 3 "$BIN" run "$scene" --steps 2000000000 --threads 1 > /dev/null 2> "$tmp/prog.txt"
+n=$(grep -c '^sphlab run: step [0-9][0-9]*, t = .* s' "$tmp/prog.txt")
+[ "$n" -ge 2 ] && ok || { bad "run off a terminal: want progress lines, got $n"; cat "$tmp/prog.txt"; }
+# A run that needs an absurd number of steps says so at once.
+timeout 5 "$BIN" run "$scene" --time 1e6 --set time.dt=1e-7 --threads 1 --quiet > /dev/null 2> "$tmp/many.txt"
+grep -q 'takes about [0-9.e+]* steps' "$tmp/many.txt" && ok || { bad "--time 1e6 with dt 1e-7: want 'takes about N steps' at once"; cat "$tmp/many.txt"; }
 
 echo "cli_io.sh: $pass passed, $fail failed"
 [ $fail -eq 0 ]
