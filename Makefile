@@ -24,7 +24,9 @@ APP     := main app_options cmd_run cmd_check cmd_hardcases
 TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 
 # Modules above the core (rendering, plotting) add objects, flags and libraries
-# to these from their own fragment, src/MODULE/module.mk.
+# to these from their own fragment, src/MODULE/module.mk. The I/O layer's
+# library (IO_LIB, src/io/module.mk) goes just before the core on the link
+# lines: every module may use it, and it uses the core.
 # Debian packages the build and tests need; modules append theirs.
 DEB_PKGS := build-essential clang pkg-config libinih-dev libcriterion-dev libomp-dev libclang-rt-14-dev
 MOD_OBJ  :=
@@ -57,7 +59,7 @@ $(BUILD)/tests/test_options.o: src/app/app_options.h src/app/commands.h
 all: $(BIN)
 
 $(BIN): $(BUILD)/libsphcore.a $(APP_OBJ)
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(call uniq,$(CORE_LIBS) $(MOD_LIBS))
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(IO_LIB) $(BUILD)/libsphcore.a $(call uniq,$(CORE_LIBS) $(MOD_LIBS) $(IO_SYS_LIBS))
 
 $(BUILD)/libsphcore.a: $(CORE_OBJ)
 	ar rcs $@ $^
@@ -75,8 +77,8 @@ $(BUILD)/core $(BUILD)/passes $(BUILD)/app $(BUILD)/tests:
 	mkdir -p $@
 
 $(BUILD)/sphlab-tests: $(TEST_OBJ) $(TEST_APP_OBJ) $(BUILD)/libsphcore.a
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(TEST_APP_OBJ) $(MOD_TEST_LIBS) $(BASE_TEST_LIBS) $(BUILD)/libsphcore.a \
-	    $(call uniq,$(CORE_LIBS) $(MOD_TEST_SYS_LIBS) $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null || echo -lcriterion))
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(TEST_OBJ) $(TEST_APP_OBJ) $(MOD_TEST_LIBS) $(BASE_TEST_LIBS) $(IO_LIB) $(BUILD)/libsphcore.a \
+	    $(call uniq,$(CORE_LIBS) $(MOD_TEST_SYS_LIBS) $(IO_SYS_LIBS) $(shell pkg-config --libs $(PKGS_TEST) 2>/dev/null || echo -lcriterion))
 
 # Installs what is missing (Debian packages); does nothing when all are there.
 deps:
@@ -113,6 +115,7 @@ check-clang:
 check-tests:
 	SPHLAB=./$(BIN) $(BUILD)/sphlab-tests --jobs 2
 	sh tests/cli.sh ./$(BIN)
+	sh tests/cli_io.sh ./$(BIN)
 
 asan: deps
 	$(MAKE) asan-run
@@ -124,11 +127,12 @@ asan-run:
 	    $(MAKE) BUILD=build-asan SPHLAB_BIN=./sphlab-asan check-tests-asan
 
 sphlab-asan: $(BUILD)/libsphcore.a $(APP_OBJ)
-	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(BUILD)/libsphcore.a $(call uniq,$(CORE_LIBS) $(MOD_LIBS))
+	$(CC) $(CFLAGS) $(OMP) -o $@ $(APP_OBJ) $(IO_LIB) $(BUILD)/libsphcore.a $(call uniq,$(CORE_LIBS) $(MOD_LIBS) $(IO_SYS_LIBS))
 
 check-tests-asan:
 	SPHLAB=./sphlab-asan $(BUILD)/sphlab-tests --jobs 2
 	sh tests/cli.sh ./sphlab-asan
+	sh tests/cli_io.sh ./sphlab-asan
 
 # Fuzzing the scene parser with libFuzzer (clang, ASan, UBSan). FUZZ_SECONDS
 # bounds the run; the corpus starts from the shipped scenes and grows in build-fuzz/corpus.

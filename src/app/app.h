@@ -7,6 +7,7 @@
 
 #include "app_options.h"
 #include "sph_sim.h"
+#include "../io/io.h"
 
 #define APP_MAX_SETS 64
 
@@ -33,12 +34,12 @@ bool app_load_scene(const app_scene_opts *o, sph_scene_def *def);
 int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def);
 
 
-/* Output files are written to PATH.tmp and renamed on success, so a failed
- * run never leaves a half-written file behind. */
-typedef struct app_out {
-    char path[1024], tmp[1040];
-    FILE *f;
-} app_out;
+/* Output files go through the I/O layer's atomic writer (src/io/io.h): a
+ * unique temporary beside the target, renamed on success, so a failed or
+ * interrupted run never leaves a half-written file; a target that is not a
+ * regular file, or is one of the command's inputs, is refused. These print
+ * the reason ("sphlab: PATH: ...") where the layer returns it. */
+typedef sph_out app_out;
 bool app_out_open(app_out *o, const char *path);
 bool app_out_commit(app_out *o); /* closes and renames; false (and message) on a write error */
 void app_out_abort(app_out *o);  /* closes and removes the temporary */

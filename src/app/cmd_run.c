@@ -5,7 +5,7 @@
 #include <unistd.h>
 
 #include "app.h"
-#include "../render/vtk.h"
+#include "../io/vtk.h"
 
 static const app_cmd_spec spec = {
     .name = "run",
@@ -151,6 +151,13 @@ int cmd_run(int argc, char **argv)
     }
     if (stats.f) write_stats_header(stats.f, sim);
     bool progress = !quiet && isatty(STDERR_FILENO);
+    /* off a terminal (a log, a batch job) a line now and then, not a redrawn one */
+    bool log_progress = !quiet && !progress;
+    const char *every_ms = getenv("SPHLAB_PROGRESS_MS");
+    double log_ms = every_ms && atof(every_ms) > 0 ? atof(every_ms) : 10000;
+    if (until >= 0 && sim->dt > 0 && (until - sim->t) / sim->dt > 1e9)
+        fprintf(stderr, "sphlab run: warning: at the first time step (dt = %.3g s) reaching t = %g s takes about %.3g steps\n",
+                sim->dt, until, (until - sim->t) / sim->dt);
     bool warned = false;
     char warning[512];
     double t0 = sph_now_ms(), last_shown = t0;
@@ -170,12 +177,16 @@ int cmd_run(int argc, char **argv)
         if (sim->alarm.raised) break;
         if (stats.f) write_stats_row(stats.f, sim, sim->dt);
         double now = sph_now_ms();
-        if (progress && now - last_shown > 200) {
+        if ((progress && now - last_shown > 200) || (log_progress && now - last_shown > log_ms)) {
             last_shown = now;
             double done = until >= 0 ? sim->t / until : (double)sim->step / (double)steps;
             double eta = done > 0 ? (now - t0) / 1e3 * (1 - done) / done : 0;
-            fprintf(stderr, "\r  step %llu  t = %.4f s  %3.0f%%  %.0f steps/s  ETA %.0f s   ",
-                    (unsigned long long)sim->step, sim->t, 100 * done, sim->step / ((now - t0) / 1e3), eta);
+            if (progress)
+                fprintf(stderr, "\r  step %llu  t = %.4f s  %3.0f%%  %.0f steps/s  ETA %.0f s   ",
+                        (unsigned long long)sim->step, sim->t, 100 * done, sim->step / ((now - t0) / 1e3), eta);
+            else
+                fprintf(stderr, "sphlab run: step %llu, t = %.6g s, %.1f%%, %.0f steps/s, ETA %.0f s\n",
+                        (unsigned long long)sim->step, sim->t, 100 * done, sim->step / ((now - t0) / 1e3), eta);
         }
     }
     double wall = sph_now_ms() - t0;

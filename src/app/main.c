@@ -43,6 +43,7 @@ int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def)
 {
     sph_error err;
     *def = sph_default_scene_def();
+    sph_io_add_input(o->path); /* no output of the command may overwrite its scene */
     if (sph_scene_load(o->path, def, &err) == SPH_ERR_OK) {
         for (int i = 0; i < o->n_sets; i++)
             if (sph_scene_set(def, o->sets[i], &err) != SPH_ERR_OK) goto fail;
@@ -88,46 +89,23 @@ bool app_load_scene(const app_scene_opts *o, sph_scene_def *def)
 
 bool app_out_open(app_out *o, const char *path)
 {
-    memset(o, 0, sizeof *o);
-    struct stat st;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        fprintf(stderr, "sphlab: %s: is a directory, not a file to write\n", path);
-        return false;
-    }
-    if (strlen(path) >= sizeof o->path) {
-        fprintf(stderr, "sphlab: %s: path too long\n", path);
-        return false;
-    }
-    snprintf(o->path, sizeof o->path, "%s", path);
-    snprintf(o->tmp, sizeof o->tmp, "%s.tmp", path);
-    o->f = fopen(o->tmp, "w");
-    if (!o->f) {
-        fprintf(stderr, "sphlab: %s: cannot write: %s\n", path, strerror(errno));
-        return false;
-    }
-    return true;
+    char err[SPH_IO_PATH + 200];
+    if (sph_out_open(o, path, err, sizeof err)) return true;
+    fprintf(stderr, "sphlab: %s\n", err);
+    return false;
 }
 
 bool app_out_commit(app_out *o)
 {
-    if (!o->f) return true;
-    bool bad = ferror(o->f) != 0;
-    bad |= fclose(o->f) != 0;
-    o->f = NULL;
-    if (bad || rename(o->tmp, o->path) != 0) {
-        fprintf(stderr, "sphlab: %s: write failed: %s\n", o->path, strerror(errno));
-        remove(o->tmp);
-        return false;
-    }
-    return true;
+    char err[SPH_IO_PATH + 200];
+    if (sph_out_commit(o, err, sizeof err)) return true;
+    fprintf(stderr, "sphlab: %s\n", err);
+    return false;
 }
 
 void app_out_abort(app_out *o)
 {
-    if (!o->f) return;
-    fclose(o->f);
-    o->f = NULL;
-    remove(o->tmp);
+    sph_out_abort(o);
 }
 
 int main(int argc, char **argv)

@@ -10,6 +10,7 @@
 #endif
 
 #include "bench.h"
+#include "../io/io_json.h"
 
 /* The ladder, one line per level. Each line names every search key it
  * relies on, so a level does not change when a default does. To add a
@@ -245,17 +246,9 @@ void bench_now_iso(char *out, size_t cap)
 
 void bench_json_string(FILE *f, const char *s)
 {
-    fputc('"', f);
-    for (; s && *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
+    cJSON *str = cJSON_CreateString(s ? s : "");
+    if (!str || !sph_json_fput(f, str, 0)) fputs("null", f); /* cJSON escapes; null if out of memory */
+    cJSON_Delete(str);
 }
 
 void bench_fmt_count(char *out, size_t cap, double v)

@@ -17,6 +17,7 @@
 #endif
 
 #include "bench.h"
+#include "../io/io_json.h"
 
 static double cpuinfo_mhz(void)
 {
@@ -240,16 +241,28 @@ void bench_machine_print(FILE *f, const bench_machine *m)
             m->cores);
 }
 
+cJSON *bench_machine_to_json(const bench_machine *m)
+{
+    cJSON *o = cJSON_CreateObject();
+    /* figures rounded as the table prints them: more digits would be noise */
+    bool ok = o && cJSON_AddNumberToObject(o, "cores", m->cores) && sph_json_add_num(o, "clock_ghz", m->clock_ghz, 4) &&
+              sph_json_add_num(o, "cpuinfo_mhz", m->mhz_cpuinfo, 6) && cJSON_AddNumberToObject(o, "vector_lanes", m->lanes) &&
+              cJSON_AddNumberToObject(o, "fma_pipes", m->fma_pipes) &&
+              sph_json_add_num(o, "peak_gflops_per_core", m->peak_gflops_core, 4) &&
+              sph_json_add_num(o, "fma_gflops_1_core", m->fma_gflops[0], 4) &&
+              sph_json_add_num(o, "fma_gflops_all_cores", m->fma_gflops[1], 4) &&
+              sph_json_add_num(o, "triad_gbs_1_core", m->triad_gbs[0], 4) &&
+              sph_json_add_num(o, "triad_gbs_all_cores", m->triad_gbs[1], 4) &&
+              sph_json_add_num(o, "read_gbs_1_core", m->read_gbs[0], 4) &&
+              sph_json_add_num(o, "read_gbs_all_cores", m->read_gbs[1], 4) && sph_json_add_num(o, "array_mb", m->array_mb, 4);
+    if (ok) return o;
+    cJSON_Delete(o);
+    return NULL;
+}
+
 void bench_machine_json(FILE *f, const bench_machine *m, const char *in)
 {
-    fprintf(f, "{\n%s  \"cores\": %d,\n%s  \"clock_ghz\": %.4g,\n%s  \"cpuinfo_mhz\": %.6g,\n", in, m->cores, in,
-            m->clock_ghz, in, m->mhz_cpuinfo);
-    fprintf(f, "%s  \"vector_lanes\": %d,\n%s  \"fma_pipes\": %d,\n%s  \"peak_gflops_per_core\": %.4g,\n", in, m->lanes,
-            in, m->fma_pipes, in, m->peak_gflops_core);
-    fprintf(f, "%s  \"fma_gflops_1_core\": %.4g,\n%s  \"fma_gflops_all_cores\": %.4g,\n", in, m->fma_gflops[0], in,
-            m->fma_gflops[1]);
-    fprintf(f, "%s  \"triad_gbs_1_core\": %.4g,\n%s  \"triad_gbs_all_cores\": %.4g,\n", in, m->triad_gbs[0], in,
-            m->triad_gbs[1]);
-    fprintf(f, "%s  \"read_gbs_1_core\": %.4g,\n%s  \"read_gbs_all_cores\": %.4g,\n%s  \"array_mb\": %.4g\n%s}", in,
-            m->read_gbs[0], in, m->read_gbs[1], in, m->array_mb, in);
+    cJSON *o = bench_machine_to_json(m);
+    if (!o || !sph_json_fput(f, o, (int)strlen(in) / 2)) fputs("null", f); /* out of memory: the file stays valid JSON */
+    cJSON_Delete(o);
 }

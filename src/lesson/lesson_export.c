@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "lesson.h"
+#include "../io/io.h"
 
 #define LX_MAX_ARGS 96
 
@@ -353,9 +354,10 @@ bool lx_chart(lx *x, plot_kind kind, const void *chart, const char *base, int w,
 
 FILE *lx_csv_open(lx *x, const char *name)
 {
-    FILE *f = fopen(lx_out(x, lx_fmt(".%s.tmp", name)), "w");
+    char err[SPH_IO_PATH + 200];
+    FILE *f = sph_out_fopen(lx_out(x, name), err, sizeof err);
     if (!f) {
-        fprintf(stderr, "sphlab lesson %d: cannot write %s: %s\n", x->L->num, lx_out(x, name), strerror(errno));
+        fprintf(stderr, "sphlab lesson %d: %s\n", x->L->num, err);
         x->failed++;
     }
     return f;
@@ -364,12 +366,9 @@ FILE *lx_csv_open(lx *x, const char *name)
 bool lx_csv_close(lx *x, FILE *f, const char *name, const char *what)
 {
     if (!f) return false;
-    bool bad = ferror(f) != 0;
-    bad |= fclose(f) != 0;
-    const char *tmp = lx_out(x, lx_fmt(".%s.tmp", name));
-    if (bad || rename(tmp, lx_out(x, name)) != 0) {
-        remove(tmp);
-        fprintf(stderr, "sphlab lesson %d: cannot write %s\n", x->L->num, lx_out(x, name));
+    char err[SPH_IO_PATH + 200];
+    if (!sph_out_fclose(f, true, err, sizeof err)) {
+        fprintf(stderr, "sphlab lesson %d: %s\n", x->L->num, err);
         x->failed++;
         return false;
     }

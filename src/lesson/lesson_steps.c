@@ -14,6 +14,7 @@
 #include "sph_kernel.h"
 #include "sph_search.h"
 #include "sph_sim.h"
+#include "../io/io.h"
 
 #define PI 3.14159265358979323846
 
@@ -1159,7 +1160,7 @@ int lx_lesson6(lx *x)
         char keys[64] = "";
         for (int i = 0; i < upto; i++) strcat(keys, ".p");
         const char *cwd = work(x, "view");
-        mkdir(cwd, 0755);
+        sph_mkdir_p(cwd, NULL, 0);
         if (lx_sphlab(x, "view-passes", cwd, "SDL_VIDEODRIVER=offscreen", NULL, "view", lx_abs(scene), "--paused", "--frames",
                       lx_fmt("%d", 2 * upto), "--keys", keys, "--threads", "1", "--color", "key", "--overlay",
                       "grid,keys,index,hud,legend", "--select", "7", "--size", "1100x760", LX_END) == 0) {
@@ -1296,7 +1297,7 @@ int lx_lesson7(lx *x)
     char keys[64] = "j";
     for (int i = 0; i < np; i++) strcat(keys, ".p");
     const char *cwd = work(x, "view");
-    mkdir(cwd, 0755);
+    sph_mkdir_p(cwd, NULL, 0);
     if (lx_sphlab(x, "view-passes", cwd, "SDL_VIDEODRIVER=offscreen", NULL, "view", lx_abs(scene), "--steps-per-frame", before,
                   "--frames", lx_fmt("%d", 1 + 2 * np), "--keys", keys, "--threads", "1", "--color", "speed",
                   "--overlay", "hud,legend", "--size", "960x560", LX_END) == 0) {

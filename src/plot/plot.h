@@ -3,7 +3,7 @@
  *
  * Four files:
  *   plot_csv.c   reads a CSV with a header line into columns of doubles;
- *   plot_out.c   stages output files (written to DIR/.NAME.PID.tmp.EXT and
+ *   plot_out.c   stages output files (through the I/O layer's atomic writer, and
  *                renamed only when every file of the command is complete);
  *   plot_draw.c  the chart types (stacked line panels, horizontal bars,
  *                stacked areas, log-log), their black-and-white-safe styles,

@@ -1,110 +1,96 @@
-/* Output files of one `sphlab plot` command: every file is written to a
- * temporary beside its final name and renamed only when all are complete, so
- * a failure leaves no half-written chart or CSV behind. */
-#include <errno.h>
+/* Output files of one `sphlab plot` command: every file is written through
+ * the I/O layer's atomic writer (src/io/io.h) and renamed only when all are
+ * complete, so a failure leaves no half-written chart or CSV behind. */
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "plot.h"
+#include "../io/io.h"
 
 enum { MAX_STAGED = 64 };
 
-typedef struct staged {
-    char tmp[1200], final[1100];
-} staged;
-
-static staged g_staged[MAX_STAGED];
+static sph_out g_staged[MAX_STAGED];
 static int g_n;
 
 bool plot_out_dir(const char *dir)
 {
-    char path[1024];
-    if (!*dir || strlen(dir) >= sizeof path - 1) {
-        fprintf(stderr, "sphlab plot: --out '%s': not a usable directory name\n", dir);
-        return false;
-    }
-    snprintf(path, sizeof path, "%s", dir);
-    /* make each missing component, like mkdir -p */
-    for (char *p = path + 1;; p++) {
-        if (*p == '/' || *p == '\0') {
-            char keep = *p;
-            *p = '\0';
-            if (mkdir(path, 0777) != 0 && errno != EEXIST) {
-                fprintf(stderr, "sphlab plot: --out %s: cannot make directory %s: %s\n", dir, path, strerror(errno));
-                return false;
-            }
-            *p = keep;
-            if (!keep) break;
-        }
-    }
-    struct stat st;
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        fprintf(stderr, "sphlab plot: --out %s: not a directory\n", dir);
-        return false;
-    }
-    return true;
+    char err[SPH_IO_PATH + 200];
+    if (sph_mkdir_p(dir, err, sizeof err)) return true;
+    fprintf(stderr, "sphlab plot: --out %s: %s\n", dir, err);
+    return false;
 }
 
-const char *plot_out_stage(const char *dir, const char *file)
+/* Opens DIR/FILE's temporary; its stream stays open (a CSV) or is closed for
+ * a library that writes by name (a chart). */
+static sph_out *stage(const char *dir, const char *file)
 {
     if (g_n == MAX_STAGED) {
         fprintf(stderr, "sphlab plot: more than %d output files\n", MAX_STAGED);
         return NULL;
     }
-    staged *s = &g_staged[g_n];
-    const char *dot = strrchr(file, '.');
-    int base_len = dot ? (int)(dot - file) : (int)strlen(file);
-    int n1 = snprintf(s->final, sizeof s->final, "%s/%s", dir, file);
-    int n2 = snprintf(s->tmp, sizeof s->tmp, "%s/.%.*s.%ld.tmp%s", dir, base_len, file, (long)getpid(),
-                      dot ? dot : "");
-    if (n1 < 0 || n2 < 0 || (size_t)n1 >= sizeof s->final || (size_t)n2 >= sizeof s->tmp) {
+    char final[SPH_IO_PATH], err[SPH_IO_PATH + 200];
+    int len = snprintf(final, sizeof final, "%s/%s", dir, file);
+    if (len < 0 || (size_t)len >= sizeof final) {
         fprintf(stderr, "sphlab plot: %s/%s: path too long\n", dir, file);
         return NULL;
     }
     for (int i = 0; i < g_n; i++)
-        if (strcmp(g_staged[i].final, s->final) == 0) {
-            fprintf(stderr, "sphlab plot: %s: two outputs of this command have this name (see --name)\n", s->final);
+        if (strcmp(g_staged[i].path, final) == 0) {
+            fprintf(stderr, "sphlab plot: %s: two outputs of this command have this name (see --name)\n", final);
             return NULL;
         }
-    FILE *f = fopen(s->tmp, "wb");
-    if (!f) {
-        fprintf(stderr, "sphlab plot: %s: cannot write in %s: %s\n", s->final, dir, strerror(errno));
+    if (!sph_out_open(&g_staged[g_n], final, err, sizeof err)) {
+        fprintf(stderr, "sphlab plot: %s\n", err);
         return NULL;
     }
-    fclose(f);
-    g_n++;
-    return s->tmp;
+    return &g_staged[g_n++];
+}
+
+const char *plot_out_stage(const char *dir, const char *file)
+{
+    sph_out *o = stage(dir, file);
+    if (!o) return NULL;
+    char err[SPH_IO_PATH + 200];
+    if (!sph_out_release(o, err, sizeof err)) {
+        fprintf(stderr, "sphlab plot: %s\n", err);
+        g_n--;
+        return NULL;
+    }
+    return o->tmp;
 }
 
 FILE *plot_out_stage_csv(const char *dir, const char *file)
 {
-    const char *tmp = plot_out_stage(dir, file);
-    if (!tmp) return NULL;
-    FILE *f = fopen(tmp, "w");
-    if (!f) fprintf(stderr, "sphlab plot: %s/%s: cannot write: %s\n", dir, file, strerror(errno));
-    return f;
+    sph_out *o = stage(dir, file);
+    return o ? o->f : NULL;
 }
 
 bool plot_out_close_csv(FILE *f, const char *dir, const char *file)
 {
-    bool bad = ferror(f) != 0;
-    bad |= fclose(f) != 0;
-    if (bad) fprintf(stderr, "sphlab plot: %s/%s: write failed: %s\n", dir, file, strerror(errno));
-    return !bad;
+    (void)dir;
+    (void)file;
+    for (int i = 0; i < g_n; i++) {
+        if (g_staged[i].f != f) continue;
+        char err[SPH_IO_PATH + 200];
+        if (sph_out_release(&g_staged[i], err, sizeof err)) return true;
+        fprintf(stderr, "sphlab plot: %s\n", err);
+        return false; /* the temporary is gone; plot_out_abort removes the others */
+    }
+    fclose(f);
+    fprintf(stderr, "sphlab plot: %s/%s: not a staged output\n", dir, file);
+    return false;
 }
 
 bool plot_out_commit(bool quiet)
 {
+    char err[SPH_IO_PATH + 200];
     for (int i = 0; i < g_n; i++) {
-        if (rename(g_staged[i].tmp, g_staged[i].final) != 0) {
-            fprintf(stderr, "sphlab plot: %s: cannot rename the temporary into place: %s\n", g_staged[i].final,
-                    strerror(errno));
-            for (int j = i; j < g_n; j++) remove(g_staged[j].tmp);
+        if (!sph_out_commit(&g_staged[i], err, sizeof err)) {
+            fprintf(stderr, "sphlab plot: %s\n", err);
+            for (int j = i + 1; j < g_n; j++) sph_out_abort(&g_staged[j]);
             g_n = 0;
             return false;
         }
-        if (!quiet) printf("wrote %s\n", g_staged[i].final);
+        if (!quiet) printf("wrote %s\n", g_staged[i].path);
     }
     g_n = 0;
     return true;
@@ -112,6 +98,6 @@ bool plot_out_commit(bool quiet)
 
 void plot_out_abort(void)
 {
-    for (int i = 0; i < g_n; i++) remove(g_staged[i].tmp);
+    for (int i = 0; i < g_n; i++) sph_out_abort(&g_staged[i]);
     g_n = 0;
 }

@@ -1,5 +1,5 @@
-# Rendering module (src/render/): sphlab render and view, PNG frames, VTK
-# files. Included by the top Makefile; adds objects, libraries and packages.
+# Rendering module (src/render/): sphlab render and view, PNG frames (written by
+# the I/O layer, src/io/). Included by the top Makefile; adds objects, libraries and packages.
 # It stands on the GL platform layer (src/gl/: contexts, GL table, program
 # builder) and draws the overlay lists of src/overlay/. The renderer library
 # includes nothing of src/gpu/: the GL backend's buffers reach it through
@@ -16,7 +16,7 @@ RENDER_LIBS   := $(shell pkg-config --libs $(RENDER_PKGS) 2>/dev/null || echo -l
 # xvfb are not needed: the window test uses SDL's offscreen video driver.
 DEB_PKGS += libstb-dev libsdl2-dev fonts-dejavu-core
 
-RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font vtk renderer canvas hud)
+RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font renderer canvas hud)
 RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view)
 
 MOD_OBJ       += $(RENDER_LIB_OBJ) $(RENDER_CMD_OBJ)

@@ -90,7 +90,7 @@ int32_t sph_renderer_pick(const sph_renderer *r, const sph_sim *sim, const float
 /* [m] radius particles are drawn with. */
 float sph_particle_radius(const sph_sim *sim);
 
-/* PNG (RGB) through stb_image_write, written to PATH.tmp and renamed. */
+/* PNG (RGB) through the I/O layer (io.h): a temporary, checked writes, a rename. */
 bool sph_write_png(const char *path, const uint8_t *rgb, int w, int h, char *err, size_t n);
 
 #endif

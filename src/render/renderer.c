@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <stb_image_write.h>
+#include "io.h" /* sph_io_write_png */
 
 #include "gl_fields.h"
 #include "renderer_impl.h"
@@ -671,21 +671,5 @@ int32_t sph_renderer_pick(const sph_renderer *r, const sph_sim *sim, const float
 
 bool sph_write_png(const char *path, const uint8_t *rgb, int w, int h, char *err, size_t n)
 {
-    char tmp[1100];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp) {
-        snprintf(err, n, "%s: path too long", path);
-        return false;
-    }
-    errno = 0;
-    if (!stbi_write_png(tmp, w, h, 3, rgb, w * 3)) {
-        snprintf(err, n, "%s: cannot write: %s", path, errno ? strerror(errno) : "stb_image_write failed");
-        remove(tmp);
-        return false;
-    }
-    if (rename(tmp, path) != 0) {
-        snprintf(err, n, "%s: cannot rename the temporary file: %s", path, strerror(errno));
-        remove(tmp);
-        return false;
-    }
-    return true;
+    return sph_io_write_png(path, rgb, w, h, err, n); /* checked writes, a temporary, a rename */
 }

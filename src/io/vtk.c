@@ -2,13 +2,10 @@
  * definition, whatever the machine. */
 #include "vtk.h"
 
-#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 static void put_be32(FILE *f, uint32_t v)
 {
@@ -33,16 +30,9 @@ static void put_field(FILE *f, const sph_sim *sim, const sph_field *fd, int ncom
 
 bool sph_vtk_write(const sph_sim *sim, const char *path, char *err, size_t n)
 {
-    char tmp[1100];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp) {
-        snprintf(err, n, "%s: path too long", path);
-        return false;
-    }
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
-        snprintf(err, n, "%s: cannot write: %s", path, strerror(errno));
-        return false;
-    }
+    sph_out o;
+    if (!sph_out_open(&o, path, err, n)) return false;
+    FILE *f = o.f;
     const uint32_t np = sim->n;
     fprintf(f, "# vtk DataFile Version 3.0\n");
     fprintf(f, "sphlab %.60s %dD step %llu t %.9g s\n", sim->def.name[0] ? sim->def.name : "scene", sim->dim,
@@ -73,14 +63,7 @@ bool sph_vtk_write(const sph_sim *sim, const char *path, char *err, size_t n)
             put_field(f, sim, &fd, 1);
         }
     }
-    bool bad = ferror(f) != 0;
-    bad |= fclose(f) != 0;
-    if (bad || rename(tmp, path) != 0) {
-        snprintf(err, n, "%s: write failed: %s", path, strerror(errno));
-        remove(tmp);
-        return false;
-    }
-    return true;
+    return sph_out_commit(&o, err, n);
 }
 
 bool sph_vtk_write_frame(const sph_sim *sim, const char *dir, unsigned frame, char *err, size_t n)
@@ -91,37 +74,4 @@ bool sph_vtk_write_frame(const sph_sim *sim, const char *dir, unsigned frame, ch
         return false;
     }
     return sph_vtk_write(sim, path, err, n);
-}
-
-bool sph_output_dir(const char *dir, char *err, size_t n)
-{
-    char p[1024];
-    if (!*dir || snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) {
-        snprintf(err, n, "'%s': not a usable directory name", dir);
-        return false;
-    }
-    /* mkdir -p */
-    for (char *s = p + 1; *s; s++) {
-        if (*s != '/') continue;
-        *s = '\0';
-        if (mkdir(p, 0777) != 0 && errno != EEXIST) {
-            snprintf(err, n, "%s: cannot create the directory: %s", p, strerror(errno));
-            return false;
-        }
-        *s = '/';
-    }
-    if (mkdir(p, 0777) != 0 && errno != EEXIST) {
-        snprintf(err, n, "%s: cannot create the directory: %s", p, strerror(errno));
-        return false;
-    }
-    struct stat st;
-    if (stat(p, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        snprintf(err, n, "%s: not a directory", p);
-        return false;
-    }
-    if (access(p, W_OK | X_OK) != 0) {
-        snprintf(err, n, "%s: cannot write there: %s", p, strerror(errno));
-        return false;
-    }
-    return true;
 }

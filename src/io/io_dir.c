@@ -1,0 +1,53 @@
+/* Folders for outputs (io.h): the one mkdir -p of sphlab. */
+#include "io.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+bool sph_mkdir_p(const char *dir, char *err, size_t n)
+{
+    char p[SPH_IO_PATH];
+    if (!*dir || strlen(dir) >= sizeof p) {
+        if (err && n) snprintf(err, n, "'%s': not a usable directory name", dir);
+        return false;
+    }
+    snprintf(p, sizeof p, "%s", dir);
+    /* each component in turn, the last one included; one that exists is fine */
+    for (char *s = p + 1;; s++) {
+        if (*s != '/' && *s != '\0') continue;
+        char keep = *s;
+        *s = '\0';
+        if (mkdir(p, 0777) != 0 && errno != EEXIST) {
+            if (err && n) snprintf(err, n, "%s: cannot create the directory: %s", p, strerror(errno));
+            return false;
+        }
+        *s = keep;
+        if (!keep) break;
+    }
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        if (err && n) snprintf(err, n, "%s: not a directory", dir);
+        return false;
+    }
+    return true;
+}
+
+bool sph_output_dir(const char *dir, char *err, size_t n)
+{
+    if (!sph_mkdir_p(dir, err, n)) return false;
+    /* a file made and removed: access(2) says yes to root on a folder where
+     * nothing can be made (/proc/self) */
+    char probe[SPH_IO_PATH + 32];
+    snprintf(probe, sizeof probe, "%s/.sphlab-probe-XXXXXX", dir);
+    int fd = mkstemp(probe);
+    if (fd < 0) {
+        if (err && n) snprintf(err, n, "%s: cannot write there: %s", dir, strerror(errno));
+        return false;
+    }
+    close(fd);
+    unlink(probe);
+    return true;
+}
