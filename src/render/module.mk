@@ -36,7 +36,7 @@ SHADERS := $(wildcard shaders/*.vert shaders/*.frag)
 $(BUILD)/render/shaders.h: $(SHADERS) src/gl/embed-shaders.sh | $(BUILD)/render
 	sh src/gl/embed-shaders.sh $(SHADERS) > $@.tmp && mv $@.tmp $@
 
-RENDER_INC := -Isrc/render -Isrc/gl -Isrc/overlay
+RENDER_INC := -Isrc/render -Isrc/gl -Isrc/overlay -Isrc/io
 $(BUILD)/render/%.o: src/render/%.c src/render/*.h src/gl/*.h src/overlay/*.h src/core/*.h src/app/*.h | $(BUILD)/render
 	$(CC) $(CFLAGS) $(CORE_CFLAGS) $(RENDER_CFLAGS) $(RENDER_INC) -Isrc/app -I$(BUILD)/render -c -o $@ $<
 # The commands create simulations on the GL backend (src/gpu/gpu.h).
