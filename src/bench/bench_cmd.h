@@ -87,8 +87,8 @@ typedef struct bench_ladder {
  * exit status (the message said). Free with bench_ladder_free. */
 int bench_ladder_measure(const bench_opts *o, bench_ladder *lad);
 void bench_ladder_free(bench_ladder *lad);
-/* The ladder's table on stdout (bench_report.c). */
-void bench_ladder_print(const bench_opts *o, const bench_ladder *lad);
+/* The ladder's table (bench_report.c). */
+void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad);
 /* DIR/ladder-Nd.{csv,json,png,pdf}; argv: the command line the JSON names. */
 bool bench_ladder_write(const bench_opts *o, const bench_ladder *lad, int argc, char **argv);
 const char *bench_check_word(const level_result *r); /* PASS, FAIL, SKIP or - */

@@ -229,7 +229,7 @@ static void write_ladder_json(FILE *f, const bench_opts *o, const level_result *
     fputs("  ]\n}\n", f);
 }
 
-void bench_ladder_print(const bench_opts *o, const bench_ladder *lad)
+void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
 {
     const int dim = o->cfg.dim, gl_state = lad->gl_state, k_at = lad->k_at, k_check = lad->k_check;
     const double fps = o->fps;
@@ -240,27 +240,27 @@ void bench_ladder_print(const bench_opts *o, const bench_ladder *lad)
         char nat[32], nchk[32];
         bench_fmt_count(nat, sizeof nat, meta.n_at);
         bench_fmt_count(nchk, sizeof nchk, meta.n_check);
-        printf("sphlab bench ladder: %dD block of water falling in a box, h = 2 spacings, target %g steps/s%s\n", dim,
+        fprintf(out, "sphlab bench ladder: %dD block of water falling in a box, h = 2 spacings, target %g steps/s%s\n", dim,
                fps, o->quick ? " (--quick)" : "");
-        printf("%s, load %.2f at the start, %.2f at the end, %.0f s\n", meta.date, meta.load0[0], meta.load1[0],
+        fprintf(out, "%s, load %.2f at the start, %.2f at the end, %.0f s\n", meta.date, meta.load0[0], meta.load1[0],
                meta.seconds);
-        printf("other processes kept %.2f of the %d cores busy on average while it ran; one core's clock %.2f GHz\n"
+        fprintf(out, "other processes kept %.2f of the %d cores busy on average while it ran; one core's clock %.2f GHz\n"
                "at the start, %.2f at the end (lower when the host is busy)\n",
                meta.others, bench_levels_cores(), meta.ghz0, meta.ghz1);
         if (meta.gl_ran)
-            printf("GL levels (G*): %s%s\n", meta.gl_device,
+            fprintf(out, "GL levels (G*): %s%s\n", meta.gl_device,
                    meta.gl_is_gpu ? "" : " (software rendering on this CPU: a correctness device, not a GPU)");
         else if (gl_state < 0)
-            printf("GL levels (G*) skipped: no OpenGL 4.3 device: %s\n", meta.gl_device);
+            fprintf(out, "GL levels (G*) skipped: no OpenGL 4.3 device: %s\n", meta.gl_device);
         double worst = 0;
         for (int s = 0; s < o->nsel; s++) worst = fmax(worst, res[s].others);
         if (worst > 0.2)
-            printf("warning: the machine was busy (others: up to %.2f cores during a level, column 'others'): timings\n"
+            fprintf(out, "warning: the machine was busy (others: up to %.2f cores during a level, column 'others'): timings\n"
                    "are low and noisy, the threaded levels worst (a parallel region waits for its slowest thread);\n"
                    "re-run when quiet\n",
                    worst);
-        printf("\n");
-        printf("%-5s %-42s %3s %12s %8s %10s  %-44s %-5s %s\n", "level", "description", "thr", "max N", "speedup",
+        fprintf(out, "\n");
+        fprintf(out, "%-5s %-42s %3s %12s %8s %10s  %-44s %-5s %s\n", "level", "description", "thr", "max N", "speedup",
                "ms/step", "top passes at fixed N (ms)", "check", "others");
         double prev = NAN;
         for (int s = 0; s < o->nsel; s++) {
@@ -277,71 +277,71 @@ void bench_ladder_print(const bench_opts *o, const bench_ladder *lad)
                 snprintf(ms, sizeof ms, "%.4g", r->at.ms_step);
                 top_passes(&r->at, top, sizeof top, 3);
             }
-            printf("%-5s %-42s %3d %12s %8s %10s  %-44s %-5s %.2f\n", L->name, L->about,
+            fprintf(out, "%-5s %-42s %3d %12s %8s %10s  %-44s %-5s %.2f\n", L->name, L->about,
                    r->at.threads ? r->at.threads : L->threads, maxn, sp, ms, top, bench_check_word(r), r->others);
         }
-        printf("\nmax N: the largest block with %g steps/s or more (bisection over block sizes, median of repeats);\n"
+        fprintf(out, "\nmax N: the largest block with %g steps/s or more (bisection over block sizes, median of repeats);\n"
                "ms/step and passes: medians at N = %s; others: cores that other processes kept busy meanwhile\n",
                fps, nat);
-        printf("\nwhere the time goes at N = %s (pairs: neighbour-list entries per step, i->j and j->i):\n", nat);
-        printf("%-5s %12s %10s %16s %10s %16s\n", "level", "pairs", "search ms", "pairs/s/core", "forces ms",
+        fprintf(out, "\nwhere the time goes at N = %s (pairs: neighbour-list entries per step, i->j and j->i):\n", nat);
+        fprintf(out, "%-5s %12s %10s %16s %10s %16s\n", "level", "pairs", "search ms", "pairs/s/core", "forces ms",
                "pairs/s/core");
         for (int s = 0; s < o->nsel; s++) {
             const level_result *r = &res[s];
             if (!r->at_ok) continue;
             if (r->at.pairs > 0)
-                printf("%-5s %12.0f %10.3f %16.3g %10.3f %16.3g\n", bench_levels[o->sel[s]].name, r->at.pairs,
+                fprintf(out, "%-5s %12.0f %10.3f %16.3g %10.3f %16.3g\n", bench_levels[o->sel[s]].name, r->at.pairs,
                        r->search_ms, r->search_rate, r->force_ms, r->force_rate);
             else /* a GL level: no lists, its passes walk the cells */
-                printf("%-5s %12s %10.3f %16s %10.3f %16s\n", bench_levels[o->sel[s]].name, "-", r->search_ms, "-",
+                fprintf(out, "%-5s %12s %10.3f %16s %10.3f %16s\n", bench_levels[o->sel[s]].name, "-", r->search_ms, "-",
                        r->force_ms, "-");
         }
-        printf("search: hash, sort, reorder, offsets, neighbours; forces: density, pressure_force, viscosity\n"
+        fprintf(out, "search: hash, sort, reorder, offsets, neighbours; forces: density, pressure_force, viscosity\n"
                "(GL levels build no lists: density and the forces walk the cells themselves, so no pair count)\n");
-        printf("\nchecks: neighbour sets identical after 1 step (a pair within %g h of r = h is rounding's call and\n"
+        fprintf(out, "\nchecks: neighbour sets identical after 1 step (a pair within %g h of r = h is rounding's call and\n"
                "counted apart: edge pairs), and after %d steps positions within %g m, velocities within %g m/s,\n"
                "densities within %g (relative), particles matched by id; against %s at N = %s",
                BENCH_EDGE, BENCH_CHECK_STEPS, BENCH_TOL_X, BENCH_TOL_V, BENCH_TOL_RHO, BENCH_REF_SMALL, nchk);
-        if (k_at > k_check) printf(" and against %s at N = %s", BENCH_REF_LARGE, nat);
-        printf(" (%s itself against %s).\n", BENCH_REF_SMALL, BENCH_REF_LARGE);
+        if (k_at > k_check) fprintf(out, " and against %s at N = %s", BENCH_REF_LARGE, nat);
+        fprintf(out, " (%s itself against %s).\n", BENCH_REF_SMALL, BENCH_REF_LARGE);
         for (int s = 0; s < o->nsel; s++) {
             const level_result *r = &res[s];
             const bench_diff *d[2] = {&r->small, &r->large};
             for (int j = 0; j < 2; j++)
                 if (d[j]->done)
-                    printf("  %-4s vs %-3s N = %-7.0f %s  sets differ %u (edge pairs %u), dx %.2g m, dv %.2g m/s, "
+                    fprintf(out, "  %-4s vs %-3s N = %-7.0f %s  sets differ %u (edge pairs %u), dx %.2g m, dv %.2g m/s, "
                            "drho %.2g%s%s\n",
                            bench_levels[o->sel[s]].name, bench_levels[d[j]->ref].name, j ? meta.n_at : meta.n_check,
                            d[j]->pass ? "PASS" : "FAIL", d[j]->sets_differ, d[j]->edge_pairs, d[j]->dx, d[j]->dv,
                            d[j]->drho, d[j]->why[0] ? ": " : "", d[j]->why);
             if (r->skipped)
-                printf("  %-4s skipped: %s\n", bench_levels[o->sel[s]].name, r->error);
+                fprintf(out, "  %-4s skipped: %s\n", bench_levels[o->sel[s]].name, r->error);
             else if (r->error[0] && !r->check_ok)
-                printf("  %-4s error: %s\n", bench_levels[o->sel[s]].name, r->error);
+                fprintf(out, "  %-4s error: %s\n", bench_levels[o->sel[s]].name, r->error);
         }
         if (meta.target_evaluated) {
             char bn[32];
             bench_fmt_count(bn, sizeof bn, res[meta.best].max_n);
-            printf("\ntarget (issue 6): the fastest CPU level reaches 60,000 particles at 60 steps/s in 3D: %s "
+            fprintf(out, "\ntarget (issue 6): the fastest CPU level reaches 60,000 particles at 60 steps/s in 3D: %s "
                    "(%s: %s)\n",
                    meta.target_met ? "MET" : "NOT MET", bench_levels[o->sel[meta.best]].name, bn);
         } else {
-            printf("\ntarget (issue 6: 60,000 particles at 60 steps/s in 3D): not evaluated with these options\n");
+            fprintf(out, "\ntarget (issue 6: 60,000 particles at 60 steps/s in 3D): not evaluated with these options\n");
         }
         if (meta.gl_best >= 0 && dim == 3 && fabs(fps - 60) < 1e-9) {
             char bn[32];
             bench_fmt_count(bn, sizeof bn, res[meta.gl_best].max_n);
             if (meta.gl_target_evaluated)
-                printf("target (issue 7): a GL level reaches 1,000,000 particles at 60 steps/s in 3D on a GPU: %s "
+                fprintf(out, "target (issue 7): a GL level reaches 1,000,000 particles at 60 steps/s in 3D on a GPU: %s "
                        "(%s: %s)\n",
                        meta.gl_target_met ? "MET" : "NOT MET", bench_levels[o->sel[meta.gl_best]].name, bn);
             else
-                printf("target (issue 7, 1,000,000 at 60 steps/s on a GPU): not evaluated, no GPU here (%s: %s on "
+                fprintf(out, "target (issue 7, 1,000,000 at 60 steps/s on a GPU): not evaluated, no GPU here (%s: %s on "
                        "software rendering)\n",
                        bench_levels[o->sel[meta.gl_best]].name, bn);
         }
-        if (!all_pass) printf("\nFAIL: a level failed its check; its speed does not count\n");
-        printf("\n");
+        if (!all_pass) fprintf(out, "\nFAIL: a level failed its check; its speed does not count\n");
+        fprintf(out, "\n");
     }
 }
 

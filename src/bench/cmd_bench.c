@@ -224,7 +224,7 @@ static int cmd_ladder(bench_opts *o, int argc, char **argv)
         bench_ladder_free(&lad);
         return rc;
     }
-    if (!o->quiet) bench_ladder_print(o, &lad);
+    if (!o->quiet) bench_ladder_print(stdout, o, &lad);
     bool ok = bench_ladder_write(o, &lad, argc, argv);
     bool all_pass = lad.all_pass;
     bench_ladder_free(&lad);

@@ -43,20 +43,33 @@ typedef struct lesson {
 extern const lesson sph_lessons[];
 extern const int sph_lesson_count;
 
-/* The result of one `sphlab run`, parsed from its printed tables. */
+/* The result of one simulation run in process (lx_run_sim): what `sphlab run`
+ * prints, read from the sim. */
+enum { LX_RUN_MAX_PASSES = 24, LX_RUN_MAX_SETS = 12 };
 typedef struct lx_run {
     int npass;
-    char pass[16][24];
-    double ms_step[16]; /* [ms] per step, per pass */
-    double share[16];   /* [%] */
-    double total_ms_step;
+    char pass[LX_RUN_MAX_PASSES][24];
+    double ms_step[LX_RUN_MAX_PASSES]; /* [ms] per step, per pass */
+    double share[LX_RUN_MAX_PASSES];   /* [%] of all passes' time */
+    double total_ms_step;              /* [ms] per step, all passes */
     long steps;
-    double t_sim, wall_s, steps_per_s;
-    double ekin;
-    double rho_min, rho_mean, rho_max;
+    double t_sim;        /* [s] simulated */
+    double wall_s;       /* [s] wall-clock time of the steps */
+    double steps_per_s;  /* [1/s] */
+    double ekin;         /* [J/m] in 2D, [J] in 3D, at the end */
+    double rho_min, rho_mean, rho_max; /* [kg/m^dim] at the end */
     int threads;
     long particles;
 } lx_run;
+
+/* What to run: the options of `sphlab run` the lessons use. */
+typedef struct lx_run_opts {
+    const char *scene;
+    const char *sets[LX_RUN_MAX_SETS]; /* section.key=value, in order; NULL ends them */
+    long steps;                        /* < 0: the scene's duration, or its steps */
+    int threads;                       /* 0: one per core */
+    const char *stats, *dump;          /* CSV files as `sphlab run --stats/--dump` writes them, or NULL */
+} lx_run_opts;
 
 /* The state of one export. */
 struct lx {
@@ -107,16 +120,27 @@ void lx_missing(lx *x, const char *fmt, ...) __attribute__((format(printf, 2, 3)
 
 /* Reads a whole file (NUL-terminated, caller frees); NULL if it cannot. */
 char *lx_read_file(const char *path);
-/* Parses the tables `sphlab run` prints. */
-bool lx_parse_run(const char *log_path, lx_run *r);
-/* ms per step of a pass in a parsed run, or -1. */
+/* Writes a command line, quoted as a shell would need it. */
+void lx_print_args(FILE *f, const char *const *argv);
+/* Opens DIR/logs/NN-LOG.txt for something done in process, headed by the
+ * equivalent command line argv (said on stderr unless quiet); NULL if it cannot. */
+FILE *lx_log_open(lx *x, const char *log, const char *const *argv, const char **log_path);
+
+/* ---- simulations in process (lesson_run.c) ---------------------------------- */
+
+/* Runs a scene as `sphlab run` would, with the core's functions; fills r (may
+ * be NULL). False (a failure, named in the report) if it cannot. */
+bool lx_run_sim(lx *x, const char *log, const lx_run_opts *o, lx_run *r);
+/* ms per step of a pass in a run, or -1. */
 double lx_run_pass(const lx_run *r, const char *pass);
-/* The passes `sphlab check` lists, in order; returns their count. */
-int lx_parse_pipeline(const char *log_path, char names[][24], int cap);
+/* The scene as `sphlab check` shows it, into the report; fills the pipeline's
+ * pass names in order (at most cap) and returns their count (0 on failure). */
+int lx_check(lx *x, const char *scene, char names[][24], int cap);
 
 /* Appends to the report (Markdown). */
 void lx_md(lx *x, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-/* Appends a file's text to the report as a code block. */
+/* Appends a text / a file's text to the report as a code block (at most max_lines lines). */
+void lx_md_text(lx *x, const char *text, int max_lines);
 void lx_md_file(lx *x, const char *path, int max_lines);
 /* Registers a figure (a file in DIR) for the report's list. */
 void lx_fig(lx *x, const char *file, const char *what);

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "bench_cmd.h"
 #include "lesson.h"
 #include "sph_kernel.h"
 #include "sph_search.h"
@@ -33,12 +34,10 @@ static bool load_def(lx *x, const char *path, sph_scene_def *def)
 /* `sphlab check` of a scene, into the report; fills the pipeline's pass names. */
 static int pipeline(lx *x, const char *file, char names[][24], int cap)
 {
-    const char *log;
     lx_md(x, "## The scene and its pipeline\n\n`sphlab check lessons/%s/%s`: only the passes this lesson needs run.\n\n",
           x->L->slug, file);
-    if (lx_sphlab(x, "check", NULL, NULL, &log, "check", lx_src(x, file), LX_END) != 0) return 0;
-    lx_md_file(x, log, 40);
-    return names ? lx_parse_pipeline(log, names, cap) : 0;
+    char none[1][24];
+    return lx_check(x, lx_src(x, file), names ? names : none, names ? cap : 0);
 }
 
 static const char *work(lx *x, const char *sub)
@@ -46,14 +45,6 @@ static const char *work(lx *x, const char *sub)
     return lx_fmt("%s/%s", x->scratch, sub);
 }
 
-/* A run's parsed tables; false (and a failure) if they cannot be read. */
-static bool parsed(lx *x, const char *log, lx_run *r)
-{
-    if (lx_parse_run(log, r)) return true;
-    x->failed++;
-    lx_md(x, "\n**Could not read the tables in `%s`.**\n\n", log);
-    return false;
-}
 
 /* Least-squares slope of y against x. */
 static double slope(const double *xs, const double *ys, size_t n)
@@ -269,8 +260,8 @@ int lx_lesson1(lx *x)
     for (int k = 0; k < nhl; k++) {
         double h = hl[k] * s;
         const char *dpath = work(x, lx_fmt("density-h%g.csv", hl[k]));
-        if (lx_sphlab(x, lx_fmt("run-h%g", hl[k]), NULL, NULL, NULL, "run", scene, "--steps", "1", "--threads", "1",
-                      "--quiet", "--set", lx_fmt("kernels.h=%g", h), "--dump", dpath, LX_END) != 0)
+        if (!lx_run_sim(x, lx_fmt("run-h%g", hl[k]),
+                        &(lx_run_opts){scene, {lx_fmt("kernels.h=%g", h)}, 1, 1, NULL, dpath}, NULL))
             continue;
         dump d;
         if (!read_dump(x, dpath, &d)) continue;
@@ -363,9 +354,11 @@ int lx_lesson2(lx *x)
         for (int k = 0; k < nh; k++) {
             double h = hl[k] * s;
             const char *dpath = work(x, lx_fmt("d-%s-%g.csv", models[m], hl[k]));
-            if (lx_sphlab(x, lx_fmt("run-%s-h%g", models[m], hl[k]), NULL, NULL, NULL, "run", scene, "--steps", "1",
-                          "--threads", "1", "--quiet", "--set", lx_fmt("domain.wall_model=%s", models[m]), "--set",
-                          lx_fmt("kernels.h=%g", h), "--dump", dpath, LX_END) != 0)
+            if (!lx_run_sim(x, lx_fmt("run-%s-h%g", models[m], hl[k]),
+                            &(lx_run_opts){scene,
+                                           {lx_fmt("domain.wall_model=%s", models[m]), lx_fmt("kernels.h=%g", h)},
+                                           1, 1, NULL, dpath},
+                            NULL))
                 continue;
             dump d;
             if (!read_dump(x, dpath, &d)) continue;
@@ -449,11 +442,9 @@ int lx_lesson2(lx *x)
         char stats[1100], set[64];
         snprintf(stats, sizeof stats, "%s", work(x, lx_fmt("pool-%s.csv", models[m])));
         snprintf(set, sizeof set, "domain.wall_model=%s", models[m]);
-        int rc = x->quick ? lx_sphlab(x, lx_fmt("run-pool-%s", models[m]), NULL, NULL, NULL, "run", pool, "--steps",
-                                      "400", "--threads", "1", "--quiet", "--set", set, "--stats", stats, LX_END)
-                          : lx_sphlab(x, lx_fmt("run-pool-%s", models[m]), NULL, NULL, NULL, "run", pool, "--threads",
-                                      "1", "--quiet", "--set", set, "--stats", stats, LX_END);
-        if (rc == 0 && lx_table(x, &pt[m], stats)) pok[m] = true;
+        bool ran = lx_run_sim(x, lx_fmt("run-pool-%s", models[m]),
+                              &(lx_run_opts){pool, {set}, x->quick ? 400 : -1, 1, stats, NULL}, NULL);
+        if (ran && lx_table(x, &pt[m], stats)) pok[m] = true;
     }
     if (pok[0] && pok[1]) {
         const double *t0 = lx_col(x, &pt[0], "t"), *e0 = lx_col(x, &pt[0], "ekin"), *v0 = lx_col(x, &pt[0], "max_speed");
@@ -537,44 +528,23 @@ int lx_lesson3(lx *x)
         {"pool-tait", "tait", NULL, NULL},
         {"pool-mueller", "linear", "poly6", "spiky"},
     };
-    char steps[24];
-    snprintf(steps, sizeof steps, "%d", 300);
     dump pool[2];
     bool have[2] = {false, false}, have_stats[3] = {false, false, false};
     char statp[3][1100];
     for (int e = 0; e < 3; e++) {
-        const char *args[40];
-        int na = 0;
         char dpath[1100], eosset[64], kd[64], kp[64];
         snprintf(dpath, sizeof dpath, "%s", work(x, lx_fmt("%s.csv", pool_runs[e][0])));
         snprintf(statp[e], sizeof statp[e], "%s",
                  e == 0 ? lx_out(x, "pool-stats.csv") : work(x, lx_fmt("%s-stats.csv", pool_runs[e][0])));
         snprintf(eosset, sizeof eosset, "physics.eos=%s", pool_runs[e][1]);
-        args[na++] = "run";
-        args[na++] = scene;
-        if (x->quick) {
-            args[na++] = "--steps";
-            args[na++] = steps;
-        }
-        args[na++] = "--threads";
-        args[na++] = "1";
-        args[na++] = "--quiet";
-        args[na++] = "--set";
-        args[na++] = eosset;
+        lx_run_opts ro = {scene, {eosset}, x->quick ? 300 : -1, 1, statp[e], dpath};
         if (pool_runs[e][2]) {
             snprintf(kd, sizeof kd, "kernels.density=%s", pool_runs[e][2]);
             snprintf(kp, sizeof kp, "kernels.pressure=%s", pool_runs[e][3]);
-            args[na++] = "--set";
-            args[na++] = kd;
-            args[na++] = "--set";
-            args[na++] = kp;
+            ro.sets[1] = kd;
+            ro.sets[2] = kp;
         }
-        args[na++] = "--dump";
-        args[na++] = dpath;
-        args[na++] = "--stats";
-        args[na++] = statp[e];
-        args[na] = NULL;
-        if (lx_sphlab_v(x, lx_fmt("run-%s", pool_runs[e][0]), NULL, NULL, NULL, args) != 0) continue;
+        if (!lx_run_sim(x, lx_fmt("run-%s", pool_runs[e][0]), &ro, NULL)) continue;
         have_stats[e] = true;
         if (e < 2) have[e] = read_dump(x, dpath, &pool[e]);
     }
@@ -734,11 +704,11 @@ int lx_lesson3(lx *x)
             double E[2] = {NAN, NAN};
             for (int r = 0; r < 2; r++) {
                 const char *dpath = work(x, lx_fmt("energy-%d-%d.csv", c, r));
-                if (lx_sphlab(x, lx_fmt("run-energy-%s-%s-%s", pairs[c][0], pairs[c][1], pairs[c][2]), NULL, NULL,
-                              NULL, "run", column, "--steps", r ? nsteps : "1", "--threads", "1", "--quiet", "--set",
-                              lx_fmt("kernels.density=%s", pairs[c][0]), "--set",
-                              lx_fmt("kernels.pressure=%s", pairs[c][1]), "--set",
-                              lx_fmt("physics.pressure_form=%s", pairs[c][2]), "--dump", dpath, LX_END) != 0)
+                lx_run_opts ro = {column,
+                                  {lx_fmt("kernels.density=%s", pairs[c][0]), lx_fmt("kernels.pressure=%s", pairs[c][1]),
+                                   lx_fmt("physics.pressure_form=%s", pairs[c][2])},
+                                  r ? atol(nsteps) : 1, 1, NULL, dpath};
+                if (!lx_run_sim(x, lx_fmt("run-energy-%s-%s-%s", pairs[c][0], pairs[c][1], pairs[c][2]), &ro, NULL))
                     continue;
                 dump d;
                 if (read_dump(x, dpath, &d)) {
@@ -773,9 +743,10 @@ int lx_lesson3(lx *x)
         double m = odef.rest_density * odef.blocks[0].spacing * odef.blocks[0].spacing;
         for (int c = 0; c < 2; c++) {
             const char *dpath = work(x, lx_fmt("open-%s.csv", forms[c]));
-            if (lx_sphlab(x, lx_fmt("run-open-%s", forms[c]), NULL, NULL, NULL, "run", open, "--steps", nsteps,
-                          "--threads", "1", "--quiet", "--set", lx_fmt("physics.pressure_form=%s", forms[c]), "--dump",
-                          dpath, LX_END) != 0)
+            if (!lx_run_sim(x, lx_fmt("run-open-%s", forms[c]),
+                            &(lx_run_opts){open, {lx_fmt("physics.pressure_form=%s", forms[c])}, atol(nsteps), 1, NULL,
+                                           dpath},
+                            NULL))
                 continue;
             dump d;
             if (!read_dump(x, dpath, &d)) continue;
@@ -838,15 +809,11 @@ int lx_lesson4(lx *x)
     for (int r = 0; r < nr; r++) {
         const char *stats = work(x, lx_fmt("tg-%s-%g.csv", runs[r].form, runs[r].h_over_s));
         const char *hset = lx_fmt("kernels.h=%g", runs[r].h_over_s * s);
-        int rc = x->quick ? lx_sphlab(x, lx_fmt("run-%s-h%g", runs[r].form, runs[r].h_over_s), NULL, NULL, NULL, "run",
-                                      scene, "--steps", "100", "--threads", "1", "--quiet", "--set",
-                                      lx_fmt("physics.viscosity_form=%s", runs[r].form), "--set", hset, "--stats",
-                                      stats, LX_END)
-                          : lx_sphlab(x, lx_fmt("run-%s-h%g", runs[r].form, runs[r].h_over_s), NULL, NULL, NULL, "run",
-                                      scene, "--threads", "1", "--quiet", "--set",
-                                      lx_fmt("physics.viscosity_form=%s", runs[r].form), "--set", hset, "--stats",
-                                      stats, LX_END);
-        if (rc != 0 || !decay_rate(x, stats, &rates[r], &tab[r])) continue;
+        bool ran = lx_run_sim(x, lx_fmt("run-%s-h%g", runs[r].form, runs[r].h_over_s),
+                              &(lx_run_opts){scene, {lx_fmt("physics.viscosity_form=%s", runs[r].form), hset},
+                                             x->quick ? 100 : -1, 1, stats, NULL},
+                              NULL);
+        if (!ran || !decay_rate(x, stats, &rates[r], &tab[r])) continue;
         ok[r] = true;
         const double *t = tab[r].col[plot_table_find(&tab[r], "t")];
         const double *ek = tab[r].col[plot_table_find(&tab[r], "ekin")];
@@ -1020,12 +987,9 @@ int lx_lesson5(lx *x)
             x->failed++;
             continue;
         }
-        const char *log;
         lx_run r = {0};
         double nb = -1;
-        if (lx_sphlab(x, lx_fmt("run-table-%u", ts[i]), NULL, NULL, &log, "run", block, "--steps", "20", "--threads",
-                      "1", "--set", set, LX_END) == 0 &&
-            parsed(x, log, &r))
+        if (lx_run_sim(x, lx_fmt("run-table-%u", ts[i]), &(lx_run_opts){block, {set}, 20, 1, NULL, NULL}, &r))
             nb = lx_run_pass(&r, "neighbours");
         lx_md(x, "| %u%s | %u | %d | %d | %.3f |\n", ts[i], ts[i] ? "" : " (N)", keys, c, cc, nb);
         if (f) fprintf(f, "%u,%u,%d,%d,%.4f,%.4f\n", ts[i], keys, c, cc, nb, lx_run_pass(&r, "density"));
@@ -1192,13 +1156,13 @@ int lx_lesson6(lx *x)
     for (int i = 0; i < ns; i++) {
         bool all = true;
         for (int k = 0; k < 3; k++) {
-            const char *log;
             lx_run r;
             ms[k][good] = NAN;
-            if (lx_sphlab(x, lx_fmt("run-%s-%g", sorts[k], sp[i]), NULL, NULL, &log, "run", big, "--steps",
-                          x->quick ? "3" : "10", "--threads", "1", "--set", lx_fmt("fluid.spacing=%g", sp[i]), "--set",
-                          lx_fmt("kernels.h=%g", 2 * sp[i]), "--set", lx_fmt("search.sort=%s", sorts[k]), LX_END) != 0 ||
-                !parsed(x, log, &r)) {
+            lx_run_opts ro = {big,
+                              {lx_fmt("fluid.spacing=%g", sp[i]), lx_fmt("kernels.h=%g", 2 * sp[i]),
+                               lx_fmt("search.sort=%s", sorts[k])},
+                              x->quick ? 3 : 10, 1, NULL, NULL};
+            if (!lx_run_sim(x, lx_fmt("run-%s-%g", sorts[k], sp[i]), &ro, &r)) {
                 all = false;
                 continue;
             }
@@ -1237,13 +1201,12 @@ int lx_lesson7(lx *x)
     int np = pipeline(x, "lesson.ini", passes, SPH_PASS_COUNT);
 
     /* 1. the run, with per-step statistics */
-    const char *log;
     lx_run r;
-    int rc = x->quick ? lx_sphlab(x, "run", NULL, NULL, &log, "run", scene, "--steps", "200", "--stats",
-                                  lx_out(x, "stats.csv"), "--dump", lx_out(x, "final.csv"), LX_END)
-                      : lx_sphlab(x, "run", NULL, NULL, &log, "run", scene, "--stats", lx_out(x, "stats.csv"),
-                                  "--dump", lx_out(x, "final.csv"), LX_END);
-    if (rc != 0 || !parsed(x, log, &r)) return 1;
+    if (!lx_run_sim(x, "run", &(lx_run_opts){scene, {NULL}, x->quick ? 200 : -1, 0, lx_out(x, "stats.csv"),
+                                            lx_out(x, "final.csv")},
+                    &r))
+        return 1;
+    int rc;
     lx_fig(x, "stats.csv", "one row per step: t, dt, energy, density, max speed, ms of each pass");
     lx_fig(x, "final.csv", "the particles at the end: id, position, velocity, density, pressure");
     lx_md(x, "## 1. Where the time goes\n\n`sphlab run lesson.ini --stats stats.csv --dump final.csv`: %ld "
@@ -1317,49 +1280,6 @@ int lx_lesson7(lx *x)
 
 /* ---- lesson 8: the optimisation ladder ------------------------------------------------------ */
 
-typedef struct level {
-    char name[8], about[96], threads[16];
-    char sets[8][80];
-    int nsets;
-} level;
-
-static int parse_levels(const char *log, level *lv, int cap)
-{
-    char *text = lx_read_file(log);
-    if (!text) return 0;
-    int n = 0;
-    for (char *line = strtok(text, "\n"); line && n < cap; line = strtok(NULL, "\n")) {
-        if (line[0] != 'L' || line[1] < '0' || line[1] > '9') continue;
-        level *L = &lv[n];
-        memset(L, 0, sizeof *L);
-        char *tok[32];
-        int nt = 0;
-        for (char *t = line; nt < 32;) {
-            while (*t == ' ') t++;
-            if (!*t) break;
-            tok[nt++] = t;
-            while (*t && *t != ' ') t++;
-            if (*t) *t++ = '\0';
-        }
-        int first_set = nt;
-        for (int i = 1; i < nt; i++)
-            if (strchr(tok[i], '=')) {
-                first_set = i;
-                break;
-            }
-        if (first_set < 3 || first_set == nt) continue;
-        snprintf(L->name, sizeof L->name, "%s", tok[0]);
-        snprintf(L->threads, sizeof L->threads, "%s", tok[first_set - 1]);
-        size_t m = 0;
-        for (int i = 1; i < first_set - 1 && m < sizeof L->about; i++)
-            m += (size_t)snprintf(L->about + m, sizeof L->about - m, "%s%s", i > 1 ? " " : "", tok[i]);
-        for (int i = first_set; i < nt && L->nsets < 8; i++) snprintf(L->sets[L->nsets++], 80, "%s", tok[i]);
-        n++;
-    }
-    free(text);
-    return n;
-}
-
 /* Splits a CSV line (no quoting) in place. */
 static int split_csv(char *line, char **f, int cap)
 {
@@ -1373,46 +1293,18 @@ static int split_csv(char *line, char **f, int cap)
     return n;
 }
 
-static void ladder_table(lx *x, const char *csv)
+/* The ladder's results as a Markdown table, from bench_ladder_measure's struct. */
+static void ladder_table(lx *x, const bench_opts *o, const bench_ladder *lad)
 {
-    char *text = lx_read_file(csv);
-    if (!text) {
-        x->failed++;
-        return;
-    }
-    char *lines[64];
-    int nl = 0;
-    for (char *l = strtok(text, "\n"); l && nl < 64; l = strtok(NULL, "\n")) lines[nl++] = l;
-    char *hdr[64];
-    int nh = nl ? split_csv(lines[0], hdr, 64) : 0;
-    int c_level = -1, c_desc = -1, c_thr = -1, c_max = -1, c_sps = -1, c_ms = -1, c_at = -1;
-    for (int i = 0; i < nh; i++) {
-        if (!strcmp(hdr[i], "level")) c_level = i;
-        if (!strcmp(hdr[i], "description")) c_desc = i;
-        if (!strcmp(hdr[i], "threads")) c_thr = i;
-        if (!strcmp(hdr[i], "max_n")) c_max = i;
-        if (!strcmp(hdr[i], "steps_per_s_at_max")) c_sps = i;
-        if (!strcmp(hdr[i], "ms_per_step")) c_ms = i;
-        if (!strcmp(hdr[i], "n_at")) c_at = i;
-    }
-    if (c_level < 0 || c_max < 0) {
-        lx_md(x, "`%s` has no level and max_n columns.\n\n", csv);
-        x->failed++;
-        free(text);
-        return;
-    }
     lx_md(x, "| level | what | threads | largest N at 60 steps/s | ms/step at the table's N |\n|---|---|---|---|---|\n");
-    for (int l = 1; l < nl; l++) {
-        char *f[64];
-        int nf = split_csv(lines[l], f, 64);
-        if (nf <= c_max) continue;
-        lx_md(x, "| %s | %s | %s | %s | %s%s |\n", f[c_level], c_desc >= 0 && c_desc < nf ? f[c_desc] : "",
-              c_thr >= 0 && c_thr < nf ? f[c_thr] : "", f[c_max], c_ms >= 0 && c_ms < nf ? f[c_ms] : "",
-              c_at >= 0 && c_at < nf ? lx_fmt(" (N = %s)", f[c_at]) : "");
-        (void)c_sps;
+    for (int s = 0; s < o->nsel; s++) {
+        const bench_level *L = &bench_levels[o->sel[s]];
+        const level_result *r = &lad->res[s];
+        lx_md(x, "| %s | %s | %d | %s%s | %s%s |\n", L->name, L->about, r->at.threads ? r->at.threads : L->threads,
+              r->searched ? lx_fmt("%.0f", r->max_n) : "", r->capped ? " (capped)" : "",
+              r->at_ok ? lx_fmt("%.6g", r->at.ms_step) : "", r->at_ok ? lx_fmt(" (N = %u)", r->at.n) : "");
     }
     lx_md(x, "\n");
-    free(text);
 }
 
 int lx_lesson8(lx *x)
@@ -1424,13 +1316,23 @@ int lx_lesson8(lx *x)
     if (!lx_has_command(x, "bench")) {
         lx_missing(x, "`sphlab bench` is not in this build: no levels, no ladder; only the picture below");
     } else {
-        const char *log;
-        level lv[16];
-        int nl = 0;
-        if (lx_sphlab(x, "bench-levels", NULL, NULL, &log, "bench", "levels", LX_END) == 0) {
-            nl = parse_levels(log, lv, 16);
+        /* the CPU levels of the bench module's table (the GL ones need a device) */
+        int lv[BENCH_MAX_LEVELS], nl = 0;
+        for (int i = 0; i < bench_level_count && nl < BENCH_MAX_LEVELS; i++)
+            if (!bench_level_gl(&bench_levels[i])) lv[nl++] = i;
+        bench_opts bo;
+        bench_opts_init(&bo, true);
+        memcpy(bo.sel, lv, sizeof lv);
+        bo.nsel = nl;
+        char *text = NULL;
+        size_t len = 0;
+        FILE *m = open_memstream(&text, &len);
+        if (m) {
+            bench_levels_print(m, &bo);
+            fclose(m);
             lx_md(x, "## 1. The levels\n\n`sphlab bench levels` (the table; its log has the benchmark's scene):\n\n");
-            lx_md_file(x, log, nl + 1);
+            lx_md_text(x, text, nl + 1);
+            free(text);
         }
         if (nl == 0) {
             x->failed++;
@@ -1451,30 +1353,28 @@ int lx_lesson8(lx *x)
         int good = 0;
         plot_bars B = {0};
         for (int i = 0; i < nl; i++) {
-            const char *args[64];
-            int na = 0;
-            args[na++] = "run";
-            args[na++] = scene;
-            args[na++] = "--steps";
-            args[na++] = steps;
-            if (strcmp(lv[i].threads, "cores") != 0) {
-                args[na++] = "--threads";
-                args[na++] = lv[i].threads;
-            }
+            const bench_level *L = &bench_levels[lv[i]];
+            lx_run_opts ro = {scene, {NULL}, atol(steps), L->threads, NULL, NULL};
+            int ns = 0;
             if (spacing) {
-                args[na++] = "--set";
-                args[na++] = "fluid.spacing=0.04";
-                args[na++] = "--set";
-                args[na++] = "kernels.h=0.08";
+                ro.sets[ns++] = "fluid.spacing=0.04";
+                ro.sets[ns++] = "kernels.h=0.08";
             }
-            for (int k = 0; k < lv[i].nsets; k++) {
-                args[na++] = "--set";
-                args[na++] = lv[i].sets[k];
+            /* the level's keys, "section.key=value" separated by spaces */
+            char keys[LX_RUN_MAX_SETS][80];
+            const char *k0 = L->sets;
+            while (*k0 && ns < LX_RUN_MAX_SETS - 1) {
+                size_t kl = strcspn(k0, " ");
+                if (kl) {
+                    snprintf(keys[ns], sizeof keys[0], "%.*s", (int)kl, k0);
+                    ro.sets[ns] = keys[ns];
+                    ns++;
+                }
+                k0 += kl;
+                while (*k0 == ' ') k0++;
             }
-            args[na] = NULL;
             lx_run r;
-            const char *rlog;
-            if (lx_sphlab_v(x, lx_fmt("run-%s", lv[i].name), NULL, NULL, &rlog, args) != 0 || !parsed(x, rlog, &r)) {
+            if (!lx_run_sim(x, lx_fmt("run-%s", L->name), &ro, &r)) {
                 ms[i] = NAN;
                 continue;
             }
@@ -1482,13 +1382,13 @@ int lx_lesson8(lx *x)
             nbm[i] = lx_run_pass(&r, "neighbours");
             N = r.particles;
             double sp0 = ms[0] / ms[i], spp = i ? ms[i - 1] / ms[i] : 1;
-            lx_md(x, "| %s | %s | %d | %.3f | %.3f | %.2f | %.2f | %.0f | %s |\n", lv[i].name, lv[i].about, r.threads,
+            lx_md(x, "| %s | %s | %d | %.3f | %.3f | %.2f | %.2f | %.0f | %s |\n", L->name, L->about, r.threads,
                   ms[i], nbm[i], sp0, spp, 1000 / ms[i], 1000 / ms[i] >= 60 ? "yes" : "no");
             if (f)
-                fprintf(f, "%s,%d,%ld,%.4f,%.4f,%.4f,%.2f\n", lv[i].name, r.threads, r.particles, ms[i], nbm[i], sp0,
+                fprintf(f, "%s,%d,%ld,%.4f,%.4f,%.4f,%.2f\n", L->name, r.threads, r.particles, ms[i], nbm[i], sp0,
                         1000 / ms[i]);
             if (B.n < PLOT_MAX_BARS) {
-                snprintf(B.name[B.n], sizeof B.name[0], "%.7s", lv[i].name);
+                snprintf(B.name[B.n], sizeof B.name[0], "%.7s", L->name);
                 snprintf(B.note[B.n], sizeof B.note[0], "%.2f ms, x%.1f", ms[i], sp0);
                 B.value[B.n++] = ms[i];
             }
@@ -1510,10 +1410,26 @@ int lx_lesson8(lx *x)
             lx_md(x, "Not measured with --quick: `sphlab bench ladder` bisects on N for every level (about 30 s with "
                      "its own --quick). Export without --quick, or run `sphlab bench ladder`.\n\n");
         } else {
-            const char *out = work(x, "bench");
-            const char *blog;
-            if (lx_sphlab(x, "bench-ladder", NULL, NULL, &blog, "bench", "ladder", "--quick", "--out", out, LX_END) ==
-                0) {
+            /* `sphlab bench ladder --quick --out DIR/.work/bench`, in process: its
+             * measurements come back in a struct, its files are its own */
+            bench_opts lo;
+            bench_opts_init(&lo, true);
+            lo.quiet = true;
+            lo.out = work(x, "bench");
+            char *largv[] = {"bench", "ladder", "--quick", "--out", (char *)lo.out, NULL};
+            bench_ladder lad;
+            bool ok = bench_ladder_measure(&lo, &lad) == 0;
+            const char *lpath;
+            FILE *lf = lx_log_open(x, "bench-ladder", (const char *const[]){"sphlab", "bench", "ladder", "--quick",
+                                                                           "--out", lo.out, NULL},
+                                   &lpath);
+            if (ok && lf) {
+                bench_progress_opts(&lo);
+                bench_ladder_print(lf, &lo, &lad); /* the table goes to the log */
+            }
+            if (lf) fclose(lf);
+            ok = ok && bench_ladder_write(&lo, &lad, 5, largv);
+            if (ok) {
                 const char *ext[4] = {"png", "pdf", "csv", "json"};
                 for (int k = 0; k < 4; k++)
                     if (lx_take(x, "bench", lx_fmt("ladder-3d.%s", ext[k]), lx_fmt("ladder-3d.%s", ext[k])))
@@ -1521,8 +1437,12 @@ int lx_lesson8(lx *x)
                                k == 0 ? "sphlab bench ladder --quick: the largest N at 60 steps/s per level"
                                       : "the same (PDF, CSV, JSON)");
                 lx_md(x, "`sphlab bench ladder --quick` on this machine (its own --quick: fewer repeats):\n\n");
-                ladder_table(x, lx_out(x, "ladder-3d.csv"));
+                ladder_table(x, &lo, &lad);
+            } else {
+                x->failed++;
+                lx_md(x, "\n**`sphlab bench ladder --quick` failed**, see `logs/%s`.\n\n", strrchr(lpath, '/') + 1);
             }
+            bench_ladder_free(&lad);
         }
     }
     /* a picture */
@@ -1672,13 +1592,13 @@ int lx_lesson9(lx *x)
             R->h_over_s = hos;
             R->dbl = dbl;
             const char *stats = work(x, lx_fmt("acc-%d.csv", nr));
-            const char *log;
             lx_run r;
-            if (lx_sphlab(x, lx_fmt("run-s%g-h%g%s", sp[a], hos, dbl ? "-double" : ""), NULL, NULL, &log, "run", scene,
-                          "--threads", "1", "--set", lx_fmt("fluid.spacing=%g", sp[a]), "--set",
-                          lx_fmt("kernels.h=%g", hos * sp[a]), "--set",
-                          lx_fmt("physics.accumulate=%s", dbl ? "double" : "float"), "--stats", stats, LX_END) != 0 ||
-                !parsed(x, log, &r) || !decay_rate(x, stats, &R->rate, NULL))
+            lx_run_opts ro = {scene,
+                              {lx_fmt("fluid.spacing=%g", sp[a]), lx_fmt("kernels.h=%g", hos * sp[a]),
+                               lx_fmt("physics.accumulate=%s", dbl ? "double" : "float")},
+                              -1, 1, stats, NULL};
+            if (!lx_run_sim(x, lx_fmt("run-s%g-h%g%s", sp[a], hos, dbl ? "-double" : ""), &ro, &r) ||
+                !decay_rate(x, stats, &R->rate, NULL))
                 continue;
             R->wall_s = r.wall_s;
             R->n = r.particles;

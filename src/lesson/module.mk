@@ -9,13 +9,13 @@
 # goal was set so far, so that a rule below never becomes it.
 LESSON_SAVED_GOAL := $(.DEFAULT_GOAL)
 
-LESSON_SRC    := cmd_lesson lesson_export lesson_lab lesson_steps
+LESSON_SRC    := cmd_lesson lesson_export lesson_lab lesson_run lesson_steps
 LESSON_CFLAGS := $(shell pkg-config --cflags plplot 2>/dev/null || echo -I/usr/include/plplot)
 LESSON_STB    := $(shell pkg-config --cflags stb 2>/dev/null || echo -I/usr/include/stb)
 MOD_OBJ       += $(LESSON_SRC:%=$(BUILD)/lesson/%.o)
 
-$(BUILD)/lesson/%.o: src/lesson/%.c src/lesson/*.h src/plot/plot.h src/app/*.h src/core/*.h | $(BUILD)/lesson
-	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app -Isrc/plot $(LESSON_CFLAGS) -c -o $@ $<
+$(BUILD)/lesson/%.o: src/lesson/%.c src/lesson/*.h src/plot/plot.h src/bench/*.h src/app/*.h src/core/*.h | $(BUILD)/lesson
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app -Isrc/plot -Isrc/bench $(LESSON_CFLAGS) -c -o $@ $<
 
 $(BUILD)/lesson:
 	mkdir -p $@
