@@ -71,6 +71,15 @@ typedef struct lx_run_opts {
     const char *stats, *dump;          /* CSV files as `sphlab run --stats/--dump` writes them, or NULL */
 } lx_run_opts;
 
+/* A value of the report's template: a number, a name, or a block of Markdown. */
+enum { LX_MAX_VALUES = 160 };
+typedef struct lx_value {
+    char name[48];
+    char *text;
+    size_t len;
+    bool used; /* the template being filled has used it */
+} lx_value;
+
 /* The state of one export. */
 struct lx {
     const lesson *L;
@@ -79,9 +88,13 @@ struct lx {
     char exe[1024];    /* this binary */
     bool quick;        /* fewer steps and variants (tests, CI) */
     bool quiet;
-    char *md;          /* the report's measured part, built in memory */
+    char *md;          /* what was written outside any block (failures): {{notes}} */
     size_t md_len;
-    FILE *mdf;
+    FILE *mdf;         /* where lx_md writes: the open block, or sink */
+    FILE *sink;        /* into md */
+    FILE *blk;         /* the open block's stream, or NULL */
+    lx_value vals[LX_MAX_VALUES];
+    int nval;
     char figs[96][256]; /* figures written: "file: what it shows" */
     int nfig;
     char missing[8][256];
@@ -136,6 +149,23 @@ double lx_run_pass(const lx_run *r, const char *pass);
 /* The scene as `sphlab check` shows it, into the report; fills the pipeline's
  * pass names in order (at most cap) and returns their count (0 on failure). */
 int lx_check(lx *x, const char *scene, char names[][24], int cap);
+
+/* ---- the report (lesson_report.c) -------------------------------------------- */
+
+/* Sets the template's value {{name}} (printf). */
+void lx_val(lx *x, const char *name, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* What lx_md writes from now on is the value {{name}} (a block), until the
+ * next lx_block or lx_block_end. */
+void lx_block(lx *x, const char *name);
+void lx_block_end(lx *x);
+/* Fills the template at tmpl_path into out; false (with a message on stderr)
+ * if a placeholder has no value. Marks the values it uses. */
+bool lx_report_write(lx *x, const char *tmpl_path, FILE *out);
+/* Values the template just filled did not use (each named on stderr), then
+ * clears the marks for the next template. */
+int lx_values_unused(lx *x, const char *what);
+void lx_values_reset_use(lx *x);
+void lx_values_free(lx *x);
 
 /* Appends to the report (Markdown). */
 void lx_md(lx *x, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

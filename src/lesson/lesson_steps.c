@@ -34,10 +34,11 @@ static bool load_def(lx *x, const char *path, sph_scene_def *def)
 /* `sphlab check` of a scene, into the report; fills the pipeline's pass names. */
 static int pipeline(lx *x, const char *file, char names[][24], int cap)
 {
-    lx_md(x, "## The scene and its pipeline\n\n`sphlab check lessons/%s/%s`: only the passes this lesson needs run.\n\n",
-          x->L->slug, file);
     char none[1][24];
-    return lx_check(x, lx_src(x, file), names ? names : none, names ? cap : 0);
+    lx_block(x, "pipeline");
+    int n = lx_check(x, lx_src(x, file), names ? names : none, names ? cap : 0);
+    lx_block_end(x);
+    return n;
 }
 
 static const char *work(lx *x, const char *sub)
@@ -162,7 +163,6 @@ int lx_lesson1(lx *x)
     pipeline(x, "lesson.ini", NULL, 0);
 
     /* 1. the kernels */
-    lx_md(x, "## 1. The kernels\n\n");
     for (int dim = 2; dim <= 3; dim++)
         lx_sphlab(x, lx_fmt("plot-kernels-%dd", dim), NULL, NULL, NULL, "plot", "kernels", "--dim", lx_fmt("%d", dim),
                   "--h", lx_fmt("%g", h0), "--out", x->dir, "--quiet", LX_END);
@@ -181,10 +181,8 @@ int lx_lesson1(lx *x)
         }
         plot_table_free(&kt);
     }
-    lx_md(x, "Normalisation sigma (W = sigma f), the centre value W(0) and the second moment M2 = integral of "
-             "r^2 W, at h = %g m (from `sph_kernel_make`, src/core/sph_kernel.c; W(0) also read back from "
-             "`kernels-2d.csv`):\n\n",
-          h0);
+    lx_val(x, "h", "%g", h0);
+    lx_block(x, "kernels_table");
     lx_md(x, "| kernel | sigma 2D [1/m^2] | sigma 3D [1/m^3] | W(0) 2D [1/m^2] | W(0) in kernels-2d.csv | M2 / h^2 (2D) |\n"
              "|---|---|---|---|---|---|\n");
     for (int k = 0; k < SPH_KERNEL_COUNT; k++) {
@@ -193,12 +191,12 @@ int lx_lesson1(lx *x)
         lx_md(x, "| %s | %.6g | %.6g | %.6g | %.6g | %.4f |\n", sph_kernel_names[k], k2.sigma, k3.sigma,
               sph_kernel_w(&k2, 0.0f), w0_csv[k], k2.m2 / (h0 * h0));
     }
-    lx_md(x, "\nOn a lattice of spacing s = %g m, a particle with h = %g m has about pi (h/s)^2 = %.1f neighbours "
-             "inside its support.\n\n",
-          s, h0, PI * (h0 / s) * (h0 / s));
+    lx_block_end(x);
+    lx_val(x, "spacing", "%g", s);
+    lx_val(x, "neighbours", "%.1f", PI * (h0 / s) * (h0 / s));
 
     /* 2. the seed's kernel estimation of a known function */
-    lx_md(x, "## 2. Kernel estimation of a known function\n\n");
+    lx_block(x, "estimate_tables");
     if (!lx_has_command(x, "estimate")) {
         lx_missing(x, "`sphlab estimate` is not in this build: no estimate of a known function (1D and 2D)");
     } else {
@@ -242,8 +240,8 @@ int lx_lesson1(lx *x)
         }
     }
 
+    lx_block_end(x);
     /* 3. the density of the slab against h */
-    lx_md(x, "\n## 3. The density of the slab against h\n\n");
     static const double hq[] = {1.5, 2, 4}, hf[] = {1.2, 1.5, 2, 3, 4, 6};
     const double *hl = x->quick ? hq : hf;
     int nhl = x->quick ? 3 : 6;
@@ -251,11 +249,10 @@ int lx_lesson1(lx *x)
     double xs[8], noise[8], deficit[8];
     FILE *f = lx_csv_open(x, "density-vs-h.csv");
     if (f) fprintf(f, "h_over_spacing,h,neighbours,interior_mean,interior_rms_percent,surface_mean,surface_deficit_percent\n");
-    lx_md(x, "`sphlab run lesson.ini --steps 1 --set kernels.h=H --dump` for each h; interior: rows at least h "
-             "from the surfaces; surface: the top row. rho0 = %g kg/m^2.\n\n"
-             "| h / s | h [m] | interior mean [kg/m^2] | interior rms error | top row mean [kg/m^2] | top row deficit |\n"
-             "|---|---|---|---|---|---|\n",
-          rho0);
+    lx_val(x, "rho0", "%g", rho0);
+    lx_block(x, "density_table");
+    lx_md(x, "| h / s | h [m] | interior mean [kg/m^2] | interior rms error | top row mean [kg/m^2] | top row deficit |\n"
+             "|---|---|---|---|---|---|\n");
     int good = 0;
     for (int k = 0; k < nhl; k++) {
         double h = hl[k] * s;
@@ -290,6 +287,7 @@ int lx_lesson1(lx *x)
             fprintf(f, "%g,%g,%.1f,%.2f,%.3f,%.2f,%.3f\n", hl[k], h, PI * hl[k] * hl[k], mean, rms, tmean, def_pc);
         lx_md(x, "| %g | %g | %.1f | %.2f%% | %.1f | %.1f%% |\n", hl[k], h, mean, rms, tmean, def_pc);
     }
+    lx_block_end(x);
     if (f) lx_csv_close(x, f, "density-vs-h.csv", "the slab's interior noise and surface deficit against h");
     plot_lines L3 = {0};
     snprintf(L3.title, sizeof L3.title, "Density of a jittered slab: noise inside, deficit at the surface");
@@ -303,7 +301,6 @@ int lx_lesson1(lx *x)
     lx_chart(x, PLOT_LINES, &L3, "density-vs-h", 1000, 650, "the slab's interior noise and surface deficit against h");
 
     /* 4. two pictures */
-    lx_md(x, "\n## 4. Pictures\n\n");
     const double pics[2] = {1.5, 4};
     for (int k = 0; k < 2; k++) {
         const char *sub = lx_fmt("render-h%g", pics[k]);
@@ -317,8 +314,6 @@ int lx_lesson1(lx *x)
                           "neighbours and weights",
                           pics[k]));
     }
-    lx_md(x, "`density-h1.5.png` and `density-h4.png`: the same particles, the same colour scale (600 to 1400 "
-             "kg/m^2), h = 1.5 and 4 spacings.\n");
     return 0;
 }
 
@@ -381,11 +376,12 @@ int lx_lesson2(lx *x)
             ok[m][k] = true;
             plot_table_free(&d.t);
         }
-    lx_md(x, "## 1. The density where it matters\n\n`sphlab run lesson.ini --steps 1 --set domain.wall_model=M "
-             "--set kernels.h=H --dump`; the block is %d x %d particles, spacing %g m, rho0 = %g kg/m^2; "
-             "\"volume\" walls count the space behind them as fluid at rest, \"reflect\" walls (the seed's) do not.\n\n"
-             "| particle |",
-          cols, rows, s, rho0);
+    lx_val(x, "cols", "%d", cols);
+    lx_val(x, "rows", "%d", rows);
+    lx_val(x, "spacing", "%g", s);
+    lx_val(x, "rho0", "%g", rho0);
+    lx_block(x, "points_table");
+    lx_md(x, "| particle |");
     for (int m = 0; m < 2; m++)
         for (int k = 0; k < nh; k++) lx_md(x, " %s, h = %g s |", models[m], hl[k]);
     lx_md(x, "\n|---|");
@@ -409,6 +405,7 @@ int lx_lesson2(lx *x)
             }
         lx_md(x, "\n");
     }
+    lx_block_end(x);
     if (f) lx_csv_close(x, f, "density-points.csv", "the density at the interior, surfaces, walls and corners");
 
     /* the profile up the middle column */
@@ -434,7 +431,6 @@ int lx_lesson2(lx *x)
              "the density up the middle column, with and without the walls' share");
 
     /* 2. the walls decide whether a pool can rest */
-    lx_md(x, "\n## 2. A pool at rest, with each wall model\n\n");
     const char *pool = lx_src(x, "pool.ini");
     plot_table pt[2];
     bool pok[2] = {false, false};
@@ -463,10 +459,11 @@ int lx_lesson2(lx *x)
             lx_chart(x, PLOT_LINES, &P, "pool-walls", 1000, 600,
                      "a pool at rest: kinetic energy over time with volume walls and with the seed's reflecting walls");
             size_t a = pt[0].nrows - 1, b = pt[1].nrows - 1;
-            lx_md(x, "`pool.ini` (750 particles, 0.3 m deep, nu = 0.002 m^2/s) run to t = %.3g s:\n\n"
-                     "| walls | kinetic energy at the end [J/m] | largest speed at the end [m/s] |\n|---|---|---|\n"
-                     "| volume | %.4g | %.3g |\n| reflect | %.4g | %.3g |\n\n",
-                  t0[a], e0[a], v0[a], e1[b], v1[b]);
+            lx_val(x, "pool_t", "%.3g", t0[a]);
+            lx_val(x, "ekin_volume", "%.4g", e0[a]);
+            lx_val(x, "speed_volume", "%.3g", v0[a]);
+            lx_val(x, "ekin_reflect", "%.4g", e1[b]);
+            lx_val(x, "speed_reflect", "%.3g", v1[b]);
         }
     }
     for (int m = 0; m < 2; m++)
@@ -521,7 +518,6 @@ int lx_lesson3(lx *x)
     pipeline(x, "lesson.ini", NULL, 0);
 
     /* 1. the hydrostatic pool: the scene's kernels (linear and Tait), and Mueller's pair */
-    lx_md(x, "## 1. Pressure against depth\n\n");
     static const char *const pool_runs[3][4] = {
         /* log, eos, density kernel, pressure kernel (NULL: the scene's) */
         {"pool", "linear", NULL, NULL},
@@ -570,10 +566,11 @@ int lx_lesson3(lx *x)
                     L.p[0].s[1] = (plot_series){"poly6 / spiky", t1, e1, tb.nrows, 1};
                     lx_chart(x, PLOT_LINES, &L, "pool-energy", 1000, 600,
                              "the pool's kinetic energy over time: one kernel against Mueller's pair, no viscosity");
-                    lx_md(x, "Kinetic energy of the pool at the end (t = %.3g s): %.4g J/m with %s / %s, %.4g J/m "
-                             "with poly6 / spiky (Mueller's pair).\n\n",
-                          t0[ta.nrows - 1], e0[ta.nrows - 1], sph_kernel_names[def.kernel_density],
-                          sph_kernel_names[def.kernel_pressure], e1[tb.nrows - 1]);
+                    lx_val(x, "pool_t", "%.3g", t0[ta.nrows - 1]);
+                    lx_val(x, "pool_ekin", "%.4g", e0[ta.nrows - 1]);
+                    lx_val(x, "kernel_density", "%s", sph_kernel_names[def.kernel_density]);
+                    lx_val(x, "kernel_pressure", "%s", sph_kernel_names[def.kernel_pressure]);
+                    lx_val(x, "pool_ekin_mueller", "%.4g", e1[tb.nrows - 1]);
                 }
                 plot_table_free(&tb);
             }
@@ -628,11 +625,12 @@ int lx_lesson3(lx *x)
         L.p[0].s[0] = (plot_series){"SPH, mean of each layer", by, bp, (size_t)m, 0};
         L.p[0].s[1] = (plot_series){"#gr#d0#u g (H - y)", by, hyd, (size_t)m, 1};
         lx_chart(x, PLOT_LINES, &L, "pressure-depth", 1000, 650, "the pool's pressure against height, and rho0 g (H - y)");
-        lx_md(x, "The pool after its run (`pool-stats.csv` has every step): depth at rest density H = N s^2 / width "
-                 "= %.3f m. Least-squares slope of the layer means between h and H - 2h: dp/dy = %.0f N/m per m; "
-                 "hydrostatics says -rho0 g = %.0f (%+.1f%%). Pressure at the floor layer: %.0f N/m against "
-                 "rho0 g (H - y) = %.0f.\n\n",
-              H, dpdy, -rho0 * g, 100 * (dpdy / (-rho0 * g) - 1), m ? bp[0] : NAN, m ? hyd[0] : NAN);
+        lx_val(x, "depth", "%.3f", H);
+        lx_val(x, "dpdy", "%.0f", dpdy);
+        lx_val(x, "dpdy_hydrostatic", "%.0f", -rho0 * g);
+        lx_val(x, "dpdy_error", "%+.1f%%", 100 * (dpdy / (-rho0 * g) - 1));
+        lx_val(x, "p_floor", "%.0f", m ? bp[0] : NAN);
+        lx_val(x, "p_floor_hydrostatic", "%.0f", m ? hyd[0] : NAN);
     }
     if (have[0] && have[1]) {
         /* the equation of state as the code computed it: p against rho of every particle */
@@ -669,9 +667,10 @@ int lx_lesson3(lx *x)
             L.p[0].s[0] = (plot_series){"linear: k (#gr - #gr#d0#u)", xl, yl, n, 0};
             L.p[0].s[1] = (plot_series){"Tait, #gg = 7", xt, yt, n, 1};
             lx_chart(x, PLOT_LINES, &L, "eos", 1000, 650, "pressure against density of every particle: linear and Tait");
-            lx_md(x, "Equation of state (read back from the dumps): densest particle %.1f kg/m^2 gives p = %.0f "
-                     "(linear) and, in the Tait run, %.1f kg/m^2 gives p = %.0f.\n\n",
-                  xl[n - 1], yl[n - 1], xt[n - 1], yt[n - 1]);
+            lx_val(x, "rho_densest_linear", "%.1f", xl[n - 1]);
+            lx_val(x, "p_densest_linear", "%.0f", yl[n - 1]);
+            lx_val(x, "rho_densest_tait", "%.1f", xt[n - 1]);
+            lx_val(x, "p_densest_tait", "%.0f", yt[n - 1]);
         }
         free(pr);
         free(xl);
@@ -683,7 +682,6 @@ int lx_lesson3(lx *x)
         if (have[e]) plot_table_free(&pool[e].t);
 
     /* 2. energy: the kernel pair and the form of the force */
-    lx_md(x, "## 2. Energy: the kernel pair and the form of the force\n\n");
     const char *column = lx_src(x, "column.ini");
     sph_scene_def cdef;
     if (load_def(x, column, &cdef)) {
@@ -693,11 +691,10 @@ int lx_lesson3(lx *x)
                                           {"poly6", "spiky", "shared"},
                                           {"cubic", "cubic", "symmetric"},
                                           {"cubic", "cubic", "shared"}};
-        lx_md(x, "`column.ini`: a column collapses in a closed tank with elastic walls and no viscosity; energy = "
-                 "kinetic + potential + the equation of state's internal energy, from `--dump` after 1 step and "
-                 "after %s steps.\n\n| density kernel | pressure kernel | force form | E after 1 step [J/m] | E at "
-                 "the end [J/m] | change |\n|---|---|---|---|---|---|\n",
-              nsteps);
+        lx_val(x, "column_steps", "%s", nsteps);
+        lx_block(x, "energy_table");
+        lx_md(x, "| density kernel | pressure kernel | force form | E after 1 step [J/m] | E at the end [J/m] | change |\n"
+                 "|---|---|---|---|---|---|\n");
         FILE *f = lx_csv_open(x, "energy.csv");
         if (f) fprintf(f, "density_kernel,pressure_kernel,form,steps,e_start,e_end,change_percent\n");
         for (int c = 0; c < 4; c++) {
@@ -722,21 +719,19 @@ int lx_lesson3(lx *x)
                 fprintf(f, "%s,%s,%s,%s,%.4f,%.4f,%.3f\n", pairs[c][0], pairs[c][1], pairs[c][2], nsteps, E[0], E[1],
                         ch);
         }
+        lx_block_end(x);
         if (f) lx_csv_close(x, f, "energy.csv", "energy change of the collapsing column per kernel pair and form");
-        lx_md(x, "\n");
     }
 
     /* 3. momentum in the open */
-    lx_md(x, "## 3. Momentum\n\n");
     const char *open = lx_src(x, "open.ini");
     sph_scene_def odef;
     if (load_def(x, open, &odef)) {
         char nsteps[24];
         snprintf(nsteps, sizeof nsteps, "%d", x->quick ? 100 : odef.steps);
-        lx_md(x, "`open.ini`: a disordered block alone, pressure only (negative pressure kept), %s steps. Total "
-                 "momentum |sum m v| against the sum of |m v|:\n\n| form | sum m abs(v) [kg m/s] | abs(sum m v) "
-                 "[kg m/s] | ratio |\n|---|---|---|---|\n",
-              nsteps);
+        lx_val(x, "open_steps", "%s", nsteps);
+        lx_block(x, "momentum_table");
+        lx_md(x, "| form | sum m abs(v) [kg m/s] | abs(sum m v) [kg m/s] | ratio |\n|---|---|---|---|\n");
         FILE *f = lx_csv_open(x, "momentum.csv");
         if (f) fprintf(f, "form,steps,sum_m_abs_v,abs_sum_m_v,ratio\n");
         const char *forms[2] = {"symmetric", "shared"};
@@ -761,8 +756,8 @@ int lx_lesson3(lx *x)
             lx_md(x, "| %s | %.4g | %.3g | %.2g |\n", forms[c], sum, P, sum > 0 ? P / sum : 0);
             if (f) fprintf(f, "%s,%s,%.6g,%.6g,%.6g\n", forms[c], nsteps, sum, P, sum > 0 ? P / sum : 0);
         }
+        lx_block_end(x);
         if (f) lx_csv_close(x, f, "momentum.csv", "total momentum after the open block's run, both forms");
-        lx_md(x, "\n");
     }
 
     /* 4. a picture */
@@ -788,7 +783,6 @@ int lx_lesson4(lx *x)
     const double rate0 = 2 * nu * k * k, s = def.blocks[0].spacing;
     pipeline(x, "lesson.ini", NULL, 0);
 
-    lx_md(x, "## 1. Taylor-Green decay against the analytic law\n\n");
     typedef struct tg_run {
         const char *form;
         double h_over_s;
@@ -800,10 +794,11 @@ int lx_lesson4(lx *x)
     plot_table tab[4];
     double *ratio[4] = {NULL}, rates[4];
     bool ok[4] = {false};
-    lx_md(x, "nu = %g m^2/s, k = 2 pi / %g m: the velocity decays as exp(-2 nu k^2 t), rate %.4f 1/s; the kinetic "
-             "energy at twice that. Rate fitted to ln(ekin) over the run (`--stats`):\n\n"
-             "| viscosity form | h / s | steps | fitted rate [1/s] | analytic [1/s] | error |\n|---|---|---|---|---|---|\n",
-          nu, L, rate0);
+    lx_val(x, "nu", "%g", nu);
+    lx_val(x, "length", "%g", L);
+    lx_val(x, "rate", "%.4f", rate0);
+    lx_block(x, "decay_table");
+    lx_md(x, "| viscosity form | h / s | steps | fitted rate [1/s] | analytic [1/s] | error |\n|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "taylor-green.csv");
     if (f) fprintf(f, "run,t,ekin_over_ekin0,analytic\n");
     for (int r = 0; r < nr; r++) {
@@ -829,6 +824,7 @@ int lx_lesson4(lx *x)
         lx_md(x, "| %s | %g | %zu | %.4f | %.4f | %+.1f%% |\n", runs[r].form, runs[r].h_over_s, tab[r].nrows, rates[r],
               rate0, 100 * (rates[r] / rate0 - 1));
     }
+    lx_block_end(x);
     if (f) lx_csv_close(x, f, "taylor-green.csv", "kinetic energy over time of each run, and the analytic law");
     plot_lines C = {0};
     snprintf(C.title, sizeof C.title, "Taylor-Green vortex: viscous decay of the kinetic energy");
@@ -868,7 +864,6 @@ int lx_lesson4(lx *x)
     }
 
     /* the 2D viscosity kernel */
-    lx_md(x, "\n## 2. The viscosity kernel in 2D and 3D\n\n");
     for (int dim = 2; dim <= 3; dim++)
         if (lx_sphlab(x, lx_fmt("plot-viscosity-%dd", dim), NULL, NULL, NULL, "plot", "kernel", "viscosity", "--dim",
                       lx_fmt("%d", dim), "--h", lx_fmt("%g", def.h), "--out", x->dir, "--quiet", LX_END) == 0)
@@ -881,9 +876,9 @@ int lx_lesson4(lx *x)
             for (size_t i = 0; i < kt.nrows; i++)
                 if (fabs(q[i] - 0.5) < 1e-6) {
                     double hh = def.h, r = 0.5 * hh, want = 40 / (PI * pow(hh, 5)) * (hh - r);
-                    lx_md(x, "`kernel-viscosity-2d.csv` at r = h/2 (h = %g m): Laplacian %.6g against 40/(pi h^5)(h - r) "
-                             "= %.6g 1/m^4 (the chart's unit may carry a power of ten).\n\n",
-                          hh, lap[i], want);
+                    lx_val(x, "h", "%g", hh);
+                    lx_val(x, "lap_csv", "%.6g", lap[i]);
+                    lx_val(x, "lap_exact", "%.6g", want);
                 }
         plot_table_free(&kt);
     }
@@ -916,11 +911,11 @@ int lx_lesson5(lx *x)
         x->failed++;
         return 1;
     }
-    lx_md(x, "## 1. The seed's worked example\n\nThe hash pass (`src/passes/hash.c`) run on `lesson.ini` "
-             "(%d particles, cells of h (1 + 2^-10) = %.7g m, table of %u keys): cell = floor(x / size), "
-             "hash = cx * 15823 + cy * 9737333 (mod 2^32), key = hash mod %u.\n\n"
-             "| particle | x [m] | y [m] | cell | hash | key |\n|---|---|---|---|---|---|\n",
-          n, def.h * (1 + 1.0 / 1024), T, T);
+    lx_val(x, "particles", "%d", n);
+    lx_val(x, "cell_size", "%.7g", def.h * (1 + 1.0 / 1024));
+    lx_val(x, "table_size", "%u", T);
+    lx_block(x, "hash_table");
+    lx_md(x, "| particle | x [m] | y [m] | cell | hash | key |\n|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "hash-example.csv");
     if (f) fprintf(f, "particle,x,y,cell_x,cell_y,hash,key\n");
     for (int i = 0; i < n; i++) {
@@ -930,12 +925,15 @@ int lx_lesson5(lx *x)
             fprintf(f, "%u,%.6f,%.6f,%d,%d,%u,%u\n", rows[i].id, rows[i].x, rows[i].y, rows[i].cx, rows[i].cy,
                     rows[i].hash, rows[i].key);
     }
+    lx_block_end(x);
     if (f) lx_csv_close(x, f, "hash-example.csv", "cell, hash and key of each of the ten particles");
-    if (n > 7)
-        lx_md(x, "\nParticle 7: cell (%d, %d), hash %u, key %u. The slide's numbers (hash 4532, key 4532 mod 10 = 2) "
-                 "were illustrative; these are the seed's primes. %d cells are occupied; %d of them share their key "
-                 "with another occupied cell.\n\n",
-              rows[7].cx, rows[7].cy, rows[7].hash, rows[7].key, cells, coll);
+    if (n > 7) {
+        lx_val(x, "p7_cell", "(%d, %d)", rows[7].cx, rows[7].cy);
+        lx_val(x, "p7_hash", "%u", rows[7].hash);
+        lx_val(x, "p7_key", "%u", rows[7].key);
+    }
+    lx_val(x, "cells", "%d", cells);
+    lx_val(x, "colliding_cells", "%d", coll);
     const char *sub = "render-hash";
     if (lx_sphlab(x, sub, NULL, NULL, NULL, "render", scene, "--out", work(x, sub), "--steps", "1", "--every", "1",
                   "--threads", "1", "--quiet", "--color", "key", "--overlay",
@@ -946,36 +944,35 @@ int lx_lesson5(lx *x)
                               "neighbours, and the sorted index with its start table under the view");
 
     /* 2. the traps */
-    lx_md(x, "## 2. Three traps in the seed's hash\n\nTruncation against floor (h = 0.1 m; the seed's `int(x / h)`, "
-             "`sph_cell_coord` in `src/core/sph_search.h`):\n\n| x [m] | int(x / h) | floor(x / h) |\n|---|---|---|\n");
+    lx_block(x, "floor_table");
+    lx_md(x, "| x [m] | int(x / h) | floor(x / h) |\n|---|---|---|\n");
     const float xs[] = {-0.15f, -0.05f, 0.05f, 0.15f};
     for (int i = 0; i < 4; i++)
         lx_md(x, "| %g | %d | %d |\n", xs[i], (int)(xs[i] / 0.1f), sph_cell_coord(xs[i], 1.0f / 0.1f));
     int32_t bx = 200000, by = 300;
     int64_t exact = (int64_t)bx * SPH_HASH_P1 + (int64_t)by * SPH_HASH_P2;
-    lx_md(x, "\nSigned overflow: cell (%d, %d) has cx * 15823 + cy * 9737333 = %lld, beyond INT_MAX = 2147483647: "
-             "in `int` that is undefined behaviour in C; `sph_hash_cell` computes in `uint32_t`, where it wraps to "
-             "%u.\n\n",
-          bx, by, (long long)exact, sph_hash_cell(2, bx, by, 0));
+    lx_block_end(x);
+    lx_val(x, "big_cell", "(%d, %d)", bx, by);
+    lx_val(x, "big_sum", "%lld", (long long)exact);
+    lx_val(x, "big_wrapped", "%u", sph_hash_cell(2, bx, by, 0));
     const float h6 = 0.06f, xa = 0.0599999949f, xb = -1e-9f;
     float inv_h = 1.0f / h6, inv_c = 1.0f / (h6 * (1.0f + 1.0f / 1024.0f));
-    lx_md(x, "Cells a hair larger than h: x = %.10g and x = %.3g at h = %g are %.10g apart (less than h), so they "
-             "must fall in the same or adjacent cells. Cells of exactly h put them in cells %d and %d (two apart: "
-             "the search misses the pair); cells of h (1 + 2^-10) put them in %d and %d.\n\n",
-          xa, xb, h6, (double)xa - (double)xb, sph_cell_coord(xa, inv_h), sph_cell_coord(xb, inv_h),
-          sph_cell_coord(xa, inv_c), sph_cell_coord(xb, inv_c));
+    lx_val(x, "xa", "%.10g", xa);
+    lx_val(x, "xb", "%.3g", xb);
+    lx_val(x, "h6", "%g", h6);
+    lx_val(x, "gap", "%.10g", (double)xa - (double)xb);
+    lx_val(x, "cells_exact", "%d and %d", sph_cell_coord(xa, inv_h), sph_cell_coord(xb, inv_h));
+    lx_val(x, "cells_wider", "%d and %d", sph_cell_coord(xa, inv_c), sph_cell_coord(xb, inv_c));
 
     /* 3. collisions and the table size */
-    lx_md(x, "## 3. Collisions and the size of the table\n\n");
     const char *block = lx_src(x, "block.ini");
     static const unsigned tq[] = {0, 16}, tf[] = {0, 4096, 97, 16, 1};
     const unsigned *ts = x->quick ? tq : tf;
     int nt = x->quick ? 2 : 5;
     f = lx_csv_open(x, "collisions.csv");
     if (f) fprintf(f, "table_size,keys,occupied_cells,colliding_cells,neighbours_ms,density_ms\n");
-    lx_md(x, "`block.ini` (1000 particles) with `--set search.table_size=T` (0: the particle count, as in the seed); "
-             "cells counted from the hash pass's entries; times from `sphlab run --steps 20 --threads 1`:\n\n"
-             "| table_size | keys | occupied cells | cells sharing a key | neighbours [ms/step] |\n|---|---|---|---|---|\n");
+    lx_block(x, "collisions_table");
+    lx_md(x, "| table_size | keys | occupied cells | cells sharing a key | neighbours [ms/step] |\n|---|---|---|---|---|\n");
     for (int i = 0; i < nt; i++) {
         char set[64];
         snprintf(set, sizeof set, "search.table_size=%u", ts[i]);
@@ -994,6 +991,7 @@ int lx_lesson5(lx *x)
         lx_md(x, "| %u%s | %u | %d | %d | %.3f |\n", ts[i], ts[i] ? "" : " (N)", keys, c, cc, nb);
         if (f) fprintf(f, "%u,%u,%d,%d,%.4f,%.4f\n", ts[i], keys, c, cc, nb, lx_run_pass(&r, "density"));
     }
+    lx_block_end(x);
     if (f) lx_csv_close(x, f, "collisions.csv", "occupied and colliding cells and the neighbour pass's time per table size");
     sub = "render-collisions";
     if (lx_sphlab(x, sub, NULL, NULL, NULL, "render", block, "--out", work(x, sub), "--steps", "1", "--every", "1",
@@ -1003,7 +1001,7 @@ int lx_lesson5(lx *x)
         lx_fig(x, "collisions.png", "the block with a table of 16 keys: cells that share a key are red");
 
     /* 4. the hard cases that check the hash */
-    lx_md(x, "\n## 4. The hard cases that check it\n\n");
+    lx_block(x, "hardcases");
     const char *names[2] = {"table-size-1", "negative-borders"};
     for (int i = 0; i < 2; i++) {
         const char *log;
@@ -1011,6 +1009,7 @@ int lx_lesson5(lx *x)
             0)
             lx_md_file(x, log, 10);
     }
+    lx_block_end(x);
     return 0;
 }
 
@@ -1070,15 +1069,12 @@ int lx_lesson6(lx *x)
 
     /* 1. the slide's keys through the bitonic network */
     static const uint32_t slide[10] = {9, 0, 6, 7, 1, 1, 4, 2, 2, 2};
-    lx_md(x, "## 1. The bitonic network, step by step\n\nThe slide's keys of particles 0 to 9, [9, 0, 6, 7, 1, 1, 4, "
-             "2, 2, 2], through the network of `sph_sort_bitonic` (src/passes/sort.c): the array is padded to 16, "
-             "log2(16) = 4 stages of 1, 2, 3, 4 steps; each step compares pairs a distance apart (\"flip\": mirror "
-             "pairs in blocks of 2w, \"disperse\": pairs w apart) and swaps those out of order. Entries are "
-             "key<sub>particle</sub>; ties are ordered by particle, as in the code.\n\n"
-             "| stage | step | w | kind | swaps | entries after the step |\n|---|---|---|---|---|---|\n");
+    lx_block(x, "bitonic_table");
+    lx_md(x, "| stage | step | w | kind | swaps | entries after the step |\n|---|---|---|---|---|---|\n");
     bitonic_ctx b = {x, lx_csv_open(x, "bitonic-steps.csv")};
     if (b.csv) fprintf(b.csv, "stage,step,w,kind,swaps,k0,k1,k2,k3,k4,k5,k6,k7,k8,k9\n");
     int steps = lx_bitonic_steps(slide, 10, bitonic_row, &b);
+    lx_block_end(x);
     if (b.csv) lx_csv_close(x, b.csv, "bitonic-steps.csv", "the keys after each step of the bitonic network");
     /* the core's own sorts give the same order */
     sph_entry e1[10], e2[10], sc[10];
@@ -1087,16 +1083,13 @@ int lx_lesson6(lx *x)
     sph_sort_bitonic(e1, 10);
     sph_sort_counting(e2, sc, cnt, 10, 10);
     bool same = memcmp(e1, e2, sizeof e1) == 0;
-    lx_md(x, "\n%d steps. `sph_sort_bitonic` and `sph_sort_counting` on the same entries give %s order.\n\n", steps,
-          same ? "the same" : "a DIFFERENT");
+    lx_val(x, "bitonic_steps", "%d", steps);
+    lx_val(x, "sorts_differ", "%s", same ? "" : "DIFFERENT");
     if (!same) x->failed++;
 
-    lx_md(x, "## 2. The counting sort and the start table\n\nThe counting sort counts each key, turns the counts "
-             "into first slots (a prefix sum), and drops each entry into its key's next slot, in input order "
-             "(stable). For the slide's keys:\n\n");
+    lx_block(x, "offsets_slide");
     offsets_table(x, slide, 10, 10, "offsets-slide.csv");
-    lx_md(x, "The slide's \"liste des departs\" reads [0, 1, 3, inf, 6, inf, 8, inf, 9]: nine entries for ten "
-             "keys. Key 6 (particle 2) starts at 7 and key 7 (particle 3) at 8; key 8 is empty.\n\n");
+    lx_block_end(x);
 
     lx_hash_row rows[16];
     int cells, coll;
@@ -1104,19 +1097,25 @@ int lx_lesson6(lx *x)
     int n = lx_hash_example(scene, NULL, 0, rows, 16, &cells, &coll, &T);
     if (n > 0 && n <= 16) {
         uint32_t keys[16];
-        lx_md(x, "With the real hash (lesson 5), the keys of particles 0 to %d are [", n - 1);
+        lx_val(x, "real_last", "%d", n - 1);
+        lx_block(x, "real_keys");
         for (int i = 0; i < n; i++) {
             keys[i] = rows[i].key;
-            lx_md(x, "%u%s", keys[i], i + 1 < n ? ", " : "]:\n\n");
+            lx_md(x, "%u%s", keys[i], i + 1 < n ? ", " : "");
         }
+        lx_block(x, "offsets_real");
         offsets_table(x, keys, (uint32_t)n, T, "offsets.csv");
+        lx_block_end(x);
     }
 
     /* 2. the passes one at a time, in the window's scripted mode */
-    lx_md(x, "## 3. The passes one at a time\n\n");
+    lx_val(x, "view_ok", "%s", "");
     if (!lx_has_command(x, "view")) {
         lx_missing(x, "`sphlab view` is not in this build: no pass-by-pass screenshots");
     } else {
+        /* the window's own scripted mode (SDL's event loop, keys, screenshots)
+         * runs as `sphlab view` in a child process: SDL's video subsystem and
+         * the offscreen driver are set up per process, from its environment */
         int upto = 0;
         while (upto < np && strcmp(passes[upto], "neighbours") != 0) upto++;
         if (upto < np) upto++;
@@ -1134,14 +1133,11 @@ int lx_lesson6(lx *x)
                                            "and start table as they are in memory then)",
                                            passes[i]));
             }
-            lx_md(x, "`sphlab view lesson.ini --paused` with `.` (one pass) and `p` (screenshot) pressed in turn, "
-                     "through SDL's offscreen driver: `pass-2-hash.png` shows the entries unsorted, `pass-3-sort.png` "
-                     "sorted, and the start table is only right after the offsets pass.\n\n");
+            lx_val(x, "view_ok", "yes");
         }
     }
 
     /* 3. what a sort costs */
-    lx_md(x, "## 4. What each sort costs\n\n");
     const char *big = lx_src(x, "big.ini");
     static const double sq[] = {0.02, 0.01}, sf[] = {0.02, 0.01, 0.005};
     const double *sp = x->quick ? sq : sf;
@@ -1150,8 +1146,8 @@ int lx_lesson6(lx *x)
     double N[3], ms[3][3];
     FILE *f = lx_csv_open(x, "sort-time.csv");
     if (f) fprintf(f, "particles,bitonic_ms,counting_ms,qsort_ms\n");
-    lx_md(x, "`big.ini` with `--set fluid.spacing=S --set kernels.h=2S --set search.sort=X`, `--threads 1`; the "
-             "sort pass's milliseconds per step:\n\n| particles | bitonic | counting | qsort |\n|---|---|---|---|\n");
+    lx_block(x, "sort_table");
+    lx_md(x, "| particles | bitonic | counting | qsort |\n|---|---|---|---|\n");
     int good = 0;
     for (int i = 0; i < ns; i++) {
         bool all = true;
@@ -1174,6 +1170,7 @@ int lx_lesson6(lx *x)
         if (f) fprintf(f, "%.0f,%.4f,%.4f,%.4f\n", N[good], ms[0][good], ms[1][good], ms[2][good]);
         good++;
     }
+    lx_block_end(x);
     if (f) lx_csv_close(x, f, "sort-time.csv", "the sort pass's milliseconds per step per sort and particle count");
     if (good >= 2) {
         plot_lines L = {0};
@@ -1209,19 +1206,28 @@ int lx_lesson7(lx *x)
     int rc;
     lx_fig(x, "stats.csv", "one row per step: t, dt, energy, density, max speed, ms of each pass");
     lx_fig(x, "final.csv", "the particles at the end: id, position, velocity, density, pressure");
-    lx_md(x, "## 1. Where the time goes\n\n`sphlab run lesson.ini --stats stats.csv --dump final.csv`: %ld "
-             "particles, %ld steps, %.3f s simulated, %d thread(s).\n\n| pass | ms/step | share |\n|---|---|---|\n",
-          r.particles, r.steps, r.t_sim, r.threads);
+    lx_val(x, "particles", "%ld", r.particles);
+    lx_val(x, "steps", "%ld", r.steps);
+    lx_val(x, "t_sim", "%.3f", r.t_sim);
+    lx_val(x, "threads", "%d", r.threads);
+    lx_block(x, "passes_table");
+    lx_md(x, "| pass | ms/step | share |\n|---|---|---|\n");
     int top = 0;
     for (int i = 0; i < r.npass; i++) {
         lx_md(x, "| %s | %.4f | %.1f%% |\n", r.pass[i], r.ms_step[i], r.share[i]);
         if (r.ms_step[i] > r.ms_step[top]) top = i;
     }
-    lx_md(x, "| all passes | %.4f | 100%% |\n\nThe most expensive pass: %s (%.1f%%). Wall time %.3f s, %.0f steps/s "
-             "(%.3g particle-steps/s). At the end: kinetic energy %.4g J/m, density from %.1f to %.1f kg/m^2 "
-             "(largest compression %+.2f%%).\n\n",
-          r.total_ms_step, r.pass[top], r.share[top], r.wall_s, r.steps_per_s, r.steps_per_s * (double)r.particles,
-          r.ekin, r.rho_min, r.rho_max, 100 * (r.rho_max / def.rest_density - 1));
+    lx_md(x, "| all passes | %.4f | 100%% |\n", r.total_ms_step);
+    lx_block_end(x);
+    lx_val(x, "top_pass", "%s", r.pass[top]);
+    lx_val(x, "top_share", "%.1f%%", r.share[top]);
+    lx_val(x, "wall_s", "%.3f", r.wall_s);
+    lx_val(x, "steps_per_s", "%.0f", r.steps_per_s);
+    lx_val(x, "particle_steps_per_s", "%.3g", r.steps_per_s * (double)r.particles);
+    lx_val(x, "ekin", "%.4g", r.ekin);
+    lx_val(x, "rho_min", "%.1f", r.rho_min);
+    lx_val(x, "rho_max", "%.1f", r.rho_max);
+    lx_val(x, "rho_error_max", "%+.2f%%", 100 * (r.rho_max / def.rest_density - 1));
 
     if (lx_sphlab(x, "plot-passes", NULL, NULL, NULL, "plot", "passes", lx_out(x, "stats.csv"), "--out", x->dir,
                   "--quiet", LX_END) == 0) {
@@ -1246,15 +1252,18 @@ int lx_lesson7(lx *x)
         lx_fig(x, "frames/frame_NNNNN.png", lx_fmt("%d frames of the dam break, one every %s steps, coloured by speed "
                                                    "(0 to 4 m/s)",
                                                    nf, every));
-        lx_md(x, "## 2. The flow\n\n`sphlab render lesson.ini --every %s`: %d frames in `frames/`.\n\n", every, nf);
+        lx_val(x, "every", "%s", every);
+        lx_val(x, "frames", "%d", nf);
     }
 
     /* 3. one step, pass by pass, in the window's scripted mode */
-    lx_md(x, "## 3. One step, pass by pass\n\n");
+    lx_val(x, "view_before", "%s", "");
     if (!lx_has_command(x, "view")) {
         lx_missing(x, "`sphlab view` is not in this build: no pass-by-pass screenshots");
         return 0;
     }
+    /* the window's scripted mode runs as `sphlab view` in a child process: SDL
+     * sets up its video subsystem and offscreen driver per process */
     const char *before = x->quick ? "20" : "1500";
     char keys[64] = "j";
     for (int i = 0; i < np; i++) strcat(keys, ".p");
@@ -1270,10 +1279,7 @@ int lx_lesson7(lx *x)
                                        "the field the pass wrote; the HUD names it)",
                                        passes[i], before));
         }
-        lx_md(x, "`sphlab view lesson.ini --steps-per-frame %s`, then `.` (one pass) and `p` (screenshot) in turn, "
-                 "through SDL's offscreen driver: `pass-NN-NAME.png`, one per pass of the step after the first %s, "
-                 "in pipeline order.\n",
-              before, before);
+        lx_val(x, "view_before", "%s", before);
     }
     return 0;
 }
@@ -1296,6 +1302,7 @@ static int split_csv(char *line, char **f, int cap)
 /* The ladder's results as a Markdown table, from bench_ladder_measure's struct. */
 static void ladder_table(lx *x, const bench_opts *o, const bench_ladder *lad)
 {
+    lx_block(x, "ladder_table");
     lx_md(x, "| level | what | threads | largest N at 60 steps/s | ms/step at the table's N |\n|---|---|---|---|---|\n");
     for (int s = 0; s < o->nsel; s++) {
         const bench_level *L = &bench_levels[o->sel[s]];
@@ -1304,7 +1311,7 @@ static void ladder_table(lx *x, const bench_opts *o, const bench_ladder *lad)
               r->searched ? lx_fmt("%.0f", r->max_n) : "", r->capped ? " (capped)" : "",
               r->at_ok ? lx_fmt("%.6g", r->at.ms_step) : "", r->at_ok ? lx_fmt(" (N = %u)", r->at.n) : "");
     }
-    lx_md(x, "\n");
+    lx_block_end(x);
 }
 
 int lx_lesson8(lx *x)
@@ -1313,6 +1320,7 @@ int lx_lesson8(lx *x)
     sph_scene_def def;
     if (!load_def(x, scene, &def)) return 1;
     pipeline(x, "lesson.ini", NULL, 0);
+    lx_val(x, "bench", "%s", lx_has_command(x, "bench") ? "yes" : "");
     if (!lx_has_command(x, "bench")) {
         lx_missing(x, "`sphlab bench` is not in this build: no levels, no ladder; only the picture below");
     } else {
@@ -1327,13 +1335,24 @@ int lx_lesson8(lx *x)
         char *text = NULL;
         size_t len = 0;
         FILE *m = open_memstream(&text, &len);
+        const char *vpath;
+        FILE *vf = lx_log_open(x, "bench-levels", (const char *const[]){"sphlab", "bench", "levels", NULL}, &vpath);
         if (m) {
             bench_levels_print(m, &bo);
             fclose(m);
-            lx_md(x, "## 1. The levels\n\n`sphlab bench levels` (the table; its log has the benchmark's scene):\n\n");
+            if (vf) {
+                /* the log has the whole table and the benchmark's scene, as the command prints them */
+                bench_levels_print(vf, &bo);
+                char ini[2048];
+                bench_scene_ini(bo.cfg.dim, bench_k_near(bo.cfg.dim, 1000), BENCH_JITTER, ini, sizeof ini);
+                fprintf(vf, "\n%s", ini);
+            }
+            lx_block(x, "levels");
             lx_md_text(x, text, nl + 1);
+            lx_block_end(x);
             free(text);
         }
+        if (vf) fclose(vf);
         if (nl == 0) {
             x->failed++;
             lx_md(x, "**No level could be read from `sphlab bench levels`.**\n\n");
@@ -1344,10 +1363,11 @@ int lx_lesson8(lx *x)
         const char *spacing = x->quick ? "0.04" : NULL;
         double ms[16], nbm[16];
         long N = 0;
-        lx_md(x, "## 2. Each level on the lesson's scene\n\n`sphlab run lesson.ini --steps %s%s` with each level's "
-                 "keys and threads:\n\n| level | what | threads | ms/step | neighbours [ms] | speedup over L0 | over "
-                 "the level before | steps/s | 60 steps/s? |\n|---|---|---|---|---|---|---|---|---|\n",
-              steps, spacing ? " --set fluid.spacing=0.04 --set kernels.h=0.08" : "");
+        lx_val(x, "steps", "%s", steps);
+        lx_val(x, "spacing_sets", "%s", spacing ? " --set fluid.spacing=0.04 --set kernels.h=0.08" : "");
+        lx_block(x, "levels_table");
+        lx_md(x, "| level | what | threads | ms/step | neighbours [ms] | speedup over L0 | over the level before | "
+                 "steps/s | 60 steps/s? |\n|---|---|---|---|---|---|---|---|---|\n");
         FILE *f = lx_csv_open(x, "levels.csv");
         if (f) fprintf(f, "level,threads,particles,ms_per_step,neighbours_ms,speedup,steps_per_s\n");
         int good = 0;
@@ -1394,6 +1414,7 @@ int lx_lesson8(lx *x)
             }
             good++;
         }
+        lx_block_end(x);
         if (f) lx_csv_close(x, f, "levels.csv", "milliseconds per step of each level on the lesson's scene");
         if (good) {
             snprintf(B.title, sizeof B.title, "The optimisation ladder on %ld particles (3D)", N);
@@ -1404,12 +1425,9 @@ int lx_lesson8(lx *x)
             lx_chart(x, PLOT_BARS, &B, "levels", 1000, 600, "milliseconds per step of each level, with its speedup");
         }
         /* 3. the ladder: the largest N at 60 steps/s */
-        lx_md(x, "\n## 3. The seed's table, rebuilt\n\nThe seed (GTX 1060): 350 particles at 60 frames/s on the CPU, "
-                 "5,000 on the GPU, 20,000 with the spatial hash, 60,000 with the bitonic sort.\n\n");
-        if (x->quick) {
-            lx_md(x, "Not measured with --quick: `sphlab bench ladder` bisects on N for every level (about 30 s with "
-                     "its own --quick). Export without --quick, or run `sphlab bench ladder`.\n\n");
-        } else {
+        lx_val(x, "ladder_skipped", "%s", x->quick ? "yes" : "");
+        lx_val(x, "ladder_table", "%s", "");
+        if (!x->quick) {
             /* `sphlab bench ladder --quick --out DIR/.work/bench`, in process: its
              * measurements come back in a struct, its files are its own */
             bench_opts lo;
@@ -1418,15 +1436,13 @@ int lx_lesson8(lx *x)
             lo.out = work(x, "bench");
             char *largv[] = {"bench", "ladder", "--quick", "--out", (char *)lo.out, NULL};
             bench_ladder lad;
+            bench_progress_opts(&lo);
             bool ok = bench_ladder_measure(&lo, &lad) == 0;
             const char *lpath;
             FILE *lf = lx_log_open(x, "bench-ladder", (const char *const[]){"sphlab", "bench", "ladder", "--quick",
                                                                            "--out", lo.out, NULL},
                                    &lpath);
-            if (ok && lf) {
-                bench_progress_opts(&lo);
-                bench_ladder_print(lf, &lo, &lad); /* the table goes to the log */
-            }
+            if (ok && lf) bench_ladder_print(lf, &lo, &lad); /* the table goes to the log */
             if (lf) fclose(lf);
             ok = ok && bench_ladder_write(&lo, &lad, 5, largv);
             if (ok) {
@@ -1436,7 +1452,6 @@ int lx_lesson8(lx *x)
                         lx_fig(x, lx_fmt("ladder-3d.%s", ext[k]),
                                k == 0 ? "sphlab bench ladder --quick: the largest N at 60 steps/s per level"
                                       : "the same (PDF, CSV, JSON)");
-                lx_md(x, "`sphlab bench ladder --quick` on this machine (its own --quick: fewer repeats):\n\n");
                 ladder_table(x, &lo, &lad);
             } else {
                 x->failed++;
@@ -1520,6 +1535,8 @@ int lx_lesson9(lx *x)
     const double rate0 = 2 * nu * k * k;
     pipeline(x, "lesson.ini", NULL, 0);
 
+    lx_val(x, "study", "%s", lx_has_command(x, "study") ? "yes" : "");
+    lx_val(x, "no_study", "%s", lx_has_command(x, "study") ? "" : "yes");
     if (lx_has_command(x, "study")) {
         /* the study: every combination, median of repeats, the Pareto front */
         static const struct {
@@ -1554,13 +1571,16 @@ int lx_lesson9(lx *x)
             args[na++] = st[q].name;
             args[na] = NULL;
             const char *log;
-            lx_md(x, "## %s\n\n", q == 0 ? "1. Resolution and smoothing length" : "2. Float or double sums");
             if (lx_sphlab_v(x, lx_fmt("study-%s", st[q].name), NULL, NULL, &log, args) != 0) continue;
-            lx_md(x, "`sphlab study lesson.ini");
-            for (int i = 2; args[i]; i++) lx_md(x, " %s", args[i] == x->dir ? "DIR" : args[i]);
-            lx_md(x, "` (its table; `%s.csv` has every column):\n\n", st[q].name);
+            char key[64];
+            snprintf(key, sizeof key, "args_%s", st[q].name);
+            lx_block(x, key);
+            for (int i = 2; args[i]; i++) lx_md(x, "%s%s", i > 2 ? " " : "", args[i] == x->dir ? "DIR" : args[i]);
+            snprintf(key, sizeof key, "table_%s", st[q].name);
+            lx_block(x, key);
             lx_md_file(x, log, 40);
             study_table(x, lx_out(x, lx_fmt("%s.csv", st[q].name)));
+            lx_block_end(x);
             lx_fig(x, lx_fmt("%s.png", st[q].name), lx_fmt("%s (PDF and CSV beside it)", st[q].what));
             lx_fig(x, lx_fmt("%s.csv", st[q].name), "one row per combination: knobs, error, ms per step, run time, "
                                                      "on the front or not");
@@ -1570,11 +1590,10 @@ int lx_lesson9(lx *x)
     lx_missing(x, "`sphlab study` is not in this build (issue 5): no study CSV and no log-log chart with the "
                   "Pareto front; the table and chart below are a stand-in measured with `sphlab run`");
 
-    lx_md(x, "## Error against time, measured with `sphlab run`\n\nThe Taylor-Green vortex (nu = %g m^2/s, k = 2 pi "
-             "/ %g m; analytic velocity decay rate 2 nu k^2 = %.4f 1/s), run to t = %g s with `--set "
-             "fluid.spacing=S --set kernels.h=H --stats`, one thread. Error: |fitted rate / analytic - 1|; time: the "
-             "run's wall time.\n\n",
-          nu, L, rate0, def.duration);
+    lx_val(x, "nu", "%g", nu);
+    lx_val(x, "length", "%g", L);
+    lx_val(x, "rate", "%.4f", rate0);
+    lx_val(x, "duration", "%g", def.duration);
     static const double sq[] = {0.04, 0.02}, sf[] = {0.04, 0.025, 0.02, 0.0125};
     static const double hq[] = {2, 3}, hf[] = {1.5, 2, 3};
     const double *sp = x->quick ? sq : sf, *hs = x->quick ? hq : hf;
@@ -1612,6 +1631,7 @@ int lx_lesson9(lx *x)
         for (int j = 0; j < nr; j++)
             if (j != i && runs[j].wall_s <= runs[i].wall_s && runs[j].err < runs[i].err) runs[i].pareto = false;
     }
+    lx_block(x, "runs_table");
     lx_md(x, "| spacing [m] | h / s | sums | particles | steps | wall time [s] | fitted rate [1/s] | error | Pareto "
              "front |\n|---|---|---|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "accuracy.csv");
@@ -1624,6 +1644,7 @@ int lx_lesson9(lx *x)
             fprintf(f, "%g,%g,%s,%ld,%ld,%.4f,%.6f,%.6f,%.4f,%d\n", R->spacing, R->h_over_s,
                     R->dbl ? "double" : "float", R->n, R->steps, R->wall_s, R->rate, rate0, 100 * R->err, R->pareto);
     }
+    lx_block_end(x);
     if (f) lx_csv_close(x, f, "accuracy.csv", "error and wall time of every run, and whether it is on the Pareto front");
 
     /* chart: one series per h/s (over spacing), plus the front */
