@@ -11,17 +11,8 @@
 
 #include "app.h"
 #include "commands.h"
-#include "lesson.h"
+#include "lesson_steps.h"
 
-int lx_lesson1(lx *x);
-int lx_lesson2(lx *x);
-int lx_lesson3(lx *x);
-int lx_lesson4(lx *x);
-int lx_lesson5(lx *x);
-int lx_lesson6(lx *x);
-int lx_lesson7(lx *x);
-int lx_lesson8(lx *x);
-int lx_lesson9(lx *x);
 
 /* The window's options: the starting state (paused at step 0: space runs,
  * `.` steps one pass) and the overlays the lesson is about. */
