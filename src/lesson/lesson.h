@@ -146,6 +146,9 @@ FILE *lx_log_open(lx *x, const char *log, const char *const *argv, const char **
 bool lx_run_sim(lx *x, const char *log, const lx_run_opts *o, lx_run *r);
 /* ms per step of a pass in a run, or -1. */
 double lx_run_pass(const lx_run *r, const char *pass);
+/* `sphlab plot ...` in process (plot_run): the chart's files in o->out, a log;
+ * false (a failure, named in the report) if it cannot be drawn. */
+bool lx_plot(lx *x, const char *log, const plot_opts *o);
 /* The scene as `sphlab check` shows it, into the report; fills the pipeline's
  * pass names in order (at most cap) and returns their count (0 on failure). */
 int lx_check(lx *x, const char *scene, char names[][24], int cap);

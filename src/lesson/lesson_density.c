@@ -20,8 +20,8 @@ int lx_lesson1(lx *x)
 
     /* 1. the kernels */
     for (int dim = 2; dim <= 3; dim++)
-        lx_sphlab(x, lx_fmt("plot-kernels-%dd", dim), NULL, NULL, NULL, "plot", "kernels", "--dim", lx_fmt("%d", dim),
-                  "--h", lx_fmt("%g", h0), "--out", x->dir, "--quiet", LX_END);
+        lx_plot(x, lx_fmt("plot-kernels-%dd", dim),
+                &(plot_opts){.what = "kernels", .dim = dim, .h = h0, .out = x->dir, .quiet = true});
     lx_fig(x, "kernels-2d.png", "the five kernels in 2D: W, dW/dr and the Laplacian against r/h (PDF and CSV "
                                        "beside it)");
     lx_fig(x, "kernels-3d.png", "the same in 3D");

@@ -388,8 +388,9 @@ int lx_lesson4(lx *x)
 
     /* the 2D viscosity kernel */
     for (int dim = 2; dim <= 3; dim++)
-        if (lx_sphlab(x, lx_fmt("plot-viscosity-%dd", dim), NULL, NULL, NULL, "plot", "kernel", "viscosity", "--dim",
-                      lx_fmt("%d", dim), "--h", lx_fmt("%g", def.h), "--out", x->dir, "--quiet", LX_END) == 0)
+        if (lx_plot(x, lx_fmt("plot-viscosity-%dd", dim),
+                    &(plot_opts){.what = "kernel", .input = "viscosity", .dim = dim, .h = def.h, .out = x->dir,
+                                 .quiet = true}))
             lx_fig(x, lx_fmt("kernel-viscosity-%dd.png", dim),
                    lx_fmt("the viscosity kernel in %dD: W, dW/dr, Laplacian (PDF, CSV beside it)", dim));
     plot_table kt;

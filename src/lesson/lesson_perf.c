@@ -52,14 +52,14 @@ int lx_lesson7(lx *x)
     lx_val(x, "rho_max", "%.1f", r.rho_max);
     lx_val(x, "rho_error_max", "%+.2f%%", 100 * (r.rho_max / def.rest_density - 1));
 
-    if (lx_sphlab(x, "plot-passes", NULL, NULL, NULL, "plot", "passes", lx_out(x, "stats.csv"), "--out", x->dir,
-                  "--quiet", LX_END) == 0) {
+    if (lx_plot(x, "plot-passes",
+                &(plot_opts){.what = "passes", .input = lx_out(x, "stats.csv"), .out = x->dir, .quiet = true})) {
         lx_fig(x, "passes.png", "median milliseconds per step of each pass (PDF, CSV beside it)");
         lx_fig(x, "passes-time.png", "the passes' time stacked over the run (PDF, CSV beside it)");
     }
-    if (lx_sphlab(x, "plot-series", NULL, NULL, NULL, "plot", "series", lx_out(x, "stats.csv"), "--y",
-                  "ekin,rho_min,rho_mean,rho_max", "--dim", "2", "--name", "energy-density", "--out", x->dir,
-                  "--quiet", LX_END) == 0)
+    if (lx_plot(x, "plot-series",
+                &(plot_opts){.what = "series", .input = lx_out(x, "stats.csv"), .ycols = "ekin,rho_min,rho_mean,rho_max",
+                             .dim = 2, .name = "energy-density", .out = x->dir, .quiet = true}))
         lx_fig(x, "energy-density.png", "kinetic energy and density (min, mean, max) over time (PDF, CSV beside it)");
 
     /* 2. the dam break over time */

@@ -186,3 +186,26 @@ int lx_check(lx *x, const char *scene, char names[][24], int cap)
     sph_sim_destroy(sim);
     return n;
 }
+
+bool lx_plot(lx *x, const char *log, const plot_opts *o)
+{
+    /* the log names the equivalent command line */
+    const char *argv[24];
+    char dim[8], h[32];
+    int n = 0;
+    argv[n++] = "sphlab";
+    argv[n++] = "plot";
+    argv[n++] = o->what;
+    if (o->input) argv[n++] = o->input;
+    if (o->ycols) argv[n++] = "--y", argv[n++] = o->ycols;
+    if (o->dim) snprintf(dim, sizeof dim, "%d", o->dim), argv[n++] = "--dim", argv[n++] = dim;
+    if (o->h > 0) snprintf(h, sizeof h, "%g", o->h), argv[n++] = "--h", argv[n++] = h;
+    if (o->name) argv[n++] = "--name", argv[n++] = o->name;
+    if (o->out) argv[n++] = "--out", argv[n++] = o->out;
+    argv[n] = NULL;
+    const char *log_path;
+    FILE *lf = lx_log_open(x, log, argv, &log_path);
+    if (lf) fclose(lf);
+    if (plot_run(o) == 0) return true;
+    return run_failed(x, log_path, argv, "the chart could not be drawn");
+}

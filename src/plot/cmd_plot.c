@@ -38,13 +38,6 @@ static void usage(FILE *f)
           f);
 }
 
-typedef struct plot_opts {
-    const char *what, *input, *out, *name, *ycols, *xcol;
-    int width, height, dim, bins;
-    double h;
-    bool quiet;
-} plot_opts;
-
 static bool parse_size(const char *s, int *w, int *h)
 {
     char *end;
@@ -600,6 +593,12 @@ int cmd_plot(int argc, char **argv)
     plot_opts o = {0};
     int rc = parse_args(argc, argv, &o);
     if (rc >= 0) return rc;
+    return plot_run(&o);
+}
+
+int plot_run(const plot_opts *opts)
+{
+    const plot_opts o = *opts;
     if (!o.what) {
         usage(stderr);
         return 2;
