@@ -4,20 +4,35 @@
  *   sphlab lesson N [VIEW OPTIONS]    opens lesson N in the window (runs this
  *                                     binary's `view` with the lesson's scene
  *                                     and overlays)
- *   sphlab lesson N --export DIR      writes the lesson's figures and
- *                                     DIR/report.md, headless, by running this
- *                                     binary's own commands (run, render,
- *                                     plot, view in SDL's offscreen mode,
- *                                     hardcases, bench, study) as subprocesses
+ *   sphlab lesson N --export DIR      writes the lesson's figures, DIR/report.md
+ *                                     and DIR/report.fr.md, headless
  *
- * Four files:
- *   cmd_lesson.c      the command, the table of lessons, the window
- *   lesson_export.c   the export framework: subprocesses, logs, parsing of
- *                     their outputs, charts, the report
+ * The export calls the library: simulations with sph_sim_* (lesson_run.c,
+ * with the run command's own stats, dump and report functions), the bench
+ * ladder through src/bench (bench_cmd.h), charts through src/plot (plot_run,
+ * plot_chart), and reads every number from their structs or the CSV files it
+ * wrote, never from printed text. Three commands still run as child processes
+ * of this binary, for reasons given where they run: render and view (GL and
+ * SDL contexts, and the software-rendering environment that makes frames
+ * byte-identical, are set up per process), and estimate, study and
+ * hardcases, whose printed tables the report quotes verbatim (nothing is
+ * parsed from them; the numbers come from the CSV files they write).
+ *
+ * The report's text is a template per lesson and language in its folder
+ * (report.md, report.fr.md) with {{placeholders}} (lesson_report.c).
+ *
+ * Files:
+ *   cmd_lesson.c      the command, the table of lessons, the window, the report
+ *   lesson_export.c   the export framework: paths, logs, child processes,
+ *                     charts and CSV files
+ *   lesson_run.c      simulations, checks and charts run in process
+ *   lesson_report.c   the templates: values, blocks, filling, checks
  *   lesson_lab.c      the small experiments computed here with the core's
  *                     own functions (the seed's worked example of the hash,
  *                     the bitonic network step by step)
- *   lesson_steps.c    what each lesson exports */
+ *   lesson_steps.h    what each lesson exports: lesson_util.c (shared),
+ *                     lesson_density.c (1, 2), lesson_forces.c (3, 4),
+ *                     lesson_search.c (5, 6), lesson_perf.c (7 to 9) */
 #ifndef SPH_LESSON_H
 #define SPH_LESSON_H
 
@@ -117,8 +132,11 @@ const char *lx_abs(const char *path);
 /* printf into a rotating static buffer (for numeric arguments). */
 const char *lx_fmt(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
-/* Runs this binary with the arguments (NULL-terminated), stdout and stderr
- * into DIR/logs/NN-LOG.txt; cwd: where to run it (NULL: here); env: one
+/* Runs this binary with the arguments (NULL-terminated) as a child process,
+ * stdout and stderr into DIR/logs/NN-LOG.txt. Only for the commands that must
+ * run in a process of their own or whose printed table the report quotes as
+ * is (render, view, estimate, study, hardcases; see the top of this file):
+ * nothing may be parsed from the log. cwd: where to run it (NULL: here); env: one
  * NAME=VALUE to set, or NULL. Returns the exit status (a failure is counted,
  * named in the report and on stderr). The log's path goes to *log_path. */
 int lx_sphlab(lx *x, const char *log, const char *cwd, const char *env, const char **log_path, ...);

@@ -1,7 +1,8 @@
-/* The export framework of `sphlab lesson N --export DIR`: runs this binary's
- * own commands as subprocesses (their output kept in DIR/logs/), parses what
- * they print and write, draws the lesson's comparison charts with the plot
- * module, and collects the report's text and list of figures. */
+/* The export framework of `sphlab lesson N --export DIR`: paths, the logs in
+ * DIR/logs/, the few commands that run as child processes of this binary
+ * (render, view, estimate, study, hardcases: lesson.h says why), the lesson's
+ * comparison charts through the plot module, its CSV files, and the list of
+ * figures. Nothing is read back from a command's printed text. */
 #define _DEFAULT_SOURCE /* realpath */
 #include <dirent.h>
 #include <errno.h>

@@ -1,9 +1,11 @@
 # src/lesson: `sphlab lesson`, the course in lessons/ (list, open in the
 # window, export figures and a report). Included by the Makefile
-# (-include src/*/module.mk). The export runs this binary's own commands
-# (run, render, view, plot, hardcases, bench, study) as subprocesses and draws
-# its comparison charts with the plot module (src/plot/plot.h), so it needs
-# no package of its own beyond the plot module's.
+# (-include src/*/module.mk). The export calls the core, the bench module
+# (src/bench/bench_cmd.h) and the plot module (src/plot/plot.h) in process,
+# and runs render, view, estimate, study and hardcases as child processes
+# (src/lesson/lesson.h says why), so it needs no package of its own beyond
+# the plot module's. Each lesson's report text is lessons/NN-name/report.md
+# and report.fr.md.
 
 # This fragment is read before the Makefile's `all`: keep whatever default
 # goal was set so far, so that a rule below never becomes it.
