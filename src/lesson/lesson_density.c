@@ -7,6 +7,7 @@
 
 #include "lesson_steps.h"
 #include "sph_kernel.h"
+#include "study.h"
 
 /* ---- lesson 1: kernel estimation ------------------------------------------------- */
 
@@ -57,21 +58,38 @@ int lx_lesson1(lx *x)
         lx_missing(x, "`sphlab estimate` is not in this build: no estimate of a known function (1D and 2D)");
     } else {
         static const struct {
-            const char *name, *dim, *samples, *nq, *nf, *what;
+            const char *name;
+            int dim;
+            study_samples samples;
+            const char *nq, *nf; /* the --n lists of --quick and of a full export */
+            double q[3], full[3];
+            int nnq, nnf;
+            const char *what;
         } est[3] = {
-            {"estimate-1d", "1", "random", "100,1000", "100,1000,10000",
+            {"estimate-1d", 1, STUDY_SAMPLES_RANDOM, "100,1000", "100,1000,10000", {100, 1000}, {100, 1000, 10000}, 2,
+             3,
              "1D: error of the estimate of sin(2 pi x) from n random samples against h (log-log), with the "
              "predicted bias"},
-            {"estimate-2d", "2", "jitter", "50,100", "50,100,200",
+            {"estimate-2d", 2, STUDY_SAMPLES_JITTER, "50,100", "50,100,200", {50, 100}, {50, 100, 200}, 2, 3,
              "2D: the same from a lattice jittered by 0.3 spacing, n x n samples"},
-            {"estimate-2d-lattice", "2", "lattice", "50,100", "50,100,200",
+            {"estimate-2d-lattice", 2, STUDY_SAMPLES_LATTICE, "50,100", "50,100,200", {50, 100}, {50, 100, 200}, 2, 3,
              "2D: the same from a perfect lattice: no noise, only the bias"},
         };
         for (int e = 0; e < 3; e++) {
-            if (lx_sphlab(x, est[e].name, NULL, NULL, NULL, "estimate", "--dim", est[e].dim, "--samples",
-                          est[e].samples, "--n", x->quick ? est[e].nq : est[e].nf, "--out", x->dir, "--name",
-                          est[e].name, "--quiet", LX_END) != 0)
+            /* `sphlab estimate --dim D --samples S --n N --out DIR --name NAME --quiet`, in process */
+            const char *argv[] = {"sphlab", "estimate", "--dim", est[e].dim == 1 ? "1" : "2", "--samples",
+                                  study_samples_names[est[e].samples], "--n", x->quick ? est[e].nq : est[e].nf,
+                                  "--out", x->dir, "--name", est[e].name, NULL};
+            const char *log_path;
+            FILE *lf = lx_log_open(x, est[e].name, argv, &log_path);
+            if (lf) fclose(lf);
+            study_est_opts eo = {est[e].dim, STUDY_FN_SIN, SPH_KERNEL_POLY6, est[e].samples, 0.3, 1};
+            if (study_estimate_write(&eo, NULL, 0, x->quick ? est[e].q : est[e].full, x->quick ? est[e].nnq : est[e].nnf,
+                                     x->dir, est[e].name, true) != 0) {
+                x->failed++;
+                lx_md(x, "\n**`sphlab estimate` failed** for `%s`.\n\n", est[e].name);
                 continue;
+            }
             lx_fig(x, lx_fmt("%s.png", est[e].name), lx_fmt("%s (PDF and CSV beside it)", est[e].what));
             plot_table t;
             if (!lx_table(x, &t, lx_out(x, lx_fmt("%s.csv", est[e].name)))) continue;
@@ -79,10 +97,10 @@ int lx_lesson1(lx *x)
                          *nb = lx_col(x, &t, "neighbours"), *err = lx_col(x, &t, "error"),
                          *bias = lx_col(x, &t, "bias_predicted");
             if (n && h && hs && nb && err && bias) {
-                lx_md(x, "`sphlab estimate --dim %s --samples %s` (%s): for each sample count, the error at each h "
+                lx_md(x, "`sphlab estimate --dim %d --samples %s` (%s): for each sample count, the error at each h "
                          "and the best h.\n\n| n | h | h / spacing | neighbours | rms error | predicted bias |\n"
                          "|---|---|---|---|---|---|\n",
-                      est[e].dim, est[e].samples, est[e].name);
+                      est[e].dim, study_samples_names[est[e].samples], est[e].name);
                 for (size_t i = 0; i < t.nrows; i++) {
                     bool best = true;
                     for (size_t j = 0; j < t.nrows; j++)

@@ -1,8 +1,9 @@
 # src/lesson: `sphlab lesson`, the course in lessons/ (list, open in the
 # window, export figures and a report). Included by the Makefile
 # (-include src/*/module.mk). The export calls the core, the bench module
-# (src/bench/bench_cmd.h) and the plot module (src/plot/plot.h) in process,
-# and runs render, view, estimate, study and hardcases as child processes
+# (src/bench/bench_cmd.h), the plot module (src/plot/plot.h) and the study
+# module's estimate (src/study/study.h) in process, and runs render, view,
+# study and hardcases as child processes
 # (src/lesson/lesson.h says why), so it needs no package of its own beyond
 # the plot module's. Each lesson's report text is lessons/NN-name/report.md
 # and report.fr.md.
@@ -16,8 +17,8 @@ LESSON_CFLAGS := $(shell pkg-config --cflags plplot 2>/dev/null || echo -I/usr/i
 LESSON_STB    := $(shell pkg-config --cflags stb 2>/dev/null || echo -I/usr/include/stb)
 MOD_OBJ       += $(LESSON_SRC:%=$(BUILD)/lesson/%.o)
 
-$(BUILD)/lesson/%.o: src/lesson/%.c src/lesson/*.h src/plot/plot.h src/bench/*.h src/app/*.h src/core/*.h | $(BUILD)/lesson
-	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app -Isrc/plot -Isrc/bench $(LESSON_CFLAGS) -c -o $@ $<
+$(BUILD)/lesson/%.o: src/lesson/%.c src/lesson/*.h src/plot/plot.h src/bench/*.h src/study/*.h src/app/*.h src/core/*.h | $(BUILD)/lesson
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app -Isrc/plot -Isrc/bench -Isrc/study $(LESSON_CFLAGS) -c -o $@ $<
 
 $(BUILD)/lesson:
 	mkdir -p $@
