@@ -10,14 +10,13 @@
  * The export calls the library: simulations with sph_sim_* (lesson_run.c,
  * with the run command's own stats, dump and report functions), the bench
  * ladder through src/bench (bench_cmd.h), charts through src/plot (plot_run,
- * plot_chart), the kernel estimates through src/study (study_estimate_write),
- * and reads every number from their structs or the CSV files it wrote, never
- * from printed text. Four commands still run as child processes of this
- * binary: render and view (GL and SDL contexts, and the software-rendering
- * environment that makes frames byte-identical, are set up per process), and
- * study and hardcases, whose printed tables the report quotes verbatim
- * (nothing is parsed from them; the numbers come from the CSV files they
- * write).
+ * plot_chart), the kernel estimates and the studies through src/study
+ * (study_estimate_write, study_cmd_run), and reads every number from their
+ * structs or the CSV files it wrote, never from printed text. Three commands
+ * still run as child processes of this binary: render and view (GL and SDL
+ * contexts, and the software-rendering environment that makes frames
+ * byte-identical, are set up per process), and hardcases, whose printed
+ * verdict the report quotes verbatim (nothing is parsed from it).
  *
  * The report's text is a template per lesson and language in its folder
  * (report.md, report.fr.md) with {{placeholders}} (lesson_report.c).
@@ -136,7 +135,7 @@ const char *lx_fmt(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Runs this binary with the arguments (NULL-terminated) as a child process,
  * stdout and stderr into DIR/logs/NN-LOG.txt. Only for the commands that must
  * run in a process of their own or whose printed table the report quotes as
- * is (render, view, study, hardcases; see the top of this file):
+ * is (render, view, hardcases; see the top of this file):
  * nothing may be parsed from the log. cwd: where to run it (NULL: here); env: one
  * NAME=VALUE to set, or NULL. Returns the exit status (a failure is counted,
  * named in the report and on stderr). The log's path goes to *log_path. */

@@ -178,6 +178,8 @@ int lx_lesson1(lx *x)
     const double pics[2] = {1.5, 4};
     for (int k = 0; k < 2; k++) {
         const char *sub = lx_fmt("render-h%g", pics[k]);
+        /* frames come from `sphlab render` in a child process: its GL context and the
+         * software rendering that keeps frames byte-identical are set up per process */
         if (lx_sphlab(x, sub, NULL, NULL, NULL, "render", scene, "--out", lx_work(x, sub), "--steps", "1", "--every", "1",
                       "--threads", "1", "--quiet", "--set", lx_fmt("kernels.h=%g", pics[k] * s), "--color", "density",
                       "--range", "600:1400", "--overlay", "neighbours,hud,legend", "--select", "625", "--size",

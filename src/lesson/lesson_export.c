@@ -1,6 +1,6 @@
 /* The export framework of `sphlab lesson N --export DIR`: paths, the logs in
  * DIR/logs/, the few commands that run as child processes of this binary
- * (render, view, study, hardcases: lesson.h says why), the lesson's
+ * (render, view, hardcases: lesson.h says why), the lesson's
  * comparison charts through the plot module, its CSV files, and the list of
  * figures. Nothing is read back from a command's printed text. */
 #define _DEFAULT_SOURCE /* realpath */

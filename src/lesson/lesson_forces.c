@@ -285,6 +285,8 @@ int lx_lesson3(lx *x)
 
     /* 4. a picture */
     const char *psteps = x->quick ? "100" : "500";
+    /* frames come from `sphlab render` in a child process: its GL context and the
+     * software rendering that keeps frames byte-identical are set up per process */
     if (lx_sphlab(x, "render-pressure", NULL, NULL, NULL, "render", scene, "--out", lx_work(x, "render-pressure"),
                   "--steps", psteps, "--every", psteps, "--threads", "1", "--quiet", "--color", "pressure", "--overlay",
                   "forces,hud,legend", "--size", "1000x560", LX_END) == 0 &&

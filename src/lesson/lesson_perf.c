@@ -1,6 +1,6 @@
 /* Lessons 7 to 9: where the time of a full simulation goes, the
  * optimisation ladder (through the bench module), and what accuracy costs
- * (through `sphlab study`). */
+ * (through the study module, study_cmd_run). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +9,7 @@
 
 #include "bench_cmd.h"
 #include "lesson_steps.h"
+#include "study_cmd.h"
 
 /* ---- lesson 7: the full simulation --------------------------------------------------------- */
 
@@ -64,6 +65,8 @@ int lx_lesson7(lx *x)
 
     /* 2. the dam break over time */
     const char *every = x->quick ? "50" : "400";
+    /* frames come from `sphlab render` in a child process: its GL context and the
+     * software rendering that keeps frames byte-identical are set up per process */
     rc = x->quick ? lx_sphlab(x, "render-frames", NULL, NULL, NULL, "render", scene, "--out", lx_work(x, "frames"),
                               "--steps", "100", "--every", every, "--quiet", "--color", "speed", "--range", "0:4",
                               "--overlay", "hud,legend", "--size", "960x520", LX_END)
@@ -393,15 +396,44 @@ int lx_lesson9(lx *x)
             args[na++] = "--name";
             args[na++] = st[q].name;
             args[na] = NULL;
+            /* `sphlab study ...` in process: the same knobs, its table into the log and the report */
+            const char *argv[34] = {"sphlab"};
+            for (int i = 0; args[i] && i < 32; i++) argv[i + 1] = args[i];
             const char *log;
-            if (lx_sphlab_v(x, lx_fmt("study-%s", st[q].name), NULL, NULL, &log, args) != 0) continue;
+            FILE *lf = lx_log_open(x, lx_fmt("study-%s", st[q].name), argv, &log);
+            study_cmd sc = {.scene = {.path = scene}, .out = x->dir, .metric = "taylor-green", .base = st[q].name,
+                            .repeats = 3, .steps = -1, .threads = 1, .until = -1, .quiet = true};
+            char why[256] = "";
+            bool planned = true;
+            for (int i = 2; args[i] && args[i + 1]; i += 2) {
+                if (strcmp(args[i], "--vary") == 0) planned &= study_plan_add(&sc.plan, args[i + 1], why, sizeof why);
+                else if (strcmp(args[i], "--set") == 0) planned &= app_scene_add_set(&sc.scene, args[i + 1]);
+                else if (strcmp(args[i], "--repeats") == 0) sc.repeats = atol(args[i + 1]);
+            }
+            char *text = NULL;
+            size_t tlen = 0;
+            sc.table = open_memstream(&text, &tlen);
+            int src = planned && sc.table ? study_cmd_run(&sc) : 2;
+            if (sc.table) fclose(sc.table);
+            if (lf) {
+                fputs(text ? text : "", lf);
+                fclose(lf);
+            }
+            if (src != 0) {
+                x->failed++;
+                lx_md(x, "\n**`sphlab study` failed** (exit %d%s%s), see `logs/%s`.\n\n", src, why[0] ? ": " : "", why,
+                      strrchr(log, '/') + 1);
+                free(text);
+                continue;
+            }
             char key[64];
             snprintf(key, sizeof key, "args_%s", st[q].name);
             lx_block(x, key);
             for (int i = 2; args[i]; i++) lx_md(x, "%s%s", i > 2 ? " " : "", args[i] == x->dir ? "DIR" : args[i]);
             snprintf(key, sizeof key, "table_%s", st[q].name);
             lx_block(x, key);
-            lx_md_file(x, log, 40);
+            lx_md_text(x, text ? text : "", 40);
+            free(text);
             study_table(x, lx_out(x, lx_fmt("%s.csv", st[q].name)));
             lx_block_end(x);
             lx_fig(x, lx_fmt("%s.png", st[q].name), lx_fmt("%s (PDF and CSV beside it)", st[q].what));

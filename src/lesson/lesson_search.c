@@ -53,6 +53,8 @@ int lx_lesson5(lx *x)
     lx_val(x, "cells", "%d", cells);
     lx_val(x, "colliding_cells", "%d", coll);
     const char *sub = "render-hash";
+    /* frames come from `sphlab render` in a child process: its GL context and the
+     * software rendering that keeps frames byte-identical are set up per process */
     if (lx_sphlab(x, sub, NULL, NULL, NULL, "render", scene, "--out", lx_work(x, sub), "--steps", "1", "--every", "1",
                   "--threads", "1", "--quiet", "--color", "key", "--overlay",
                   "grid,keys,collisions,neighbours,index,hud,legend", "--select", "7", "--size", "1100x760",
@@ -119,6 +121,8 @@ int lx_lesson5(lx *x)
         lx_fig(x, "collisions.png", "the block with a table of 16 keys: cells that share a key are red");
 
     /* 4. the hard cases that check the hash */
+    /* a child process: the hard cases are the command's own end-to-end checks,
+     * and the report quotes their verdict as printed (nothing is parsed) */
     lx_block(x, "hardcases");
     const char *names[2] = {"table-size-1", "negative-borders"};
     for (int i = 0; i < 2; i++) {

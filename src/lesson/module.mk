@@ -2,8 +2,8 @@
 # window, export figures and a report). Included by the Makefile
 # (-include src/*/module.mk). The export calls the core, the bench module
 # (src/bench/bench_cmd.h), the plot module (src/plot/plot.h) and the study
-# module's estimate (src/study/study.h) in process, and runs render, view,
-# study and hardcases as child processes
+# module (src/study/study.h, study_cmd.h) in process, and runs render, view
+# and hardcases as child processes
 # (src/lesson/lesson.h says why), so it needs no package of its own beyond
 # the plot module's. Each lesson's report text is lessons/NN-name/report.md
 # and report.fr.md.
