@@ -152,8 +152,18 @@ static char *check_report(const char *dir, int num, const char *title)
         if (*p == '.' && p > text && isdigit((unsigned char)p[-1]) && isdigit((unsigned char)p[1])) numbers++;
     cr_expect(numbers >= 5, "report.md holds %d decimal numbers", numbers);
     cr_expect(strstr(text, "| ") != NULL, "report.md has no table");
-    cr_expect(!strstr(text, "A command failed") && !strstr(text, "command(s) or file(s) failed"),
+    cr_expect(!strstr(text, "A command failed") && !strstr(text, "A run failed") &&
+                  !strstr(text, "command(s) or file(s) failed"),
               "report.md says something failed");
+    /* every placeholder of the templates filled, in both languages */
+    cr_expect(!strstr(text, "{{") && !strstr(text, "not measured)"), "report.md has an unfilled placeholder");
+    snprintf(path, sizeof path, "%s/report.fr.md", dir);
+    char *fr = read_all(path);
+    cr_assert(fr, "report.fr.md is missing");
+    snprintf(want, sizeof want, "# Leçon %d : %s", num, title);
+    cr_expect(strstr(fr, want), "report.fr.md does not start with '%s'", want);
+    cr_expect(!strstr(fr, "{{") && !strstr(fr, "not measured)"), "report.fr.md has an unfilled placeholder");
+    free(fr);
     return text;
 }
 
@@ -165,6 +175,78 @@ static const char *export_lesson(int num)
     int rc = test_sphlab(args, out, sizeof out);
     cr_assert(rc == 0, "sphlab %s exited %d:\n%s", args, rc, out);
     return dir;
+}
+
+/* ---- the report templates ------------------------------------------------------------ */
+
+/* The placeholders of a template, "{{name}}" each, in order, into out (one per line). */
+static int placeholders(const char *text, char *list, size_t cap)
+{
+    int n = 0;
+    size_t len = 0;
+    list[0] = '\0';
+    for (const char *p = strstr(text, "{{"); p; p = strstr(p + 2, "{{")) {
+        const char *e = strstr(p, "}}");
+        cr_assert(e, "'{{' without '}}'");
+        len += (size_t)snprintf(list + len, cap - len, "%.*s\n", (int)(e + 2 - p), p);
+        cr_assert(len < cap);
+        n++;
+    }
+    return n;
+}
+
+/* Each lesson has an English and a French report template, and they ask for
+ * the same values in the same order: a value the export provides is then used
+ * by both (the export itself fails on a value a template leaves unused). */
+Test(lesson, templates_agree)
+{
+    static const char *const slugs[] = {"01-kernel-estimation", "02-density-summation", "03-pressure-gradient",
+                                        "04-viscosity",         "05-spatial-hash",      "06-sorting-offsets",
+                                        "07-full-simulation",   "08-optimisation-ladder", "09-accuracy"};
+    for (int i = 0; i < 9; i++) {
+        char path[256];
+        snprintf(path, sizeof path, "lessons/%s/report.md", slugs[i]);
+        char *en = read_all(path);
+        cr_assert(en, "%s is missing", path);
+        snprintf(path, sizeof path, "lessons/%s/report.fr.md", slugs[i]);
+        char *fr = read_all(path);
+        cr_assert(fr, "%s is missing", path);
+        static char pe[16384], pf[16384];
+        int ne = placeholders(en, pe, sizeof pe), nf = placeholders(fr, pf, sizeof pf);
+        cr_expect(ne > 10, "%s: only %d placeholders", slugs[i], ne);
+        cr_expect(ne == nf && strcmp(pe, pf) == 0, "%s: the English and French templates differ:\n%s\n---\n%s",
+                  slugs[i], pe, pf);
+        free(en);
+        free(fr);
+    }
+}
+
+/* A template that asks for a value the export does not make, or leaves one of
+ * its values unused, fails the export and names both. */
+Test(lesson, template_slip_fails_the_export)
+{
+    const char *root = temp_dir();
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "cp -r lessons/04-viscosity '%s/' && sed -i 's/{{lap_exact}}/{{no_such_value}}/' "
+                              "'%s/04-viscosity/report.md'",
+             root, root);
+    cr_assert(system(cmd) == 0, "%s", cmd);
+    char dir[128];
+    snprintf(dir, sizeof dir, "%s/out", root);
+    setenv("SPHLAB_LESSONS", root, 1);
+    char args[256];
+    snprintf(args, sizeof args, "lesson 4 --export %s --quick --quiet", dir);
+    int rc = test_sphlab(args, out, sizeof out);
+    unsetenv("SPHLAB_LESSONS");
+    cr_expect(rc == 1, "exit %d with a slip in the template:\n%s", rc, out);
+    cr_expect(strstr(out, "no value for {{no_such_value}}"), "the unknown placeholder is not named:\n%s", out);
+    cr_expect(strstr(out, "uses no {{lap_exact}}"), "the unused value is not named:\n%s", out);
+    char path[256];
+    snprintf(path, sizeof path, "%s/report.fr.md", dir);
+    char *fr = read_all(path);
+    cr_expect(fr && !strstr(fr, "{{"), "the French report (its template is intact) is not filled");
+    free(fr);
+    remove_dir(root);
 }
 
 /* ---- the command ------------------------------------------------------------------ */

@@ -46,5 +46,15 @@ void app_out_abort(app_out *o);  /* closes and removes the temporary */
 
 
 void app_print_pipeline(FILE *f, const sph_sim *sim);
+/* What `sphlab check` prints about a scene: its size, effects and pipeline. */
+void app_check_report(FILE *f, const char *path, const sph_sim *sim);
+
+/* What `sphlab run` writes (cmd_run.c), for the commands that run a
+ * simulation themselves (the lessons): the --stats header and one row per
+ * step, the --dump of the particles in id order, and its tables. */
+void app_stats_header(FILE *f, const sph_sim *sim);
+void app_stats_row(FILE *f, const sph_sim *sim, double dt);
+void app_dump_write(FILE *f, const sph_sim *sim);
+void app_run_report(FILE *out, const sph_sim *sim, double wall_ms);
 
 #endif

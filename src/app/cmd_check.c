@@ -21,6 +21,20 @@ void app_print_pipeline(FILE *f, const sph_sim *sim)
     }
 }
 
+void app_check_report(FILE *f, const char *path, const sph_sim *sim)
+{
+    const sph_scene_def *def = &sim->def;
+    fprintf(f, "scene %s: %s, %dD, %u particles in %d block%s, h = %g m\n", path, *def->name ? def->name : "(unnamed)",
+            def->dim, sim->n, def->n_blocks, def->n_blocks == 1 ? "" : "s", def->h);
+    fprintf(f, "effects:");
+    if (!def->effects) fprintf(f, " none");
+    for (int e = 0; e < SPH_EFFECT_COUNT; e++)
+        if (def->effects & (1u << e)) fprintf(f, " %s", sph_effect_names[e]);
+    fprintf(f, "\n");
+    app_print_pipeline(f, sim);
+    fprintf(f, "ok\n");
+}
+
 static const app_cmd_spec spec = {
     .name = "check",
     .cmd = APP_CMD(check),
@@ -52,15 +66,7 @@ int cmd_check(int argc, char **argv)
         fprintf(stderr, "sphlab: %s\n", err.msg);
         return 1;
     }
-    printf("scene %s: %s, %dD, %u particles in %d block%s, h = %g m\n", o.path, *def.name ? def.name : "(unnamed)",
-           def.dim, sim->n, def.n_blocks, def.n_blocks == 1 ? "" : "s", def.h);
-    printf("effects:");
-    if (!def.effects) printf(" none");
-    for (int e = 0; e < SPH_EFFECT_COUNT; e++)
-        if (def.effects & (1u << e)) printf(" %s", sph_effect_names[e]);
-    printf("\n");
-    app_print_pipeline(stdout, sim);
-    printf("ok\n");
+    app_check_report(stdout, o.path, sim);
     sph_sim_destroy(sim);
     return 0;
 }

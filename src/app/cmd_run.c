@@ -17,7 +17,7 @@ static const app_cmd_spec spec = {
     .extra_pos = "more than one scene file",
 };
 
-static void write_stats_header(FILE *f, const sph_sim *sim)
+void app_stats_header(FILE *f, const sph_sim *sim)
 {
     fprintf(f, "step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed");
     for (int p = 0; p < SPH_PASS_COUNT; p++)
@@ -25,7 +25,7 @@ static void write_stats_header(FILE *f, const sph_sim *sim)
     fprintf(f, "\n");
 }
 
-static void write_stats_row(FILE *f, const sph_sim *sim, double dt)
+void app_stats_row(FILE *f, const sph_sim *sim, double dt)
 {
     sph_stats s;
     sph_sim_stats(sim, &s);
@@ -37,7 +37,7 @@ static void write_stats_row(FILE *f, const sph_sim *sim, double dt)
 }
 
 
-static void write_dump(FILE *f, const sph_sim *sim)
+void app_dump_write(FILE *f, const sph_sim *sim)
 {
     const sph_particles *P = &sim->P;
     sph_sim_sync(sim, SPH_SYNC_ALL);
@@ -62,36 +62,36 @@ static void write_dump(FILE *f, const sph_sim *sim)
     free(order);
 }
 
-static void print_report(const sph_sim *sim, double wall_ms)
+void app_run_report(FILE *out, const sph_sim *sim, double wall_ms)
 {
     double total = 0;
     for (int p = 0; p < SPH_PASS_COUNT; p++) total += sim->timing[p].total_ms;
     double steps = sim->step ? (double)sim->step : 1;
-    printf("%-16s %8s %12s %10s %7s\n", "pass", "calls", "total ms", "ms/step", "share");
+    fprintf(out, "%-16s %8s %12s %10s %7s\n", "pass", "calls", "total ms", "ms/step", "share");
     for (int p = 0; p < SPH_PASS_COUNT; p++) {
         if (!sim->in_pipeline[p]) continue;
         const sph_pass_timing *t = &sim->timing[p];
-        printf("%-16s %8llu %12.2f %10.4f %6.1f%%\n", sph_passes[p]->name, (unsigned long long)t->calls, t->total_ms,
+        fprintf(out, "%-16s %8llu %12.2f %10.4f %6.1f%%\n", sph_passes[p]->name, (unsigned long long)t->calls, t->total_ms,
                t->total_ms / steps, total > 0 ? 100.0 * t->total_ms / total : 0.0);
     }
-    printf("%-16s %8s %12.2f %10.4f %6.1f%%\n", "all passes", "", total, total / steps, 100.0);
+    fprintf(out, "%-16s %8s %12.2f %10.4f %6.1f%%\n", "all passes", "", total, total / steps, 100.0);
     sph_stats s;
     sph_sim_stats(sim, &s);
     const char *e_unit = sim->dim == 2 ? "J/m" : "J";
     const char *r_unit = sim->dim == 2 ? "kg/m^2" : "kg/m^3";
     if (sim->backend)
-        printf("\nparticles       %u (%dD), backend %s: %s\n", s.n, sim->dim, sim->backend->name, sim->backend->device);
+        fprintf(out, "\nparticles       %u (%dD), backend %s: %s\n", s.n, sim->dim, sim->backend->name, sim->backend->device);
     else
-        printf("\nparticles       %u (%dD), %d thread%s\n", s.n, sim->dim, sim->threads, sim->threads == 1 ? "" : "s");
-    printf("steps           %llu\n", (unsigned long long)sim->step);
-    printf("simulated time  %.6g s (last dt %.3g s)\n", sim->t, sim->dt);
-    printf("kinetic energy  %.6g %s\n", s.ekin, e_unit);
+        fprintf(out, "\nparticles       %u (%dD), %d thread%s\n", s.n, sim->dim, sim->threads, sim->threads == 1 ? "" : "s");
+    fprintf(out, "steps           %llu\n", (unsigned long long)sim->step);
+    fprintf(out, "simulated time  %.6g s (last dt %.3g s)\n", sim->t, sim->dt);
+    fprintf(out, "kinetic energy  %.6g %s\n", s.ekin, e_unit);
     if (sim->P.rho)
-        printf("density         min %.6g  mean %.6g  max %.6g %s\n", s.rho_min, s.rho_mean, s.rho_max, r_unit);
+        fprintf(out, "density         min %.6g  mean %.6g  max %.6g %s\n", s.rho_min, s.rho_mean, s.rho_max, r_unit);
     else
-        printf("density         not computed (no effect needs it)\n");
-    printf("max speed       %.6g m/s\n", s.max_speed);
-    printf("wall time       %.3f s: %.1f steps/s, %.3g particle-steps/s\n", wall_ms / 1e3,
+        fprintf(out, "density         not computed (no effect needs it)\n");
+    fprintf(out, "max speed       %.6g m/s\n", s.max_speed);
+    fprintf(out, "wall time       %.3f s: %.1f steps/s, %.3g particle-steps/s\n", wall_ms / 1e3,
            sim->step / (wall_ms / 1e3), (double)s.n * sim->step / (wall_ms / 1e3));
 }
 
@@ -149,7 +149,7 @@ int cmd_run(int argc, char **argv)
         app_out_abort(&dump);
         return 1;
     }
-    if (stats.f) write_stats_header(stats.f, sim);
+    if (stats.f) app_stats_header(stats.f, sim);
     bool progress = !quiet && isatty(STDERR_FILENO);
     /* off a terminal (a log, a batch job) a line now and then, not a redrawn one */
     bool log_progress = !quiet && !progress;
@@ -175,7 +175,7 @@ int cmd_run(int argc, char **argv)
         if (until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps) break;
         sph_sim_step(sim);
         if (sim->alarm.raised) break;
-        if (stats.f) write_stats_row(stats.f, sim, sim->dt);
+        if (stats.f) app_stats_row(stats.f, sim, sim->dt);
         double now = sph_now_ms();
         if ((progress && now - last_shown > 200) || (log_progress && now - last_shown > log_ms)) {
             last_shown = now;
@@ -196,10 +196,10 @@ int cmd_run(int argc, char **argv)
         sph_sim_alarm_report(sim, report, sizeof report);
         fprintf(stderr, "sphlab: %s", report);
     }
-    if (dump.f) write_dump(dump.f, sim);
+    if (dump.f) app_dump_write(dump.f, sim);
     bool stats_ok = app_out_commit(&stats), dump_ok = app_out_commit(&dump); /* both, even if one fails */
     bool ok = stats_ok && dump_ok && vtk_ok;
-    if (!quiet) print_report(sim, wall);
+    if (!quiet) app_run_report(stdout, sim, wall);
     int code = !ok ? 1 : sim->alarm.raised ? 4 : 0;
     sph_sim_destroy(sim);
     return code;

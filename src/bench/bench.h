@@ -9,7 +9,10 @@
  *                    (neighbour sets and state against a reference level)
  *   bench_machine.c  the machine's limits: streaming bandwidth, FMA throughput
  *   bench_chart.c    the charts (PLplot: log axes, stacked bars), PNG + PDF
- *   cmd_bench.c      the subcommands: ladder, scaling, machine, levels */
+ *   cmd_bench.c      the command line, machine, levels (bench_cmd.h: the
+ *                    command's parts, shared with the lessons)
+ *   bench_ladder.c   the ladder's measurements, bench_report.c its table,
+ *                    CSV, JSON and chart; bench_scaling.c time against N */
 #ifndef SPH_BENCH_H
 #define SPH_BENCH_H
 

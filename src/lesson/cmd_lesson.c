@@ -11,17 +11,8 @@
 
 #include "app.h"
 #include "commands.h"
-#include "lesson.h"
+#include "lesson_steps.h"
 
-int lx_lesson1(lx *x);
-int lx_lesson2(lx *x);
-int lx_lesson3(lx *x);
-int lx_lesson4(lx *x);
-int lx_lesson5(lx *x);
-int lx_lesson6(lx *x);
-int lx_lesson7(lx *x);
-int lx_lesson8(lx *x);
-int lx_lesson9(lx *x);
 
 /* The window's options: the starting state (paused at step 0: space runs,
  * `.` steps one pass) and the overlays the lesson is about. */
@@ -251,10 +242,12 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
     if (!plot_out_dir(logs) || !plot_out_dir(x.scratch)) return 1;
     /* a report from an earlier export must not survive a failed one */
     char report[1200];
+    snprintf(report, sizeof report, "%s/report.fr.md", x.dir);
+    unlink(report);
     snprintf(report, sizeof report, "%s/report.md", x.dir);
     unlink(report);
 
-    x.mdf = open_memstream(&x.md, &x.md_len);
+    x.sink = x.mdf = open_memstream(&x.md, &x.md_len);
     if (!x.mdf) {
         fprintf(stderr, "sphlab lesson: out of memory\n");
         return 1;
@@ -265,37 +258,53 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
     int rc = L->export_fn(&x);
     double secs = (sph_now_ms() - t0) / 1e3;
     loadavg(load1, sizeof load1);
-    fclose(x.mdf);
+    lx_block_end(&x);
+    fclose(x.sink);
+    x.sink = x.mdf = NULL;
     if (rc != 0 && !x.failed) x.failed = 1;
 
-    app_out out;
-    if (!app_out_open(&out, report)) {
-        free(x.md);
-        remove_tree(x.scratch, 0);
-        return 1;
-    }
-    FILE *f = out.f;
-    fprintf(f, "# Lesson %d: %s\n\n", L->num, L->title);
-    fprintf(f, "Level: %s. About: %s.\n\n", L->level, L->about);
-    fprintf(f, "Text: `lessons/%s/README.md` (English), `README.fr.md` (French). Scene: `lessons/%s/lesson.ini`.\n\n",
-            L->slug, L->slug);
-    fprintf(f, "Exported by `sphlab lesson %d --export DIR%s` in %.1f s on %ld cores (load average %s before, "
-               "%s after). Every command it ran, with its output, is in `logs/`.%s\n\n",
-            L->num, quick ? " --quick" : "", secs, sysconf(_SC_NPROCESSORS_ONLN), load0, load1,
-            quick ? " With --quick, runs are shorter and fewer: the numbers below are those of the short runs; "
-                    "export without --quick for the ones the lesson's text quotes."
-                  : "");
-    fwrite(x.md, 1, x.md_len, f);
-    fprintf(f, "\n## Figures\n\n");
-    for (int i = 0; i < x.nfig; i++) fprintf(f, "- %s\n", x.figs[i]);
-    if (x.nmissing) {
-        fprintf(f, "\n## Missing\n\n");
-        for (int i = 0; i < x.nmissing; i++) fprintf(f, "- %s\n", x.missing[i]);
-    }
-    if (x.failed) fprintf(f, "\n**%d command(s) or file(s) failed: the figures above are incomplete.**\n", x.failed);
+    /* the values every lesson's template has */
+    lx_val(&x, "num", "%d", L->num);
+    lx_val(&x, "title", "%s", L->title);
+    lx_val(&x, "level", "%s", L->level);
+    lx_val(&x, "about", "%s", L->about);
+    lx_val(&x, "slug", "%s", L->slug);
+    lx_val(&x, "seconds", "%.1f", secs);
+    lx_val(&x, "cores", "%ld", sysconf(_SC_NPROCESSORS_ONLN));
+    lx_val(&x, "load_before", "%s", load0);
+    lx_val(&x, "load_after", "%s", load1);
+    lx_val(&x, "quick", "%s", quick ? " --quick" : "");
+    lx_val(&x, "notes", "%.*s", (int)x.md_len, x.md ? x.md : "");
     free(x.md);
     x.md = NULL;
-    bool ok = app_out_commit(&out);
+    lx_block(&x, "figures");
+    for (int i = 0; i < x.nfig; i++) lx_md(&x, "- %s\n", x.figs[i]);
+    lx_block(&x, "missing");
+    for (int i = 0; i < x.nmissing; i++) lx_md(&x, "- %s\n", x.missing[i]);
+    lx_block_end(&x);
+    lx_val(&x, "failed", "%s", x.failed ? lx_fmt("%d", x.failed) : "");
+
+    /* the report in each language the lesson's folder has a template for */
+    static const char *const langs[2][2] = {{"report.md", "report.md"}, {"report.fr.md", "report.fr.md"}};
+    bool ok = true;
+    int made = 0;
+    for (int k = 0; k < 2 && ok; k++) {
+        char tmpl[1100], path[1200];
+        snprintf(tmpl, sizeof tmpl, "%s/%s", folder, langs[k][0]);
+        snprintf(path, sizeof path, "%s/%s", x.dir, langs[k][1]);
+        if (k > 0 && access(tmpl, R_OK) != 0) continue; /* English is required, French optional */
+        app_out out;
+        if (!app_out_open(&out, path)) {
+            ok = false;
+            break;
+        }
+        lx_values_reset_use(&x);
+        if (!lx_report_write(&x, tmpl, out.f)) x.failed++;
+        if (lx_values_unused(&x, tmpl)) x.failed++;
+        ok = app_out_commit(&out);
+        made++;
+    }
+    lx_values_free(&x);
     remove_tree(x.scratch, 0);
     if (!ok) return 1;
     if (x.failed) {
@@ -303,7 +312,8 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
                 report, x.dir);
         return 1;
     }
-    printf("lesson %d (%s): %d files and %s in %s (%.1f s)\n", L->num, L->title, x.nfig, "report.md", dir, secs);
+    printf("lesson %d (%s): %d files and %s in %s (%.1f s)\n", L->num, L->title, x.nfig,
+           made > 1 ? "report.md, report.fr.md" : "report.md", dir, secs);
     for (int i = 0; i < x.nmissing; i++) printf("missing: %s\n", x.missing[i]);
     return 0;
 }

@@ -1,7 +1,8 @@
-/* The export framework of `sphlab lesson N --export DIR`: runs this binary's
- * own commands as subprocesses (their output kept in DIR/logs/), parses what
- * they print and write, draws the lesson's comparison charts with the plot
- * module, and collects the report's text and list of figures. */
+/* The export framework of `sphlab lesson N --export DIR`: paths, the logs in
+ * DIR/logs/, the few commands that run as child processes of this binary
+ * (render, view, hardcases: lesson.h says why), the lesson's
+ * comparison charts through the plot module, its CSV files, and the list of
+ * figures. Nothing is read back from a command's printed text. */
 #define _DEFAULT_SOURCE /* realpath */
 #include <dirent.h>
 #include <errno.h>
@@ -108,13 +109,11 @@ char *lx_read_file(const char *path)
     return buf;
 }
 
-void lx_md_file(lx *x, const char *path, int max_lines)
+void lx_md_text(lx *x, const char *text, int max_lines)
 {
-    char *text = lx_read_file(path);
-    if (!text) return;
     lx_md(x, "```\n");
     int lines = 0;
-    for (char *line = text, *next; *line && lines < max_lines; line = next, lines++) {
+    for (const char *line = text, *next; *line && lines < max_lines; line = next, lines++) {
         next = strchr(line, '\n');
         next = next ? next + 1 : line + strlen(line);
         if (strncmp(line, "wrote ", 6) == 0) { /* the commands' lists of files: the report has its own */
@@ -125,12 +124,19 @@ void lx_md_file(lx *x, const char *path, int max_lines)
         if (next[-1] != '\n') lx_md(x, "\n");
     }
     lx_md(x, "```\n\n");
+}
+
+void lx_md_file(lx *x, const char *path, int max_lines)
+{
+    char *text = lx_read_file(path);
+    if (!text) return;
+    lx_md_text(x, text, max_lines);
     free(text);
 }
 
 /* ---- subprocesses --------------------------------------------------------- */
 
-static void print_args(FILE *f, const char *const *argv)
+void lx_print_args(FILE *f, const char *const *argv)
 {
     for (int i = 0; argv[i]; i++) {
         const char *a = argv[i];
@@ -187,6 +193,35 @@ static int spawn(lx *x, const char *log, const char *cwd, const char *env, const
     return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
 }
 
+/* DIR/logs/NN-LOG.txt (rotating static buffers); says the command on stderr. */
+static const char *log_name(lx *x, const char *log, const char *env, const char *const *argv)
+{
+    static char path[8][1200];
+    static int slot;
+    char *lp = path[slot++ % 8];
+    snprintf(lp, sizeof path[0], "%s/logs/%02d-%s.txt", x->dir, ++x->nlog, log);
+    if (!x->quiet) {
+        fprintf(stderr, "lesson %d: ", x->L->num);
+        if (env) fprintf(stderr, "%s ", env);
+        lx_print_args(stderr, argv);
+        fputc('\n', stderr);
+    }
+    return lp;
+}
+
+FILE *lx_log_open(lx *x, const char *log, const char *const *argv, const char **log_path)
+{
+    const char *lp = log_name(x, log, NULL, argv);
+    *log_path = lp;
+    FILE *f = fopen(lp, "w");
+    if (f) {
+        fputs("$ ", f);
+        lx_print_args(f, argv);
+        fputs("\n", f);
+    }
+    return f;
+}
+
 int lx_sphlab(lx *x, const char *log, const char *cwd, const char *env, const char **log_path, ...)
 {
     const char *args[LX_MAX_ARGS + 1];
@@ -208,23 +243,14 @@ int lx_sphlab_v(lx *x, const char *log, const char *cwd, const char *env, const 
     for (int i = 0; args[i] && argc < LX_MAX_ARGS + 1; i++) argv[argc++] = args[i];
     argv[argc] = NULL;
 
-    static char path[8][1200];
-    static int slot;
-    char *lp = path[slot++ % 8];
-    snprintf(lp, sizeof path[0], "%s/logs/%02d-%s.txt", x->dir, ++x->nlog, log);
+    const char *lp = log_name(x, log, env, argv);
     if (log_path) *log_path = lp;
-    if (!x->quiet) {
-        fprintf(stderr, "lesson %d: ", x->L->num);
-        if (env) fprintf(stderr, "%s ", env);
-        print_args(stderr, argv);
-        fputc('\n', stderr);
-    }
     int rc = spawn(x, lp, cwd, env, argv);
     if (rc != 0) {
         x->failed++;
         fprintf(stderr, "sphlab lesson %d: this command failed (exit %d); its output is in %s:\n  ", x->L->num, rc,
                 lp);
-        print_args(stderr, argv);
+        lx_print_args(stderr, argv);
         fputc('\n', stderr);
         char *text = lx_read_file(lp);
         if (text) {
@@ -238,7 +264,7 @@ int lx_sphlab_v(lx *x, const char *log, const char *cwd, const char *env, const 
         size_t len = 0;
         FILE *m = open_memstream(&buf, &len);
         if (m) {
-            print_args(m, argv);
+            lx_print_args(m, argv);
             fclose(m);
             lx_md(x, "%s\n```\n\n", buf);
             free(buf);
@@ -247,67 +273,7 @@ int lx_sphlab_v(lx *x, const char *log, const char *cwd, const char *env, const 
     return rc;
 }
 
-/* ---- parsing -------------------------------------------------------------- */
-
-bool lx_parse_run(const char *log_path, lx_run *r)
-{
-    memset(r, 0, sizeof *r);
-    r->total_ms_step = -1;
-    char *text = lx_read_file(log_path);
-    if (!text) return false;
-    bool table = false;
-    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
-        char name[64];
-        long calls;
-        double total, per, share;
-        if (strncmp(line, "pass ", 5) == 0 && strstr(line, "ms/step")) {
-            table = true;
-            continue;
-        }
-        if (table && strncmp(line, "all passes", 10) == 0) {
-            sscanf(line + 10, "%lf %lf", &total, &r->total_ms_step);
-            table = false;
-            continue;
-        }
-        if (table && sscanf(line, "%63s %ld %lf %lf %lf%%", name, &calls, &total, &per, &share) == 5 &&
-            r->npass < 16) {
-            snprintf(r->pass[r->npass], sizeof r->pass[0], "%.23s", name);
-            r->ms_step[r->npass] = per;
-            r->share[r->npass++] = share;
-            continue;
-        }
-        if (sscanf(line, "particles %ld (%*[^)]), %d thread", &r->particles, &r->threads) >= 1) continue;
-        if (sscanf(line, "steps %ld", &r->steps) == 1) continue;
-        if (sscanf(line, "simulated time %lf", &r->t_sim) == 1) continue;
-        if (sscanf(line, "kinetic energy %lf", &r->ekin) == 1) continue;
-        if (sscanf(line, "density min %lf mean %lf max %lf", &r->rho_min, &r->rho_mean, &r->rho_max) == 3) continue;
-        if (sscanf(line, "wall time %lf s: %lf steps/s", &r->wall_s, &r->steps_per_s) >= 1) continue;
-    }
-    free(text);
-    return r->total_ms_step >= 0 && r->steps > 0;
-}
-
-double lx_run_pass(const lx_run *r, const char *pass)
-{
-    for (int i = 0; i < r->npass; i++)
-        if (strcmp(r->pass[i], pass) == 0) return r->ms_step[i];
-    return -1;
-}
-
-int lx_parse_pipeline(const char *log_path, char names[][24], int cap)
-{
-    char *text = lx_read_file(log_path);
-    if (!text) return 0;
-    int n = 0;
-    for (char *line = strtok(text, "\n"); line && n < cap; line = strtok(NULL, "\n")) {
-        int k;
-        char name[64];
-        if (strncmp(line, "left out", 8) == 0) break;
-        if (sscanf(line, " %d. %63s", &k, name) == 2) snprintf(names[n++], 24, "%.23s", name);
-    }
-    free(text);
-    return n;
-}
+/* ---- tables --------------------------------------------------------------- */
 
 bool lx_table(lx *x, plot_table *t, const char *path)
 {

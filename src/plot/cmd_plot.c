@@ -28,12 +28,6 @@ static const app_cmd_spec spec = {
     .max_pos = 2,
 };
 
-typedef struct plot_opts {
-    const char *what, *input, *out, *name, *ycols, *xcol;
-    int width, height, dim, bins;
-    double h;
-    bool quiet;
-} plot_opts;
 
 static int parse_args(int argc, char **argv, plot_opts *o)
 {
@@ -539,6 +533,12 @@ int cmd_plot(int argc, char **argv)
     plot_opts o = {0};
     int rc = parse_args(argc, argv, &o);
     if (rc >= 0) return rc;
+    return plot_run(&o);
+}
+
+int plot_run(const plot_opts *opts)
+{
+    const plot_opts o = *opts;
     if (!o.what) {
         app_opts_usage(&spec, stderr);
         return 2;

@@ -182,4 +182,18 @@ typedef struct plot_key {
  * keys, then lines of notes. */
 void plot_legend(const plot_key *k, int n, const char *const *notes, int nn, double x0, double x1, double top);
 
+/* ---- the charts of `sphlab plot` (cmd_plot.c) ------------------------------- */
+
+/* What `sphlab plot WHAT ...` draws: what is passes, series, kernel or kernels;
+ * input the stats CSV (passes, series) or the kernel's name (kernel); 0 or
+ * NULL fields take the command's defaults. */
+typedef struct plot_opts {
+    const char *what, *input, *out, *name, *ycols, *xcol;
+    int width, height, dim, bins; /* [px], [px], 2 or 3, histogram bins */
+    double h;                     /* [m] smoothing length of the kernel charts */
+    bool quiet;
+} plot_opts;
+/* Draws and writes the chart(s) into o->out; the command's exit status. */
+int plot_run(const plot_opts *o);
+
 #endif

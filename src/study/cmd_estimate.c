@@ -94,9 +94,24 @@ int cmd_estimate(int argc, char **argv)
     if (opt.jitter >= 0) eo.jitter = opt.jitter;
     if (opt.seed >= 0) eo.seed = (uint64_t)opt.seed;
     double hv[MAX_LIST], nv[MAX_LIST];
-    int nh, nn;
-    if (hs)
-        nh = parse_list("--h", hs, 1e-6, STUDY_EST_H_MAX, false, hv);
+    int nh = 0, nn = 0;
+    if (hs) nh = parse_list("--h", hs, 1e-6, STUDY_EST_H_MAX, false, hv);
+    if (ns) nn = parse_list("--n", ns, 2, eo.dim == 1 ? 1e7 : 4000, true, nv);
+    if (nh < 0 || nn < 0) return 2;
+    return study_estimate_write(&eo, hs ? hv : NULL, nh, ns ? nv : NULL, nn, out, base, quiet);
+}
+
+int study_estimate_write(const study_est_opts *opts, const double *h_list, int nh, const double *n_list, int nn,
+                         const char *out, const char *base, bool quiet)
+{
+    const study_est_opts eo = *opts;
+    double hv[MAX_LIST], nv[MAX_LIST];
+    if (nh > MAX_LIST || nn > MAX_LIST) {
+        fprintf(stderr, "sphlab estimate: at most %d values of h and of n\n", MAX_LIST);
+        return 2;
+    }
+    if (h_list)
+        memcpy(hv, h_list, (size_t)nh * sizeof *hv);
     else if (eo.dim == 1) {
         const double d1[] = {0.005, 0.01, 0.02, 0.04, 0.08, 0.125};
         nh = 6;
@@ -106,8 +121,8 @@ int cmd_estimate(int argc, char **argv)
         nh = 5;
         memcpy(hv, d2, sizeof d2);
     }
-    if (ns)
-        nn = parse_list("--n", ns, 2, eo.dim == 1 ? 1e7 : 4000, true, nv);
+    if (n_list)
+        memcpy(nv, n_list, (size_t)nn * sizeof *nv);
     else if (eo.dim == 1) {
         const double d1[] = {100, 1000, 10000};
         nn = 3;
@@ -117,7 +132,6 @@ int cmd_estimate(int argc, char **argv)
         nn = 3;
         memcpy(nv, d2, sizeof d2);
     }
-    if (nh < 0 || nn < 0) return 2;
     if (out && !plot_out_dir(out)) return 1;
 
     static double err[MAX_LIST][MAX_LIST], bias[MAX_LIST];

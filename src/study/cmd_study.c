@@ -12,7 +12,7 @@
 
 #include "app.h"
 #include "plot.h"
-#include "study.h"
+#include "study_cmd.h"
 #include "study_plot.h"
 
 static const app_cmd_spec spec = {
@@ -80,27 +80,27 @@ static const char *error_label(study_metric m)
     }
 }
 
-static void print_table(const study_plan *p, const study_row *rows, int n)
+static void print_table(FILE *f, const study_plan *p, const study_row *rows, int n)
 {
     int w[STUDY_MAX_KNOBS];
-    printf("%4s", "#");
+    fprintf(f, "%4s", "#");
     for (int k = 0; k < p->n_knobs; k++) {
         w[k] = (int)strlen(p->knob[k].key);
         for (int v = 0; v < p->knob[k].n; v++)
             if ((int)strlen(p->knob[k].value[v]) > w[k]) w[k] = (int)strlen(p->knob[k].value[v]);
-        printf("  %-*s", w[k], p->knob[k].key);
+        fprintf(f, "  %-*s", w[k], p->knob[k].key);
     }
-    printf("  %9s %8s %11s %10s %9s  %s\n", "particles", "steps", "error", "ms/step", "run s", "front");
+    fprintf(f, "  %9s %8s %11s %10s %9s  %s\n", "particles", "steps", "error", "ms/step", "run s", "front");
     for (int i = 0; i < n; i++) {
         const study_row *r = &rows[i];
-        printf("%4d", i + 1);
-        for (int k = 0; k < p->n_knobs; k++) printf("  %-*s", w[k], p->knob[k].value[r->idx[k]]);
+        fprintf(f, "%4d", i + 1);
+        for (int k = 0; k < p->n_knobs; k++) fprintf(f, "  %-*s", w[k], p->knob[k].value[r->idx[k]]);
         char err[32];
         if (r->r.stopped)
             snprintf(err, sizeof err, "stopped");
         else
             snprintf(err, sizeof err, "%.4g", r->r.error);
-        printf("  %9u %8llu %11s %10.4g %9.4g  %s\n", r->r.particles, (unsigned long long)r->r.steps, err,
+        fprintf(f, "  %9u %8llu %11s %10.4g %9.4g  %s\n", r->r.particles, (unsigned long long)r->r.steps, err,
                r->ms_per_step, r->total_s, r->front ? "*" : "");
     }
 }
@@ -130,6 +130,21 @@ int cmd_study(int argc, char **argv)
     }
     app_scene_opts o;
     if (!app_scene_from_opts(&o, &opt)) return 2;
+    study_cmd c = {o, plan, out, metric_name, base, repeats, steps, threads, until, quiet, quiet ? NULL : stdout};
+    return study_cmd_run(&c);
+}
+
+int study_cmd_run(const study_cmd *cmd)
+{
+    const app_scene_opts o = cmd->scene;
+    const study_plan plan = cmd->plan;
+    const char *out = cmd->out, *metric_name = cmd->metric, *base = cmd->base;
+    const long repeats = cmd->repeats, threads = cmd->threads;
+    long steps = cmd->steps;
+    double until = cmd->until;
+    const bool quiet = cmd->quiet;
+    FILE *table = cmd->table;
+    char why[1024];
     if (!o.path) {
         fprintf(stderr, "sphlab study: no scene file\n");
         app_opts_usage(&spec, stderr);
@@ -339,12 +354,14 @@ int cmd_study(int argc, char **argv)
         code = 1;
         goto out;
     }
-    if (!quiet) {
-        printf("study of %s: %ld combination%s x %ld run%s, metric %s:\n  %s\n", o.path, combos, combos == 1 ? "" : "s",
-               repeats, repeats == 1 ? "" : "s", study_metric_names[metric], study_metric_about[metric]);
-        print_table(&plan, rows, (int)combos);
-        printf("front: the %d run%s no other run beats in both error and time (*)\n", nf, nf == 1 ? "" : "s");
-        if (stopped) printf("%d combination%s stopped by the watchdog (error nan)\n", stopped, stopped == 1 ? "" : "s");
+    if (table) {
+        fprintf(table, "study of %s: %ld combination%s x %ld run%s, metric %s:\n  %s\n", o.path, combos,
+                combos == 1 ? "" : "s", repeats, repeats == 1 ? "" : "s", study_metric_names[metric],
+                study_metric_about[metric]);
+        print_table(table, &plan, rows, (int)combos);
+        fprintf(table, "front: the %d run%s no other run beats in both error and time (*)\n", nf, nf == 1 ? "" : "s");
+        if (stopped)
+            fprintf(table, "%d combination%s stopped by the watchdog (error nan)\n", stopped, stopped == 1 ? "" : "s");
     }
 out:
     free(tx);

@@ -130,6 +130,12 @@ typedef struct study_est_result {
  * computes it, m_j = 1 / n^dim. The evaluation points are a fixed grid over
  * the centre [0.25, 0.75]^dim (201 points in 1D, 41 x 41 in 2D). */
 bool study_estimate(const study_est_opts *o, double h, int n, study_est_result *r, char *why, size_t wn);
+/* What `sphlab estimate` does after its options: the error for every n and h
+ * (h_list / n_list NULL: the command's defaults; at most 16 of each), its
+ * table on stdout unless quiet, and with out DIR/BASE.csv and the log-log
+ * chart. Returns the command's exit status. */
+int study_estimate_write(const study_est_opts *o, const double *h_list, int nh, const double *n_list, int nn,
+                         const char *out, const char *base, bool quiet);
 
 /* The 1D kernels: the core's shapes with 1D normalisation (the integral over
  * the line is 1): poly6 35/(32 h^7), spiky 2/h^4, cubic 4/(3h), Wendland

@@ -1,0 +1,414 @@
+/* sphlab bench ladder, the report: the table on stdout, and the CSV, the
+ * JSON and the chart in DIR, from what bench_ladder.c measured. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_cmd.h"
+#include "plot.h"
+
+/* The three passes that take longest at the fixed N, as "name ms  name ms ...". */
+static void top_passes(const bench_meas *m, char *out, size_t cap, int count)
+{
+    bool used[SPH_PASS_COUNT] = {false};
+    out[0] = '\0';
+    for (int c = 0; c < count; c++) {
+        int best = -1;
+        for (int p = 0; p < SPH_PASS_COUNT; p++)
+            if (!used[p] && isfinite(m->pass_ms[p]) && (best < 0 || m->pass_ms[p] > m->pass_ms[best])) best = p;
+        if (best < 0) break;
+        used[best] = true;
+        size_t len = strlen(out);
+        snprintf(out + len, cap - len, "%s%s %.3g", c ? "  " : "", sph_passes[best]->name, m->pass_ms[best]);
+    }
+}
+
+const char *bench_check_word(const level_result *r)
+{
+    if (r->skipped) return "SKIP";
+    if (!r->small.done && !r->large.done) return "-";
+    return r->check_ok ? "PASS" : "FAIL";
+}
+
+void bench_csv_num(FILE *f, double v, const char *fmt)
+{
+    fputc(',', f);
+    if (isfinite(v)) fprintf(f, fmt, v);
+}
+
+static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *res, const bool *pass_used, double n_at,
+                             double n_check)
+{
+    fprintf(f, "level,description,backend,threads,max_n,capped,steps_per_s_at_max,speedup,n_at,ms_per_step,pairs_per_step,"
+               "search_ms,force_ms,search_pairs_per_s_core,force_pairs_per_s_core,check,check_ref,check_n,sets_differ,"
+               "edge_pairs,max_dx_m,max_dv_m_s,max_drho,check_at_ref,check_at_n,sets_differ_at,edge_pairs_at,"
+               "max_dx_at_m,max_dv_at_m_s,max_drho_at,others_cores");
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (pass_used[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
+    fputc('\n', f);
+    double prev = NAN;
+    for (int s = 0; s < o->nsel; s++) {
+        const bench_level *L = &bench_levels[o->sel[s]];
+        const level_result *r = &res[s];
+        char about[128];
+        snprintf(about, sizeof about, "%s", L->about);
+        for (char *c = about; *c; c++)
+            if (*c == ',' || *c == '"') *c = ';';
+        fprintf(f, "%s,%s,%s,%d", L->name, about, bench_level_gl(L) ? "gl" : "cpu",
+                r->at.threads ? r->at.threads : L->threads);
+        bench_csv_num(f, r->searched ? r->max_n : NAN, "%.0f");
+        fprintf(f, ",%d", r->capped ? 1 : 0);
+        bench_csv_num(f, r->searched ? r->rate_at_max : NAN, "%.4g");
+        bench_csv_num(f, s > 0 && prev > 0 && r->searched ? r->max_n / prev : NAN, "%.4g");
+        prev = r->searched ? r->max_n : NAN;
+        bench_csv_num(f, r->at_ok ? (double)r->at.n : NAN, "%.0f");
+        bench_csv_num(f, r->at_ok ? r->at.ms_step : NAN, "%.6g");
+        bench_csv_num(f, r->at_ok ? r->at.pairs : NAN, "%.0f");
+        bench_csv_num(f, r->at_ok ? r->search_ms : NAN, "%.6g");
+        bench_csv_num(f, r->at_ok ? r->force_ms : NAN, "%.6g");
+        bench_csv_num(f, r->at_ok ? r->search_rate : NAN, "%.4g");
+        bench_csv_num(f, r->at_ok ? r->force_rate : NAN, "%.4g");
+        fprintf(f, ",%s", bench_check_word(r));
+        fprintf(f, ",%s", r->small.done ? bench_levels[r->small.ref].name : "");
+        bench_csv_num(f, r->small.done ? n_check : NAN, "%.0f");
+        bench_csv_num(f, r->small.done ? (double)r->small.sets_differ : NAN, "%.0f");
+        bench_csv_num(f, r->small.done ? (double)r->small.edge_pairs : NAN, "%.0f");
+        bench_csv_num(f, r->small.done ? r->small.dx : NAN, "%.3g");
+        bench_csv_num(f, r->small.done ? r->small.dv : NAN, "%.3g");
+        bench_csv_num(f, r->small.done ? r->small.drho : NAN, "%.3g");
+        fprintf(f, ",%s", r->large.done ? bench_levels[r->large.ref].name : "");
+        bench_csv_num(f, r->large.done ? n_at : NAN, "%.0f");
+        bench_csv_num(f, r->large.done ? (double)r->large.sets_differ : NAN, "%.0f");
+        bench_csv_num(f, r->large.done ? (double)r->large.edge_pairs : NAN, "%.0f");
+        bench_csv_num(f, r->large.done ? r->large.dx : NAN, "%.3g");
+        bench_csv_num(f, r->large.done ? r->large.dv : NAN, "%.3g");
+        bench_csv_num(f, r->large.done ? r->large.drho : NAN, "%.3g");
+        bench_csv_num(f, r->others, "%.3f");
+        for (int p = 0; p < SPH_PASS_COUNT; p++)
+            if (pass_used[p]) bench_csv_num(f, r->at_ok ? r->at.pass_ms[p] : NAN, "%.6g");
+        fputc('\n', f);
+    }
+}
+
+static void json_num(FILE *f, const char *key, double v, const char *fmt, bool comma)
+{
+    fprintf(f, "\"%s\": ", key);
+    if (isfinite(v))
+        fprintf(f, fmt, v);
+    else
+        fputs("null", f);
+    if (comma) fputs(", ", f);
+}
+
+static void json_diff(FILE *f, const char *key, const bench_diff *d, double n)
+{
+    fprintf(f, "      \"%s\": ", key);
+    if (!d->done) {
+        fputs("null,\n", f);
+        return;
+    }
+    fprintf(f, "{\"reference\": \"%s\", \"n\": %.0f, \"pass\": %s, \"sets_differ\": %u, \"edge_pairs\": %u, ",
+            bench_levels[d->ref].name, n, d->pass ? "true" : "false", d->sets_differ, d->edge_pairs);
+    json_num(f, "pairs", d->pairs, "%.0f", true);
+    json_num(f, "reference_pairs", d->ref_pairs, "%.0f", true);
+    json_num(f, "max_dx_m", d->dx, "%.3g", true);
+    json_num(f, "max_dv_m_s", d->dv, "%.3g", true);
+    json_num(f, "max_drho", d->drho, "%.3g", true);
+    fputs("\"why\": ", f);
+    bench_json_string(f, d->why);
+    fputs("},\n", f);
+}
+
+static void write_ladder_json(FILE *f, const bench_opts *o, const level_result *res, const ladder_meta *m,
+                              int argc, char **argv)
+{
+    fputs("{\n  \"command\": ", f);
+    char cmd[1024] = "sphlab";
+    for (int i = 0; i < argc; i++) {
+        size_t len = strlen(cmd);
+        snprintf(cmd + len, sizeof cmd - len, " %s", argv[i]);
+    }
+    bench_json_string(f, cmd);
+    fputs(",\n  \"date\": ", f);
+    bench_json_string(f, m->date);
+    fprintf(f, ",\n  \"dim\": %d,\n  \"fps\": %.6g,\n  \"quick\": %s,\n  \"watchdog\": %s,\n", o->cfg.dim, o->fps,
+            o->quick ? "true" : "false", o->cfg.watchdog ? "true" : "false");
+    fputs("  \"load_start\": ", f);
+    bench_write_load(f, m->load0);
+    fputs(",\n  \"load_end\": ", f);
+    bench_write_load(f, m->load1);
+    fprintf(f, ",\n  \"seconds\": %.1f,\n  ", m->seconds);
+    json_num(f, "other_processes_cores", m->others, "%.3f", true);
+    json_num(f, "clock_ghz_start", m->ghz0, "%.3f", true);
+    json_num(f, "clock_ghz_end", m->ghz1, "%.3f", false);
+    fputs(",\n", f);
+    sph_scene_def def;
+    char why[256];
+    sph_scene_def cdef;
+    if (bench_scene_def(&o->cfg, NULL, bench_k_near(o->cfg.dim, m->n_at), false, &def, why, sizeof why) &&
+        bench_scene_def(&o->cfg, NULL, bench_k_near(o->cfg.dim, m->n_at), true, &cdef, why, sizeof why))
+        fprintf(f, "  \"scene\": {\"what\": \"a block of water falling in a box twice its size\", \"spacing_m\": %g, "
+                   "\"h_m\": %g, \"jitter_spacings\": %g, \"check_jitter_spacings\": %g, \"stiffness\": %g, "
+                   "\"viscosity\": %g, \"cfl\": %g},\n",
+                def.blocks[0].spacing, def.h, def.jitter, cdef.jitter, def.stiffness, def.viscosity, def.cfl);
+    fputs("  \"sets\": [", f);
+    for (int i = 0; i < o->cfg.n_sets; i++) {
+        char set[300];
+        snprintf(set, sizeof set, "%s%s%s", o->cfg.set_level[i] ? o->cfg.set_level[i] : "",
+                 o->cfg.set_level[i] ? ":" : "", o->cfg.set[i]);
+        fputs(i ? ", " : "", f);
+        bench_json_string(f, set);
+    }
+    fputs("],\n", f);
+    fprintf(f, "  \"n_at\": %.0f,\n  \"n_check\": %.0f,\n", m->n_at, m->n_check);
+    fprintf(f, "  \"tolerances\": {\"steps\": %d, \"dx_m\": %g, \"dv_m_s\": %g, \"drho\": %g, \"neighbour_sets\": "
+               "\"identical after 1 step\", \"edge_pairs_within_h_times\": %g},\n",
+            BENCH_CHECK_STEPS, BENCH_TOL_X, BENCH_TOL_V, BENCH_TOL_RHO, BENCH_EDGE);
+    fputs("  \"target\": {\"dim\": 3, \"fps\": 60, \"n\": 60000, ", f);
+    if (m->best >= 0) {
+        fputs("\"best_level\": ", f);
+        bench_json_string(f, bench_levels[o->sel[m->best]].name);
+        fprintf(f, ", \"best_n\": %.0f, ", res[m->best].max_n);
+    }
+    fprintf(f, "\"met\": %s},\n", !m->target_evaluated ? "null" : m->target_met ? "true" : "false");
+    fputs("  \"gl_device\": ", f);
+    if (m->gl_device[0])
+        bench_json_string(f, m->gl_device);
+    else
+        fputs("null", f);
+    fputs(",\n  \"gl_target\": {\"dim\": 3, \"fps\": 60, \"n\": 1000000, ", f);
+    if (m->gl_best >= 0) {
+        fputs("\"best_level\": ", f);
+        bench_json_string(f, bench_levels[o->sel[m->gl_best]].name);
+        fprintf(f, ", \"best_n\": %.0f, ", res[m->gl_best].max_n);
+    }
+    fprintf(f, "\"met\": %s},\n",
+            !m->gl_target_evaluated ? "null" : m->gl_target_met ? "true" : "false");
+    fprintf(f, "  \"all_checks_pass\": %s,\n  \"levels\": [\n", m->all_pass ? "true" : "false");
+    double prev = NAN;
+    for (int s = 0; s < o->nsel; s++) {
+        const bench_level *L = &bench_levels[o->sel[s]];
+        const level_result *r = &res[s];
+        fputs("    {\n      \"level\": ", f);
+        bench_json_string(f, L->name);
+        fputs(", \"description\": ", f);
+        bench_json_string(f, L->about);
+        fputs(", \"sets\": ", f);
+        bench_json_string(f, L->sets);
+        fprintf(f, ", \"backend\": \"%s\", \"threads\": %d,\n      ", bench_level_gl(L) ? "gl" : "cpu",
+                r->at.threads ? r->at.threads : L->threads);
+        json_num(f, "max_n", r->searched ? r->max_n : NAN, "%.0f", true);
+        fprintf(f, "\"capped\": %s, ", r->capped ? "true" : "false");
+        json_num(f, "steps_per_s_at_max", r->searched ? r->rate_at_max : NAN, "%.4g", true);
+        json_num(f, "speedup", s > 0 && prev > 0 && r->searched ? r->max_n / prev : NAN, "%.4g", false);
+        prev = r->searched ? r->max_n : NAN;
+        fputs(",\n      ", f);
+        json_num(f, "n_at", r->at_ok ? (double)r->at.n : NAN, "%.0f", true);
+        json_num(f, "ms_per_step", r->at_ok ? r->at.ms_step : NAN, "%.6g", true);
+        json_num(f, "pairs_per_step", r->at_ok ? r->at.pairs : NAN, "%.0f", true);
+        json_num(f, "search_pairs_per_s_core", r->at_ok ? r->search_rate : NAN, "%.4g", true);
+        json_num(f, "force_pairs_per_s_core", r->at_ok ? r->force_rate : NAN, "%.4g", true);
+        json_num(f, "other_processes_cores", r->others, "%.3f", true);
+        json_num(f, "at_other_processes_cores", r->at_ok ? r->at.others : NAN, "%.3f", true);
+        fprintf(f, "\"measurements\": %d", r->measurements);
+        fputs(",\n      \"pass_ms\": {", f);
+        bool first = true;
+        for (int p = 0; p < SPH_PASS_COUNT; p++)
+            if (r->at_ok && isfinite(r->at.pass_ms[p])) {
+                fprintf(f, "%s\"%s\": %.6g", first ? "" : ", ", sph_passes[p]->name, r->at.pass_ms[p]);
+                first = false;
+            }
+        fputs("},\n", f);
+        fprintf(f, "      \"check\": \"%s\",\n", bench_check_word(r));
+        json_diff(f, "check_small", &r->small, m->n_check);
+        json_diff(f, "check_at", &r->large, m->n_at);
+        fputs("      \"error\": ", f);
+        bench_json_string(f, r->error);
+        fprintf(f, "\n    }%s\n", s + 1 < o->nsel ? "," : "");
+    }
+    fputs("  ]\n}\n", f);
+}
+
+void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
+{
+    const int dim = o->cfg.dim, gl_state = lad->gl_state, k_at = lad->k_at, k_check = lad->k_check;
+    const double fps = o->fps;
+    const level_result *res = lad->res;
+    const ladder_meta meta = lad->meta;
+    const bool all_pass = lad->all_pass;
+    {
+        char nat[32], nchk[32];
+        bench_fmt_count(nat, sizeof nat, meta.n_at);
+        bench_fmt_count(nchk, sizeof nchk, meta.n_check);
+        fprintf(out, "sphlab bench ladder: %dD block of water falling in a box, h = 2 spacings, target %g steps/s%s\n", dim,
+               fps, o->quick ? " (--quick)" : "");
+        fprintf(out, "%s, load %.2f at the start, %.2f at the end, %.0f s\n", meta.date, meta.load0[0], meta.load1[0],
+               meta.seconds);
+        fprintf(out, "other processes kept %.2f of the %d cores busy on average while it ran; one core's clock %.2f GHz\n"
+               "at the start, %.2f at the end (lower when the host is busy)\n",
+               meta.others, bench_levels_cores(), meta.ghz0, meta.ghz1);
+        if (meta.gl_ran)
+            fprintf(out, "GL levels (G*): %s%s\n", meta.gl_device,
+                   meta.gl_is_gpu ? "" : " (software rendering on this CPU: a correctness device, not a GPU)");
+        else if (gl_state < 0)
+            fprintf(out, "GL levels (G*) skipped: no OpenGL 4.3 device: %s\n", meta.gl_device);
+        double worst = 0;
+        for (int s = 0; s < o->nsel; s++) worst = fmax(worst, res[s].others);
+        if (worst > 0.2)
+            fprintf(out, "warning: the machine was busy (others: up to %.2f cores during a level, column 'others'): timings\n"
+                   "are low and noisy, the threaded levels worst (a parallel region waits for its slowest thread);\n"
+                   "re-run when quiet\n",
+                   worst);
+        fprintf(out, "\n");
+        fprintf(out, "%-5s %-42s %3s %12s %8s %10s  %-44s %-5s %s\n", "level", "description", "thr", "max N", "speedup",
+               "ms/step", "top passes at fixed N (ms)", "check", "others");
+        double prev = NAN;
+        for (int s = 0; s < o->nsel; s++) {
+            const bench_level *L = &bench_levels[o->sel[s]];
+            const level_result *r = &res[s];
+            char maxn[40] = "-", sp[16] = "-", ms[16] = "-", top[128] = "";
+            if (r->searched) {
+                if (r->max_n > 0)
+                    bench_fmt_count(maxn, sizeof maxn, r->max_n);
+                else /* a slow machine or software GL: reported, not a failure */
+                    snprintf(maxn, sizeof maxn, "none");
+                if (r->capped) strcat(maxn, "+");
+                if (s > 0 && prev > 0) snprintf(sp, sizeof sp, "x%.2f", r->max_n / prev);
+                prev = r->max_n;
+            }
+            if (r->at_ok) {
+                snprintf(ms, sizeof ms, "%.4g", r->at.ms_step);
+                top_passes(&r->at, top, sizeof top, 3);
+            }
+            fprintf(out, "%-5s %-42s %3d %12s %8s %10s  %-44s %-5s %.2f\n", L->name, L->about,
+                   r->at.threads ? r->at.threads : L->threads, maxn, sp, ms, top, bench_check_word(r), r->others);
+        }
+        fprintf(out, "\nmax N: the largest block with %g steps/s or more (bisection over block sizes, median of repeats;\n"
+               "none: not even the smallest block reached it on this machine, which is no failure);\n"
+               "ms/step and passes: medians at N = %s; others: cores that other processes kept busy meanwhile\n",
+               fps, nat);
+        fprintf(out, "\nwhere the time goes at N = %s (pairs: neighbour-list entries per step, i->j and j->i):\n", nat);
+        fprintf(out, "%-5s %12s %10s %16s %10s %16s\n", "level", "pairs", "search ms", "pairs/s/core", "forces ms",
+               "pairs/s/core");
+        for (int s = 0; s < o->nsel; s++) {
+            const level_result *r = &res[s];
+            if (!r->at_ok) continue;
+            if (r->at.pairs > 0)
+                fprintf(out, "%-5s %12.0f %10.3f %16.3g %10.3f %16.3g\n", bench_levels[o->sel[s]].name, r->at.pairs,
+                       r->search_ms, r->search_rate, r->force_ms, r->force_rate);
+            else /* a GL level: no lists, its passes walk the cells */
+                fprintf(out, "%-5s %12s %10.3f %16s %10.3f %16s\n", bench_levels[o->sel[s]].name, "-", r->search_ms, "-",
+                       r->force_ms, "-");
+        }
+        fprintf(out, "search: hash, sort, reorder, offsets, neighbours; forces: density, pressure_force, viscosity\n"
+               "(GL levels build no lists: density and the forces walk the cells themselves, so no pair count)\n");
+        fprintf(out, "\nchecks: neighbour sets identical after 1 step (a pair within %g h of r = h is rounding's call and\n"
+               "counted apart: edge pairs), and after %d steps positions within %g m, velocities within %g m/s,\n"
+               "densities within %g (relative), particles matched by id; against %s at N = %s",
+               BENCH_EDGE, BENCH_CHECK_STEPS, BENCH_TOL_X, BENCH_TOL_V, BENCH_TOL_RHO, BENCH_REF_SMALL, nchk);
+        if (k_at > k_check) fprintf(out, " and against %s at N = %s", BENCH_REF_LARGE, nat);
+        fprintf(out, " (%s itself against %s).\n", BENCH_REF_SMALL, BENCH_REF_LARGE);
+        for (int s = 0; s < o->nsel; s++) {
+            const level_result *r = &res[s];
+            const bench_diff *d[2] = {&r->small, &r->large};
+            for (int j = 0; j < 2; j++)
+                if (d[j]->done)
+                    fprintf(out, "  %-4s vs %-3s N = %-7.0f %s  sets differ %u (edge pairs %u), dx %.2g m, dv %.2g m/s, "
+                           "drho %.2g%s%s\n",
+                           bench_levels[o->sel[s]].name, bench_levels[d[j]->ref].name, j ? meta.n_at : meta.n_check,
+                           d[j]->pass ? "PASS" : "FAIL", d[j]->sets_differ, d[j]->edge_pairs, d[j]->dx, d[j]->dv,
+                           d[j]->drho, d[j]->why[0] ? ": " : "", d[j]->why);
+            if (r->skipped)
+                fprintf(out, "  %-4s skipped: %s\n", bench_levels[o->sel[s]].name, r->error);
+            else if (r->error[0] && !r->check_ok)
+                fprintf(out, "  %-4s error: %s\n", bench_levels[o->sel[s]].name, r->error);
+        }
+        if (meta.target_evaluated) {
+            char bn[32];
+            bench_fmt_count(bn, sizeof bn, res[meta.best].max_n);
+            fprintf(out, "\ntarget (issue 6): the fastest CPU level reaches 60,000 particles at 60 steps/s in 3D: %s "
+                   "(%s: %s)\n",
+                   meta.target_met ? "MET" : "NOT MET", bench_levels[o->sel[meta.best]].name, bn);
+        } else {
+            fprintf(out, "\ntarget (issue 6: 60,000 particles at 60 steps/s in 3D): not evaluated with these options\n");
+        }
+        if (meta.gl_best >= 0 && dim == 3 && fabs(fps - 60) < 1e-9) {
+            char bn[32];
+            bench_fmt_count(bn, sizeof bn, res[meta.gl_best].max_n);
+            if (meta.gl_target_evaluated)
+                fprintf(out, "target (issue 7): a GL level reaches 1,000,000 particles at 60 steps/s in 3D on a GPU: %s "
+                       "(%s: %s)\n",
+                       meta.gl_target_met ? "MET" : "NOT MET", bench_levels[o->sel[meta.gl_best]].name, bn);
+            else
+                fprintf(out, "target (issue 7, 1,000,000 at 60 steps/s on a GPU): not evaluated, no GPU here (%s: %s on "
+                       "software rendering)\n",
+                       bench_levels[o->sel[meta.gl_best]].name, bn);
+        }
+        if (!all_pass) fprintf(out, "\nFAIL: a level failed its check; its speed does not count\n");
+        fprintf(out, "\n");
+    }
+}
+
+bool bench_ladder_write(const bench_opts *o, const bench_ladder *lad, int argc, char **argv)
+{
+    const int dim = o->cfg.dim;
+    const double fps = o->fps;
+    const level_result *res = lad->res;
+    const ladder_meta meta = lad->meta;
+    const bool all_pass = lad->all_pass, *pass_used = lad->pass_used;
+    bool ok = true;
+    char name[64];
+    snprintf(name, sizeof name, "ladder-%s.csv", bench_dim_tag(dim));
+    FILE *f = plot_out_stage_csv(o->out, name);
+    if (!f) ok = false;
+    if (f) {
+        write_ladder_csv(f, o, res, pass_used, meta.n_at, meta.n_check);
+        ok &= plot_out_close_csv(f, o->out, name);
+    }
+    snprintf(name, sizeof name, "ladder-%s.json", bench_dim_tag(dim));
+    f = ok ? plot_out_stage_csv(o->out, name) : NULL;
+    if (ok && !f) ok = false;
+    if (f) {
+        write_ladder_json(f, o, res, &meta, argc, argv);
+        ok &= plot_out_close_csv(f, o->out, name);
+    }
+    if (ok) {
+        static bench_ladder_chart c;
+        memset(&c, 0, sizeof c);
+        char nat[32];
+        bench_fmt_count(nat, sizeof nat, meta.n_at);
+        snprintf(c.title, sizeof c.title, "The optimisation ladder, %dD, on this machine", dim);
+        snprintf(c.subtitle, sizeof c.subtitle, "%s   load %.2f   %s", meta.date, meta.load0[0],
+                 all_pass ? "every level checked against the reference: PASS" : "a level FAILED its check");
+        snprintf(c.bars_title, sizeof c.bars_title, "largest N at %g steps/s (log scale)", fps);
+        snprintf(c.stack_title, sizeof c.stack_title, "ms per step at N = %s, by pass", nat);
+        if (dim == 3 && fabs(fps - 60) < 1e-9) {
+            c.target_n = 60000;
+            snprintf(c.target_label, sizeof c.target_label, "60,000: the seed's GPU record");
+        }
+        c.nl = o->nsel;
+        int np = 0;
+        for (int p = 0; p < SPH_PASS_COUNT && np < BENCH_CHART_PASSES; p++)
+            if (pass_used[p]) snprintf(c.pass[np++], sizeof c.pass[0], "%s", sph_passes[p]->name);
+        c.np = np;
+        for (int s = 0; s < o->nsel; s++) {
+            const level_result *r = &res[s];
+            snprintf(c.level[s], sizeof c.level[s], "%s %.42s", bench_levels[o->sel[s]].name,
+                     bench_levels[o->sel[s]].about);
+            c.max_n[s] = r->searched ? r->max_n : 0;
+            char n[32];
+            bench_fmt_count(n, sizeof n, c.max_n[s]);
+            snprintf(c.note[s], sizeof c.note[s], "%s%s%s", n, r->capped ? "+" : "", r->check_ok ? "" : "  FAIL");
+            int q = 0;
+            for (int p = 0; p < SPH_PASS_COUNT; p++)
+                if (pass_used[p]) c.ms[s][q++] = r->at_ok ? r->at.pass_ms[p] : NAN;
+        }
+        snprintf(name, sizeof name, "ladder-%s", bench_dim_tag(dim));
+        ok &= bench_chart_ladder(&c, o->out, name);
+    }
+    if (ok)
+        ok = plot_out_commit(o->quiet);
+    else
+        plot_out_abort();
+    return ok;
+}
