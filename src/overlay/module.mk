@@ -4,7 +4,7 @@
 # (src/render/) draws the lists, and the tests check them without a context.
 # Included by the top Makefile.
 
-OVERLAY_OBJ := $(BUILD)/overlay/sph_overlay.o
+OVERLAY_OBJ := $(patsubst %,$(BUILD)/overlay/%.o,sph_overlay sph_colour sph_hud)
 
 MOD_OBJ        += $(OVERLAY_OBJ)
 # A base layer: linked after the module libraries that use it, before the core.

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "overlay_internal.h"
 #include "sph_search.h"
 
 const char *const sph_overlay_names[SPH_OV_COUNT] = {
@@ -27,166 +28,34 @@ int sph_overlay_find(const char *name)
     return -1;
 }
 
-/* ---- colour fields ------------------------------------------------------- */
+/* ---- shared by the overlay's files (overlay_internal.h) ---------------- */
 
-const char *const sph_color_field_names[SPH_COLOR_COUNT] = {
-#define SPH_COLOR_NAME(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) colour,
-    SPH_FIELDS(SPH_COLOR_NAME)
-#undef SPH_COLOR_NAME
-    [SPH_COLOR_KEY] = "key",
-    [SPH_COLOR_NEIGHBOURS] = "neighbours",
-};
-
-int sph_color_field_find(const char *name)
-{
-    for (int i = 0; i < SPH_COLOR_COUNT; i++)
-        if (*sph_color_field_names[i] && strcmp(name, sph_color_field_names[i]) == 0) return i;
-    return -1;
-}
-
-const char *sph_color_field_unit(sph_color_field f, int dim)
-{
-    return (int)f < SPH_FIELD_COUNT ? sph_field_unit((int)f, dim) : "1";
-}
-
-bool sph_color_field_categorical(sph_color_field f)
-{
-    return f == SPH_COLOR_KEY;
-}
+static sph_cells cells_of(const sph_sim *sim);
 
 /* The hash pass has filled the index at least once since the simulation was
  * made (before that, entries are zeros). */
-static bool index_built(const sph_sim *sim)
+bool sph_ov_index_built(const sph_sim *sim)
 {
     return sim->in_pipeline[SPH_PASS_HASH] && sim->S.entries && sim->timing[SPH_PASS_HASH].calls > 0;
 }
 
-static bool lists_built(const sph_sim *sim)
+bool sph_ov_lists_built(const sph_sim *sim)
 {
     return sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start && sim->timing[SPH_PASS_NEIGHBOURS].calls > 0;
 }
 
-const char *sph_color_field_missing(const sph_sim *sim, sph_color_field f)
-{
-    if ((int)f >= 0 && (int)f < SPH_FIELD_COUNT) {
-        const sph_field_info *fi = &sph_field_infos[f];
-        if (!*fi->colour) return "not a colour";
-        if (sim->P.field[f][0]) return NULL;
-        /* the reason its pass is left out, e.g. "the scene has no viscosity effect" */
-        const char *why = fi->made_by < SPH_PASS_COUNT ? sph_passes[fi->made_by]->skip_reason(&sim->def) : NULL;
-        return why ? why : "the scene does not compute it";
-    }
-    switch (f) {
-    case SPH_COLOR_KEY: return sim->in_pipeline[SPH_PASS_HASH] ? NULL : "the scene has no spatial hash (no neighbours, or search = brute)";
-    case SPH_COLOR_NEIGHBOURS: return sim->in_pipeline[SPH_PASS_NEIGHBOURS] ? NULL : "no effect of the scene needs neighbours";
-    default: return "unknown field";
-    }
-}
-
-sph_color_field sph_color_field_default(const sph_sim *sim)
-{
-    return sim->P.rho ? SPH_COLOR_DENSITY : SPH_COLOR_SPEED;
-}
-
-int sph_color_field_of_pass(const sph_sim *sim, sph_pass_id p)
-{
-    const char *name = sph_passes[p]->highlight;
-    int f = name ? sph_color_field_find(name) : -1;
-    return f >= 0 && !sph_color_field_missing(sim, (sph_color_field)f) ? f : -1;
-}
-
-static float vec_norm(float *const v[3], int dim, uint32_t i)
+float sph_ov_vec_norm(float *const v[3], int dim, uint32_t i)
 {
     float s = 0;
     for (int d = 0; d < dim; d++) s += v[d][i] * v[d][i];
     return sqrtf(s);
 }
 
-bool sph_color_field_values(const sph_sim *sim, sph_color_field f, float *out, float *lo, float *hi)
+/* The hash the hash pass gives a cell (the dense cell number for the grid search). */
+uint32_t sph_ov_cell_hash(const sph_sim *sim, const int32_t c[3])
 {
-    if (sph_color_field_missing(sim, f)) return false;
-    const sph_particles *P = &sim->P;
-    const uint32_t n = sim->n;
-    if ((int)f < SPH_FIELD_COUNT) { /* a field: a scalar as it is, a vector by its length */
-        if (sph_field_infos[f].vector)
-            for (uint32_t i = 0; i < n; i++) out[i] = vec_norm(P->field[f], sim->dim, i);
-        else
-            memcpy(out, P->field[f][0], n * sizeof *out);
-    }
-    switch (f) {
-    case SPH_COLOR_KEY:
-        memset(out, 0, n * sizeof *out);
-        if (index_built(sim))
-            for (uint32_t s = 0; s < n; s++) {
-                uint32_t i = sim->S.entries[s].index;
-                if (i < n) out[i] = (float)sim->S.entries[s].key;
-            }
-        break;
-    case SPH_COLOR_NEIGHBOURS:
-        memset(out, 0, n * sizeof *out);
-        if (lists_built(sim))
-            for (uint32_t i = 0; i < n; i++) out[i] = (float)(sim->S.nbr_start[i + 1] - sim->S.nbr_start[i]);
-        break;
-    default:
-        if ((int)f >= SPH_FIELD_COUNT) return false;
-        break;
-    }
-    float a = INFINITY, b = -INFINITY;
-    for (uint32_t i = 0; i < n; i++) {
-        if (!isfinite(out[i])) continue;
-        if (out[i] < a) a = out[i];
-        if (out[i] > b) b = out[i];
-    }
-    if (a > b) a = b = 0;
-    *lo = a;
-    *hi = b;
-    return true;
-}
-
-/* Viridis as a polynomial in t (a least-squares fit of matplotlib's table,
- * within about 1/255 of it), evaluated in double so every machine gets the
- * same bytes. */
-uint32_t sph_colormap_viridis(float t)
-{
-    static const double c[7][3] = {
-        {0.2777273272234177, 0.005407344544966578, 0.3340998053353061},
-        {0.1050930431085774, 1.404613529898575, 1.384590162594685},
-        {-0.3308618287255563, 0.214847559468213, 0.09509516302823659},
-        {-4.634230498983486, -5.799100973351585, -19.33244095627987},
-        {6.228269936347081, 14.17993336680509, 56.69055260068105},
-        {4.776384997670288, -13.74514537774601, -65.35303263337234},
-        {-5.435455855934631, 4.645852612178535, 26.3124352495832},
-    };
-    if (t != t) return SPH_RGBA(128, 128, 128, 255);
-    double x = t < 0 ? 0 : t > 1 ? 1 : t;
-    /* quantise first: 256 levels, as a colour-map texture would */
-    x = floor(x * 255.0 + 0.5) / 255.0;
-    int rgb[3];
-    for (int k = 0; k < 3; k++) {
-        double v = c[6][k];
-        for (int j = 5; j >= 0; j--) v = v * x + c[j][k];
-        v = v < 0 ? 0 : v > 1 ? 1 : v;
-        rgb[k] = (int)floor(v * 255.0 + 0.5);
-    }
-    return SPH_RGBA(rgb[0], rgb[1], rgb[2], 255);
-}
-
-uint32_t sph_colormap_category(uint32_t key)
-{
-    static const uint8_t tab10[10][3] = {
-        {31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},  {148, 103, 189},
-        {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207},
-    };
-    const uint8_t *c = tab10[key % 10];
-    return SPH_RGBA(c[0], c[1], c[2], 255);
-}
-
-uint32_t sph_color_of(sph_color_field f, float v, float lo, float hi)
-{
-    if (sph_color_field_categorical(f)) return sph_colormap_category(v >= 0 && v < 4294967040.0f ? (uint32_t)v : 0);
-    /* a range within rounding of one value is one value: the middle colour */
-    float t = hi - lo > 1e-6f * fmaxf(fabsf(hi), fabsf(lo)) ? (v - lo) / (hi - lo) : 0.5f;
-    return sph_colormap_viridis(t);
+    const sph_cells g = cells_of(sim);
+    return sph_cells_hash(&g, c);
 }
 
 /* ---- building ------------------------------------------------------------ */
@@ -310,12 +179,6 @@ void sph_overlay_cell_of(const sph_sim *sim, uint32_t i, int32_t c[3])
     for (int d = 0; d < sim->dim; d++) c[d] = sph_cells_coord(&g, d, x[d][i]);
 }
 
-/* The hash the hash pass gives a cell (the dense cell number for the grid search). */
-static uint32_t cell_hash(const sph_sim *sim, const int32_t c[3])
-{
-    const sph_cells g = cells_of(sim);
-    return sph_cells_hash(&g, c);
-}
 
 static int cmp_cell(const void *pa, const void *pb)
 {
@@ -347,7 +210,7 @@ static bool build_cells(const sph_sim *sim, sph_overlay *ov)
         c->key = e->key;
         c->count = 1;
         c->collides = false;
-        stale += cell_hash(sim, c->c) != e->hash;
+        stale += sph_ov_cell_hash(sim, c->c) != e->hash;
     }
     qsort(ov->cells, n, sizeof *ov->cells, cmp_cell);
     int m = 0;
@@ -472,7 +335,7 @@ static void build_neighbours(builder *b, const sph_sim *sim, const sph_overlay_o
     memcpy(ov->sel_cell, c, sizeof ov->sel_cell);
     ov->sel_key = 0;
     bool hashed = sim->in_pipeline[SPH_PASS_HASH];
-    if (hashed) ov->sel_key = cell_hash(sim, c) % (sim->S.table_size ? sim->S.table_size : 1);
+    if (hashed) ov->sel_key = sph_ov_cell_hash(sim, c) % (sim->S.table_size ? sim->S.table_size : 1);
     /* the 3^d cells it visits (in 3D: the 9 of its own layer are drawn);
      * at the edge of a bounded grid there are fewer, across a periodic edge
      * they wrap to the other side */
@@ -488,7 +351,7 @@ static void build_neighbours(builder *b, const sph_sim *sim, const sph_overlay_o
                 add_box(b, r[0], r[1], r[2], r[3], xi[2], SPH_RGBA(255, 220, 60, own ? 50 : 25),
                         SPH_RGBA(255, 220, 60, 220), SPH_SPACE_WORLD);
                 if (hashed && (!o->px_per_m || h * o->px_per_m >= 40.0f)) {
-                    uint32_t key = cell_hash(sim, v) % (sim->S.table_size ? sim->S.table_size : 1);
+                    uint32_t key = sph_ov_cell_hash(sim, v) % (sim->S.table_size ? sim->S.table_size : 1);
                     add_label(b, r[0] + 0.04f * h, r[3] - 0.04f * h, xi[2], SPH_RGBA(255, 230, 120, 255), SPH_TEXT_SMALL,
                               SPH_ALIGN_LEFT, SPH_SPACE_WORLD, "k%u", key);
                 }
@@ -497,7 +360,7 @@ static void build_neighbours(builder *b, const sph_sim *sim, const sph_overlay_o
     add_disc(b, xi, h, 0, 0, SPH_RGBA(255, 255, 255, 140));
     ov->n_nbr = 0;
     ov->nbr = NULL;
-    if (!lists_built(sim)) {
+    if (!sph_ov_lists_built(sim)) {
         note(ov, "no neighbour lists yet (or the scene has none)");
     } else {
         uint32_t s = sim->S.nbr_start[i], e = sim->S.nbr_start[i + 1];
@@ -568,7 +431,7 @@ static void build_forces(builder *b, const sph_sim *sim, const sph_overlay_opts 
     float ref = gn;
     if (!(ref > 0)) { /* no gravity: the largest drawn acceleration sets the scale */
         for (uint32_t i = 0; i < sim->n; i += stride)
-            for (int k = 0; k < n_acc; k++) ref = fmaxf(ref, vec_norm(acc[k], dim, i));
+            for (int k = 0; k < n_acc; k++) ref = fmaxf(ref, sph_ov_vec_norm(acc[k], dim, i));
     }
     if (!(ref > 0)) {
         note(ov, "no forces to draw");
@@ -692,7 +555,7 @@ bool sph_overlay_build(const sph_sim *sim, const sph_overlay_opts *o, sph_overla
     if (want_cells) {
         if (!sim->in_pipeline[SPH_PASS_HASH])
             note(ov, "no spatial hash in this scene (no neighbours, or search = brute)");
-        else if (!index_built(sim))
+        else if (!sph_ov_index_built(sim))
             note(ov, "the index is not built yet (run a step)");
         else if (!build_cells(sim, ov))
             b.ok = false;
@@ -707,7 +570,7 @@ bool sph_overlay_build(const sph_sim *sim, const sph_overlay_opts *o, sph_overla
     if (L & SPH_OV_BIT(INDEX)) {
         if (!sim->in_pipeline[SPH_PASS_HASH])
             note(ov, "no index strip: the scene has no spatial hash");
-        else if (!index_built(sim))
+        else if (!sph_ov_index_built(sim))
             note(ov, "no index strip: the index is not built yet (run a step)");
         else
             build_strip(&b, sim, o);
@@ -724,129 +587,4 @@ void sph_overlay_free(sph_overlay *ov)
     free(ov->cells);
     free(ov->weights);
     memset(ov, 0, sizeof *ov);
-}
-
-/* ---- HUD ----------------------------------------------------------------- */
-
-double sph_density_error(const sph_sim *sim)
-{
-    if (!sim->P.rho || !sim->n || !(sim->def.rest_density > 0) || !sim->timing[SPH_PASS_DENSITY].calls) return NAN;
-    float mx = -INFINITY;
-    for (uint32_t i = 0; i < sim->n; i++)
-        if (sim->P.rho[i] > mx) mx = sim->P.rho[i];
-    return ((double)mx - sim->def.rest_density) / sim->def.rest_density;
-}
-
-int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128], int max_lines)
-{
-    int k = 0;
-#define HUD_LINE(...) \
-    if (k < max_lines) snprintf(lines[k++], 128, __VA_ARGS__)
-    HUD_LINE("%s   %dD   %u particles", sim->def.name[0] ? sim->def.name : "scene", sim->dim, sim->n);
-    HUD_LINE("step %llu   t = %.4f s   dt = %.3g ms%s", (unsigned long long)sim->step, sim->t, 1e3 * sim->dt,
-             info && info->paused ? "   PAUSED" : "");
-    double e = sph_density_error(sim);
-    if (e == e) {
-        HUD_LINE("density error (rho_max - rho0)/rho0 = %+.2f %%", 100 * e);
-    } else if (sim->P.rho) {
-        HUD_LINE("density error: not computed yet");
-    } else {
-        HUD_LINE("density not computed (no effect needs it)");
-    }
-    double drift = sph_sim_energy_drift(sim);
-    if (drift == drift) HUD_LINE("energy drift since step 1 = %+.2f %%", 100 * drift);
-    char off[100] = "";
-    int on = 0, total = 0;
-    for (int p = 0; p < SPH_PASS_COUNT; p++) {
-        if (!sim->in_pipeline[p]) continue;
-        total++;
-        if (sim->enabled[p]) {
-            on++;
-        } else {
-            size_t len = strlen(off);
-            snprintf(off + len, sizeof off - len, " %s", sph_passes[p]->name);
-        }
-    }
-    if (on == total) {
-        HUD_LINE("passes: all %d on", total);
-    } else {
-        HUD_LINE("passes: %d of %d on; off:%s", on, total, off);
-    }
-    if (info && info->steps_per_s >= 0) HUD_LINE("%.0f steps/s", info->steps_per_s);
-    if (info && info->last_pass >= 0 && info->last_pass < SPH_PASS_COUNT) {
-        const sph_pass *p = sph_passes[info->last_pass];
-        char wrote[64]; /* a HUD line holds about this much */
-        sph_mask_names(p->writes, wrote, (int)sizeof wrote);
-        HUD_LINE("ran pass %s: wrote %s; next: %s", p->name, wrote,
-                 sim->next_pass == 0 ? "a new step" : sph_passes[sim->next_pass]->name);
-    }
-    if (info && info->message && *info->message) HUD_LINE("%s", info->message);
-#undef HUD_LINE
-    return k;
-}
-
-static void vec_text(char *out, size_t n, float *const v[3], int dim, uint32_t i)
-{
-    if (!v[0]) {
-        snprintf(out, n, "-");
-        return;
-    }
-    float a[3] = {0, 0, 0};
-    for (int d = 0; d < dim; d++) a[d] = v[d][i];
-    if (dim == 3)
-        snprintf(out, n, "(%.4g, %.4g, %.4g), |%.4g|", a[0], a[1], a[2], sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
-    else
-        snprintf(out, n, "(%.4g, %.4g), |%.4g|", a[0], a[1], sqrtf(a[0] * a[0] + a[1] * a[1]));
-}
-
-int sph_inspect_lines(const sph_sim *sim, uint32_t i, char lines[][128], int max_lines)
-{
-    if (i >= sim->n) return 0;
-    const sph_particles *P = &sim->P;
-    const int dim = sim->dim;
-    int k = 0;
-    char buf[96];
-#define INSPECT(...) \
-    if (k < max_lines) snprintf(lines[k++], 128, __VA_ARGS__)
-    INSPECT("particle %u (index %u)", P->id[i], i);
-    vec_text(buf, sizeof buf, P->pos, dim, i);
-    INSPECT("x  %s m", buf);
-    vec_text(buf, sizeof buf, P->vel, dim, i);
-    INSPECT("v  %s m/s", buf);
-    int32_t c[3];
-    sph_overlay_cell_of(sim, i, c);
-    if (sim->in_pipeline[SPH_PASS_HASH]) {
-        uint32_t h = cell_hash(sim, c), T = sim->S.table_size ? sim->S.table_size : 1;
-        if (dim == 3) {
-            INSPECT("cell (%d, %d, %d)  hash %u  key %u", c[0], c[1], c[2], h, h % T);
-        } else {
-            INSPECT("cell (%d, %d)  hash %u  key %u", c[0], c[1], h, h % T);
-        }
-    } else if (dim == 3) {
-        INSPECT("cell (%d, %d, %d)  (no hash: search = brute)", c[0], c[1], c[2]);
-    } else {
-        INSPECT("cell (%d, %d)  (no hash: search = brute)", c[0], c[1]);
-    }
-    if (lists_built(sim)) INSPECT("neighbours %u", sim->S.nbr_start[i + 1] - sim->S.nbr_start[i]);
-    /* the registry's computed fields that have an inspector row */
-    for (int f = 0; f < SPH_FIELD_COUNT; f++) {
-        const sph_field_info *fi = &sph_field_infos[f];
-        if (fi->kind == SPH_KIND_STATE || !*fi->label || !P->field[f][0]) continue;
-        if (fi->vector) {
-            vec_text(buf, sizeof buf, P->field[f], dim, i);
-            INSPECT("%-12s %s %s", fi->label, buf, sph_field_unit(f, dim));
-        } else {
-            INSPECT("%-3s %.6g %s", fi->label, P->field[f][0][i], sph_field_unit(f, dim));
-        }
-    }
-    if (sim->def.effects & SPH_EFFECT(GRAVITY)) {
-        const float *g = sim->def.gravity;
-        if (dim == 3) {
-            INSPECT("a gravity    (%.4g, %.4g, %.4g) m/s^2", g[0], g[1], g[2]);
-        } else {
-            INSPECT("a gravity    (%.4g, %.4g) m/s^2", g[0], g[1]);
-        }
-    }
-#undef INSPECT
-    return k;
 }

@@ -1,0 +1,133 @@
+/* The HUD's lines and the inspector's rows, as text (see sph_overlay.h). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "overlay_internal.h"
+#include "sph_search.h"
+
+/* ---- HUD ----------------------------------------------------------------- */
+
+double sph_density_error(const sph_sim *sim)
+{
+    if (!sim->P.rho || !sim->n || !(sim->def.rest_density > 0) || !sim->timing[SPH_PASS_DENSITY].calls) return NAN;
+    float mx = -INFINITY;
+    for (uint32_t i = 0; i < sim->n; i++)
+        if (sim->P.rho[i] > mx) mx = sim->P.rho[i];
+    return ((double)mx - sim->def.rest_density) / sim->def.rest_density;
+}
+
+int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128], int max_lines)
+{
+    int k = 0;
+#define HUD_LINE(...) \
+    if (k < max_lines) snprintf(lines[k++], 128, __VA_ARGS__)
+    HUD_LINE("%s   %dD   %u particles", sim->def.name[0] ? sim->def.name : "scene", sim->dim, sim->n);
+    HUD_LINE("step %llu   t = %.4f s   dt = %.3g ms%s", (unsigned long long)sim->step, sim->t, 1e3 * sim->dt,
+             info && info->paused ? "   PAUSED" : "");
+    double e = sph_density_error(sim);
+    if (e == e) {
+        HUD_LINE("density error (rho_max - rho0)/rho0 = %+.2f %%", 100 * e);
+    } else if (sim->P.rho) {
+        HUD_LINE("density error: not computed yet");
+    } else {
+        HUD_LINE("density not computed (no effect needs it)");
+    }
+    double drift = sph_sim_energy_drift(sim);
+    if (drift == drift) HUD_LINE("energy drift since step 1 = %+.2f %%", 100 * drift);
+    char off[100] = "";
+    int on = 0, total = 0;
+    for (int p = 0; p < SPH_PASS_COUNT; p++) {
+        if (!sim->in_pipeline[p]) continue;
+        total++;
+        if (sim->enabled[p]) {
+            on++;
+        } else {
+            size_t len = strlen(off);
+            snprintf(off + len, sizeof off - len, " %s", sph_passes[p]->name);
+        }
+    }
+    if (on == total) {
+        HUD_LINE("passes: all %d on", total);
+    } else {
+        HUD_LINE("passes: %d of %d on; off:%s", on, total, off);
+    }
+    if (info && info->steps_per_s >= 0) HUD_LINE("%.0f steps/s", info->steps_per_s);
+    if (info && info->last_pass >= 0 && info->last_pass < SPH_PASS_COUNT) {
+        const sph_pass *p = sph_passes[info->last_pass];
+        char wrote[64]; /* a HUD line holds about this much */
+        sph_mask_names(p->writes, wrote, (int)sizeof wrote);
+        HUD_LINE("ran pass %s: wrote %s; next: %s", p->name, wrote,
+                 sim->next_pass == 0 ? "a new step" : sph_passes[sim->next_pass]->name);
+    }
+    if (info && info->message && *info->message) HUD_LINE("%s", info->message);
+#undef HUD_LINE
+    return k;
+}
+
+static void vec_text(char *out, size_t n, float *const v[3], int dim, uint32_t i)
+{
+    if (!v[0]) {
+        snprintf(out, n, "-");
+        return;
+    }
+    float a[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++) a[d] = v[d][i];
+    if (dim == 3)
+        snprintf(out, n, "(%.4g, %.4g, %.4g), |%.4g|", a[0], a[1], a[2], sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
+    else
+        snprintf(out, n, "(%.4g, %.4g), |%.4g|", a[0], a[1], sqrtf(a[0] * a[0] + a[1] * a[1]));
+}
+
+int sph_inspect_lines(const sph_sim *sim, uint32_t i, char lines[][128], int max_lines)
+{
+    if (i >= sim->n) return 0;
+    const sph_particles *P = &sim->P;
+    const int dim = sim->dim;
+    int k = 0;
+    char buf[96];
+#define INSPECT(...) \
+    if (k < max_lines) snprintf(lines[k++], 128, __VA_ARGS__)
+    INSPECT("particle %u (index %u)", P->id[i], i);
+    vec_text(buf, sizeof buf, P->pos, dim, i);
+    INSPECT("x  %s m", buf);
+    vec_text(buf, sizeof buf, P->vel, dim, i);
+    INSPECT("v  %s m/s", buf);
+    int32_t c[3];
+    sph_overlay_cell_of(sim, i, c);
+    if (sim->in_pipeline[SPH_PASS_HASH]) {
+        uint32_t h = sph_ov_cell_hash(sim, c), T = sim->S.table_size ? sim->S.table_size : 1;
+        if (dim == 3) {
+            INSPECT("cell (%d, %d, %d)  hash %u  key %u", c[0], c[1], c[2], h, h % T);
+        } else {
+            INSPECT("cell (%d, %d)  hash %u  key %u", c[0], c[1], h, h % T);
+        }
+    } else if (dim == 3) {
+        INSPECT("cell (%d, %d, %d)  (no hash: search = brute)", c[0], c[1], c[2]);
+    } else {
+        INSPECT("cell (%d, %d)  (no hash: search = brute)", c[0], c[1]);
+    }
+    if (sph_ov_lists_built(sim)) INSPECT("neighbours %u", sim->S.nbr_start[i + 1] - sim->S.nbr_start[i]);
+    /* the registry's computed fields that have an inspector row */
+    for (int f = 0; f < SPH_FIELD_COUNT; f++) {
+        const sph_field_info *fi = &sph_field_infos[f];
+        if (fi->kind == SPH_KIND_STATE || !*fi->label || !P->field[f][0]) continue;
+        if (fi->vector) {
+            vec_text(buf, sizeof buf, P->field[f], dim, i);
+            INSPECT("%-12s %s %s", fi->label, buf, sph_field_unit(f, dim));
+        } else {
+            INSPECT("%-3s %.6g %s", fi->label, P->field[f][0][i], sph_field_unit(f, dim));
+        }
+    }
+    if (sim->def.effects & SPH_EFFECT(GRAVITY)) {
+        const float *g = sim->def.gravity;
+        if (dim == 3) {
+            INSPECT("a gravity    (%.4g, %.4g, %.4g) m/s^2", g[0], g[1], g[2]);
+        } else {
+            INSPECT("a gravity    (%.4g, %.4g) m/s^2", g[0], g[1]);
+        }
+    }
+#undef INSPECT
+    return k;
+}
