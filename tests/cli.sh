@@ -50,7 +50,7 @@ for scene in lessons/scenes/*.ini; do
         lines=$(wc -l < "$tmp/s.csv")
         [ "$lines" -eq 4 ] && ok || bad "$scene: --stats has $lines lines, want header + 3"
         head -1 "$tmp/s.csv" | grep -q '^step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed,external_ms' && ok || bad "$scene: stats header"
-        head -1 "$tmp/d.csv" | grep -qx 'id,x,y,z,vx,vy,vz,rho,p' && ok || bad "$scene: dump header"
+        head -1 "$tmp/d.csv" | grep -q '^id,x,y,z,vx,vy,vz,rho,p' && ok || bad "$scene: dump header"
         n=$(sph check "$scene" | sed -n 's/.* \([0-9][0-9]*\) particles.*/\1/p')
         [ "$(($(wc -l < "$tmp/d.csv") - 1))" -eq "${n:-0}" ] && ok || bad "$scene: dump rows != ${n:-?} particles"
     else

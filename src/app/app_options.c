@@ -59,7 +59,7 @@ const app_opt app_options[] = {
      "one row per step: step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed,\n"
      "then the milliseconds of each pass in the pipeline",
      RUN, STRING(stats)},
-    {"--dump", NULL, "FILE.csv", "final particles: id,x,y,z,vx,vy,vz,rho,p", RUN,
+    {"--dump", NULL, "FILE.csv", "final particles: id,x,y,z,vx,vy,vz,rho,p, then every other field the scene computes", RUN,
      STRING(dump)},
     {"--out", NULL, "DIR", "where the frames go, DIR/frame_NNNNN.png (made if missing)", RENDER, STRING(out)},
     {"--vtk", NULL, "DIR", "particles and all their fields as DIR/particles_NNNNN.vtk (ParaView)", RUN | RENDER,

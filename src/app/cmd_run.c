@@ -48,7 +48,21 @@ void app_dump_write(FILE *f, const sph_sim *sim)
         return;
     }
     for (uint32_t i = 0; i < sim->n; i++) order[P->id[i]] = i;
-    fprintf(f, "id,x,y,z,vx,vy,vz,rho,p\n");
+    /* the first columns are fixed (id, position, velocity, density, pressure:
+     * 0 where not computed); then every other field the scene computes, in
+     * the registry's order, a vector as NAME_x,NAME_y,NAME_z */
+    fprintf(f, "id,x,y,z,vx,vy,vz,rho,p");
+    const char axis[3] = {'x', 'y', 'z'};
+    for (int fi = 0; fi < SPH_FIELD_COUNT; fi++) {
+        if (fi == SPH_FIELD_POS || fi == SPH_FIELD_VEL || fi == SPH_FIELD_RHO || fi == SPH_FIELD_P ||
+            !P->field[fi][0])
+            continue;
+        if (sph_field_infos[fi].vector)
+            for (int d = 0; d < 3; d++) fprintf(f, ",%s_%c", sph_field_infos[fi].name, axis[d]);
+        else
+            fprintf(f, ",%s", sph_field_infos[fi].name);
+    }
+    fputc('\n', f);
     for (uint32_t k = 0; k < sim->n; k++) {
         uint32_t i = order[k];
         float x[3] = {0, 0, 0}, v[3] = {0, 0, 0};
@@ -56,8 +70,16 @@ void app_dump_write(FILE *f, const sph_sim *sim)
             x[d] = P->pos[d][i];
             v[d] = P->vel[d][i];
         }
-        fprintf(f, "%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", P->id[i], x[0], x[1], x[2], v[0], v[1], v[2],
+        fprintf(f, "%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", P->id[i], x[0], x[1], x[2], v[0], v[1], v[2],
                 P->rho ? P->rho[i] : 0.0f, P->p ? P->p[i] : 0.0f);
+        for (int fi = 0; fi < SPH_FIELD_COUNT; fi++) {
+            if (fi == SPH_FIELD_POS || fi == SPH_FIELD_VEL || fi == SPH_FIELD_RHO || fi == SPH_FIELD_P ||
+                !P->field[fi][0])
+                continue;
+            int nc = sph_field_infos[fi].vector ? 3 : 1;
+            for (int d = 0; d < nc; d++) fprintf(f, ",%.9g", d < sim->dim || nc == 1 ? P->field[fi][d][i] : 0.0f);
+        }
+        fputc('\n', f);
     }
     free(order);
 }
