@@ -193,8 +193,6 @@ double bench_clock_probe(void);
 void bench_machine_print(FILE *f, const bench_machine *m);
 /* The figures as a cJSON object (the caller deletes it), NULL if out of memory. */
 struct cJSON *bench_machine_to_json(const bench_machine *m);
-/* The same printed at an indentation of strlen(indent) / 2 levels (src/io/io_json.h's layout). */
-void bench_machine_json(FILE *f, const bench_machine *m, const char *indent);
 
 /* ---- charts ---------------------------------------------------------------- */
 
@@ -248,7 +246,6 @@ void bench_cpu_now(bench_cpu *c);
 double bench_cpu_others(const bench_cpu *a, const bench_cpu *b);
 void bench_loadavg(double out[3]);     /* /proc/loadavg, or -1s */
 void bench_now_iso(char *out, size_t cap); /* local date and time, ISO 8601 */
-void bench_json_string(FILE *f, const char *s); /* a JSON string, escaped by cJSON */
 void bench_fmt_count(char *out, size_t cap, double v); /* 12345 -> "12,345" */
 
 #endif

@@ -36,7 +36,10 @@ void bench_progress_done(void);
 void bench_trace(const bench_level *L, const bench_meas *m, const char *what);
 
 const char *bench_dim_tag(int dim); /* "2d" or "3d" */
-void bench_write_load(FILE *f, const double l[3]);
+/* V as "%.Nf" prints it with N = DECIMALS, for a number cJSON then prints short (NaN stays NaN). */
+double bench_round_fixed(double v, int decimals);
+/* OBJ's KEY: a load average (1, 5, 15 minutes) as 3 numbers with 2 decimals; false if out of memory. */
+bool bench_json_add_load(struct cJSON *obj, const char *key, const double l[3]);
 void bench_csv_num(FILE *f, double v, const char *fmt); /* ",v", or "," if v is not finite */
 
 /* The level table (`sphlab bench levels`) of the selected levels. */

@@ -1,11 +1,14 @@
 /* What the bench's parts share, below the command: the progress line and
  * the trace, the options' defaults, the level table, small formatting. The
  * command (cmd_bench.c), the ladder, its report and the scaling stand on it. */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "bench_cmd.h"
+#include "../io/io_json.h"
 
 static const bench_opts *g_opts;
 
@@ -41,11 +44,23 @@ void bench_trace(const bench_level *L, const bench_meas *m, const char *what)
 
 const char *bench_dim_tag(int dim) { return dim == 2 ? "2d" : "3d"; }
 
-void bench_write_load(FILE *f, const double l[3])
+double bench_round_fixed(double v, int decimals)
 {
-    fprintf(f, "[%.2f, %.2f, %.2f]", l[0], l[1], l[2]);
+    if (!isfinite(v)) return v;
+    char s[400];
+    snprintf(s, sizeof s, "%.*f", decimals, v);
+    return strtod(s, NULL);
 }
 
+bool bench_json_add_load(cJSON *obj, const char *key, const double l[3])
+{
+    double r[3];
+    for (int i = 0; i < 3; i++) r[i] = bench_round_fixed(l[i], 2);
+    cJSON *a = cJSON_CreateDoubleArray(r, 3);
+    if (a && cJSON_AddItemToObject(obj, key, a)) return true;
+    cJSON_Delete(a);
+    return false;
+}
 
 void bench_opts_init(bench_opts *o, bool quick)
 {

@@ -5,11 +5,11 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "bench_cmd.h"
 #include "gpu.h"
 #include "plot.h"
+#include "../io/io.h"
 
 /* Passes that belong to the neighbour search, and those that loop over the neighbour lists. */
 static bool is_search_pass(int p)
@@ -171,17 +171,12 @@ int bench_ladder_measure(const bench_opts *o, bench_ladder *lad)
     const bench_plan plan_at = o->quick ? (bench_plan){3, 2, 600, 0, true} : (bench_plan){7, 3, 5000, 0, true};
     const double cap = o->quick ? 150000 : 4000000;
 
-    if (!plot_out_dir(o->out)) return 1;
     /* an unwritable directory fails now, not after the measurements */
-    char probe[1100];
-    snprintf(probe, sizeof probe, "%s/.bench-probe-%ld", o->out, (long)getpid());
-    FILE *pf = fopen(probe, "w");
-    if (!pf) {
-        fprintf(stderr, "sphlab bench: --out %s: cannot write there\n", o->out);
+    char dir_err[1200];
+    if (!sph_output_dir(o->out, dir_err, sizeof dir_err)) {
+        fprintf(stderr, "sphlab bench: --out: %s\n", dir_err);
         return 1;
     }
-    fclose(pf);
-    remove(probe);
 
     level_result *res = calloc((size_t)o->nsel, sizeof *res);
     if (!res) return 1;

@@ -10,7 +10,6 @@
 #endif
 
 #include "bench.h"
-#include "../io/io_json.h"
 
 /* The ladder, one line per level. Each line names every search key it
  * relies on, so a level does not change when a default does. To add a
@@ -242,13 +241,6 @@ void bench_now_iso(char *out, size_t cap)
     time_t t = time(NULL);
     struct tm tm;
     if (!localtime_r(&t, &tm) || !strftime(out, cap, "%Y-%m-%dT%H:%M:%S%z", &tm)) snprintf(out, cap, "unknown");
-}
-
-void bench_json_string(FILE *f, const char *s)
-{
-    cJSON *str = cJSON_CreateString(s ? s : "");
-    if (!str || !sph_json_fput(f, str, 0)) fputs("null", f); /* cJSON escapes; null if out of memory */
-    cJSON_Delete(str);
 }
 
 void bench_fmt_count(char *out, size_t cap, double v)

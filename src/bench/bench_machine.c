@@ -259,10 +259,3 @@ cJSON *bench_machine_to_json(const bench_machine *m)
     cJSON_Delete(o);
     return NULL;
 }
-
-void bench_machine_json(FILE *f, const bench_machine *m, const char *in)
-{
-    cJSON *o = bench_machine_to_json(m);
-    if (!o || !sph_json_fput(f, o, (int)strlen(in) / 2)) fputs("null", f); /* out of memory: the file stays valid JSON */
-    cJSON_Delete(o);
-}

@@ -6,6 +6,7 @@
 
 #include "bench_cmd.h"
 #include "plot.h"
+#include "../io/io_json.h"
 
 /* The three passes that take longest at the fixed N, as "name ms  name ms ...". */
 static void top_passes(const bench_meas *m, char *out, size_t cap, int count)
@@ -90,143 +91,165 @@ static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *r
     }
 }
 
-static void json_num(FILE *f, const char *key, double v, const char *fmt, bool comma)
+/* A cJSON call's result: a NULL (out of memory) clears *ok. */
+static cJSON *json_ok(bool *ok, cJSON *item)
 {
-    fprintf(f, "\"%s\": ", key);
-    if (isfinite(v))
-        fprintf(f, fmt, v);
-    else
-        fputs("null", f);
-    if (comma) fputs(", ", f);
+    if (!item) *ok = false;
+    return item;
 }
 
-static void json_diff(FILE *f, const char *key, const bench_diff *d, double n)
+/* V with DECIMALS decimals, as "%.Nf" printed it (counts: 0), or null. */
+static bool json_fixed(cJSON *o, const char *key, double v, int decimals)
 {
-    fprintf(f, "      \"%s\": ", key);
-    if (!d->done) {
-        fputs("null,\n", f);
-        return;
+    return cJSON_AddNumberToObject(o, key, bench_round_fixed(v, decimals)) != NULL;
+}
+
+/* A check against a reference: null when it did not run. */
+static bool json_diff(cJSON *lv, const char *key, const bench_diff *d, double n)
+{
+    if (!d->done) return cJSON_AddNullToObject(lv, key) != NULL;
+    bool ok = true;
+    cJSON *o = json_ok(&ok, cJSON_AddObjectToObject(lv, key));
+    json_ok(&ok, cJSON_AddStringToObject(o, "reference", bench_levels[d->ref].name));
+    ok &= json_fixed(o, "n", n, 0);
+    json_ok(&ok, cJSON_AddBoolToObject(o, "pass", d->pass));
+    json_ok(&ok, cJSON_AddNumberToObject(o, "sets_differ", d->sets_differ));
+    json_ok(&ok, cJSON_AddNumberToObject(o, "edge_pairs", d->edge_pairs));
+    ok &= json_fixed(o, "pairs", d->pairs, 0);
+    ok &= json_fixed(o, "reference_pairs", d->ref_pairs, 0);
+    ok &= sph_json_add_num(o, "max_dx_m", d->dx, 3);
+    ok &= sph_json_add_num(o, "max_dv_m_s", d->dv, 3);
+    ok &= sph_json_add_num(o, "max_drho", d->drho, 3);
+    json_ok(&ok, cJSON_AddStringToObject(o, "why", d->why));
+    return ok;
+}
+
+/* A target: what it asks, the level that came closest, whether it was met (null: not evaluated). */
+static bool json_target(cJSON *root, const char *key, double n, const bench_opts *o, const level_result *res, int best,
+                        bool evaluated, bool met)
+{
+    bool ok = true;
+    cJSON *t = json_ok(&ok, cJSON_AddObjectToObject(root, key));
+    json_ok(&ok, cJSON_AddNumberToObject(t, "dim", 3));
+    json_ok(&ok, cJSON_AddNumberToObject(t, "fps", 60));
+    json_ok(&ok, cJSON_AddNumberToObject(t, "n", n));
+    if (best >= 0) {
+        json_ok(&ok, cJSON_AddStringToObject(t, "best_level", bench_levels[o->sel[best]].name));
+        ok &= json_fixed(t, "best_n", res[best].max_n, 0);
     }
-    fprintf(f, "{\"reference\": \"%s\", \"n\": %.0f, \"pass\": %s, \"sets_differ\": %u, \"edge_pairs\": %u, ",
-            bench_levels[d->ref].name, n, d->pass ? "true" : "false", d->sets_differ, d->edge_pairs);
-    json_num(f, "pairs", d->pairs, "%.0f", true);
-    json_num(f, "reference_pairs", d->ref_pairs, "%.0f", true);
-    json_num(f, "max_dx_m", d->dx, "%.3g", true);
-    json_num(f, "max_dv_m_s", d->dv, "%.3g", true);
-    json_num(f, "max_drho", d->drho, "%.3g", true);
-    fputs("\"why\": ", f);
-    bench_json_string(f, d->why);
-    fputs("},\n", f);
+    json_ok(&ok, evaluated ? cJSON_AddBoolToObject(t, "met", met) : cJSON_AddNullToObject(t, "met"));
+    return ok;
 }
 
-static void write_ladder_json(FILE *f, const bench_opts *o, const level_result *res, const ladder_meta *m,
-                              int argc, char **argv)
+/* One level's entry of "levels". */
+static bool json_level(cJSON *levels, const bench_opts *o, const level_result *res, const ladder_meta *m, int s,
+                       double prev)
 {
-    fputs("{\n  \"command\": ", f);
+    const bench_level *L = &bench_levels[o->sel[s]];
+    const level_result *r = &res[s];
+    bool ok = true;
+    cJSON *lv = json_ok(&ok, cJSON_CreateObject());
+    if (lv && !cJSON_AddItemToArray(levels, lv)) {
+        cJSON_Delete(lv);
+        return false;
+    }
+    json_ok(&ok, cJSON_AddStringToObject(lv, "level", L->name));
+    json_ok(&ok, cJSON_AddStringToObject(lv, "description", L->about));
+    json_ok(&ok, cJSON_AddStringToObject(lv, "sets", L->sets));
+    json_ok(&ok, cJSON_AddStringToObject(lv, "backend", bench_level_gl(L) ? "gl" : "cpu"));
+    json_ok(&ok, cJSON_AddNumberToObject(lv, "threads", r->at.threads ? r->at.threads : L->threads));
+    ok &= json_fixed(lv, "max_n", r->searched ? r->max_n : NAN, 0);
+    json_ok(&ok, cJSON_AddBoolToObject(lv, "capped", r->capped));
+    ok &= sph_json_add_num(lv, "steps_per_s_at_max", r->searched ? r->rate_at_max : NAN, 4);
+    ok &= sph_json_add_num(lv, "speedup", s > 0 && prev > 0 && r->searched ? r->max_n / prev : NAN, 4);
+    ok &= json_fixed(lv, "n_at", r->at_ok ? (double)r->at.n : NAN, 0);
+    ok &= sph_json_add_num(lv, "ms_per_step", r->at_ok ? r->at.ms_step : NAN, 6);
+    ok &= json_fixed(lv, "pairs_per_step", r->at_ok ? r->at.pairs : NAN, 0);
+    ok &= sph_json_add_num(lv, "search_pairs_per_s_core", r->at_ok ? r->search_rate : NAN, 4);
+    ok &= sph_json_add_num(lv, "force_pairs_per_s_core", r->at_ok ? r->force_rate : NAN, 4);
+    ok &= json_fixed(lv, "other_processes_cores", r->others, 3);
+    ok &= json_fixed(lv, "at_other_processes_cores", r->at_ok ? r->at.others : NAN, 3);
+    json_ok(&ok, cJSON_AddNumberToObject(lv, "measurements", r->measurements));
+    cJSON *pass = json_ok(&ok, cJSON_AddObjectToObject(lv, "pass_ms"));
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (r->at_ok && isfinite(r->at.pass_ms[p])) ok &= sph_json_add_num(pass, sph_passes[p]->name, r->at.pass_ms[p], 6);
+    json_ok(&ok, cJSON_AddStringToObject(lv, "check", bench_check_word(r)));
+    ok &= json_diff(lv, "check_small", &r->small, m->n_check);
+    ok &= json_diff(lv, "check_at", &r->large, m->n_at);
+    json_ok(&ok, cJSON_AddStringToObject(lv, "error", r->error));
+    return ok;
+}
+
+/* The ladder's JSON (the caller deletes it), NULL if out of memory. */
+static cJSON *ladder_json(const bench_opts *o, const level_result *res, const ladder_meta *m, int argc, char **argv)
+{
+    bool ok = true;
+    cJSON *root = json_ok(&ok, cJSON_CreateObject());
     char cmd[1024] = "sphlab";
     for (int i = 0; i < argc; i++) {
         size_t len = strlen(cmd);
         snprintf(cmd + len, sizeof cmd - len, " %s", argv[i]);
     }
-    bench_json_string(f, cmd);
-    fputs(",\n  \"date\": ", f);
-    bench_json_string(f, m->date);
-    fprintf(f, ",\n  \"dim\": %d,\n  \"fps\": %.6g,\n  \"quick\": %s,\n  \"watchdog\": %s,\n", o->cfg.dim, o->fps,
-            o->quick ? "true" : "false", o->cfg.watchdog ? "true" : "false");
-    fputs("  \"load_start\": ", f);
-    bench_write_load(f, m->load0);
-    fputs(",\n  \"load_end\": ", f);
-    bench_write_load(f, m->load1);
-    fprintf(f, ",\n  \"seconds\": %.1f,\n  ", m->seconds);
-    json_num(f, "other_processes_cores", m->others, "%.3f", true);
-    json_num(f, "clock_ghz_start", m->ghz0, "%.3f", true);
-    json_num(f, "clock_ghz_end", m->ghz1, "%.3f", false);
-    fputs(",\n", f);
-    sph_scene_def def;
+    json_ok(&ok, cJSON_AddStringToObject(root, "command", cmd));
+    json_ok(&ok, cJSON_AddStringToObject(root, "date", m->date));
+    json_ok(&ok, cJSON_AddNumberToObject(root, "dim", o->cfg.dim));
+    ok &= sph_json_add_num(root, "fps", o->fps, 6);
+    json_ok(&ok, cJSON_AddBoolToObject(root, "quick", o->quick));
+    json_ok(&ok, cJSON_AddBoolToObject(root, "watchdog", o->cfg.watchdog));
+    ok &= bench_json_add_load(root, "load_start", m->load0);
+    ok &= bench_json_add_load(root, "load_end", m->load1);
+    ok &= json_fixed(root, "seconds", m->seconds, 1);
+    ok &= json_fixed(root, "other_processes_cores", m->others, 3);
+    ok &= json_fixed(root, "clock_ghz_start", m->ghz0, 3);
+    ok &= json_fixed(root, "clock_ghz_end", m->ghz1, 3);
+    sph_scene_def def, cdef;
     char why[256];
-    sph_scene_def cdef;
     if (bench_scene_def(&o->cfg, NULL, bench_k_near(o->cfg.dim, m->n_at), false, &def, why, sizeof why) &&
-        bench_scene_def(&o->cfg, NULL, bench_k_near(o->cfg.dim, m->n_at), true, &cdef, why, sizeof why))
-        fprintf(f, "  \"scene\": {\"what\": \"a block of water falling in a box twice its size\", \"spacing_m\": %g, "
-                   "\"h_m\": %g, \"jitter_spacings\": %g, \"check_jitter_spacings\": %g, \"stiffness\": %g, "
-                   "\"viscosity\": %g, \"cfl\": %g},\n",
-                def.blocks[0].spacing, def.h, def.jitter, cdef.jitter, def.stiffness, def.viscosity, def.cfl);
-    fputs("  \"sets\": [", f);
+        bench_scene_def(&o->cfg, NULL, bench_k_near(o->cfg.dim, m->n_at), true, &cdef, why, sizeof why)) {
+        cJSON *sc = json_ok(&ok, cJSON_AddObjectToObject(root, "scene"));
+        json_ok(&ok, cJSON_AddStringToObject(sc, "what", "a block of water falling in a box twice its size"));
+        ok &= sph_json_add_num(sc, "spacing_m", def.blocks[0].spacing, 6);
+        ok &= sph_json_add_num(sc, "h_m", def.h, 6);
+        ok &= sph_json_add_num(sc, "jitter_spacings", def.jitter, 6);
+        ok &= sph_json_add_num(sc, "check_jitter_spacings", cdef.jitter, 6);
+        ok &= sph_json_add_num(sc, "stiffness", def.stiffness, 6);
+        ok &= sph_json_add_num(sc, "viscosity", def.viscosity, 6);
+        ok &= sph_json_add_num(sc, "cfl", def.cfl, 6);
+    }
+    cJSON *sets = json_ok(&ok, cJSON_AddArrayToObject(root, "sets"));
     for (int i = 0; i < o->cfg.n_sets; i++) {
         char set[300];
         snprintf(set, sizeof set, "%s%s%s", o->cfg.set_level[i] ? o->cfg.set_level[i] : "",
                  o->cfg.set_level[i] ? ":" : "", o->cfg.set[i]);
-        fputs(i ? ", " : "", f);
-        bench_json_string(f, set);
+        cJSON *str = json_ok(&ok, cJSON_CreateString(set));
+        if (str && !cJSON_AddItemToArray(sets, str)) {
+            cJSON_Delete(str);
+            ok = false;
+        }
     }
-    fputs("],\n", f);
-    fprintf(f, "  \"n_at\": %.0f,\n  \"n_check\": %.0f,\n", m->n_at, m->n_check);
-    fprintf(f, "  \"tolerances\": {\"steps\": %d, \"dx_m\": %g, \"dv_m_s\": %g, \"drho\": %g, \"neighbour_sets\": "
-               "\"identical after 1 step\", \"edge_pairs_within_h_times\": %g},\n",
-            BENCH_CHECK_STEPS, BENCH_TOL_X, BENCH_TOL_V, BENCH_TOL_RHO, BENCH_EDGE);
-    fputs("  \"target\": {\"dim\": 3, \"fps\": 60, \"n\": 60000, ", f);
-    if (m->best >= 0) {
-        fputs("\"best_level\": ", f);
-        bench_json_string(f, bench_levels[o->sel[m->best]].name);
-        fprintf(f, ", \"best_n\": %.0f, ", res[m->best].max_n);
-    }
-    fprintf(f, "\"met\": %s},\n", !m->target_evaluated ? "null" : m->target_met ? "true" : "false");
-    fputs("  \"gl_device\": ", f);
-    if (m->gl_device[0])
-        bench_json_string(f, m->gl_device);
-    else
-        fputs("null", f);
-    fputs(",\n  \"gl_target\": {\"dim\": 3, \"fps\": 60, \"n\": 1000000, ", f);
-    if (m->gl_best >= 0) {
-        fputs("\"best_level\": ", f);
-        bench_json_string(f, bench_levels[o->sel[m->gl_best]].name);
-        fprintf(f, ", \"best_n\": %.0f, ", res[m->gl_best].max_n);
-    }
-    fprintf(f, "\"met\": %s},\n",
-            !m->gl_target_evaluated ? "null" : m->gl_target_met ? "true" : "false");
-    fprintf(f, "  \"all_checks_pass\": %s,\n  \"levels\": [\n", m->all_pass ? "true" : "false");
+    ok &= json_fixed(root, "n_at", m->n_at, 0);
+    ok &= json_fixed(root, "n_check", m->n_check, 0);
+    cJSON *tol = json_ok(&ok, cJSON_AddObjectToObject(root, "tolerances"));
+    json_ok(&ok, cJSON_AddNumberToObject(tol, "steps", BENCH_CHECK_STEPS));
+    ok &= sph_json_add_num(tol, "dx_m", BENCH_TOL_X, 6);
+    ok &= sph_json_add_num(tol, "dv_m_s", BENCH_TOL_V, 6);
+    ok &= sph_json_add_num(tol, "drho", BENCH_TOL_RHO, 6);
+    json_ok(&ok, cJSON_AddStringToObject(tol, "neighbour_sets", "identical after 1 step"));
+    ok &= sph_json_add_num(tol, "edge_pairs_within_h_times", BENCH_EDGE, 6);
+    ok &= json_target(root, "target", 60000, o, res, m->best, m->target_evaluated, m->target_met);
+    json_ok(&ok, m->gl_device[0] ? cJSON_AddStringToObject(root, "gl_device", m->gl_device)
+                                 : cJSON_AddNullToObject(root, "gl_device"));
+    ok &= json_target(root, "gl_target", 1000000, o, res, m->gl_best, m->gl_target_evaluated, m->gl_target_met);
+    json_ok(&ok, cJSON_AddBoolToObject(root, "all_checks_pass", m->all_pass));
+    cJSON *levels = json_ok(&ok, cJSON_AddArrayToObject(root, "levels"));
     double prev = NAN;
-    for (int s = 0; s < o->nsel; s++) {
-        const bench_level *L = &bench_levels[o->sel[s]];
-        const level_result *r = &res[s];
-        fputs("    {\n      \"level\": ", f);
-        bench_json_string(f, L->name);
-        fputs(", \"description\": ", f);
-        bench_json_string(f, L->about);
-        fputs(", \"sets\": ", f);
-        bench_json_string(f, L->sets);
-        fprintf(f, ", \"backend\": \"%s\", \"threads\": %d,\n      ", bench_level_gl(L) ? "gl" : "cpu",
-                r->at.threads ? r->at.threads : L->threads);
-        json_num(f, "max_n", r->searched ? r->max_n : NAN, "%.0f", true);
-        fprintf(f, "\"capped\": %s, ", r->capped ? "true" : "false");
-        json_num(f, "steps_per_s_at_max", r->searched ? r->rate_at_max : NAN, "%.4g", true);
-        json_num(f, "speedup", s > 0 && prev > 0 && r->searched ? r->max_n / prev : NAN, "%.4g", false);
-        prev = r->searched ? r->max_n : NAN;
-        fputs(",\n      ", f);
-        json_num(f, "n_at", r->at_ok ? (double)r->at.n : NAN, "%.0f", true);
-        json_num(f, "ms_per_step", r->at_ok ? r->at.ms_step : NAN, "%.6g", true);
-        json_num(f, "pairs_per_step", r->at_ok ? r->at.pairs : NAN, "%.0f", true);
-        json_num(f, "search_pairs_per_s_core", r->at_ok ? r->search_rate : NAN, "%.4g", true);
-        json_num(f, "force_pairs_per_s_core", r->at_ok ? r->force_rate : NAN, "%.4g", true);
-        json_num(f, "other_processes_cores", r->others, "%.3f", true);
-        json_num(f, "at_other_processes_cores", r->at_ok ? r->at.others : NAN, "%.3f", true);
-        fprintf(f, "\"measurements\": %d", r->measurements);
-        fputs(",\n      \"pass_ms\": {", f);
-        bool first = true;
-        for (int p = 0; p < SPH_PASS_COUNT; p++)
-            if (r->at_ok && isfinite(r->at.pass_ms[p])) {
-                fprintf(f, "%s\"%s\": %.6g", first ? "" : ", ", sph_passes[p]->name, r->at.pass_ms[p]);
-                first = false;
-            }
-        fputs("},\n", f);
-        fprintf(f, "      \"check\": \"%s\",\n", bench_check_word(r));
-        json_diff(f, "check_small", &r->small, m->n_check);
-        json_diff(f, "check_at", &r->large, m->n_at);
-        fputs("      \"error\": ", f);
-        bench_json_string(f, r->error);
-        fprintf(f, "\n    }%s\n", s + 1 < o->nsel ? "," : "");
+    for (int s = 0; s < o->nsel && ok; s++) {
+        ok &= json_level(levels, o, res, m, s, prev);
+        prev = res[s].searched ? res[s].max_n : NAN;
     }
-    fputs("  ]\n}\n", f);
+    if (ok) return root;
+    cJSON_Delete(root);
+    return NULL;
 }
 
 void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
@@ -369,8 +392,11 @@ bool bench_ladder_write(const bench_opts *o, const bench_ladder *lad, int argc, 
     f = ok ? plot_out_stage_csv(o->out, name) : NULL;
     if (ok && !f) ok = false;
     if (f) {
-        write_ladder_json(f, o, res, &meta, argc, argv);
-        ok &= plot_out_close_csv(f, o->out, name);
+        cJSON *root = ladder_json(o, res, &meta, argc, argv);
+        bool put = root && sph_json_fput(f, root, 0) && fputc('\n', f) != EOF;
+        cJSON_Delete(root);
+        if (!put) fprintf(stderr, "sphlab bench: %s/%s: cannot write the JSON (out of memory or a write error)\n", o->out, name);
+        ok &= plot_out_close_csv(f, o->out, name) && put;
     }
     if (ok) {
         static bench_ladder_chart c;

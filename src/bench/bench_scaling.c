@@ -7,6 +7,7 @@
 #include "bench_cmd.h"
 #include "gpu.h"
 #include "plot.h"
+#include "../io/io.h"
 
 int bench_cmd_scaling(bench_opts *o)
 {
@@ -25,7 +26,11 @@ int bench_cmd_scaling(bench_opts *o)
         int k = bench_k_near(dim, n);
         if (nk == 0 || k != ks[nk - 1]) ks[nk++] = k;
     }
-    if (!plot_out_dir(o->out)) return 1;
+    char dir_err[1200];
+    if (!sph_output_dir(o->out, dir_err, sizeof dir_err)) {
+        fprintf(stderr, "sphlab bench: --out: %s\n", dir_err);
+        return 1;
+    }
     /* GL levels only where an OpenGL 4.3 context can be made; said either way */
     char gl_device[256] = "";
     bool gl_probed = false, gl_ok = false;

@@ -13,7 +13,8 @@
 #include "app.h"
 #include "bench_cmd.h"
 #include "gpu.h"
-#include "plot.h"
+#include "../io/io.h"
+#include "../io/io_json.h"
 
 static const app_cmd_spec spec = {
     .name = "bench",
@@ -172,23 +173,30 @@ static int cmd_machine(bench_opts *o)
         bench_machine_print(stdout, &m);
         printf("\n");
     }
-    if (!plot_out_dir(o->out)) return 1;
-    FILE *f = plot_out_stage_csv(o->out, "machine.json");
-    if (!f) return 1;
-    fputs("{\n  \"date\": ", f);
-    bench_json_string(f, date);
-    fputs(",\n  \"load_start\": ", f);
-    bench_write_load(f, load0);
-    fputs(",\n  \"load_end\": ", f);
-    bench_write_load(f, load1);
-    fputs(",\n  \"machine\": ", f);
-    bench_machine_json(f, &m, "  ");
-    fputs("\n}\n", f);
-    bool ok = plot_out_close_csv(f, o->out, "machine.json");
-    if (ok)
-        ok = plot_out_commit(o->quiet);
-    else
-        plot_out_abort();
+    char err[1200];
+    if (!sph_output_dir(o->out, err, sizeof err)) {
+        fprintf(stderr, "sphlab bench: --out: %s\n", err);
+        return 1;
+    }
+    cJSON *root = cJSON_CreateObject();
+    bool ok = root && cJSON_AddStringToObject(root, "date", date) && bench_json_add_load(root, "load_start", load0) &&
+              bench_json_add_load(root, "load_end", load1);
+    cJSON *mj = ok ? bench_machine_to_json(&m) : NULL;
+    if (mj && !cJSON_AddItemToObject(root, "machine", mj)) {
+        cJSON_Delete(mj);
+        mj = NULL;
+    }
+    ok = ok && mj;
+    if (ok) {
+        char path[1100];
+        snprintf(path, sizeof path, "%s/machine.json", o->out);
+        ok = sph_json_save(path, root, err, sizeof err);
+        if (ok && !o->quiet) printf("wrote %s\n", path);
+    } else {
+        snprintf(err, sizeof err, "machine.json: out of memory");
+    }
+    if (!ok) fprintf(stderr, "sphlab bench: %s\n", err);
+    cJSON_Delete(root);
     return ok ? 0 : 1;
 }
 

@@ -4,7 +4,6 @@
  * wall time (median of repeats), and writes DIR/study.csv, a log-log chart
  * of error against time with the Pareto front (DIR/study.png, .pdf) and a
  * table on stdout. */
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,6 +11,7 @@
 
 #include "app.h"
 #include "plot.h"
+#include "../io/io.h"
 #include "study_cmd.h"
 #include "study_plot.h"
 
@@ -27,21 +27,14 @@ static const app_cmd_spec spec = {
     .extra_pos = "more than one scene file",
 };
 
-/* mkdir -p DIR (plot_out_dir), then check that a file can be made in it,
+/* mkdir -p DIR and check that a file can be made in it (sph_output_dir),
  * before any run: a bad --out fails at once, not after the study. */
 static bool prepare_dir(const char *dir)
 {
-    if (!plot_out_dir(dir)) return false;
-    char path[1100];
-    snprintf(path, sizeof path, "%s/.study-probe.%ld", dir, (long)getpid());
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "sphlab study: --out %s: cannot write there: %s\n", dir, strerror(errno));
-        return false;
-    }
-    fclose(f);
-    remove(path);
-    return true;
+    char err[1200];
+    if (sph_output_dir(dir, err, sizeof err)) return true;
+    fprintf(stderr, "sphlab study: --out: %s\n", err);
+    return false;
 }
 
 typedef struct progress_ctx {
