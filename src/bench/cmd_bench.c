@@ -187,13 +187,16 @@ static int cmd_machine(bench_opts *o)
         mj = NULL;
     }
     ok = ok && mj;
-    if (ok) {
-        char path[1100];
-        snprintf(path, sizeof path, "%s/machine.json", o->out);
+    char path[1100];
+    int len = snprintf(path, sizeof path, "%s/machine.json", o->out);
+    if (len < 0 || (size_t)len >= sizeof path) {
+        snprintf(err, sizeof err, "%s/machine.json: path too long", o->out);
+        ok = false;
+    } else if (!ok) {
+        snprintf(err, sizeof err, "%s: out of memory", path);
+    } else {
         ok = sph_json_save(path, root, err, sizeof err);
         if (ok && !o->quiet) printf("wrote %s\n", path);
-    } else {
-        snprintf(err, sizeof err, "machine.json: out of memory");
     }
     if (!ok) fprintf(stderr, "sphlab bench: %s\n", err);
     cJSON_Delete(root);
