@@ -6,7 +6,9 @@
  * slope is zero at both ends, so neither the start nor the end of the ramp
  * is a jolt that sends a pressure wave through the fluid; a linear ramp's
  * kink at T does. The external pass and its shader use the same host value,
- * evaluated at the time the step starts. */
+ * taken at the middle of the step (t + dt/2): summed over the steps, the
+ * ramp then gives exactly the integral g T / 2 of the smooth curve, where
+ * the start of each step would add a spurious g dt / 2. */
 #ifndef SPH_START_H
 #define SPH_START_H
 
@@ -21,17 +23,17 @@ static inline float sph_start_ramp(float T, double t)
     return (float)(0.5 * (1.0 - cos(3.14159265358979323846 * t / (double)T)));
 }
 
-/* [1] share of g applied in the step that starts now */
+/* [1] share of g applied in the step under way (sim->dt chosen) */
 static inline float sph_start_gravity_scale(const sph_sim *sim)
 {
-    return sph_start_ramp(sim->def.gravity_ramp, sim->t);
+    return sph_start_ramp(sim->def.gravity_ramp, sim->t + 0.5 * sim->dt);
 }
 
-/* [1] factor the step that starts now multiplies every velocity by: 0 (all
+/* [1] factor the step under way multiplies every velocity by: near 0 (all
  * motion removed) at t = 0, rising to 1 (none) at damping_time */
 static inline float sph_start_damping(const sph_sim *sim)
 {
-    return sph_start_ramp(sim->def.damping_time, sim->t);
+    return sph_start_ramp(sim->def.damping_time, sim->t + 0.5 * sim->dt);
 }
 
 #endif
