@@ -1,7 +1,11 @@
 // uses: POS VEL PRED
-// Pass external (src/passes/external.c): v += g dt, then pred = x + v dt.
+// Pass external (src/passes/external.c): v = damp v + gscale g dt, then
+// pred = x + v dt. u_gscale and u_damp are the start-up ramps' factors for
+// this step (src/core/sph_start.h), 1 when the scene has none.
 layout(local_size_x = WG) in;
 uniform float u_dt;
+uniform float u_gscale;
+uniform float u_damp;
 void main()
 {
     uint i = gid();
@@ -9,13 +13,16 @@ void main()
     for (int d = 0; d < DIM; d++) {
         uint k = uint(d) * N + i;
         float v = vel_[k];
+        bool changed = u_damp != 1.0;
+        v *= u_damp;
 #if HAS_GRAVITY
-        float gdt = GRAVITY[d] * u_dt;
+        float gdt = GRAVITY[d] * u_gscale * u_dt;
         if (gdt != 0.0) {
             v += gdt;
-            vel_[k] = v;
+            changed = true;
         }
 #endif
+        if (changed) vel_[k] = v;
 #if HAS_PRED
         precise float xp = pos_[k] + v * u_dt;
         if (PER[d] > 0.0) xp = wrap_coord(xp, DOM_MIN[d], PER[d], INV_PER[d]);

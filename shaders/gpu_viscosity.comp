@@ -2,7 +2,7 @@
 // Pass viscosity (src/passes/viscosity.c): reads vel, writes acc_v only. The
 // seed's shader added the result to the velocity buffer it was still reading
 // for other particles, so its result depended on the order threads ran in.
-#if VFORM != VFORM_LAPLACIAN && VFORM != VFORM_SMOOTHING && VFORM != VFORM_MORRIS
+#if VFORM != VFORM_LAPLACIAN && VFORM != VFORM_SMOOTHING && VFORM != VFORM_MORRIS && VFORM != VFORM_ARTIFICIAL
 #error "a viscosity form this shader does not implement"
 #endif
 layout(local_size_x = WG) in;
@@ -11,7 +11,18 @@ float rho_i;
 void sph_pair(uint i, uint j, vec3 dx, float r2)
 {
     float r = sqrt(r2);
-#if VFORM == VFORM_MORRIS
+#if VFORM == VFORM_ARTIFICIAL
+    // Monaghan 1992: -m_j Pi_ij grad W_ij for approaching pairs, along x_ij,
+    // with the pressure kernel's gradient
+    vec3 vj = VEL3(j);
+    float vx = 0.0;
+    for (int d = 0; d < DIM; d++) vx += (vi[d] - vj[d]) * dx[d];
+    if (!(vx < 0.0) || r <= 0.0) return;
+    float pi_ij = -AV_ACH * vx / (0.5 * (rho_i + rho_[j]) * (r2 + AV_EPS2));
+    float f = -mass_[j] * pi_ij * kernel_dw(KP, SIG_P, r) / r;
+    for (int d = 0; d < DIM; d++) acc[d] += f * dx[d];
+    return;
+#elif VFORM == VFORM_MORRIS
     // -(x_ij . grad W) / (r^2 + eta^2), eta = 0.01 h, symmetrised in density (Morris 1997)
     float coef = -mass_[j] * (rho_i + rho_[j]) / (rho_i * rho_[j]) * r * kernel_dw(KV, SIG_V, r) / (r2 + 1e-4 * H2);
 #elif VFORM == VFORM_LAPLACIAN
@@ -19,8 +30,10 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
 #else
     float coef = vol_[j] * kernel_w(KV, SIG_V, r);
 #endif
+#if VFORM != VFORM_ARTIFICIAL
     vec3 vj = VEL3(j);
     for (int d = 0; d < DIM; d++) acc[d] += coef * (vj[d] - vi[d]);
+#endif
 }
 #include_walk
 void main()
@@ -31,7 +44,9 @@ void main()
     vi = VEL3(i);
     rho_i = rho_[i];
     sph_walk(i, PRED3(i));
-#if VFORM == VFORM_MORRIS
+#if VFORM == VFORM_ARTIFICIAL
+    float s = 1.0;
+#elif VFORM == VFORM_MORRIS
     float s = NU;
 #elif VFORM == VFORM_LAPLACIAN
     float s = NU * RHO0 / rho_[i];

@@ -84,6 +84,7 @@ static void copy_state(sph_sim *g, const sph_sim *c)
     for (int f = 0; f < SPH_FIELD_COUNT; f++)
         for (int d = 0; d < 3; d++) copy_f(g->P.field[f][d], c->P.field[f][d], n);
     g->dt = c->dt;
+    g->t = c->t; /* the start-up ramps depend on it */
     g->max_speed = c->max_speed;
     g->max_acc = c->max_acc;
     sph_sim_upload(g);
@@ -280,6 +281,17 @@ Test(gl_backend, passes_match_cpu_2d_grid_periodic_morris)
     const char *sets[] = {"search.method=grid", "domain.periodic=y", "physics.viscosity_form=morris",
                           "kernels.viscosity=cubic"};
     lockstep_steps(scene_2d, sets, 4, 2);
+}
+
+/* Monaghan's artificial viscosity, and the start-up ramps of gravity and
+ * damping part-way through (their factors are uniforms of the external pass) */
+Test(gl_backend, passes_match_cpu_artificial_viscosity_ramps)
+{
+    const char *sets[] = {"physics.viscosity_form=artificial", "physics.alpha=0.5", "physics.gravity_ramp=0.01",
+                          "physics.damping_time=0.02"};
+    lockstep_steps(scene_2d, sets, 4, 2);
+    const char *sets3[] = {"physics.viscosity_form=artificial", "kernels.pressure=wendland"};
+    lockstep_steps(scene_3d, sets3, 2, 1);
 }
 
 Test(gl_backend, passes_match_cpu_periodic_brute)

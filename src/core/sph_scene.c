@@ -93,6 +93,15 @@ const sph_key sph_scene_keys[] = {
     {"physics", "accumulate", SPH_KEY_CHOICE, S(accumulate), 0, 0, 0, 0, CH(sph_accumulate_names), "", "float",
      "precision of the density and force sums: float, or double (slower; shows what round-off costs)"},
     {"physics", "gravity", SPH_KEY_VEC, S(gravity), -1e4, 1e4, 0, 0, NULL, 0, "m/s^2", "0 -9.81 0", "g"},
+    {"physics", "alpha", SPH_KEY_FLOAT, S(alpha), 0, 10, 0, 0, NULL, 0, "", "0.1",
+     "alpha of viscosity_form = artificial (Monaghan 1992): Pi_ij = -alpha c (h/2) (v_ij . x_ij) / (rho_avg (r^2 + "
+     "0.01 (h/2)^2)) for approaching pairs, c = sqrt(stiffness); typically 0.01 to 0.1"},
+    {"physics", "gravity_ramp", SPH_KEY_FLOAT, S(gravity_ramp), 0, BIG, 0, 0, NULL, 0, "s", "0",
+     "gravity grows as g (1 - cos(pi t / T)) / 2 over the first T seconds (as in Adami et al. 2012's hydrostatic "
+     "tank), so a column at rest is loaded without a pressure shock; 0: full g from the start"},
+    {"physics", "damping_time", SPH_KEY_FLOAT, S(damping_time), 0, BIG, 0, 0, NULL, 0, "s", "0",
+     "over the first T seconds every step multiplies the velocities by (1 - cos(pi t / T)) / 2: all motion is "
+     "removed at t = 0 and none at T, so an initial state settles; 0: no damping"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 0, BIG, 1, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings"},

@@ -10,6 +10,7 @@
 
 #include "gpu_internal.h"
 #include "gpu_shaders.h"
+#include "sph_start.h"
 
 const char *const gpu_common_source = shader_gpu_common_glsl;
 const char *const gpu_walk_source = shader_gpu_walk_glsl;
@@ -88,6 +89,8 @@ static void run_external(gpu *g, sph_sim *sim)
 {
     gpu_use(g, SPH_PASS_EXTERNAL);
     gpu_set_f(g, SPH_PASS_EXTERNAL, U_dt, sim->dt);
+    gpu_set_f(g, SPH_PASS_EXTERNAL, U_gscale, sph_start_gravity_scale(sim)); /* the CPU pass's factors */
+    gpu_set_f(g, SPH_PASS_EXTERNAL, U_damp, sph_start_damping(sim));
     gpu_dispatch(g, g->n);
 }
 

@@ -3,6 +3,7 @@
  * the storage blocks each program uses, the fields' written from the
  * registry (sph_fields.h). Each program is compiled for one scene: loops over
  * axes unroll and unused options vanish, as SPH_SPECIALISE does on the CPU. */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -128,10 +129,13 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
      * stops with #error on any other, so a form added on the CPU is never
      * silently computed as another on GL */
     put(&t, "#define PFORM_SYM %d\n#define VFORM %d\n#define VFORM_LAPLACIAN %d\n#define VFORM_SMOOTHING %d\n"
-            "#define VFORM_MORRIS %d\n",
+            "#define VFORM_MORRIS %d\n#define VFORM_ARTIFICIAL %d\n",
         def->pressure_form == SPH_PFORM_SYMMETRIC, (int)def->viscosity_form, (int)SPH_VFORM_LAPLACIAN,
-        (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS);
+        (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS, (int)SPH_VFORM_ARTIFICIAL);
     put_float(&t, "NU", def->viscosity);
+    /* artificial viscosity: alpha c h_s as the CPU pass computes it in float */
+    put_float(&t, "AV_ACH", def->alpha * sqrtf(def->stiffness) * (0.5f * def->h));
+    put_float(&t, "AV_EPS2", 0.01f * (0.5f * def->h) * (0.5f * def->h));
     put_float(&t, "COHESION", def->cohesion);
     put_float(&t, "DAMP", def->wall_damping);
     put_float(&t, "INTER_R", def->interaction_radius);

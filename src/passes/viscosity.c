@@ -13,6 +13,17 @@
  *              spacings, 2.4% off with the cubic spline where Mueller's
  *              lap W is 20% off, tests/test_physics.c. Pairwise equal and
  *              opposite.)
+ *   artificial: a_i = -sum_j m_j Pi_ij grad W_ij, for approaching pairs
+ *              (v_ij . x_ij < 0) Pi_ij = -alpha c h_s (v_ij . x_ij) /
+ *              (rho_avg (r^2 + 0.01 h_s^2)), else 0; c = sqrt(k), h_s = h/2,
+ *              rho_avg = (rho_i + rho_j)/2 (Monaghan 1992, "Smoothed particle
+ *              hydrodynamics", Annu. Rev. Astron. Astrophys. 30:543, eq. 4.2
+ *              without the beta term), with the pressure kernel's gradient:
+ *              Monaghan adds Pi_ij to the pressure term, and the viscosity
+ *              kernel's W' grows as 1/r^(dim-1) at r = 0, which the 0.01 h_s^2
+ *              would not bound. It acts only along x_ij and only on
+ *              approach, so it damps compression (shocks, splashes) but not
+ *              rigid motion or separation; pairwise equal and opposite.
  * It reads vel and writes acc_v only: the seed's shader added the result to
  * the velocities it was still reading for other particles, so its outcome
  * depended on the order threads ran in. */
@@ -29,18 +40,26 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "%s form, %s kernel, nu %g m^2/s", sph_viscosity_form_names[def->viscosity_form],
-             sph_kernel_names[def->kernel_viscosity], def->viscosity);
+    if (def->viscosity_form == SPH_VFORM_ARTIFICIAL)
+        snprintf(out, (size_t)n, "artificial form (Monaghan), %s kernel's gradient, alpha %g, c %g m/s",
+                 sph_kernel_names[def->kernel_pressure], def->alpha, sqrt(def->stiffness));
+    else
+        snprintf(out, (size_t)n, "%s form, %s kernel, nu %g m^2/s", sph_viscosity_form_names[def->viscosity_form],
+                 sph_kernel_names[def->kernel_viscosity], def->viscosity);
 }
 
 /* The viscous acceleration of one particle; dim and dbl are constants. */
 static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const bool dbl,
                                  const bool periodic)
 {
+    const sph_kernel *kp = &sim->k_pressure;
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
     const bool laplacian = sim->def.viscosity_form == SPH_VFORM_LAPLACIAN;
     const bool morris = sim->def.viscosity_form == SPH_VFORM_MORRIS;
+    const bool artificial = sim->def.viscosity_form == SPH_VFORM_ARTIFICIAL;
+    /* artificial: alpha c h_s, and the 0.01 h_s^2 that keeps close pairs finite */
+    const float hs = 0.5f * k->h, ach = sim->def.alpha * sqrtf(sim->def.stiffness) * hs, eps2 = 0.01f * hs * hs;
     const float nu = sim->def.viscosity;
     const float *per = sim->period, *iper = sim->inv_period;
     /* eta = 0.01 h keeps the sum finite for coincident particles (the scene
@@ -57,14 +76,26 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
     }
     for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
         uint32_t j = S->nbr[e];
-        float r2 = 0;
+        float r2 = 0, dx[3];
         for (int d = 0; d < dim; d++) {
-            float dx = xi[d] - P->pred[d][j];
-            if (periodic) dx = sph_min_image(dx, per[d], iper[d]);
-            r2 += dx * dx;
+            dx[d] = xi[d] - P->pred[d][j];
+            if (periodic) dx[d] = sph_min_image(dx[d], per[d], iper[d]);
+            r2 += dx[d] * dx[d];
         }
         float r = sqrtf(r2);
         float coef;
+        if (artificial) { /* along x_ij, so not of the form coef (v_j - v_i) below */
+            float vx = 0;
+            for (int d = 0; d < dim; d++) vx += (vi[d] - P->vel[d][j]) * dx[d];
+            if (!(vx < 0.0f) || r <= 0.0f) continue; /* receding, or coincident: no force */
+            float pi_ij = -ach * vx / (0.5f * (rho_i + P->rho[j]) * (r2 + eps2));
+            float f = -P->mass[j] * pi_ij * sph_kernel_dw(kp, r) / r; /* grad W_ij = W'(r) x_ij / r */
+            for (int d = 0; d < dim; d++) {
+                if (dbl) ad[d] += f * dx[d];
+                else af[d] += f * dx[d];
+            }
+            continue;
+        }
         if (morris) /* -(x_ij . grad W) = -r W'(r) >= 0 */
             coef = -P->mass[j] * (rho_i + P->rho[j]) / (rho_i * P->rho[j]) * r * sph_kernel_dw(k, r) / (r2 + eta2);
         else
@@ -75,7 +106,10 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
             else af[d] += t;
         }
     }
-    float s = morris ? nu : laplacian ? nu * sim->def.rest_density / rho_i : nu * 2.0f * (float)dim / k->m2;
+    float s = artificial  ? 1.0f
+              : morris    ? nu
+              : laplacian ? nu * sim->def.rest_density / rho_i
+                          : nu * 2.0f * (float)dim / k->m2;
     for (int d = 0; d < dim; d++) P->acc_v[d][i] = s * (dbl ? (float)ad[d] : af[d]);
 }
 
