@@ -6,9 +6,10 @@
  * region's barrier for a scheduler time slice, and two threads run 10 to 30
  * times slower than one. Waiting passively (sleeping on a futex) lets the
  * scheduler wake a worker at once instead. The runtime reads its settings
- * from the environment once, while the program loads, before main() (and
- * the C library resets the environment it reads before then), so the only
- * way in is to set OMP_WAIT_POLICY=passive and run the program again. */
+ * from the environment once, while the program loads, before main() (a
+ * setenv from an ELF pre-initialiser is undone by the C library before
+ * libgomp reads it), so the way in is to set OMP_WAIT_POLICY=passive and run
+ * the program again. */
 #ifndef SPH_THREADS_H
 #define SPH_THREADS_H
 
