@@ -9,6 +9,7 @@
 #include "app.h"
 #include "commands.h"
 #include "../gpu/gpu.h"
+#include "sph_threads.h"
 
 static void usage(FILE *f)
 {
@@ -110,6 +111,10 @@ void app_out_abort(app_out *o)
 
 int main(int argc, char **argv)
 {
+    /* Worker threads that sleep between parallel regions instead of spinning:
+     * sets OMP_WAIT_POLICY=passive and runs sphlab again unless the user set a
+     * policy (sph_threads.h; docs/performance.md, "Threads on a busy machine"). */
+    sph_threads_wait_passive(argv);
     if (argc < 2) {
         usage(stderr);
         return 2;
