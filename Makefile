@@ -20,7 +20,7 @@ BIN     ?= sphlab
 # Every file of src/core and src/passes is built: a new pass is a new file, no list to edit.
 CORE    := $(filter-out sph_overlay,$(sort $(basename $(notdir $(wildcard src/core/sph_*.c)))))
 PASSES  := $(sort $(basename $(notdir $(wildcard src/passes/*.c))))
-APP     := main app_options cmd_run cmd_check cmd_hardcases
+APP     := main app_options app_threads cmd_run cmd_check cmd_hardcases
 TESTS   := $(filter-out test_util,$(basename $(notdir $(wildcard tests/test_*.c))))
 
 # Modules above the core (rendering, plotting) add objects, flags and libraries
@@ -50,8 +50,9 @@ CORE_OBJ := $(CORE:%=$(BUILD)/core/%.o) $(PASSES:%=$(BUILD)/passes/%.o)
 APP_OBJ  := $(APP:%=$(BUILD)/app/%.o) $(MOD_OBJ)
 TEST_OBJ := $(TESTS:%=$(BUILD)/tests/%.o) $(BUILD)/tests/test_util.o
 # The option table is tested in-process (tests/test_options.c).
-TEST_APP_OBJ := $(BUILD)/app/app_options.o
+TEST_APP_OBJ := $(BUILD)/app/app_options.o $(BUILD)/app/app_threads.o
 $(BUILD)/tests/test_options.o: CORE_CFLAGS += -Isrc/app
+$(BUILD)/tests/test_threads.o: CORE_CFLAGS += -Isrc/app
 $(BUILD)/tests/test_options.o: src/app/app_options.h src/app/commands.h
 
 .PHONY: all demo test check-tests check-clang asan asan-run fuzz deps clean

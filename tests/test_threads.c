@@ -1,4 +1,4 @@
-/* The threads' wait policy (src/core/sph_threads.c, issue 17 "Threads on a
+/* The threads' wait policy (src/app/app_threads.c, issue 17 "Threads on a
  * busy machine"): sphlab's OpenMP runtime starts with passive waits unless
  * the user chose a policy. Checked through what the runtime itself reports
  * (OMP_DISPLAY_ENV=verbose, printed as libgomp starts), never through speed. */
@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sph_threads.h"
+#include "app_threads.h"
 #include "test_util.h"
 
 static char g_out[1 << 16];

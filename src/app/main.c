@@ -9,7 +9,7 @@
 #include "app.h"
 #include "commands.h"
 #include "../gpu/gpu.h"
-#include "sph_threads.h"
+#include "app_threads.h"
 
 static void usage(FILE *f)
 {
@@ -113,7 +113,7 @@ int main(int argc, char **argv)
 {
     /* Worker threads that sleep between parallel regions instead of spinning:
      * sets OMP_WAIT_POLICY=passive and runs sphlab again unless the user set a
-     * policy (sph_threads.h; docs/performance.md, "Threads on a busy machine"). */
+     * policy (app_threads.h; docs/performance.md, "Threads on a busy machine"). */
     sph_threads_wait_passive(argv);
     if (argc < 2) {
         usage(stderr);

@@ -1,8 +1,8 @@
-/* The threads' wait policy, set before the OpenMP runtime starts (see sph_threads.h). */
+/* The threads' wait policy, set before the OpenMP runtime starts (see app_threads.h). */
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "sph_threads.h"
+#include "app_threads.h"
 
 const char *sph_threads_wait_choose(const char *omp_wait_policy, const char *gomp_spincount,
                                     const char *kmp_blocktime)

@@ -10,8 +10,8 @@
  * setenv from an ELF pre-initialiser is undone by the C library before
  * libgomp reads it), so the way in is to set OMP_WAIT_POLICY=passive and run
  * the program again. */
-#ifndef SPH_THREADS_H
-#define SPH_THREADS_H
+#ifndef APP_THREADS_H
+#define APP_THREADS_H
 
 /* The wait policy to set given the environment's values (NULL: unset):
  * "passive" when none of the runtimes' wait settings (OMP_WAIT_POLICY,
