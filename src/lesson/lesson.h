@@ -153,6 +153,8 @@ void lx_missing(lx *x, const char *fmt, ...) __attribute__((format(printf, 2, 3)
 char *lx_read_file(const char *path);
 /* Writes a command line, quoted as a shell would need it. */
 void lx_print_args(FILE *f, const char *const *argv);
+/* The command line in the report's open code block, and the block's end. */
+void lx_md_args(lx *x, const char *const *argv);
 /* Opens DIR/logs/NN-LOG.txt for something done in process, headed by the
  * equivalent command line argv (said on stderr unless quiet); NULL if it cannot. */
 FILE *lx_log_open(lx *x, const char *log, const char *const *argv, const char **log_path);

@@ -136,6 +136,18 @@ void lx_md_file(lx *x, const char *path, int max_lines)
 
 /* ---- subprocesses --------------------------------------------------------- */
 
+void lx_md_args(lx *x, const char *const *argv)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&buf, &len);
+    if (!m) return;
+    lx_print_args(m, argv);
+    fclose(m);
+    lx_md(x, "%s\n```\n\n", buf);
+    free(buf);
+}
+
 void lx_print_args(FILE *f, const char *const *argv)
 {
     for (int i = 0; argv[i]; i++) {
@@ -259,16 +271,7 @@ int lx_sphlab_v(lx *x, const char *log, const char *cwd, const char *env, const 
             free(text);
         }
         lx_md(x, "\n**A command failed** (exit %d), see `logs/%s`:\n\n```\n", rc, strrchr(lp, '/') + 1);
-        /* the report gets the command with paths as given */
-        char *buf = NULL;
-        size_t len = 0;
-        FILE *m = open_memstream(&buf, &len);
-        if (m) {
-            lx_print_args(m, argv);
-            fclose(m);
-            lx_md(x, "%s\n```\n\n", buf);
-            free(buf);
-        }
+        lx_md_args(x, argv); /* the command with paths as given */
     }
     return rc;
 }

@@ -78,15 +78,7 @@ static bool run_failed(lx *x, const char *log_path, const char *const *argv, con
     lx_print_args(stderr, argv);
     fputc('\n', stderr);
     lx_md(x, "\n**A run failed** (%s), see `logs/%s`:\n\n```\n", why, strrchr(log_path, '/') + 1);
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *m = open_memstream(&buf, &len);
-    if (m) {
-        lx_print_args(m, argv);
-        fclose(m);
-        lx_md(x, "%s\n```\n\n", buf);
-        free(buf);
-    }
+    lx_md_args(x, argv);
     return false;
 }
 
