@@ -100,11 +100,12 @@ static const hardcase cases[] = {
      "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
      "[physics]\nstiffness = 400\n[time]\ncfl = 0\ndt = 0.02\n",
      500, true, -1, 0, -1, NULL},
-    {"very-stiff", "stiffness 1e6 m^2/s^2 (c = 1000 m/s): tiny adaptive steps, still stable",
+    {"very-stiff", "stiffness 1e6 m^2/s^2 (c = 1000 m/s): the lattice's 1.5-3% density excess is a 15-30 kPa "
+                   "overpressure that launches a column at rest at 24 m/s (a fall: 4.4 m/s); must stop with a report",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.2 0.3\nspacing = 0.02\n[kernels]\nh = 0.04\n"
      "[physics]\nstiffness = 1e6\nviscosity = 0.002\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
-     2000, false, 0.05, 0.02, -1, NULL},
+     2000, true, -1, 0, -1, NULL},
     {"tait-stiff", "Tait equation, gamma 7",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
