@@ -192,8 +192,8 @@ static void measure_start(sph_sim *sim)
 /* Bounds beyond which the watchdog calls the state a runaway, from the
  * scene's own speed scales, not from its stiffness: a weakly compressible
  * fluid flows at a small fraction of its sound speed, so a speed far above
- * what gravity (a fall along g across the domain), the blocks, the mouse and
- * any compression the blocks start with can make is an artefact, however
+ * what gravity (a fall along g across the domain), the blocks, the mouse,
+ * cohesion and any compression the blocks start with can make is an artefact, however
  * stiff the fluid. The lattice's own summation error (up to 3% above rho0)
  * does not count as compression: at k = 1e6 it launched a column at rest at
  * 28 m/s. Also 100 rho0 for density, and, for total energy, its scale at
@@ -225,7 +225,15 @@ static void set_bounds(sph_sim *sim)
         for (uint32_t i = 0; i < sim->n; i++) rho_max = fmax(rho_max, sim->P.rho[i]);
     double r = rho_max / (SPH_LATTICE_EXCESS * def->rest_density), squeeze = 0;
     if (r > 1) squeeze = c * sqrt(2.0 * (log(r) + 1.0 / r - 1.0));
-    sim->speed_scale = (float)(fall + v0 + mouse + squeeze);
+    /* cohesion pulls a surface in: its initial acceleration acting over h */
+    double pull = 0;
+    if (sim->P.acc_c[0])
+        for (uint32_t i = 0; i < sim->n; i++) {
+            double a2 = 0;
+            for (int d = 0; d < sim->dim; d++) a2 += (double)sim->P.acc_c[d][i] * sim->P.acc_c[d][i];
+            pull = fmax(pull, sqrt(2.0 * sqrt(a2) * def->h));
+        }
+    sim->speed_scale = (float)(fall + v0 + mouse + squeeze + pull);
     sim->speed_fall = (float)fall;
     sim->speed_bound = (float)(SPH_SPEED_FACTOR * sim->speed_scale + 1.0);
     sim->density_bound = 100.0f * def->rest_density;

@@ -81,8 +81,8 @@ void sph_watchdog_check(sph_sim *sim, int pass)
             for (int c = 0; c < fd.ncomp; c++) s2 += fd.c[c][i] * fd.c[c][i];
             value = sqrtf(s2);
             snprintf(what, sizeof what,
-                     "speed %.4g m/s is above the bound %.4g m/s: 4 times the speed the scene can make, %.3g m/s "
-                     "(a fall across the domain %.3g m/s, the blocks, the mouse, initial compression)",
+                     "speed %.4g m/s is above the bound %.4g m/s, 4 times what the scene can make: %.3g m/s "
+                     "(a fall %.3g m/s, the blocks, the mouse, cohesion, compression)",
                      value, sim->speed_bound, sim->speed_scale, sim->speed_fall);
         } else {
             snprintf(what, sizeof what, "%s %.4g is outside (0, %.4g], the bound the scene implies", fd.about,
