@@ -139,6 +139,29 @@ static void check_coincident_in_fluid(int dim)
 Test(robust, coincident_pair_in_fluid_2d) { check_coincident_in_fluid(2); }
 Test(robust, coincident_pair_in_fluid_3d) { check_coincident_in_fluid(3); }
 
+/* Every default and one block of fluid: the run must be stable. In the
+ * default 1 m box a fall reaches at most sqrt(2 g 1 m) = 4.4 m/s; the
+ * defaults' fixed dt (twice the sound speed's CFL limit) took it to 220 m/s. */
+Test(robust, defaults_give_a_stable_run)
+{
+    sph_sim *sim = test_sim("[fluid a]\nmin=0 0\nmax=0.3 0.5\n", 1);
+    const double fall = sqrt(2 * 9.81 * 1.0);
+    double vmax = 0;
+    sph_stats s;
+    while (sim->t < 0.5 && !sim->alarm.raised) {
+        sph_sim_step(sim);
+        if (sim->step % 20 == 0) {
+            sph_sim_stats(sim, &s);
+            vmax = fmax(vmax, s.max_speed);
+        }
+    }
+    char buf[4096];
+    sph_sim_alarm_report(sim, buf, sizeof buf);
+    cr_assert(!sim->alarm.raised, "the defaults were stopped by the watchdog: %s", buf);
+    cr_assert(vmax <= 1.5 * fall, "the defaults reached %g m/s; a fall in the box reaches %g m/s", vmax, fall);
+    sph_sim_destroy(sim);
+}
+
 /* A column at rest with stiffness 1e6 (c = 1000 m/s): the lattice's 1.5%
  * summation error is then a 15 kPa overpressure, five times the hydrostatic
  * pressure, and it launches the column at 24-28 m/s in 15 ms, while a fall in
