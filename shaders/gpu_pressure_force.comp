@@ -1,6 +1,6 @@
 // uses: PRED MASS RHO VOL P PRHO2 ACC_P ENTRIES START WALL
 // Pass pressure_force (src/passes/pressure_force.c): symmetric or shared form,
-// coincident pairs pushed apart along x, walls push back.
+// coincident pairs pushed apart along x (repulsion only), walls push back.
 layout(local_size_x = WG) in;
 vec3 acc;
 float pi_over, p_i, rho_i;
@@ -19,6 +19,7 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
 #else
     float coef = vol_[j] * 0.5 * (p_i + p_[j]) / rho_i;
 #endif
+    if (r2 < R_MIN * R_MIN && coef < 0.0) coef = 0.0; // a coincident pair only repels
     for (int d = 0; d < DIM; d++) acc[d] -= coef * dw_over_r * dx[d];
 }
 #include_walk

@@ -429,7 +429,7 @@ Test(physics, periodic_uniform_flow_stays_uniform)
 {
     sph_sim *sim = test_sim("[scene]\neffects=pressure viscosity\n[domain]\nmin=0 0\nmax=1 1\nperiodic=x y\n"
                             "[fluid all]\nmin=0 0\nmax=1 1\nspacing=0.02\nvelocity=3 1\n"
-                            "[kernels]\nh=0.05\ndensity=cubic\npressure=cubic\n[time]\ncfl=0.4\n",
+                            "[kernels]\nh=0.05\ndensity=cubic\npressure=cubic\n[physics]\nnegative_pressure=keep\n[time]\ncfl=0.4\n",
                             2);
     sph_stats s0, s1;
     sph_sim_stats(sim, &s0);

@@ -75,7 +75,7 @@ const sph_key sph_scene_keys[] = {
      "k; the speed of sound is sqrt(k), keep it about 10x the fastest flow"},
     {"physics", "tait_gamma", SPH_KEY_FLOAT, S(tait_gamma), 1, 20, 0, 0, NULL, 0, "", "7", "exponent of the Tait equation"},
     {"physics", "negative_pressure", SPH_KEY_CHOICE, S(negative_pressure), 0, 0, 0, 0,
-     CH(sph_negative_pressure_names), "", "keep",
+     CH(sph_negative_pressure_names), "", "clamp",
      "keep: below rho0 particles attract (the seeds); clamp: pressure >= 0, no tensile clumping"},
     {"physics", "pressure_form", SPH_KEY_CHOICE, S(pressure_form), 0, 0, 0, 0, CH(sph_pressure_form_names), "",
      "symmetric",
@@ -114,7 +114,7 @@ const sph_key sph_scene_keys[] = {
 
     {"time", "dt", SPH_KEY_FLOAT, S(dt), 0, 1, 1, 0, NULL, 0, "s", "0.0005",
      "time step with cfl = 0; upper bound of the adaptive step otherwise"},
-    {"time", "cfl", SPH_KEY_FLOAT, S(cfl), 0, 1, 0, 0, NULL, 0, "", "0",
+    {"time", "cfl", SPH_KEY_FLOAT, S(cfl), 0, 1, 0, 0, NULL, 0, "", "0.4",
      "Courant factor; > 0 chooses dt each step from h, the speed of sound, speeds, forces and viscosity"},
     {"time", "dt_min", SPH_KEY_FLOAT, S(dt_min), 0, 1, 1, 0, NULL, 0, "s", "1e-7",
      "the adaptive step never goes below this"},

@@ -154,29 +154,88 @@ static void place_particles(sph_sim *sim)
     }
 }
 
-/* Bounds beyond which the watchdog calls a value a runaway: 20 times the
- * fastest speed the scene can plausibly make (sound, a fall across the
- * domain, the blocks' own speed, the mouse), and 100 rho0. */
+/* The state at t = 0 as the first time step must see it: the largest speed
+ * and acceleration, and the total energy. Without this the first adaptive dt
+ * (and the fixed-dt warning) was chosen with |v|max = |a|max = 0. The force
+ * passes run once with dt = 0 (so pred = pos and nothing moves), on the host,
+ * without reordering, before any backend takes the state. */
+static void measure_start(sph_sim *sim)
+{
+    const sph_particles *P = &sim->P;
+    const int dim = sim->dim;
+    sim->dt = 0.0f;
+    for (int p = 0; p < SPH_PASS_INTEGRATE; p++)
+        if (sim->in_pipeline[p] && p != SPH_PASS_REORDER) sph_passes[p]->run(sim);
+    double v2max = 0, a2max = 0, g2 = 0;
+    for (int d = 0; d < dim; d++)
+        g2 += (sim->def.effects & SPH_EFFECT(GRAVITY)) ? (double)sim->def.gravity[d] * sim->def.gravity[d] : 0.0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        double v2 = 0, a2 = 0;
+        for (int d = 0; d < dim; d++) {
+            double a = 0;
+            for (int f = 0; f < SPH_FIELD_COUNT; f++)
+                if ((SPH_MASK_ACCELERATIONS & SPH_FIELD_BIT(f)) && P->field[f][0]) a += P->field[f][d][i];
+            v2 += (double)P->vel[d][i] * P->vel[d][i];
+            a2 += a * a;
+        }
+        v2max = fmax(v2max, v2);
+        a2max = fmax(a2max, a2);
+    }
+    sim->max_speed = (float)sqrt(v2max);
+    sim->max_acc = (float)(sqrt(a2max) + sqrt(g2)); /* as integration measures it */
+    sph_stats s;
+    sph_sim_stats(sim, &s);
+    sim->energy_start = sph_stats_energy(&s);
+    sim->energy_scale = fabs(s.ekin) + fabs(s.epot) + fabs(s.eint);
+}
+
+/* Bounds beyond which the watchdog calls the state a runaway, from the
+ * scene's own speed scales, not from its stiffness: a weakly compressible
+ * fluid flows at a small fraction of its sound speed, so a speed far above
+ * what gravity (a fall along g across the domain), the blocks, the mouse,
+ * cohesion and any compression the blocks start with can make is an artefact, however
+ * stiff the fluid. The lattice's own summation error (up to 3% above rho0)
+ * does not count as compression: at k = 1e6 it launched a column at rest at
+ * 28 m/s. Also 100 rho0 for density, and, for total energy, its scale at
+ * step 0 (sph_watchdog_energy). Called once the state at t = 0 is measured. */
+#define SPH_SPEED_FACTOR 4.0   /* the bound, in units of the scene's speed scale */
+#define SPH_LATTICE_EXCESS 1.1 /* rho / rho0 a lattice may read at rest (3%), with a margin */
 static void set_bounds(sph_sim *sim)
 {
     const sph_scene_def *def = &sim->def;
-    double c = (def->effects & SPH_EFFECT(PRESSURE)) ? sqrt(def->stiffness) : 0.0;
-    double g2 = 0, L2 = 0, v0 = 0;
-    for (int d = 0; d < def->dim; d++) {
-        g2 += (def->effects & SPH_EFFECT(GRAVITY)) ? (double)def->gravity[d] * def->gravity[d] : 0.0;
-        double e = (double)def->domain_max[d] - def->domain_min[d];
-        L2 += e * e;
-    }
+    const bool pressure = def->effects & SPH_EFFECT(PRESSURE);
+    double c = pressure ? sqrt(def->stiffness) : 0.0;
+    double g2 = 0, v0 = 0, fall_height = 0;
+    for (int d = 0; d < def->dim; d++) g2 += (def->effects & SPH_EFFECT(GRAVITY)) ? (double)def->gravity[d] * def->gravity[d] : 0.0;
+    for (int d = 0; d < def->dim && g2 > 0; d++) /* the domain's extent along g */
+        fall_height += fabs((double)def->gravity[d]) / sqrt(g2) * ((double)def->domain_max[d] - def->domain_min[d]);
     for (int b = 0; b < def->n_blocks; b++) {
         double s2 = 0;
         for (int d = 0; d < def->dim; d++) s2 += (double)def->blocks[b].velocity[d] * def->blocks[b].velocity[d];
         v0 = fmax(v0, sqrt(s2));
     }
-    double fall = sqrt(2.0 * sqrt(g2) * sqrt(L2));
+    double fall = sqrt(2.0 * sqrt(g2) * fall_height);
     double mouse = (def->effects & SPH_EFFECT(INTERACTION))
                        ? sqrt(2.0 * fabs(def->interaction_strength) * def->interaction_radius)
                        : 0.0;
-    sim->speed_bound = (float)(20.0 * (c + fall + v0 + mouse) + 1.0);
+    /* compression the blocks start with (overlapping blocks): the speed its
+     * internal energy, e = k (ln r + 1/r - 1) at r = rho / rho0, could give */
+    double rho_max = 0;
+    if (pressure && sim->P.rho)
+        for (uint32_t i = 0; i < sim->n; i++) rho_max = fmax(rho_max, sim->P.rho[i]);
+    double r = rho_max / (SPH_LATTICE_EXCESS * def->rest_density), squeeze = 0;
+    if (r > 1) squeeze = c * sqrt(2.0 * (log(r) + 1.0 / r - 1.0));
+    /* cohesion pulls a surface in: its initial acceleration acting over h */
+    double pull = 0;
+    if (sim->P.acc_c[0])
+        for (uint32_t i = 0; i < sim->n; i++) {
+            double a2 = 0;
+            for (int d = 0; d < sim->dim; d++) a2 += (double)sim->P.acc_c[d][i] * sim->P.acc_c[d][i];
+            pull = fmax(pull, sqrt(2.0 * sqrt(a2) * def->h));
+        }
+    sim->speed_scale = (float)(fall + v0 + mouse + squeeze + pull);
+    sim->speed_fall = (float)fall;
+    sim->speed_bound = (float)(SPH_SPEED_FACTOR * sim->speed_scale + 1.0);
     sim->density_bound = 100.0f * def->rest_density;
 }
 
@@ -214,7 +273,6 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     }
     sim->interaction_sign = 1.0f;
     sim->watchdog = true;
-    set_bounds(sim);
     sim->k_density = sph_kernel_make(def->kernel_density, def->dim, def->h);
     sim->k_pressure = sph_kernel_make(def->kernel_pressure, def->dim, def->h);
     sim->k_viscosity = sph_kernel_make(def->kernel_viscosity, def->dim, def->h);
@@ -284,6 +342,8 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
         return sph_fail(err, SPH_ERR_MEMORY, "%s: out of memory for %u particles", def->file, n);
     }
     place_particles(sim);
+    measure_start(sim);
+    set_bounds(sim);
     sim->dt = sph_time_step_choose(sim);
     if (def->backend != SPH_BACKEND_CPU) {
         sph_backend_factory make = backend_factories[def->backend];
@@ -350,6 +410,8 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     next->max_speed = sim->max_speed;
     next->max_acc = sim->max_acc;
     next->energy_ref = sim->energy_ref;
+    next->energy_start = NAN; /* the internal energy may have another law now: taken again after a step */
+    next->energy_scale = sim->energy_scale;
     next->interaction_active = sim->interaction_active;
     memcpy(next->interaction_point, sim->interaction_point, sizeof next->interaction_point);
     next->interaction_sign = sim->interaction_sign;
@@ -423,6 +485,7 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
             sph_sim_stats(sim, &s);
             sim->energy_ref = sph_stats_energy(&s);
         }
+        if (sim->watchdog && p < SPH_PASS_COUNT) sph_watchdog_energy(sim, p);
     }
     sim->next_pass = next;
     return (sph_pass_id)(p < SPH_PASS_COUNT ? p : SPH_PASS_COUNT);

@@ -189,7 +189,11 @@ struct sph_sim {
     int next_pass;        /* next pass of the current step, for stepping pass by pass */
     /* Watchdog: after every pass, the fields it wrote are checked. */
     bool watchdog;        /* on by default */
-    float speed_bound;    /* [m/s] a speed above this is a runaway (from c, g, the domain and the blocks) */
+    float speed_bound;    /* [m/s] a speed above this is a runaway: 4 speed_scale + 1 m/s */
+    float speed_scale;    /* [m/s] what the scene can make: fall + blocks + mouse + initial compression */
+    float speed_fall;     /* [m/s] a fall along g across the domain, sqrt(2 g L) (for the report) */
+    double energy_start;  /* [J] or [J/m] total energy at step 0 (NAN: take it at the end of the next step) */
+    double energy_scale;  /* [J] or [J/m] |kinetic| + |potential| + |internal| at step 0 */
     float density_bound;  /* [kg/m^dim] likewise for density (100 rho0) */
     sph_alarm alarm;
     /* The interaction effect's point (the mouse), set by the window. */
@@ -275,6 +279,9 @@ float sph_time_step_choose(const sph_sim *sim);
 
 /* The watchdog (sph_watchdog.c), run by the pipeline after each pass. */
 void sph_watchdog_check(sph_sim *sim, int pass);
+/* After a complete step: total energy against its value at step 0 (pass: the
+ * step's last pass, named in the report). */
+void sph_watchdog_energy(sph_sim *sim, int pass);
 
 /* Monotonic clock [ms]. */
 double sph_now_ms(void);

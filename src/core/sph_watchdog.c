@@ -80,14 +80,53 @@ void sph_watchdog_check(sph_sim *sim, int pass)
             float s2 = 0;
             for (int c = 0; c < fd.ncomp; c++) s2 += fd.c[c][i] * fd.c[c][i];
             value = sqrtf(s2);
-            snprintf(what, sizeof what, "speed %.4g m/s is above the bound %.4g m/s the scene implies", value,
-                     sim->speed_bound);
+            snprintf(what, sizeof what,
+                     "speed %.4g m/s is above the bound %.4g m/s, 4 times what the scene can make: %.3g m/s "
+                     "(a fall %.3g m/s, the blocks, the mouse, cohesion, compression)",
+                     value, sim->speed_bound, sim->speed_scale, sim->speed_fall);
         } else {
             snprintf(what, sizeof what, "%s %.4g is outside (0, %.4g], the bound the scene implies", fd.about,
                      value, sim->density_bound);
         }
         raise_alarm(sim, pass, i, f, comp, value, what);
     }
+}
+
+/* Energy: kinetic + gravitational + internal may only fall (viscosity and
+ * wall damping remove it) except for the scheme's own error. A gain of half
+ * its step-0 scale (plus that of 0.5 m/s over the whole mass, for a scene
+ * that starts with almost none) is a runaway even when every speed is below
+ * its bound. The mouse does work and a live change of parameters changes the
+ * internal energy, so both move the reference. With a backend the state is
+ * downloaded for this, so it is checked every 64 steps only. */
+void sph_watchdog_energy(sph_sim *sim, int pass)
+{
+    if (sim->alarm.raised || (sim->backend && sim->step % 64 != 0)) return;
+    sph_stats s;
+    sph_sim_stats(sim, &s);
+    const double e = sph_stats_energy(&s);
+    double mass = 0;
+    for (uint32_t i = 0; i < sim->n; i++) mass += sim->P.mass[i];
+    if (!isfinite(sim->energy_start) || sim->interaction_active) {
+        sim->energy_start = e;
+        sim->energy_scale = fmax(sim->energy_scale, fabs(s.ekin) + fabs(s.epot) + fabs(s.eint));
+        return;
+    }
+    const double allowed = 0.5 * (sim->energy_scale + 0.5 * mass * 0.25);
+    if (!(e - sim->energy_start > allowed) && isfinite(e)) return;
+    uint32_t fastest = 0;
+    float v2max = -1;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        float v2 = 0;
+        for (int d = 0; d < sim->dim; d++) v2 += sim->P.vel[d][i] * sim->P.vel[d][i];
+        if (v2 > v2max) v2max = v2, fastest = i;
+    }
+    char what[200];
+    snprintf(what, sizeof what,
+             "total energy %.4g J grew by %.3g J since step 0 (bound %.3g J: half its scale %.3g J); fastest "
+             "particle shown",
+             e, e - sim->energy_start, allowed, sim->energy_scale);
+    raise_alarm(sim, pass, fastest, SPH_FIELD_VEL, 0, sqrtf(fmaxf(v2max, 0.0f)), what);
 }
 
 static void append(char *out, size_t n, size_t *used, const char *fmt, ...) __attribute__((format(printf, 4, 5)));

@@ -53,7 +53,11 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
         if (r2 < r_min * r_min) {
             /* Coincident (or nearly): the gradient has no direction. Push the
              * pair apart along x, in opposite senses for i and j so the pair
-             * force stays equal and opposite (momentum kept). */
+             * force stays equal and opposite (momentum kept). Only a
+             * repulsion: a tensile (negative pressure) pair is already where
+             * its attraction would bring it, and pushing it along an
+             * arbitrary axis threw two particles at rest apart at the
+             * speed of sound. */
             dx[0] = (uint32_t)i < j ? -r_min : r_min;
             for (int d = 1; d < dim; d++) dx[d] = 0.0f;
             r = r_min;
@@ -62,6 +66,7 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
         }
         float dw_over_r = sph_kernel_dw(k, r) / r;
         float coef = symmetric ? P->mass[j] * (pi_over + P->p_rho2[j]) : P->vol[j] * 0.5f * (p_i + P->p[j]) / rho_i;
+        if (r2 < r_min * r_min && coef < 0.0f) coef = 0.0f; /* a coincident pair only repels (below) */
         for (int d = 0; d < dim; d++) {
             float t = coef * dw_over_r * dx[d];
             if (dbl) ad[d] -= t;
@@ -119,6 +124,8 @@ static inline void pressure_one_avx512(const sph_sim *sim, const sph_kernel *k, 
                                                 _mm512_add_ps(pi_over, sph_simd_gather(live, idx, P->p_rho2)))
                                 : _mm512_mul_ps(_mm512_mul_ps(sph_simd_gather(live, idx, P->vol), half_over_rho),
                                                 _mm512_add_ps(pi, sph_simd_gather(live, idx, P->p)));
+        if (close) /* a coincident pair only repels, as in the scalar loop */
+            coef = _mm512_mask_mov_ps(coef, _mm512_mask_cmp_ps_mask(close, coef, zero, _CMP_LT_OQ), zero);
         __m512 f = _mm512_mul_ps(coef, dw_over_r);
         ax = _mm512_mask3_fnmadd_ps(f, dx, ax, live);
         ay = _mm512_mask3_fnmadd_ps(f, dy, ay, live);
