@@ -33,6 +33,8 @@ static inline float sph_start_gravity_scale(const sph_sim *sim)
  * motion removed) at t = 0, rising to 1 (none) at damping_time */
 static inline float sph_start_damping(const sph_sim *sim)
 {
+    /* a step of no length (the start's force evaluation, sph_sim_create) damps nothing */
+    if (!(sim->dt > 0)) return 1.0f;
     return sph_start_ramp(sim->def.damping_time, sim->t + 0.5 * sim->dt);
 }
 
