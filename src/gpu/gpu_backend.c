@@ -89,6 +89,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
         if (sim->in_pipeline[p] && !gpu_pass_rows[p].run && !gpu_pass_rows[p].source)
             return sph_fail(err, SPH_ERR_SCENE, "%s: the GL backend has no %s pass (the scene needs it)", def->file,
                             sph_passes[p]->name);
+    if (sim->in_pipeline[SPH_PASS_WALL_STATE])
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [domain] wall_model = particles is not implemented by the GL backend yet (its wall "
+                        "particles and the wall_state pass run on the CPU; accepted there: volume, reflect)",
+                        def->file);
     if (sim->in_pipeline[SPH_PASS_SORT] && def->sort != SPH_SORT_BITONIC && def->sort != SPH_SORT_COUNTING)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] sort = %s is not implemented by the GL backend (accepted there: bitonic, "

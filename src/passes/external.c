@@ -3,6 +3,7 @@
  * evaluated where the particle is about to be, which keeps stiff pressure
  * stable at larger time steps. Each particle touches only its own data. */
 #include "sph_search.h"
+#include "sph_walls.h"
 
 #include <stdio.h>
 
@@ -31,7 +32,8 @@ static void run(sph_sim *sim)
         const float gdt = gravity ? sim->def.gravity[d] * dt : 0.0f;
         if (gdt != 0.0f) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-            for (int i = 0; i < n; i++) v[i] += gdt;
+            for (int i = 0; i < n; i++)
+                if (!sph_is_wall(P, i)) v[i] += gdt; /* wall particles stand still */
         }
         if (P->pred[d]) {
             const float *restrict x = P->pos[d];
