@@ -299,3 +299,32 @@ Test(wall_particles, poiseuille_free_slip_is_plug_flow)
         sph_sim_destroy(sim);
     }
 }
+
+/* Wall particles lie outside the box, where the dense grid clamps them into
+ * its edge cells: hash, grid and brute force must still list the same
+ * neighbours for every particle. */
+Test(wall_particles, every_search_finds_the_wall_particles)
+{
+    const char *methods[] = {"hash", "grid", "brute"};
+    uint32_t counts[3][1600];
+    uint32_t n = 0;
+    for (int m = 0; m < 3; m++) {
+        char ini[1024], set[64];
+        tank_ini(ini, sizeof ini, "particles", "cubic", 0.3, "gravity pressure viscosity walls");
+        snprintf(set, sizeof set, "search.method=%s", methods[m]);
+        sph_scene_def def = test_scene(ini);
+        sph_error err;
+        cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
+        sph_sim *sim;
+        cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s", err.msg);
+        n = sim->n;
+        cr_assert_leq(n, 1600);
+        run_through(sim, SPH_PASS_NEIGHBOURS); /* the first step's lists: every method sees the same positions */
+        for (uint32_t i = 0; i < n; i++) counts[m][sim->P.id[i]] = sim->S.nbr_start[i + 1] - sim->S.nbr_start[i];
+        sph_sim_destroy(sim);
+    }
+    for (uint32_t id = 0; id < n; id++)
+        for (int m = 1; m < 3; m++)
+            cr_assert_eq(counts[m][id], counts[0][id], "particle %u: %u neighbours by %s, %u by hash", id,
+                         counts[m][id], methods[m], counts[0][id]);
+}
