@@ -328,3 +328,25 @@ Test(wall_particles, every_search_finds_the_wall_particles)
             cr_assert_eq(counts[m][id], counts[0][id], "particle %u: %u neighbours by %s, %u by hash", id,
                          counts[m][id], methods[m], counts[0][id]);
 }
+
+/* Switching no-slip to free-slip live keeps the particles, and each keeps its
+ * mark (the reorder pass has moved them; the flag is state, carried over). */
+Test(wall_particles, reconfigure_keeps_the_wall_marks)
+{
+    char ini[1024];
+    tank_ini(ini, sizeof ini, "particles", "cubic", 0.3, "gravity pressure viscosity walls");
+    sph_sim *sim = test_sim(ini, 2);
+    for (int s = 0; s < 10; s++) sph_sim_step(sim);
+    sph_scene_def def = sim->def;
+    sph_error err;
+    cr_assert_eq(sph_scene_set(&def, "domain.wall_slip=free", &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_eq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    for (int s = 0; s < 10; s++) sph_sim_step(sim);
+    cr_assert(!sim->alarm.raised);
+    for (uint32_t i = 0; i < sim->n; i++)
+        cr_assert_eq(sph_is_wall(&sim->P, i), sim->P.id[i] >= 1200, "particle %u (id %u)", i, sim->P.id[i]);
+    /* another wall model makes other particles: refused */
+    cr_assert_eq(sph_scene_set(&def, "domain.wall_model=volume", &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_neq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK);
+    sph_sim_destroy(sim);
+}
