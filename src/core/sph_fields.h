@@ -46,7 +46,11 @@
     X(ACC_C, acc_c, V, "m/s^2", "m/s^2", ACCELERATION, COHESION, NONE, "cohesion-acc", "a cohesion",            \
       "cohesion acceleration (surface tension)")                                                                 \
     X(ACC_I, acc_i, V, "m/s^2", "m/s^2", ACCELERATION, INTERACTION, NONE, "", "a mouse", "interaction acceleration") \
-    X(MASS, mass, 1, "kg", "kg/m", STATE, NONE, NONE, "", "", "mass")
+    X(MASS, mass, 1, "kg", "kg/m", STATE, NONE, NONE, "", "", "mass")                                           \
+    X(FIXED, fixed, 1, "1", "1", STATE, WALL_STATE, NONE, "", "wall", "1 for a fixed wall particle, 0 for fluid") \
+    X(VEL_VISC, vel_visc, V, "m/s", "m/s", WALL, WALL_STATE, NONE, "", "v viscous",                              \
+      "velocity the viscous term sees: the fluid's own; a wall particle's mirrored (no-slip) or the fluid's "     \
+      "(free-slip)")
 
 typedef enum sph_field_id {
 #define SPH_FIELD_ENUM(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) SPH_FIELD_##ID,

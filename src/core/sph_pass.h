@@ -22,6 +22,7 @@
     X(NEIGHBOURS, neighbours) \
     X(DENSITY, density)    \
     X(PRESSURE, pressure)  \
+    X(WALL_STATE, wall_state) \
     X(PRESSURE_FORCE, pressure_force) \
     X(VISCOSITY, viscosity) \
     X(COHESION, cohesion)  \
@@ -85,5 +86,8 @@ bool sph_scene_needs_density(const sph_scene_def *def);
 /* Walls listed, with wall_model = volume: they count in density and pressure. */
 bool sph_scene_wall_volume(const sph_scene_def *def);
 #define sph_sim_wall_volume(sim) sph_scene_wall_volume(&(sim)->def)
+/* Walls listed, with wall_model = particles and pressure computed: layers of
+ * fixed wall particles (src/core/sph_wall_particles.c). */
+bool sph_scene_wall_particles(const sph_scene_def *def);
 
 #endif

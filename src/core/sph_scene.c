@@ -21,6 +21,7 @@ const char *const sph_search_names[SPH_SEARCH_COUNT] = {SPH_SEARCH_CHOICES(NAMES
 const char *const sph_sort_names[SPH_SORT_COUNT] = {SPH_SORT_CHOICES(NAMES)};
 const char *const sph_negative_pressure_names[SPH_NEGP_COUNT] = {SPH_NEGP_CHOICES(NAMES)};
 const char *const sph_wall_model_names[SPH_WALL_COUNT] = {SPH_WALL_CHOICES(NAMES)};
+const char *const sph_wall_slip_names[SPH_SLIP_COUNT] = {SPH_SLIP_CHOICES(NAMES)};
 const char *const sph_axis_names[3] = {"x", "y", "z"};
 const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICES(NAMES)};
 const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
@@ -65,7 +66,12 @@ const sph_key sph_scene_keys[] = {
     {"domain", "wall_model", SPH_KEY_CHOICE, S(wall_model), 0, 0, 0, 0, CH(sph_wall_model_names), "", "volume",
      "volume: the space behind each wall counts as fluid at rest in the density sum and pushes back with the "
      "particle's pressure, so particles near a wall miss none of their support; reflect: only the seed's damped "
-     "reflection (particles near walls lack neighbours and sink into them)"},
+     "reflection (particles near walls lack neighbours and sink into them); particles: layers of fixed wall "
+     "particles outside the box, on the fluid's lattice, whose pressure is extrapolated from the fluid (Adami, Hu "
+     "& Adams 2012; CPU only)"},
+    {"domain", "wall_slip", SPH_KEY_CHOICE, S(wall_slip), 0, 0, 0, 0, CH(sph_wall_slip_names), "", "no",
+     "with wall_model = particles: no: no-slip walls (the wall particles' velocity in the viscous term mirrors the "
+     "fluid's); free: free-slip (they take the fluid's velocity, no shear at the wall)"},
 
     {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 0, BIG, 1, 0, NULL, 0, "kg/m^dim", "1000",
      "rho0: density at which the pressure is zero"},

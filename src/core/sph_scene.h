@@ -50,7 +50,8 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_SEARCH_CHOICES(X) X(HASH, "hash") X(GRID, "grid") X(BRUTE, "brute")
 #define SPH_SORT_CHOICES(X) X(BITONIC, "bitonic") X(COUNTING, "counting") X(QSORT, "qsort") X(NONE, "none")
 #define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")
-#define SPH_WALL_CHOICES(X) X(VOLUME, "volume") X(REFLECT, "reflect")
+#define SPH_WALL_CHOICES(X) X(VOLUME, "volume") X(REFLECT, "reflect") X(PARTICLES, "particles")
+#define SPH_SLIP_CHOICES(X) X(NO, "no") X(FREE, "free")
 #define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
 #define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
@@ -65,6 +66,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_SORT(id, name) SPH_SORT_##id,
 #define SPH_CHOICE_ITEM_SPH_NEGP(id, name) SPH_NEGP_##id,
 #define SPH_CHOICE_ITEM_SPH_WALL(id, name) SPH_WALL_##id,
+#define SPH_CHOICE_ITEM_SPH_SLIP(id, name) SPH_SLIP_##id,
 #define SPH_CHOICE_ITEM_SPH_VFIELD(id, name) SPH_VFIELD_##id,
 #define SPH_CHOICE_ITEM_SPH_ACC(id, name) SPH_ACC_##id,
 #define SPH_CHOICE_ITEM_SPH_ONOFF(id, name) SPH_##id,
@@ -76,6 +78,7 @@ SPH_DECLARE_CHOICES(sph_search, SPH_SEARCH, SPH_SEARCH_CHOICES)
 SPH_DECLARE_CHOICES(sph_sort, SPH_SORT, SPH_SORT_CHOICES)
 SPH_DECLARE_CHOICES(sph_negative_pressure, SPH_NEGP, SPH_NEGP_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_model, SPH_WALL, SPH_WALL_CHOICES)
+SPH_DECLARE_CHOICES(sph_wall_slip, SPH_SLIP, SPH_SLIP_CHOICES)
 SPH_DECLARE_CHOICES(sph_velocity_field, SPH_VFIELD, SPH_FIELD_CHOICES)
 SPH_DECLARE_CHOICES(sph_accumulate, SPH_ACC, SPH_ACC_CHOICES)
 SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
@@ -88,6 +91,7 @@ extern const char *const sph_search_names[SPH_SEARCH_COUNT];
 extern const char *const sph_sort_names[SPH_SORT_COUNT];
 extern const char *const sph_negative_pressure_names[SPH_NEGP_COUNT];
 extern const char *const sph_wall_model_names[SPH_WALL_COUNT];
+extern const char *const sph_wall_slip_names[SPH_SLIP_COUNT];
 extern const char *const sph_axis_names[3];
 extern const char *const sph_velocity_field_names[SPH_VFIELD_COUNT];
 extern const char *const sph_accumulate_names[SPH_ACC_COUNT];
@@ -119,7 +123,10 @@ typedef struct sph_scene_def {
     unsigned effects;  /* SPH_EFFECT(...) bits */
     float domain_min[3], domain_max[3]; /* [m] the box walls bound */
     float wall_damping;                 /* [1] share of the normal speed kept at a wall bounce */
-    sph_wall_model wall_model;          /* volume: walls also count in density and pressure */
+    sph_wall_model wall_model;          /* volume: walls also count in density and pressure; particles:
+                                           layers of fixed wall particles (Adami et al. 2012) */
+    sph_wall_slip wall_slip;            /* particles: the wall particles' velocity in the viscous term
+                                           (no: mirrored, no-slip; free: the fluid's, free-slip) */
     unsigned periodic;                  /* bit d: axis d wraps around (no walls on it) */
     int n_blocks;
     sph_block_def blocks[SPH_MAX_BLOCKS];

@@ -1,5 +1,6 @@
 /* Simulation set-up, the time step as a list of passes, and statistics. */
 #include "sph_sim.h"
+#include "sph_walls.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -259,7 +260,8 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
         sim->def.gravity[2] = 0;
         sim->def.domain_min[2] = sim->def.domain_max[2] = 0;
     }
-    sim->n = (uint32_t)sph_scene_particle_count(def);
+    /* the fluid's particles, then the walls' (wall_model = particles) */
+    sim->n = (uint32_t)(sph_scene_particle_count(def) + sph_wall_particle_count(def));
 #ifdef _OPENMP
     sim->threads = threads > 0 ? threads : omp_get_num_procs();
     if (sim->threads > SPH_MAX_THREADS) sim->threads = SPH_MAX_THREADS;
@@ -342,6 +344,7 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
         return sph_fail(err, SPH_ERR_MEMORY, "%s: out of memory for %u particles", def->file, n);
     }
     place_particles(sim);
+    if (P->fixed) sph_wall_particles_place(sim, (uint32_t)sph_scene_particle_count(def));
     measure_start(sim);
     set_bounds(sim);
     sim->dt = sph_time_step_choose(sim);
@@ -393,7 +396,7 @@ void sph_sim_destroy(sph_sim *sim)
 sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err)
 {
     if (def->dim != sim->def.dim || def->n_blocks != sim->def.n_blocks ||
-        sph_scene_particle_count(def) != (double)sim->n)
+        sph_scene_particle_count(def) + sph_wall_particle_count(def) != (double)sim->n)
         return sph_fail(err, SPH_ERR_SCENE, "this change makes other particles: reset the scene instead");
     sph_sim *next;
     sph_error_code c = sph_sim_create_shared(def, sim->threads, sim->backend_share, &next, err);
@@ -402,7 +405,7 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     uint32_t n = sim->n;
     memcpy(next->P.id, sim->P.id, (size_t)n * sizeof *next->P.id);
     for (int f = 0; f < SPH_FIELD_COUNT; f++) /* the state; derived fields are made again */
-        if (sph_field_infos[f].kind == SPH_KIND_STATE)
+        if (sph_field_infos[f].kind == SPH_KIND_STATE && sim->P.field[f][0]) /* fixed: only with wall particles */
             for (int d = 0; d < (sph_field_infos[f].vector ? sim->dim : 1); d++)
                 memcpy(next->P.field[f][d], sim->P.field[f][d], (size_t)n * sizeof(float));
     next->t = sim->t;
@@ -545,11 +548,15 @@ void sph_sim_stats(const sph_sim *sim, sph_stats *out)
 {
     const sph_particles *P = &sim->P;
     sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_POS) | SPH_SYNC_FIELD(SPH_FIELD_VEL) | SPH_SYNC_FIELD(SPH_FIELD_MASS) |
-                          SPH_SYNC_FIELD(SPH_FIELD_RHO) | SPH_SYNC_FIELD(SPH_FIELD_P));
+                          SPH_SYNC_FIELD(SPH_FIELD_RHO) | SPH_SYNC_FIELD(SPH_FIELD_P) |
+                          SPH_SYNC_FIELD(SPH_FIELD_FIXED));
     memset(out, 0, sizeof *out);
     out->n = sim->n;
     double rmin = INFINITY, rmax = -INFINITY, rsum = 0;
+    uint32_t n_fluid = 0;
     for (uint32_t i = 0; i < sim->n; i++) {
+        if (sph_is_wall(P, i)) continue; /* wall particles are no part of the fluid's energy or density */
+        n_fluid++;
         double v2 = 0;
         for (int d = 0; d < sim->dim; d++) {
             double v = P->vel[d][i];
@@ -570,9 +577,9 @@ void sph_sim_stats(const sph_sim *sim, sph_stats *out)
         }
     }
     out->max_speed = sqrt(out->max_speed);
-    if (P->rho && sim->n) {
+    if (P->rho && n_fluid) {
         out->rho_min = rmin;
         out->rho_max = rmax;
-        out->rho_mean = rsum / sim->n;
+        out->rho_mean = rsum / n_fluid;
     }
 }

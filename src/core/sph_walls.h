@@ -7,6 +7,13 @@
 
 #include "sph_sim.h"
 
+/* Boundary particles (wall_model = particles, sph_wall_particles.c): how many
+ * the scene's box makes, and placing them at P[first ..] (after the fluid). */
+double sph_wall_particle_count(const sph_scene_def *def);
+void sph_wall_particles_place(sph_sim *sim, uint32_t first);
+/* Is particle i a wall particle? (Never, without wall particles: no field.) */
+#define sph_is_wall(P, i) ((P)->fixed && (P)->fixed[i] != 0.0f)
+
 /* 1 - prod_w (1 - psi(d_w)), which is exact at one wall and at a corner's tip
  * and counts corners once, not twice. If grad is not NULL it receives the
  * gradient of that share [1/m] with respect to the particle's position. */

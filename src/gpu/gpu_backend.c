@@ -83,6 +83,12 @@ static void destroy(sph_backend *b)
 static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
 {
     const sph_scene_def *def = &sim->def;
+    /* named by its key before the generic refusal below */
+    if (sim->in_pipeline[SPH_PASS_WALL_STATE])
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [domain] wall_model = particles is not implemented by the GL backend yet (its wall "
+                        "particles and the wall_state pass run on the CPU; accepted there: volume, reflect)",
+                        def->file);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)

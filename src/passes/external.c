@@ -6,6 +6,7 @@
  * velocities damped first (damping_time): v = zeta_d v + zeta_g g dt. */
 #include "sph_search.h"
 #include "sph_start.h"
+#include "sph_walls.h"
 
 #include <stdio.h>
 
@@ -43,7 +44,8 @@ static void run(sph_sim *sim)
         }
         if (gdt != 0.0f) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-            for (int i = 0; i < n; i++) v[i] += gdt;
+            for (int i = 0; i < n; i++)
+                if (!sph_is_wall(P, i)) v[i] += gdt; /* wall particles stand still */
         }
         if (P->pred[d]) {
             const float *restrict x = P->pos[d];

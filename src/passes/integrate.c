@@ -4,6 +4,7 @@
  * pass); positions on periodic axes are wrapped back into the domain. Also measures the largest speed and acceleration, which the CFL
  * time step of the next step needs. */
 #include "sph_search.h"
+#include "sph_walls.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -41,6 +42,7 @@ static void run(sph_sim *sim)
     float vmax2 = 0, amax2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : vmax2, amax2) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (sph_is_wall(P, i)) continue; /* wall particles never move */
         float v2 = 0, a2 = 0;
         for (int d = 0; d < dim; d++) {
             float a = 0.0f;

@@ -141,6 +141,14 @@ static inline void pressure_one_avx512(const sph_sim *sim, const sph_kernel *k, 
 }
 #endif
 
+/* Wall particles (wall_model = particles) get no acceleration: they never move. */
+static inline bool wall_still(sph_sim *sim, int i)
+{
+    if (!sph_is_wall(&sim->P, i)) return false;
+    for (int d = 0; d < sim->dim; d++) sim->P.acc_p[d][i] = 0.0f;
+    return true;
+}
+
 static void run(sph_sim *sim)
 {
     const sph_kernel k = sim->k_pressure;
@@ -150,12 +158,15 @@ static void run(sph_sim *sim)
 #if SPH_HAVE_AVX512
     if (sph_simd_on(sim) && k.kind == SPH_KERNEL_SPIKY) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-        for (int i = 0; i < n; i++) dim == 3 ? pressure_one_avx512(sim, &k, i, 3) : pressure_one_avx512(sim, &k, i, 2);
+        for (int i = 0; i < n; i++)
+            if (!wall_still(sim, i))
+                dim == 3 ? pressure_one_avx512(sim, &k, i, 3) : pressure_one_avx512(sim, &k, i, 2);
         return;
     }
 #endif
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, pressure_one, sim, &k, i);
+    for (int i = 0; i < n; i++)
+        if (!wall_still(sim, i)) SPH_SPECIALISE_P(dim, dbl, periodic, pressure_one, sim, &k, i);
 }
 
 const sph_pass sph_pass_pressure_force = {

@@ -26,9 +26,12 @@
  *              rigid motion or separation; pairwise equal and opposite.
  * It reads vel and writes acc_v only: the seed's shader added the result to
  * the velocities it was still reading for other particles, so its outcome
- * depended on the order threads ran in. */
+ * depended on the order threads ran in. With wall particles, the neighbours'
+ * velocities are read from vel_visc (the wall_state pass: the fluid's own,
+ * the walls' mirrored for no-slip), and walls get no acceleration. */
 #include "simd.h"
 #include "sph_search.h"
+#include "sph_walls.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -68,6 +71,7 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
      * sum by 3-4% at h = 2 spacings. */
     const float eta2 = 1e-4f * k->h * k->h;
     const float rho_i = P->rho[i];
+    float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
     float xi[3], vi[3], af[3] = {0, 0, 0};
     double ad[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++) {
@@ -101,7 +105,7 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
         else
             coef = P->vol[j] * (laplacian ? sph_kernel_lap(k, r) : sph_kernel_w(k, r));
         for (int d = 0; d < dim; d++) {
-            float t = coef * (P->vel[d][j] - vi[d]);
+            float t = coef * (vj[d][j] - vi[d]);
             if (dbl) ad[d] += t;
             else af[d] += t;
         }
@@ -124,6 +128,7 @@ static inline void viscosity_one_avx512(const sph_sim *sim, const sph_kernel *k,
     sph_simd_centre(P, i, dim, xi);
     const __m512 vxi = _mm512_set1_ps(P->vel[0][i]), vyi = _mm512_set1_ps(P->vel[1][i]);
     const __m512 vzi = _mm512_set1_ps(dim == 3 ? P->vel[2][i] : 0.0f);
+    float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
     const __m512 inv_h = _mm512_set1_ps(k->inv_h), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
     __m512 ax = zero, ay = zero, az = zero;
     const uint32_t end = S->nbr_start[i + 1];
@@ -133,10 +138,10 @@ static inline void viscosity_one_avx512(const sph_sim *sim, const sph_kernel *k,
         __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
         __m512 lap = _mm512_max_ps(_mm512_fnmadd_ps(_mm512_sqrt_ps(r2), inv_h, one), zero); /* 1 - r/h */
         __m512 coef = _mm512_mul_ps(sph_simd_gather(live, idx, P->vol), lap);
-        ax = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, P->vel[0]), vxi), ax, live);
-        ay = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, P->vel[1]), vyi), ay, live);
+        ax = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, vj[0]), vxi), ax, live);
+        ay = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, vj[1]), vyi), ay, live);
         if (dim == 3)
-            az = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, P->vel[2]), vzi), az, live);
+            az = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, vj[2]), vzi), az, live);
     }
     const float c = k->sigma * k->inv_h * k->inv_h * (dim == 3 ? 6.0f : 1.0f);
     const float s = c * sim->def.viscosity * sim->def.rest_density / P->rho[i];
@@ -145,6 +150,14 @@ static inline void viscosity_one_avx512(const sph_sim *sim, const sph_kernel *k,
     if (dim == 3) P->acc_v[2][i] = s * _mm512_reduce_add_ps(az);
 }
 #endif
+
+/* Wall particles get no acceleration: they never move. */
+static inline bool wall_still(sph_sim *sim, int i)
+{
+    if (!sph_is_wall(&sim->P, i)) return false;
+    for (int d = 0; d < sim->dim; d++) sim->P.acc_v[d][i] = 0.0f;
+    return true;
+}
 
 static void run(sph_sim *sim)
 {
@@ -156,12 +169,14 @@ static void run(sph_sim *sim)
     if (sph_simd_on(sim) && k.kind == SPH_KERNEL_VISCOSITY && sim->def.viscosity_form == SPH_VFORM_LAPLACIAN) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++)
-            dim == 3 ? viscosity_one_avx512(sim, &k, i, 3) : viscosity_one_avx512(sim, &k, i, 2);
+            if (!wall_still(sim, i))
+                dim == 3 ? viscosity_one_avx512(sim, &k, i, 3) : viscosity_one_avx512(sim, &k, i, 2);
         return;
     }
 #endif
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, viscosity_one, sim, &k, i);
+    for (int i = 0; i < n; i++)
+        if (!wall_still(sim, i)) SPH_SPECIALISE_P(dim, dbl, periodic, viscosity_one, sim, &k, i);
 }
 
 const sph_pass sph_pass_viscosity = {

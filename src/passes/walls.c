@@ -2,7 +2,7 @@
  * put back on it and its normal velocity is reversed and scaled by
  * wall_damping (the seed's damped reflection). Clamping the position, rather
  * than mirroring it, keeps every particle inside however fast it moved. */
-#include "sph_sim.h"
+#include "sph_walls.h"
 
 #include <stdio.h>
 
@@ -27,6 +27,7 @@ static void run(sph_sim *sim)
         const float lo = sim->def.domain_min[d], hi = sim->def.domain_max[d];
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) {
+            if (sph_is_wall(P, i)) continue; /* boundary particles live outside the box */
             if (x[i] < lo) {
                 x[i] = lo;
                 if (v[i] < 0) v[i] = -damp * v[i];

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "study.h"
+#include "sph_walls.h"
 
 void study_live_reset(study_live *l)
 {
@@ -26,11 +27,14 @@ void study_live_update(study_live *l, const sph_sim *sim)
     l->density_rms = 0;
     if (sim->P.rho && sim->n) {
         double sum = 0;
+        uint32_t n_fluid = 0;
         for (uint32_t i = 0; i < sim->n; i++) {
+            if (sph_is_wall(&sim->P, i)) continue; /* wall particles (wall_model = particles) */
             double d = sim->P.rho[i] / rho0 - 1.0;
             sum += d * d;
+            n_fluid++;
         }
-        l->density_rms = sqrt(sum / sim->n);
+        l->density_rms = n_fluid ? sqrt(sum / n_fluid) : 0.0;
         l->density_error = (s.rho_max - rho0) / rho0;
     }
 }

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "study.h"
+#include "sph_walls.h"
 
 const char *const study_metric_names[STUDY_METRIC_COUNT] = {
 #define STUDY_METRIC_NAME(id, name, about) name,
@@ -232,7 +233,7 @@ static void measure_density(const sph_sim *sim, study_metric m, study_result *ou
     const sph_particles *P = &sim->P;
     const float h = def->h, s = blk->spacing;
     const double rho0 = def->rest_density;
-    const bool walls_count = sph_scene_wall_volume(def);
+    const bool walls_count = sph_scene_wall_volume(def) || sph_scene_wall_particles(def);
     /* the block's lattice fills [min, min + nodes s] on each axis; a face is
      * free unless a wall that counts (volume model) or a periodic axis is there */
     double lo[3], hi[3];
@@ -248,6 +249,7 @@ static void measure_density(const sph_sim *sim, study_metric m, study_result *ou
     double in_sum = 0, in_max = 0, sf_sum = 0, sf_max = 0, ratio = 0, ratio_exact = 0;
     long in_n = 0, sf_n = 0, row_n = 0;
     for (uint32_t i = 0; i < sim->n; i++) {
+        if (sph_is_wall(P, i)) continue; /* wall particles (wall_model = particles) are no part of the block */
         int near = 0;
         double dist = INFINITY;
         for (int d = 0; d < sim->dim; d++) {
@@ -303,7 +305,8 @@ static void measure_hydrostatic(const sph_sim *sim, const probe *pr, study_resul
     double width = (double)def->domain_max[0] - def->domain_min[0];
     if (dim == 3) width *= (double)def->domain_max[2] - def->domain_min[2];
     double mass = 0;
-    for (uint32_t i = 0; i < sim->n; i++) mass += sim->P.mass[i];
+    for (uint32_t i = 0; i < sim->n; i++)
+        if (!sph_is_wall(&sim->P, i)) mass += sim->P.mass[i]; /* the fluid's: wall particles are outside the box */
     const double H = floor_y + mass / (rho0 * width); /* the free surface the fluid's mass gives */
     const double depth = H - floor_y, scale = rho0 * g * depth;
     out->extra[2] = depth;
