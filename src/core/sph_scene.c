@@ -517,6 +517,36 @@ static int on_key(void *user, const char *section, const char *name, const char 
     return ctx->code == SPH_ERR_OK;
 }
 
+/* Checks a [fluid ...] header and hands inih its one spelling "[fluid NAME]":
+ * the name must fit in what inih keeps of a section (longer ones were cut,
+ * and two names with a common start merged), and a block may be opened only
+ * once, whatever separator ("fluid a", "fluid.a", "fluid  a") names it. */
+static bool fluid_header(parse_ctx *ctx, const char *header, char *str, int num)
+{
+    const char *bname = fluid_block_name(header);
+    size_t len = strlen(bname);
+    if (len > SPH_BLOCK_NAME_MAX) {
+        ctx->code = sph_fail(ctx->err, SPH_ERR_RANGE,
+                             "%s:%d: [%.120s]: the block name '%.120s' has %zu characters, more than the limit of %d "
+                             "characters",
+                             ctx->file, ctx->line, header, bname, len, SPH_BLOCK_NAME_MAX);
+        return false;
+    }
+    for (int k = 0; k < ctx->n_sections; k++) {
+        const char *seen = ctx->sections[k];
+        if (!is_fluid_section(seen) || strcmp(fluid_block_name(seen), bname) != 0) continue;
+        bool same = strcmp(seen, header) == 0;
+        ctx->code = sph_fail(ctx->err, SPH_ERR_DUPLICATE_KEY,
+                             "%s:%d: [%.60s] opens the fluid block '%s' again (first as [%.60s] on line %d)%s; give "
+                             "each fluid block its own name, e.g. [fluid pool]",
+                             ctx->file, ctx->line, header, bname, seen, ctx->section_lines[k],
+                             same ? ": section appears twice" : "");
+        return false;
+    }
+    snprintf(str, (size_t)num, *bname ? "[fluid %s]\n" : "[fluid]\n", bname);
+    return true;
+}
+
 /* Hands inih one line at a time so that the handler knows the line number
  * (Debian's libinih is built without INI_HANDLER_LINENO), and catches here,
  * in line order, what inih would pass over or report late: overlong lines,
@@ -537,6 +567,8 @@ static char *ini_reader_fn(char *str, int num, void *stream)
                              ctx->file, ctx->line);
         return NULL;
     }
+    /* a UTF-8 byte-order mark, as some editors write, opens the first line only */
+    if (ctx->line == 1 && n >= 3 && memcmp(start, "\xEF\xBB\xBF", 3) == 0) start += 3, n -= 3;
     while (n > 0 && (*start == ' ' || *start == '\t')) start++, n--;
     size_t text_len = n - (n > 0 && start[n - 1] == '\n');
     if (text_len > 0 && start[text_len - 1] == '\r') text_len--;
@@ -566,17 +598,12 @@ static char *ini_reader_fn(char *str, int num, void *stream)
                                  ctx->file, ctx->line, name, section_list());
             return NULL;
         }
-        /* A section given again continues it (its keys still may not repeat),
-         * except a fluid block: two [fluid a] would merge two blocks into one. */
-        for (int k = 0; k < ctx->n_sections && is_fluid_section(name); k++)
-            if (strcmp(ctx->sections[k], name) == 0) {
-                ctx->code = sph_fail(ctx->err, SPH_ERR_DUPLICATE_KEY,
-                                     "%s:%d: section [%.60s] appears twice (first on line %d); give each fluid block "
-                                     "its own name, e.g. [fluid pool]",
-                                     ctx->file, ctx->line, name, ctx->section_lines[k]);
-                return NULL;
-            }
-        if (ctx->n_sections < MAX_SECTIONS) {
+        if (is_fluid_section(name) && !fluid_header(ctx, name, str, num)) return NULL;
+        /* A section given again continues it (its keys still may not repeat);
+         * it is listed once, so the list keeps room for every fluid block */
+        bool listed = false;
+        for (int k = 0; k < ctx->n_sections; k++) listed |= strcmp(ctx->sections[k], name) == 0;
+        if (!listed && ctx->n_sections < MAX_SECTIONS) {
             snprintf(ctx->sections[ctx->n_sections], sizeof ctx->sections[0], "%.63s", name);
             ctx->section_lines[ctx->n_sections++] = ctx->line;
         }
@@ -800,15 +827,17 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
     for (int a = 0; a < 3; a++) {
         if (!(def->periodic & (1u << a))) continue;
         int li = key_index("domain", "periodic");
+        char loc[300];
+        origin_text(def, def->origin[li].line, loc, sizeof loc);
         if (a >= dim)
-            return sph_fail(err, SPH_ERR_RANGE, "%s:%d: [domain] periodic lists %c but the scene is %dD", def->file,
-                            def->origin[li].line, axes[a], dim);
+            return sph_fail(err, SPH_ERR_RANGE, "%s: [domain] periodic lists %c but the scene is %dD", loc, axes[a],
+                            dim);
         double len = (double)def->domain_max[a] - def->domain_min[a];
         if (len < 3.0 * def->h * (1.0 + 1.0 / 1024))
             return sph_fail(err, SPH_ERR_RANGE,
-                            "%s:%d: [domain] periodic %c: the domain is %g m long, less than 3 h = %g m (a particle "
+                            "%s: [domain] periodic %c: the domain is %g m long, less than 3 h = %g m (a particle "
                             "would meet its own image)",
-                            def->file, def->origin[li].line, axes[a], len, 3.0 * def->h);
+                            loc, axes[a], len, 3.0 * def->h);
     }
     /* Morris's form divides x_ij . grad W = r W'(r) by r^2: it needs W'(r) / r
      * bounded, that is W'(0) = 0, which the viscosity and spiky kernels lack */
@@ -864,11 +893,13 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
     if (def->search == SPH_SEARCH_GRID) {
         double cells = 1;
         for (int a = 0; a < dim; a++) cells *= ceil(((double)def->domain_max[a] - def->domain_min[a]) / def->h) + 1;
+        char loc[300];
         if (cells > 1 << 28)
             return sph_fail(err, SPH_ERR_RANGE,
-                            "%s:%d: [search] method = grid needs %.3g cells for this domain and h (at most %d); use "
+                            "%s: [search] method = grid needs %.3g cells for this domain and h (at most %d); use "
                             "method = hash",
-                            def->file, def->origin[key_index("search", "method")].line, cells, 1 << 28);
+                            origin_text(def, def->origin[key_index("search", "method")].line, loc, sizeof loc),
+                            cells, 1 << 28);
     }
     return SPH_ERR_OK;
 }
