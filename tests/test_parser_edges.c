@@ -227,3 +227,38 @@ Test(parser_edges, scenes_at_the_lower_bounds_run)
         remove(path);
     }
 }
+
+/* docs/scene-format.md states each number's accepted range as the table has
+ * it: "from MIN to MAX", or "above MIN, up to MAX" where MIN is excluded. */
+Test(parser_edges, documented_ranges_match_the_key_table)
+{
+    FILE *f = fopen("docs/scene-format.md", "rb");
+    cr_assert(f, "docs/scene-format.md: cannot read it (run the suite from the repository root)");
+    static char doc[1 << 18];
+    size_t n = fread(doc, 1, sizeof doc - 1, f);
+    fclose(f);
+    doc[n] = '\0';
+    for (int i = 0; i < sph_scene_key_count; i++) {
+        const sph_key *k = &sph_scene_keys[i];
+        if (k->type != SPH_KEY_FLOAT && k->type != SPH_KEY_INT && k->type != SPH_KEY_UINT) continue;
+        char heading[64], row[96], want[96];
+        snprintf(heading, sizeof heading, "\n### [%s", k->section);
+        const char *sec = strstr(doc, heading);
+        cr_expect(sec, "no heading for [%s]", k->section);
+        if (!sec) continue;
+        snprintf(row, sizeof row, "\n| `%s` |", k->name);
+        const char *r = strstr(sec, row);
+        const char *next = strstr(sec + 1, "\n### ");
+        cr_expect(r && (!next || r < next), "no row for [%s] %s", k->section, k->name);
+        if (!r || (next && r > next)) continue;
+        const char *eol = strchr(r + 1, '\n');
+        char line[1024];
+        snprintf(line, sizeof line, "%.*s", (int)(eol ? eol - r : (long)strlen(r)), r);
+        if (!k->min_open && !k->max_open)
+            snprintf(want, sizeof want, "| from %.10g to %.10g |", k->min, k->max);
+        else
+            snprintf(want, sizeof want, "| %s %.10g, %s %.10g |", k->min_open ? "above" : "from", k->min,
+                     k->max_open ? "below" : "up to", k->max);
+        cr_expect(strstr(line, want), "[%s] %s: the row should state '%s':%s", k->section, k->name, want, line);
+    }
+}

@@ -73,8 +73,9 @@ const sph_key sph_scene_keys[] = {
      "with wall_model = particles: no: no-slip walls (the wall particles' velocity in the viscous term mirrors the "
      "fluid's); free: free-slip (they take the fluid's velocity, no shear at the wall)"},
 
-    {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 0, BIG, 1, 0, NULL, 0, "kg/m^dim", "1000",
-     "rho0: density at which the pressure is zero"},
+    {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 1e-3, BIG, 0, 0, NULL, 0, "kg/m^dim", "1000",
+     "rho0: density at which the pressure is zero; at least 0.001 (a rarefied gas): the pressure force divides by "
+     "rho^2, which a float loses below about 1e-19"},
     {"physics", "eos", SPH_KEY_CHOICE, S(eos), 0, 0, 0, 0, CH(sph_eos_names), "", "linear",
      "equation of state: linear p = k (rho - rho0) as in the seeds, or tait p = (k rho0 / gamma) ((rho/rho0)^gamma - 1)"},
     {"physics", "stiffness", SPH_KEY_FLOAT, S(stiffness), 0, 1e9, 1, 0, NULL, 0, "m^2/s^2", "1000",
@@ -109,8 +110,9 @@ const sph_key sph_scene_keys[] = {
      "over the first T seconds every step multiplies the velocities by (1 - cos(pi t / T)) / 2: all motion is "
      "removed at t = 0 and none at T, so an initial state settles; 0: no damping"},
 
-    {"kernels", "h", SPH_KEY_FLOAT, S(h), 0, BIG, 1, 0, NULL, 0, "m", "0.04",
-     "support radius, also the cell size of the neighbour search; about 2 spacings"},
+    {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
+     "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "
+     "kernels' factors (315 / (64 pi h^9) for poly6 in 3D) overflow a float"},
     {"kernels", "density", SPH_KEY_KERNEL, S(kernel_density), 0, 0, 0, 0, CH(sph_kernel_names), "", "poly6",
      "kernel of the density sum"},
     {"kernels", "pressure", SPH_KEY_KERNEL, S(kernel_pressure), 0, 0, 0, 0, CH(sph_kernel_names), "", "spiky",
@@ -242,6 +244,17 @@ static bool in_range(const sph_key *k, double v)
     return true;
 }
 
+/* A stored float is compared with the bounds rounded to float as well, so a
+ * bound such as 1e-4, which a float cannot hold exactly, is itself accepted. */
+static bool stored_in_range(const sph_key *k, float f)
+{
+    float lo = (float)k->min, hi = (float)k->max;
+    if (!isfinite(f)) return false;
+    if (k->min_open ? !(f > lo) : !(f >= lo)) return false;
+    if (k->max_open ? !(f < hi) : !(f <= hi)) return false;
+    return true;
+}
+
 static int find_choice(const sph_key *k, const char *s, size_t len)
 {
     for (int i = 0; i < k->n_choices; i++)
@@ -263,7 +276,7 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
     case SPH_KEY_FLOAT: {
         double v;
         if (!parse_double(value, &v)) return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a number");
-        if (!in_range(k, v) || !in_range(k, (double)(float)v))
+        if (!in_range(k, v) || !stored_in_range(k, (float)v))
             return bad_value(err, SPH_ERR_RANGE, w, k, value,
                              in_range(k, v) ? "out of range once stored as a float" : "out of range");
         *(float *)field = (float)v;
@@ -293,7 +306,7 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
             double d = strtod(p, &end);
             if (end == p || (*end && !isspace((unsigned char)*end) && *end != ','))
                 return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a list of numbers");
-            if (!in_range(k, d) || !in_range(k, (double)(float)d))
+            if (!in_range(k, d) || !stored_in_range(k, (float)d))
                 return bad_value(err, SPH_ERR_RANGE, w, k, value, "a component is out of range");
             v[n++] = (float)d;
             p = end;
