@@ -182,7 +182,7 @@ Test(scene, unknown_key)
 Test(scene, values_that_do_not_parse)
 {
     EXPECT_LIB(BASE2 "[kernels]\nh = abc\n", SPH_ERR_PARSE, "x.ini:11", "h = 'abc'", "not a number",
-               "accepted: above 0");
+               "accepted: from 0.0001");
     EXPECT_LIB(BASE2 "[kernels]\nh = 0.04x\n", SPH_ERR_PARSE, "x.ini:11", "h", "accepted:");
     EXPECT_LIB(BASE2 "[kernels]\nh =\n", SPH_ERR_PARSE, "x.ini:11", "h", "accepted:");
     EXPECT_LIB(BASE2 "[kernels]\nh = 0,04\n", SPH_ERR_PARSE, "x.ini:11", "h", "accepted:");
@@ -203,8 +203,8 @@ Test(scene, values_that_do_not_parse)
 
 Test(scene, values_out_of_range)
 {
-    EXPECT_LIB(BASE2 "[kernels]\nh = 0\n", SPH_ERR_RANGE, "x.ini:11", "h = '0'", "accepted: above 0");
-    EXPECT_LIB(BASE2 "[kernels]\nh = -1\n", SPH_ERR_RANGE, "x.ini:11", "h = '-1'", "accepted: above 0");
+    EXPECT_LIB(BASE2 "[kernels]\nh = 0\n", SPH_ERR_RANGE, "x.ini:11", "h = '0'", "accepted: from 0.0001");
+    EXPECT_LIB(BASE2 "[kernels]\nh = -1\n", SPH_ERR_RANGE, "x.ini:11", "h = '-1'", "accepted: from 0.0001");
     EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\nspacing = 0\n", SPH_ERR_RANGE, "x.ini:13",
                "spacing", "accepted: above 0");
     EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\nspacing = -0.01\n", SPH_ERR_RANGE, "x.ini:13",
@@ -253,7 +253,7 @@ Test(scene, non_finite_values_are_refused)
  * makes NaN positions, dt = 0 never reaches the scene's duration. */
 Test(scene, values_that_underflow_the_stored_float_are_refused)
 {
-    EXPECT_LIB(BASE2 "[kernels]\nh = 1e-310\n", SPH_ERR_RANGE, "x.ini:11", "h", "accepted: above 0");
+    EXPECT_LIB(BASE2 "[kernels]\nh = 1e-310\n", SPH_ERR_RANGE, "x.ini:11", "h", "accepted: from 0.0001");
     EXPECT_LIB(BASE2 "[physics]\nstiffness = 1e-50\n", SPH_ERR_RANGE, "x.ini:11", "stiffness", "accepted: above 0");
     EXPECT_LIB(BASE2 "[time]\ndt = 1e-50\n", SPH_ERR_RANGE, "x.ini:11", "dt", "accepted: above 0");
     EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\nspacing = 1e-60\n", SPH_ERR_RANGE, "x.ini:13",
@@ -453,8 +453,8 @@ static void expect_set(const char *text, const char *assignment, sph_error_code 
 
 Test(scene, set_errors)
 {
-    EXPECT_SET(BASE2, "kernels.h=-1", SPH_ERR_RANGE, "--set", "h", "'-1'", "accepted: above 0");
-    EXPECT_SET(BASE2, "kernels.h=nan", SPH_ERR_RANGE, "--set", "h", "accepted: above 0");
+    EXPECT_SET(BASE2, "kernels.h=-1", SPH_ERR_RANGE, "--set", "h", "'-1'", "accepted: from 0.0001");
+    EXPECT_SET(BASE2, "kernels.h=nan", SPH_ERR_RANGE, "--set", "h", "accepted: from 0.0001");
     EXPECT_SET(BASE2, "nosuch.key=1", SPH_ERR_UNKNOWN_SECTION, "--set", "nosuch", "accepted:");
     EXPECT_SET(BASE2, "physics.nosuch=1", SPH_ERR_UNKNOWN_KEY, "--set", "nosuch", "accepted:", "stiffness");
     EXPECT_SET(BASE2, "garbage", SPH_ERR_USAGE, "garbage", "section.key=value");
@@ -526,7 +526,7 @@ Test(scene, cli_scene_errors)
     expect_cli(BASE2 "[physics]\ngravity = 0 -9.8a\n", 11, "gravity");
     expect_cli(BASE2 "[physics]\ngravity = 1\n", 11, "gravity");
     expect_cli(BASE2 "[physics]\ngravity = 1 2 3 4\n", 11, "gravity");
-    expect_cli(BASE2 "[kernels]\nh = 0\n", 11, "accepted: above 0");
+    expect_cli(BASE2 "[kernels]\nh = 0\n", 11, "accepted: from 0.0001");
     expect_cli(BASE2 "[kernels]\nh = -1\n", 11, "h = '-1'");
     expect_cli(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\nspacing = 0\n", 13, "spacing");
     expect_cli("[scene]\ndimension = 4\n", 2, "dimension");
@@ -566,7 +566,7 @@ Test(scene, cli_set_errors)
     const struct {
         const char *set, *needle;
     } cases[] = {
-        {"kernels.h=-1", "accepted: above 0"},
+        {"kernels.h=-1", "accepted: from 0.0001"},
         {"nosuch.key=1", "nosuch"},
         {"physics.bogus=1", "bogus"},
         {"fluid.nosuchblock.spacing=0.1", "nosuchblock"},

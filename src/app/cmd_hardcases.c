@@ -31,6 +31,8 @@ typedef struct hardcase {
     double max_vrms_end;   /* bound on the final rms speed sqrt(2 E_kin / M) [m/s]; < 0: not checked */
     const char *compare;   /* if set, an override ("search.method=brute"): positions must agree */
     double max_speed;      /* [m/s] bound on the largest speed over the run (its reason in `about`); 0: none */
+    uint32_t expect_n;     /* particles the scene must make (the same blocks at the origin); 0: not checked */
+    const char *refuse;    /* if set, validation (sphlab check) must refuse the scene, the message naming this */
 } hardcase;
 
 #define BOX2 "[domain]\nmin = 0 0\nmax = 1 1\nwall_damping = 0.5\n"
@@ -43,114 +45,123 @@ static const hardcase cases[] = {
     {"rest-2d", "a fluid at rest stays at rest (2D)",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid pool]\nmin = 0 0\nmax = 1 0.3\nspacing = 0.02\n[kernels]\nh = 0.04\n" CALM,
-     3000, false, 0.08, 0.02, 0.05, NULL, 0},
+     3000, false, 0.08, 0.02, 0.05, NULL, 0, 0, NULL},
     {"rest-3d", "a fluid at rest stays at rest (3D)",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX3
      "[fluid pool]\nmin = 0 0 0\nmax = 1 0.2 1\nspacing = 0.05\n[kernels]\nh = 0.1\n" CALM,
-     1500, false, 0.08, 0.02, 0.05, NULL, 0},
+     1500, false, 0.08, 0.02, 0.05, NULL, 0, 0, NULL},
     {"coincident-2d", "two blocks on the same lattice: every particle has a twin at distance 0",
      "[scene]\neffects = pressure viscosity walls\n" BOX2
      "[fluid a]\nmin = 0.3 0.3\nmax = 0.5 0.5\nspacing = 0.02\n[fluid b]\nmin = 0.3 0.3\nmax = 0.5 0.5\nspacing = "
      "0.02\n[kernels]\nh = 0.04\n" WATER,
-     1000, false, 1.5, 0.02, -1, NULL, 0},
+     1000, false, 1.5, 0.02, -1, NULL, 0, 0, NULL},
     {"coincident-3d", "two blocks on the same lattice (3D)",
      "[scene]\neffects = pressure viscosity walls\n" BOX3
      "[fluid a]\nmin = 0.4 0.4 0.4\nmax = 0.6 0.6 0.6\nspacing = 0.04\n[fluid b]\nmin = 0.4 0.4 0.4\nmax = 0.6 0.6 "
      "0.6\nspacing = 0.04\n[kernels]\nh = 0.08\n" WATER,
-     600, false, 1.5, 0.02, -1, NULL, 0},
+     600, false, 1.5, 0.02, -1, NULL, 0, 0, NULL},
     {"single-particle", "one particle: no neighbours, falls and bounces",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid one]\nmin = 0.5 0.5\nmax = 0.52 0.52\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
-     2000, false, -1, 0.02, -1, NULL, 0},
+     2000, false, -1, 0.02, -1, NULL, 0, 0, NULL},
     {"isolated-particle", "a block and one particle far away from it",
      "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 100 1\n"
      "[fluid block]\nmin = 0 0\nmax = 0.3 0.3\nspacing = 0.02\n[fluid far]\nmin = 99.9 0.9\nmax = 99.92 "
      "0.92\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
-     1000, false, 0.2, 0.05, -1, NULL, 0},
+     1000, false, 0.2, 0.05, -1, NULL, 0, 0, NULL},
     {"one-cell", "400 particles inside one cell of the search grid (O(N^2) pairs)",
      "[scene]\neffects = pressure viscosity walls\n" BOX2
      "[fluid clump]\nmin = 0.5 0.5\nmax = 0.54 0.54\nspacing = 0.002\n[kernels]\nh = 0.05\n" WATER,
-     600, false, -1, 0.05, -1, NULL, 0},
+     600, false, -1, 0.05, -1, NULL, 0, 0, NULL},
     {"table-size-1", "a hash table of one key: every entry collides; must flow as with brute force",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n[search]\ntable_size = 1\n" WATER,
-     300, false, 0.2, 0.05, -1, "search.method=brute", 0},
+     300, false, 0.2, 0.05, -1, "search.method=brute", 0, 0, NULL},
     {"negative-borders", "negative coordinates, particles exactly on cell borders; must flow as with brute force",
      "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = -3 -3\nmax = -1 -1\n"
      "[fluid a]\nmin = -2.0625 -3\nmax = -1.5 -2.5\nspacing = 0.125\n[kernels]\nh = 0.25\n" WATER,
-     300, false, 0.3, 0.05, -1, "search.method=brute", 0},
+     300, false, 0.3, 0.05, -1, "search.method=brute", 0, 0, NULL},
     {"negative-borders-3d", "the same in 3D, against brute force",
      "[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = -3 -3 -3\nmax = -1 -1 -1\n"
      "[fluid a]\nmin = -2.0625 -3 -2.0625\nmax = -1.5 -2.5 -1.5\nspacing = 0.125\n[kernels]\nh = 0.25\n" WATER,
-     200, false, 0.3, 0.05, -1, "search.method=brute", 0},
+     200, false, 0.3, 0.05, -1, "search.method=brute", 0, 0, NULL},
     {"impact-2d", "a block hits a wall at 50 m/s",
      "[scene]\neffects = pressure viscosity walls\n" BOX2
      "[fluid bullet]\nmin = 0.5 0.4\nmax = 0.7 0.6\nspacing = 0.02\nvelocity = 50 0\n[kernels]\nh = 0.04\n" WATER,
-     1500, false, -1, 0.02, -1, NULL, 0},
+     1500, false, -1, 0.02, -1, NULL, 0, 0, NULL},
     {"impact-3d", "a block hits a wall at 50 m/s (3D)",
      "[scene]\neffects = pressure viscosity walls\n" BOX3
      "[fluid bullet]\nmin = 0.5 0.4 0.4\nmax = 0.7 0.6 0.6\nspacing = 0.04\nvelocity = 50 0 0\n[kernels]\nh = 0.08\n" WATER,
-     800, false, -1, 0.02, -1, NULL, 0},
+     800, false, -1, 0.02, -1, NULL, 0, 0, NULL},
     {"dt-above-cfl-adaptive", "dt bound 0.05 s, far above the CFL limit, with the adaptive step on",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
      "[physics]\nstiffness = 400\nviscosity = 0.002\nnegative_pressure = clamp\n[time]\ncfl = 0.4\ndt = 0.05\n",
-     1500, false, 0.2, 0.05, -1, NULL, 0},
+     1500, false, 0.2, 0.05, -1, NULL, 0, 0, NULL},
     {"dt-above-cfl-fixed", "a fixed dt 100x the CFL limit: must stop with a report, not run on NaNs",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
      "[physics]\nstiffness = 400\n[time]\ncfl = 0\ndt = 0.02\n",
-     500, true, -1, 0, -1, NULL, 0},
+     500, true, -1, 0, -1, NULL, 0, 0, NULL},
     {"very-stiff", "stiffness 1e6 m^2/s^2 (c = 1000 m/s): the lattice's 1.5-3% density excess is a 15-30 kPa "
                    "overpressure that launches a column at rest at 24 m/s (a fall: 4.4 m/s); must stop with a report",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.2 0.3\nspacing = 0.02\n[kernels]\nh = 0.04\n"
      "[physics]\nstiffness = 1e6\nviscosity = 0.002\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
-     2000, true, -1, 0, -1, NULL, 0},
+     2000, true, -1, 0, -1, NULL, 0, 0, NULL},
     {"tait-stiff", "Tait equation, gamma 7",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
      "[physics]\neos = tait\nstiffness = 400\nviscosity = 0.002\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
-     1500, false, 0.2, 0.05, -1, NULL, 0},
+     1500, false, 0.2, 0.05, -1, NULL, 0, 0, NULL},
     {"zero-viscosity", "no viscosity (nu = 0), one kernel for density and pressure: energy is conserved",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\ndensity = cubic\npressure = cubic\n"
      "[physics]\nstiffness = 400\nviscosity = 0\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
-     1500, false, 0.2, 0.05, -1, NULL, 0},
+     1500, false, 0.2, 0.05, -1, NULL, 0, 0, NULL},
     {"high-viscosity", "nu = 1 m^2/s, a million times water's: the viscous CFL condition binds",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
      "[physics]\nstiffness = 400\nviscosity = 1\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
-     1000, false, 0.2, 0.02, -1, NULL, 0},
+     1000, false, 0.2, 0.02, -1, NULL, 0, 0, NULL},
     {"smoothing-viscosity", "the seed's velocity-smoothing viscosity and shared-pressure form",
      "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
      "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
      "[physics]\nstiffness = 400\nviscosity = 0.01\nviscosity_form = smoothing\npressure_form = shared\n"
      "negative_pressure = clamp\n[time]\ncfl = 0.4\n",
-     1500, false, 0.2, 0.05, -1, NULL, 0},
+     1500, false, 0.2, 0.05, -1, NULL, 0, 0, NULL},
     {"dam-break-long", "a 2D dam break over 20,000 steps: bounded energy, no particle lost",
      "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 2 1\nwall_damping = 0.5\n"
      "[fluid column]\nmin = 0 0\nmax = 0.5 0.8\nspacing = 0.04\n[kernels]\nh = 0.08\n"
      "[physics]\nstiffness = 400\nviscosity = 0.005\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
-     20000, false, 0.2, 0.05, -1, NULL, 0},
+     20000, false, 0.2, 0.05, -1, NULL, 0, 0, NULL},
     {"dam-break-3d", "a 3D dam break",
      "[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0 0\nmax = 1.2 1 0.4\n"
      "[fluid column]\nmin = 0 0 0\nmax = 0.4 0.6 0.4\nspacing = 0.05\n[kernels]\nh = 0.1\n" WATER,
-     1500, false, 0.2, 0.05, -1, NULL, 0},
+     1500, false, 0.2, 0.05, -1, NULL, 0, 0, NULL},
     {"coincident-pair-2d", "two particles alone at one point, at rest, keep: speed <= 0.1 c = 2 m/s (was 23 m/s)",
      "[scene]\neffects = pressure viscosity walls\n" BOX2
      "[fluid a]\nmin = 0.5 0.5\nmax = 0.52 0.52\nspacing = 0.02\n[fluid b]\nmin = 0.5 0.5\nmax = 0.52 0.52\n"
      "spacing = 0.02\n[kernels]\nh = 0.04\n[physics]\nstiffness = 400\nnegative_pressure = keep\n[time]\ncfl = 0.4\n",
-     2000, false, -1, 0.02, -1, NULL, 2.0},
+     2000, false, -1, 0.02, -1, NULL, 2.0, 0, NULL},
     {"coincident-pair-3d", "the same in 3D: speed <= 0.1 c = 2 m/s (was 50 m/s)",
      "[scene]\neffects = pressure viscosity walls\n" BOX3
      "[fluid a]\nmin = 0.5 0.5 0.5\nmax = 0.52 0.52 0.52\nspacing = 0.02\n[fluid b]\nmin = 0.5 0.5 0.5\n"
      "max = 0.52 0.52 0.52\nspacing = 0.02\n[kernels]\nh = 0.04\n[physics]\nstiffness = 400\n"
      "negative_pressure = keep\n[time]\ncfl = 0.4\n",
-     2000, false, -1, 0.02, -1, NULL, 2.0},
+     2000, false, -1, 0.02, -1, NULL, 2.0, 0, NULL},
     {"defaults", "one block, every default: speed <= 2 x a fall across the 1 m box (a wall's run-up jet), 8.9 m/s "
      "(was 220 m/s)",
-     "[fluid a]\nmin = 0 0\nmax = 0.3 0.5\n", 2000, false, -1, 0.05, -1, NULL, 8.9},
+     "[fluid a]\nmin = 0 0\nmax = 0.3 0.5\n", 2000, false, -1, 0.05, -1, NULL, 8.9, 0, NULL},
+    {"tiny-h", "h = 0.1 mm (the smallest accepted), a 2 x 1 mm pool, c = 2 m/s (10 x its fall speed): speed "
+               "<= 1.5 x a fall across the 2 mm box, 0.30 m/s",
+     "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 0.002 0.002\n"
+     "[fluid pool]\nmin = 0 0\nmax = 0.002 0.001\nspacing = 0.00005\n[kernels]\nh = 0.0001\n"
+     "[physics]\nstiffness = 4\nviscosity = 0.000001\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
+     1500, false, 0.08, 0.05, -1, NULL, 0.30, 800, NULL},
+    {"defaults-3d", "one 3D block, every other default: speed <= 2 x a fall across the 1 m box, 8.9 m/s",
+     "[scene]\ndimension = 3\n[fluid a]\nmin = 0 0 0\nmax = 0.3 0.5 0.3\n", 1500, false, -1, 0.05, -1, NULL,
+     8.9, 5625, NULL},
 };
 #define N_CASES (int)(sizeof cases / sizeof cases[0])
 
@@ -163,6 +174,8 @@ typedef struct outcome {
     double vrms_end;      /* [m/s] sqrt(2 E_kin / M) at the end */
     double compare_diff;  /* [m] largest position difference against the comparison run */
     double vmax;          /* [m/s] largest speed seen over the run */
+    uint32_t n;           /* particles the scene made */
+    bool refused;         /* validation refused the scene (o->report holds why) */
     char report[1024];
 } outcome;
 
@@ -187,7 +200,16 @@ static bool run_case(const hardcase *c, int steps, outcome *o)
 {
     memset(o, 0, sizeof *o);
     sph_sim *sim;
+    if (c->refuse) { /* `sphlab check` must refuse it: nothing is allocated (it could be gigabytes) */
+        sph_scene_def def = sph_default_scene_def();
+        sph_error err;
+        o->refused = sph_scene_load_string(c->ini, c->name, &def, &err) || sph_scene_validate(&def, &err);
+        if (o->refused) snprintf(o->report, sizeof o->report, "%s", err.msg);
+        o->n = (uint32_t)fmin(sph_scene_particle_count(&def), 4e9);
+        return true;
+    }
     if (!make_sim(c, NULL, &sim, o->report, sizeof o->report)) return false;
+    o->n = sim->n;
     sph_stats s;
     sph_sim_stats(sim, &s); /* energy from step 0: creating the sim measured density, so eint exists */
     double e0 = total_energy(&s), scale = fabs(e0);
@@ -245,6 +267,18 @@ static bool run_case(const hardcase *c, int steps, outcome *o)
 static bool judge(const hardcase *c, const outcome *o, int steps, char *why, size_t n)
 {
     why[0] = '\0';
+    if (c->refuse) {
+        if (!o->refused)
+            snprintf(why, n, "expected check to refuse the scene (naming %s); it accepted %u particles", c->refuse,
+                     o->n);
+        else if (!strstr(o->report, c->refuse))
+            snprintf(why, n, "refused, but the message does not name %s: %.150s", c->refuse, o->report);
+        return why[0] == '\0';
+    }
+    if (c->expect_n && o->n != c->expect_n) {
+        snprintf(why, n, "%u particles, the scene's blocks make %u", o->n, c->expect_n);
+        return false;
+    }
     if (c->expect_stop) {
         if (!o->stopped) snprintf(why, n, "expected the watchdog to stop this run; it ran %llu steps",
                                   (unsigned long long)o->steps);

@@ -73,8 +73,9 @@ const sph_key sph_scene_keys[] = {
      "with wall_model = particles: no: no-slip walls (the wall particles' velocity in the viscous term mirrors the "
      "fluid's); free: free-slip (they take the fluid's velocity, no shear at the wall)"},
 
-    {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 0, BIG, 1, 0, NULL, 0, "kg/m^dim", "1000",
-     "rho0: density at which the pressure is zero"},
+    {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 1e-3, BIG, 0, 0, NULL, 0, "kg/m^dim", "1000",
+     "rho0: density at which the pressure is zero; at least 0.001 (a rarefied gas): the pressure force divides by "
+     "rho^2, which a float loses below about 1e-19"},
     {"physics", "eos", SPH_KEY_CHOICE, S(eos), 0, 0, 0, 0, CH(sph_eos_names), "", "linear",
      "equation of state: linear p = k (rho - rho0) as in the seeds, or tait p = (k rho0 / gamma) ((rho/rho0)^gamma - 1)"},
     {"physics", "stiffness", SPH_KEY_FLOAT, S(stiffness), 0, 1e9, 1, 0, NULL, 0, "m^2/s^2", "1000",
@@ -109,8 +110,9 @@ const sph_key sph_scene_keys[] = {
      "over the first T seconds every step multiplies the velocities by (1 - cos(pi t / T)) / 2: all motion is "
      "removed at t = 0 and none at T, so an initial state settles; 0: no damping"},
 
-    {"kernels", "h", SPH_KEY_FLOAT, S(h), 0, BIG, 1, 0, NULL, 0, "m", "0.04",
-     "support radius, also the cell size of the neighbour search; about 2 spacings"},
+    {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
+     "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "
+     "kernels' factors (315 / (64 pi h^9) for poly6 in 3D) overflow a float"},
     {"kernels", "density", SPH_KEY_KERNEL, S(kernel_density), 0, 0, 0, 0, CH(sph_kernel_names), "", "poly6",
      "kernel of the density sum"},
     {"kernels", "pressure", SPH_KEY_KERNEL, S(kernel_pressure), 0, 0, 0, 0, CH(sph_kernel_names), "", "spiky",
@@ -242,6 +244,17 @@ static bool in_range(const sph_key *k, double v)
     return true;
 }
 
+/* A stored float is compared with the bounds rounded to float as well, so a
+ * bound such as 1e-4, which a float cannot hold exactly, is itself accepted. */
+static bool stored_in_range(const sph_key *k, float f)
+{
+    float lo = (float)k->min, hi = (float)k->max;
+    if (!isfinite(f)) return false;
+    if (k->min_open ? !(f > lo) : !(f >= lo)) return false;
+    if (k->max_open ? !(f < hi) : !(f <= hi)) return false;
+    return true;
+}
+
 static int find_choice(const sph_key *k, const char *s, size_t len)
 {
     for (int i = 0; i < k->n_choices; i++)
@@ -263,7 +276,7 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
     case SPH_KEY_FLOAT: {
         double v;
         if (!parse_double(value, &v)) return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a number");
-        if (!in_range(k, v) || !in_range(k, (double)(float)v))
+        if (!in_range(k, v) || !stored_in_range(k, (float)v))
             return bad_value(err, SPH_ERR_RANGE, w, k, value,
                              in_range(k, v) ? "out of range once stored as a float" : "out of range");
         *(float *)field = (float)v;
@@ -293,7 +306,7 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
             double d = strtod(p, &end);
             if (end == p || (*end && !isspace((unsigned char)*end) && *end != ','))
                 return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a list of numbers");
-            if (!in_range(k, d) || !in_range(k, (double)(float)d))
+            if (!in_range(k, d) || !stored_in_range(k, (float)d))
                 return bad_value(err, SPH_ERR_RANGE, w, k, value, "a component is out of range");
             v[n++] = (float)d;
             p = end;
@@ -517,6 +530,36 @@ static int on_key(void *user, const char *section, const char *name, const char 
     return ctx->code == SPH_ERR_OK;
 }
 
+/* Checks a [fluid ...] header and hands inih its one spelling "[fluid NAME]":
+ * the name must fit in what inih keeps of a section (longer ones were cut,
+ * and two names with a common start merged), and a block may be opened only
+ * once, whatever separator ("fluid a", "fluid.a", "fluid  a") names it. */
+static bool fluid_header(parse_ctx *ctx, const char *header, char *str, int num)
+{
+    const char *bname = fluid_block_name(header);
+    size_t len = strlen(bname);
+    if (len > SPH_BLOCK_NAME_MAX) {
+        ctx->code = sph_fail(ctx->err, SPH_ERR_RANGE,
+                             "%s:%d: [%.120s]: the block name '%.120s' has %zu characters, more than the limit of %d "
+                             "characters",
+                             ctx->file, ctx->line, header, bname, len, SPH_BLOCK_NAME_MAX);
+        return false;
+    }
+    for (int k = 0; k < ctx->n_sections; k++) {
+        const char *seen = ctx->sections[k];
+        if (!is_fluid_section(seen) || strcmp(fluid_block_name(seen), bname) != 0) continue;
+        bool same = strcmp(seen, header) == 0;
+        ctx->code = sph_fail(ctx->err, SPH_ERR_DUPLICATE_KEY,
+                             "%s:%d: [%.60s] opens the fluid block '%s' again (first as [%.60s] on line %d)%s; give "
+                             "each fluid block its own name, e.g. [fluid pool]",
+                             ctx->file, ctx->line, header, bname, seen, ctx->section_lines[k],
+                             same ? ": section appears twice" : "");
+        return false;
+    }
+    snprintf(str, (size_t)num, *bname ? "[fluid %s]\n" : "[fluid]\n", bname);
+    return true;
+}
+
 /* Hands inih one line at a time so that the handler knows the line number
  * (Debian's libinih is built without INI_HANDLER_LINENO), and catches here,
  * in line order, what inih would pass over or report late: overlong lines,
@@ -537,6 +580,8 @@ static char *ini_reader_fn(char *str, int num, void *stream)
                              ctx->file, ctx->line);
         return NULL;
     }
+    /* a UTF-8 byte-order mark, as some editors write, opens the first line only */
+    if (ctx->line == 1 && n >= 3 && memcmp(start, "\xEF\xBB\xBF", 3) == 0) start += 3, n -= 3;
     while (n > 0 && (*start == ' ' || *start == '\t')) start++, n--;
     size_t text_len = n - (n > 0 && start[n - 1] == '\n');
     if (text_len > 0 && start[text_len - 1] == '\r') text_len--;
@@ -566,17 +611,12 @@ static char *ini_reader_fn(char *str, int num, void *stream)
                                  ctx->file, ctx->line, name, section_list());
             return NULL;
         }
-        /* A section given again continues it (its keys still may not repeat),
-         * except a fluid block: two [fluid a] would merge two blocks into one. */
-        for (int k = 0; k < ctx->n_sections && is_fluid_section(name); k++)
-            if (strcmp(ctx->sections[k], name) == 0) {
-                ctx->code = sph_fail(ctx->err, SPH_ERR_DUPLICATE_KEY,
-                                     "%s:%d: section [%.60s] appears twice (first on line %d); give each fluid block "
-                                     "its own name, e.g. [fluid pool]",
-                                     ctx->file, ctx->line, name, ctx->section_lines[k]);
-                return NULL;
-            }
-        if (ctx->n_sections < MAX_SECTIONS) {
+        if (is_fluid_section(name) && !fluid_header(ctx, name, str, num)) return NULL;
+        /* A section given again continues it (its keys still may not repeat);
+         * it is listed once, so the list keeps room for every fluid block */
+        bool listed = false;
+        for (int k = 0; k < ctx->n_sections; k++) listed |= strcmp(ctx->sections[k], name) == 0;
+        if (!listed && ctx->n_sections < MAX_SECTIONS) {
             snprintf(ctx->sections[ctx->n_sections], sizeof ctx->sections[0], "%.63s", name);
             ctx->section_lines[ctx->n_sections++] = ctx->line;
         }
@@ -800,15 +840,17 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
     for (int a = 0; a < 3; a++) {
         if (!(def->periodic & (1u << a))) continue;
         int li = key_index("domain", "periodic");
+        char loc[300];
+        origin_text(def, def->origin[li].line, loc, sizeof loc);
         if (a >= dim)
-            return sph_fail(err, SPH_ERR_RANGE, "%s:%d: [domain] periodic lists %c but the scene is %dD", def->file,
-                            def->origin[li].line, axes[a], dim);
+            return sph_fail(err, SPH_ERR_RANGE, "%s: [domain] periodic lists %c but the scene is %dD", loc, axes[a],
+                            dim);
         double len = (double)def->domain_max[a] - def->domain_min[a];
         if (len < 3.0 * def->h * (1.0 + 1.0 / 1024))
             return sph_fail(err, SPH_ERR_RANGE,
-                            "%s:%d: [domain] periodic %c: the domain is %g m long, less than 3 h = %g m (a particle "
+                            "%s: [domain] periodic %c: the domain is %g m long, less than 3 h = %g m (a particle "
                             "would meet its own image)",
-                            def->file, def->origin[li].line, axes[a], len, 3.0 * def->h);
+                            loc, axes[a], len, 3.0 * def->h);
     }
     /* Morris's form divides x_ij . grad W = r W'(r) by r^2: it needs W'(r) / r
      * bounded, that is W'(0) = 0, which the viscosity and spiky kernels lack */
@@ -864,11 +906,13 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
     if (def->search == SPH_SEARCH_GRID) {
         double cells = 1;
         for (int a = 0; a < dim; a++) cells *= ceil(((double)def->domain_max[a] - def->domain_min[a]) / def->h) + 1;
+        char loc[300];
         if (cells > 1 << 28)
             return sph_fail(err, SPH_ERR_RANGE,
-                            "%s:%d: [search] method = grid needs %.3g cells for this domain and h (at most %d); use "
+                            "%s: [search] method = grid needs %.3g cells for this domain and h (at most %d); use "
                             "method = hash",
-                            def->file, def->origin[key_index("search", "method")].line, cells, 1 << 28);
+                            origin_text(def, def->origin[key_index("search", "method")].line, loc, sizeof loc),
+                            cells, 1 << 28);
     }
     return SPH_ERR_OK;
 }

@@ -104,6 +104,10 @@ typedef struct sph_origin {
     int ncomp;  /* number of components given, for vectors */
 } sph_origin;
 
+/* Longest fluid block name: the INI parser keeps 49 characters of a section
+ * header and "fluid " takes 6; longer names are refused, never cut. */
+#define SPH_BLOCK_NAME_MAX 43
+
 /* A box filled with particles on a square/cubic lattice. */
 typedef struct sph_block_def {
     char name[48];
