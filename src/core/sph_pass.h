@@ -21,6 +21,7 @@
     X(OFFSETS, offsets)    \
     X(NEIGHBOURS, neighbours) \
     X(DENSITY, density)    \
+    X(DENSITY_RATE, density_rate) \
     X(PRESSURE, pressure)  \
     X(WALL_STATE, wall_state) \
     X(PRESSURE_FORCE, pressure_force) \

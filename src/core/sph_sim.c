@@ -410,6 +410,7 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
                 memcpy(next->P.field[f][d], sim->P.field[f][d], (size_t)n * sizeof(float));
     next->t = sim->t;
     next->step = sim->step;
+    next->rho_carried = sim->rho_carried && sim->P.rho_c && next->P.rho_c; /* else summed again */
     next->max_speed = sim->max_speed;
     next->max_acc = sim->max_acc;
     next->energy_ref = sim->energy_ref;

@@ -2,7 +2,9 @@
  * particle itself included (its W(0) term is most of the sum at low
  * neighbour counts). With walls of the volume model, rho0 times the share of
  * the kernel hidden behind the walls is added (sph_wall_hidden): a particle at
- * a wall is not missing half its neighbours. */
+ * a wall is not missing half its neighbours. With density_method = continuity
+ * the sum is made only at the start; afterwards rho is the carried rho_c
+ * (read then, though not in `reads`: it exists only in those scenes). */
 #include "simd.h"
 #include "sph_search.h"
 #include "sph_walls.h"
@@ -17,8 +19,9 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "summation with the %s kernel%s", sph_kernel_names[def->kernel_density],
-             sph_scene_wall_volume(def) ? ", walls count as fluid at rest" : "");
+    snprintf(out, (size_t)n, "summation with the %s kernel%s%s", sph_kernel_names[def->kernel_density],
+             sph_scene_wall_volume(def) ? ", walls count as fluid at rest" : "",
+             def->density_method == SPH_DMETHOD_CONTINUITY ? "; at the start only, then the carried rho_c" : "");
 }
 
 /* The sum for one particle; dim and dbl are constants (SPH_SPECIALISE). */
@@ -80,6 +83,17 @@ static void run(sph_sim *sim)
 {
     const sph_kernel k = sim->k_density;
     const int n = (int)sim->n, dim = sim->dim;
+    if (sim->rho_carried && sim->P.rho_c) {
+        /* density_method = continuity, after its start: the density is the
+         * one carried by integration (passes/density_rate.c), not a sum */
+        sph_particles *P = &sim->P;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+        for (int i = 0; i < n; i++) {
+            P->rho[i] = P->rho_c[i];
+            P->vol[i] = P->mass[i] / P->rho_c[i];
+        }
+        return;
+    }
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
     const bool periodic = sph_sim_periodic(sim);
 #if SPH_HAVE_AVX512
