@@ -20,8 +20,8 @@
     X(REORDER, reorder)    \
     X(OFFSETS, offsets)    \
     X(NEIGHBOURS, neighbours) \
-    X(DENSITY, density)    \
     X(DENSITY_RATE, density_rate) \
+    X(DENSITY, density)    \
     X(PRESSURE, pressure)  \
     X(WALL_STATE, wall_state) \
     X(PRESSURE_FORCE, pressure_force) \

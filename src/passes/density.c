@@ -3,8 +3,8 @@
  * neighbour counts). With walls of the volume model, rho0 times the share of
  * the kernel hidden behind the walls is added (sph_wall_hidden): a particle at
  * a wall is not missing half its neighbours. With density_method = continuity
- * the sum is made only at the start; afterwards rho is the carried rho_c
- * (read then, though not in `reads`: it exists only in those scenes). */
+ * the sum is made only at the start, where rho_c takes it; afterwards
+ * rho_c += dt drho (drho from the density_rate pass just before) and rho = rho_c. */
 #include "simd.h"
 #include "sph_search.h"
 #include "sph_walls.h"
@@ -79,18 +79,36 @@ static inline void density_one_avx512(const sph_sim *sim, const sph_kernel *k, i
 }
 #endif
 
+/* density_method = continuity, at the start: the carried density starts
+ * from this sum. The start-up evaluation (dt = 0, sph_sim_create) sums at x,
+ * not at the predicted x + v dt that every step's sum sees: only the first
+ * step of some length hands its sum on, so its density is exactly the
+ * summation's. */
+static void start_carrying(sph_sim *sim)
+{
+    sph_particles *P = &sim->P;
+    if (!P->rho_c) return;
+    const int n = (int)sim->n;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) P->rho_c[i] = P->rho[i];
+    sim->rho_carried = sim->dt > 0.0f;
+}
+
 static void run(sph_sim *sim)
 {
     const sph_kernel k = sim->k_density;
     const int n = (int)sim->n, dim = sim->dim;
-    if (sim->rho_carried && sim->P.rho_c) {
-        /* density_method = continuity, after its start: the density is the
-         * one carried by integration (passes/density_rate.c), not a sum */
-        sph_particles *P = &sim->P;
+    sph_particles *P = &sim->P;
+    if (sim->rho_carried && P->rho_c) {
+        /* density_method = continuity, after its start: the carried density
+         * moves on by the rate just made (passes/density_rate.c), no sum */
+        const float dt = sim->dt;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) {
-            P->rho[i] = P->rho_c[i];
-            P->vol[i] = P->mass[i] / P->rho_c[i];
+            const float rho = P->rho_c[i] + dt * P->drho[i];
+            P->rho_c[i] = rho;
+            P->rho[i] = rho;
+            P->vol[i] = P->mass[i] / rho;
         }
         return;
     }
@@ -100,18 +118,22 @@ static void run(sph_sim *sim)
     if (sph_simd_on(sim) && k.kind == SPH_KERNEL_POLY6) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) dim == 3 ? density_one_avx512(sim, &k, i, 3) : density_one_avx512(sim, &k, i, 2);
+        start_carrying(sim);
         return;
     }
 #endif
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, density_one, sim, &k, i);
+    start_carrying(sim);
 }
 
 const sph_pass sph_pass_density = {
     .name = "density",
     .summary = "density by kernel summation",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_RES_LISTS,
-    .writes = SPH_BIT(RHO) | SPH_BIT(VOL),
+    /* and rho_c with density_method = continuity (not in reads: it exists
+     * only in those scenes) */
+    .writes = SPH_BIT(RHO) | SPH_BIT(VOL) | SPH_BIT(RHO_C),
     .group = SPH_GROUP_DENSITY,
     .highlight = "density",
     .skip_reason = skip_reason,

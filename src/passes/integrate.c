@@ -1,8 +1,7 @@
 /* Pass: integration, symplectic Euler: v += dt (the sum of every acceleration
  * field of the registry: pressure, viscosity, interaction, ...),
  * then x += dt v with the new v (gravity was added to v by the external
- * pass); positions on periodic axes are wrapped back into the domain. With
- * density_method = continuity, also rho_c += dt drho. Also measures the largest speed and acceleration, which the CFL
+ * pass); positions on periodic axes are wrapped back into the domain. Also measures the largest speed and acceleration, which the CFL
  * time step of the next step needs. */
 #include "sph_search.h"
 #include "sph_walls.h"
@@ -57,13 +56,6 @@ static void run(sph_sim *sim)
         vmax2 = fmaxf(vmax2, v2);
         amax2 = fmaxf(amax2, a2);
     }
-    if (P->rho_c && P->drho) { /* density_method = continuity: the carried density moves on too */
-        float *restrict rc = P->rho_c;
-        const float *restrict dr = P->drho;
-#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-        for (int i = 0; i < n; i++)
-            if (!sph_is_wall(P, i)) rc[i] += dt * dr[i];
-    }
     for (int d = 0; d < dim; d++) /* periodic axes: back into the domain */
         if (sim->period[d] > 0) {
             const float lo = sim->def.domain_min[d], per = sim->period[d], iper = sim->inv_period[d];
@@ -79,9 +71,7 @@ const sph_pass sph_pass_integrate = {
     .name = "integrate",
     .summary = "symplectic Euler: velocities, then positions",
     .reads = SPH_BIT(VEL) | SPH_MASK_ACCELERATIONS,
-    /* and, with density_method = continuity, rho_c += dt drho (drho and rho_c
-     * are not in reads: they exist only in those scenes) */
-    .writes = SPH_BIT(VEL) | SPH_BIT(POS) | SPH_BIT(RHO_C),
+    .writes = SPH_BIT(VEL) | SPH_BIT(POS),
     .group = SPH_GROUP_INTEGRATE,
     .highlight = "speed",
     .skip_reason = skip_reason,
