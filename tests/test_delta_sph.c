@@ -202,3 +202,31 @@ Test(delta_sph, diffusion_smooths_a_hydrostatic_row, .timeout = 120)
     cr_assert_lt(s[0][1], 0.8 * s[0][0], "volume: delta = 0.1 is not smoother: %g against %g", s[0][1], s[0][0]);
     cr_assert_lt(s[1][1], 2e-4, "particles: the rows are not flat: %g", s[1][1]);
 }
+
+/* Reconfiguring keeps the carried density (delta changed live), and
+ * switching continuity on live starts it from the summation again. */
+Test(delta_sph, reconfigure_carries_or_restarts_the_density)
+{
+    sph_sim *sim = box("continuity", 0.1, 0.1);
+    for (int s = 0; s < 20; s++) sph_sim_step(sim);
+    float *before = calloc(sim->n, sizeof *before);
+    cr_assert_not_null(before);
+    for (uint32_t i = 0; i < sim->n; i++) before[sim->P.id[i]] = sim->P.rho_c[i];
+    sph_scene_def def = sim->def;
+    def.delta = 0.05f;
+    sph_error err;
+    cr_assert_eq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert(sim->rho_carried, "the carried density was dropped");
+    for (uint32_t i = 0; i < sim->n; i++) cr_assert_eq(sim->P.rho_c[i], before[sim->P.id[i]]);
+    def.density_method = SPH_DMETHOD_SUMMATION;
+    cr_assert_eq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert(!sim->rho_carried && !sim->P.rho_c);
+    def.density_method = SPH_DMETHOD_CONTINUITY;
+    cr_assert_eq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert(!sim->rho_carried, "switched on live: it must start from a sum");
+    sph_sim_step(sim);
+    cr_assert(sim->rho_carried);
+    for (uint32_t i = 0; i < sim->n; i++) cr_assert_eq(sim->P.rho_c[i], sim->P.rho[i]);
+    free(before);
+    sph_sim_destroy(sim);
+}

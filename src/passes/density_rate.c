@@ -28,7 +28,7 @@
  * rho and v are then updated one after the other, symplectic Euler for the
  * sound waves. Updating both from the old state (explicit Euler) made every
  * acoustic mode grow: a jittered box gained 40 times its kinetic energy in
- * 300 steps.
+ * 200 steps.
  * The Antuono et al. 2010 correction (psi_ij minus the renormalised density
  * gradients grad rho^L_i + grad rho^L_j, which removes the diffusion's
  * spurious flux in a hydrostatic column) needs a pass before this one that
