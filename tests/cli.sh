@@ -64,6 +64,8 @@ sph run "$scene" --backend vulkan --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 2 ] && grep -q "backend 'vulkan': accepted: cpu, gl" "$tmp/gl.txt" && ok || { bad "--backend vulkan: want exit 2 and the accepted values"; cat "$tmp/gl.txt"; }
 sph run "$scene" --backend gl --set search.sort=qsort --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "\[search\] sort = qsort is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl with sort = qsort: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
+sph run "$scene" --backend gl --set physics.density_method=continuity --steps 1 > "$tmp/gl.txt" 2>&1
+[ $? -eq 1 ] && grep -q "\[physics\] density_method = continuity is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl with density_method = continuity: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
 sph run "$scene" --set compute.backend=opencl --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "\[compute\] backend = 'opencl'" "$tmp/gl.txt" && ok || { bad "compute.backend=opencl: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
 

@@ -50,7 +50,11 @@
     X(FIXED, fixed, 1, "1", "1", STATE, WALL_STATE, NONE, "", "wall", "1 for a fixed wall particle, 0 for fluid") \
     X(VEL_VISC, vel_visc, V, "m/s", "m/s", WALL, WALL_STATE, NONE, "", "v viscous",                              \
       "velocity the viscous term sees: the fluid's own; a wall particle's mirrored (no-slip) or the fluid's "     \
-      "(free-slip)")
+      "(free-slip)")                                                                                             \
+    X(RHO_C, rho_c, 1, "kg/m^3", "kg/m^2", STATE, DENSITY_RATE, DENSITY, "", "rho carried",                      \
+      "density carried by the continuity equation (density_method = continuity): rho_c += dt drho")             \
+    X(DRHO, drho, 1, "kg/(m^3 s)", "kg/(m^2 s)", DERIVED, DENSITY_RATE, NONE, "density-rate", "drho/dt",         \
+      "rate of change of the density: continuity equation with density diffusion (delta-SPH)")
 
 typedef enum sph_field_id {
 #define SPH_FIELD_ENUM(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) SPH_FIELD_##ID,

@@ -20,6 +20,7 @@
     X(REORDER, reorder)    \
     X(OFFSETS, offsets)    \
     X(NEIGHBOURS, neighbours) \
+    X(DENSITY_RATE, density_rate) \
     X(DENSITY, density)    \
     X(PRESSURE, pressure)  \
     X(WALL_STATE, wall_state) \

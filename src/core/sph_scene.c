@@ -22,6 +22,7 @@ const char *const sph_sort_names[SPH_SORT_COUNT] = {SPH_SORT_CHOICES(NAMES)};
 const char *const sph_negative_pressure_names[SPH_NEGP_COUNT] = {SPH_NEGP_CHOICES(NAMES)};
 const char *const sph_wall_model_names[SPH_WALL_COUNT] = {SPH_WALL_CHOICES(NAMES)};
 const char *const sph_wall_slip_names[SPH_SLIP_COUNT] = {SPH_SLIP_CHOICES(NAMES)};
+const char *const sph_density_method_names[SPH_DMETHOD_COUNT] = {SPH_DMETHOD_CHOICES(NAMES)};
 const char *const sph_axis_names[3] = {"x", "y", "z"};
 const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICES(NAMES)};
 const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
@@ -109,6 +110,13 @@ const sph_key sph_scene_keys[] = {
     {"physics", "damping_time", SPH_KEY_FLOAT, S(damping_time), 0, BIG, 0, 0, NULL, 0, "s", "0",
      "over the first T seconds every step multiplies the velocities by (1 - cos(pi t / T)) / 2: all motion is "
      "removed at t = 0 and none at T, so an initial state settles; 0: no damping"},
+    {"physics", "density_method", SPH_KEY_CHOICE, S(density_method), 0, 0, 0, 0, CH(sph_density_method_names), "",
+     "summation",
+     "summation: rho = sum_j m_j W_ij every step; continuity: rho summed at the start, then carried by "
+     "drho/dt = sum_j m_j v_ij . grad W_ij plus the density diffusion term of delta (Molteni & Colagrossi 2009)"},
+    {"physics", "delta", SPH_KEY_FLOAT, S(delta), 0, 1, 0, 0, NULL, 0, "", "0.1",
+     "delta of density_method = continuity's diffusion term delta (h/2) c sum_j psi_ij . grad W_ij V_j, "
+     "psi_ij = 2 (rho_j - rho_i) x_ji / |x_ji|^2, c = sqrt(stiffness); 0: none; typically 0.1"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "

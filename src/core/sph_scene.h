@@ -52,6 +52,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")
 #define SPH_WALL_CHOICES(X) X(VOLUME, "volume") X(REFLECT, "reflect") X(PARTICLES, "particles")
 #define SPH_SLIP_CHOICES(X) X(NO, "no") X(FREE, "free")
+#define SPH_DMETHOD_CHOICES(X) X(SUMMATION, "summation") X(CONTINUITY, "continuity")
 #define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
 #define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
@@ -67,6 +68,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_NEGP(id, name) SPH_NEGP_##id,
 #define SPH_CHOICE_ITEM_SPH_WALL(id, name) SPH_WALL_##id,
 #define SPH_CHOICE_ITEM_SPH_SLIP(id, name) SPH_SLIP_##id,
+#define SPH_CHOICE_ITEM_SPH_DMETHOD(id, name) SPH_DMETHOD_##id,
 #define SPH_CHOICE_ITEM_SPH_VFIELD(id, name) SPH_VFIELD_##id,
 #define SPH_CHOICE_ITEM_SPH_ACC(id, name) SPH_ACC_##id,
 #define SPH_CHOICE_ITEM_SPH_ONOFF(id, name) SPH_##id,
@@ -79,6 +81,7 @@ SPH_DECLARE_CHOICES(sph_sort, SPH_SORT, SPH_SORT_CHOICES)
 SPH_DECLARE_CHOICES(sph_negative_pressure, SPH_NEGP, SPH_NEGP_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_model, SPH_WALL, SPH_WALL_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_slip, SPH_SLIP, SPH_SLIP_CHOICES)
+SPH_DECLARE_CHOICES(sph_density_method, SPH_DMETHOD, SPH_DMETHOD_CHOICES)
 SPH_DECLARE_CHOICES(sph_velocity_field, SPH_VFIELD, SPH_FIELD_CHOICES)
 SPH_DECLARE_CHOICES(sph_accumulate, SPH_ACC, SPH_ACC_CHOICES)
 SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
@@ -92,6 +95,7 @@ extern const char *const sph_sort_names[SPH_SORT_COUNT];
 extern const char *const sph_negative_pressure_names[SPH_NEGP_COUNT];
 extern const char *const sph_wall_model_names[SPH_WALL_COUNT];
 extern const char *const sph_wall_slip_names[SPH_SLIP_COUNT];
+extern const char *const sph_density_method_names[SPH_DMETHOD_COUNT];
 extern const char *const sph_axis_names[3];
 extern const char *const sph_velocity_field_names[SPH_VFIELD_COUNT];
 extern const char *const sph_accumulate_names[SPH_ACC_COUNT];
@@ -150,6 +154,8 @@ typedef struct sph_scene_def {
     float alpha;        /* [1] Monaghan's artificial viscosity coefficient (viscosity_form = artificial) */
     float gravity_ramp; /* [s] gravity grows smoothly from 0 to g over this time; 0: full g from the start */
     float damping_time; /* [s] velocities are damped, less and less, over this time; 0: no damping */
+    sph_density_method density_method; /* summation each step, or carried by the continuity equation */
+    float delta;        /* [1] delta of the density diffusion term (density_method = continuity) */
     sph_kernel_kind kernel_density, kernel_pressure, kernel_viscosity;
 
     float dt;           /* [s] time step when cfl = 0; the first step's bound otherwise */

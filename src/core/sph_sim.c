@@ -405,11 +405,13 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     uint32_t n = sim->n;
     memcpy(next->P.id, sim->P.id, (size_t)n * sizeof *next->P.id);
     for (int f = 0; f < SPH_FIELD_COUNT; f++) /* the state; derived fields are made again */
-        if (sph_field_infos[f].kind == SPH_KIND_STATE && sim->P.field[f][0]) /* fixed: only with wall particles */
+        /* fixed: only with wall particles; rho_c: only with density_method = continuity */
+        if (sph_field_infos[f].kind == SPH_KIND_STATE && sim->P.field[f][0] && next->P.field[f][0])
             for (int d = 0; d < (sph_field_infos[f].vector ? sim->dim : 1); d++)
                 memcpy(next->P.field[f][d], sim->P.field[f][d], (size_t)n * sizeof(float));
     next->t = sim->t;
     next->step = sim->step;
+    next->rho_carried = sim->rho_carried && sim->P.rho_c && next->P.rho_c; /* else summed again */
     next->max_speed = sim->max_speed;
     next->max_acc = sim->max_acc;
     next->energy_ref = sim->energy_ref;

@@ -180,6 +180,8 @@ struct sph_sim {
     float max_acc;        /* [m/s^2] likewise */
     double energy_ref;    /* [J] or [J/m] total energy after the first step (when density, and so the
                              internal energy, first exists): what the HUD's energy drift is measured from */
+    bool rho_carried;     /* density_method = continuity: rho_c holds the carried density (set by the
+                             density_rate pass's first run); until then the density pass sums */
     float period[3];      /* [m] domain length on periodic axes, 0 on others */
     float inv_period[3];  /* [1/m] 1 / period, 0 on non-periodic axes */
 

@@ -2,7 +2,9 @@
  * particle itself included (its W(0) term is most of the sum at low
  * neighbour counts). With walls of the volume model, rho0 times the share of
  * the kernel hidden behind the walls is added (sph_wall_hidden): a particle at
- * a wall is not missing half its neighbours. */
+ * a wall is not missing half its neighbours. With density_method = continuity
+ * the sum is made only at the start, where rho_c takes it; afterwards
+ * rho_c += dt drho (drho from the density_rate pass just before) and rho = rho_c. */
 #include "simd.h"
 #include "sph_search.h"
 #include "sph_walls.h"
@@ -17,8 +19,9 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "summation with the %s kernel%s", sph_kernel_names[def->kernel_density],
-             sph_scene_wall_volume(def) ? ", walls count as fluid at rest" : "");
+    snprintf(out, (size_t)n, "summation with the %s kernel%s%s", sph_kernel_names[def->kernel_density],
+             sph_scene_wall_volume(def) ? ", walls count as fluid at rest" : "",
+             def->density_method == SPH_DMETHOD_CONTINUITY ? "; at the start only, then the carried rho_c" : "");
 }
 
 /* The sum for one particle; dim and dbl are constants (SPH_SPECIALISE). */
@@ -76,28 +79,61 @@ static inline void density_one_avx512(const sph_sim *sim, const sph_kernel *k, i
 }
 #endif
 
+/* density_method = continuity, at the start: the carried density starts
+ * from this sum. The start-up evaluation (dt = 0, sph_sim_create) sums at x,
+ * not at the predicted x + v dt that every step's sum sees: only the first
+ * step of some length hands its sum on, so its density is exactly the
+ * summation's. */
+static void start_carrying(sph_sim *sim)
+{
+    sph_particles *P = &sim->P;
+    if (!P->rho_c) return;
+    const int n = (int)sim->n;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) P->rho_c[i] = P->rho[i];
+    sim->rho_carried = sim->dt > 0.0f;
+}
+
 static void run(sph_sim *sim)
 {
     const sph_kernel k = sim->k_density;
     const int n = (int)sim->n, dim = sim->dim;
+    sph_particles *P = &sim->P;
+    if (sim->rho_carried && P->rho_c) {
+        /* density_method = continuity, after its start: the carried density
+         * moves on by the rate just made (passes/density_rate.c), no sum */
+        const float dt = sim->dt;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+        for (int i = 0; i < n; i++) {
+            const float rho = P->rho_c[i] + dt * P->drho[i];
+            P->rho_c[i] = rho;
+            P->rho[i] = rho;
+            P->vol[i] = P->mass[i] / rho;
+        }
+        return;
+    }
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
     const bool periodic = sph_sim_periodic(sim);
 #if SPH_HAVE_AVX512
     if (sph_simd_on(sim) && k.kind == SPH_KERNEL_POLY6) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) dim == 3 ? density_one_avx512(sim, &k, i, 3) : density_one_avx512(sim, &k, i, 2);
+        start_carrying(sim);
         return;
     }
 #endif
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, density_one, sim, &k, i);
+    start_carrying(sim);
 }
 
 const sph_pass sph_pass_density = {
     .name = "density",
     .summary = "density by kernel summation",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_RES_LISTS,
-    .writes = SPH_BIT(RHO) | SPH_BIT(VOL),
+    /* and rho_c with density_method = continuity (not in reads: it exists
+     * only in those scenes) */
+    .writes = SPH_BIT(RHO) | SPH_BIT(VOL) | SPH_BIT(RHO_C),
     .group = SPH_GROUP_DENSITY,
     .highlight = "density",
     .skip_reason = skip_reason,

@@ -1,0 +1,137 @@
+/* Pass: the density's rate of change, for [physics] density_method =
+ * continuity (delta-SPH, Molteni & Colagrossi 2009, Comput. Phys. Commun.
+ * 180, 861-872):
+ *
+ *   drho_i/dt = sum_j m_j (v_i - v_j) . grad W_ij
+ *             + delta h_s c sum_j psi_ij . grad W_ij V_j,
+ *   psi_ij = 2 (rho_j - rho_i) x_ji / |x_ji|^2,  h_s = h/2, c = sqrt(stiffness),
+ *
+ * with the density kernel's gradient (so the rate is the time derivative of
+ * the summation, and the two agree while the flow is gentle) and V_j = m_j/rho_j.
+ * The second term is a diffusion of the density: psi_ij . grad_i W_ij =
+ * -2 (rho_j - rho_i) W'(r)/r pulls rho_i towards its neighbours', which
+ * damps the high-frequency density noise the bare continuity equation lets
+ * grow. It is antisymmetric in the pair, weighted by V_i V_j, so it moves
+ * no mass: sum_i V_i drho_i gets nothing from it.
+ *
+ * The design, kept simple: the carried density is the state field rho_c
+ * (moved by reorder, carried over by sph_sim_reconfigure).
+ *   - in the first step (or the first after a reconfiguration that switched
+ *     continuity on) this pass writes drho = 0 and the density pass sums as
+ *     usual; rho_c starts from that sum (sim->rho_carried becomes true);
+ *   - from then on this pass, run before density, makes drho from rho_c and
+ *     the velocities of this step, and the density pass advances
+ *     rho_c += dt drho and sets rho = rho_c, so pressure and every later pass
+ *     read `rho` unchanged.
+ * Why the rate uses this step's velocities (after the previous step's
+ * integration) rather than being applied by integration with the old ones:
+ * rho and v are then updated one after the other, symplectic Euler for the
+ * sound waves. Updating both from the old state (explicit Euler) made every
+ * acoustic mode grow: a jittered box gained 40 times its kinetic energy in
+ * 200 steps.
+ * The Antuono et al. 2010 correction (psi_ij minus the renormalised density
+ * gradients grad rho^L_i + grad rho^L_j, which removes the diffusion's
+ * spurious flux in a hydrostatic column) needs a pass before this one that
+ * computes those gradients: not written yet.
+ *
+ * Walls: with wall_model = volume the summation holds rho0 times the
+ * kernel's share hidden behind the walls; its time derivative,
+ * rho0 grad(hidden share) . v_i, is added. With wall_model = particles the
+ * wall particles enter the velocity term (they are at rest) but not the
+ * diffusion term: their density is set by the wall_state pass, from the
+ * fluid's pressure, not carried, so only fluid pairs diffuse (as DualSPHysics
+ * does too). */
+#include "sph_search.h"
+#include "sph_walls.h"
+
+#include <math.h>
+#include <stdio.h>
+
+static const char *skip_reason(const sph_scene_def *def)
+{
+    if (!sph_scene_needs_density(def)) return "no effect of the scene needs density (the neighbour search)";
+    return def->density_method == SPH_DMETHOD_CONTINUITY ? NULL
+                                                         : "[physics] density_method = summation: nothing is carried";
+}
+
+static void describe(const sph_scene_def *def, char *out, int n)
+{
+    snprintf(out, (size_t)n, "continuity equation with density diffusion delta = %g (Molteni & Colagrossi 2009)%s",
+             def->delta, sph_scene_wall_volume(def) ? ", walls' hidden share moved by v" : "");
+}
+
+/* The rate for one particle; dim and dbl are constants (SPH_SPECIALISE_P). */
+static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffusion, int i, const int dim,
+                            const bool dbl, const bool periodic)
+{
+    sph_particles *P = (sph_particles *)&sim->P;
+    const sph_search_data *S = &sim->S;
+    if (sph_is_wall(P, i)) { /* wall particles never move, their density comes from wall_state */
+        P->drho[i] = 0.0f;
+        return;
+    }
+    const float r_min = SPH_KERNEL_R_MIN * k->h; /* a coincident pair has no direction: left out */
+    const float *per = sim->period, *iper = sim->inv_period;
+    const float rho_i = P->rho_c[i];
+    float xi[3], vi[3];
+    for (int d = 0; d < dim; d++) {
+        xi[d] = P->pred[d][i];
+        vi[d] = P->vel[d][i];
+    }
+    float sf = 0.0f;
+    double sd = 0.0;
+    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+        uint32_t j = S->nbr[e];
+        float dx[3], r2 = 0, vx = 0;
+        for (int d = 0; d < dim; d++) {
+            dx[d] = xi[d] - P->pred[d][j];
+            if (periodic) dx[d] = sph_min_image(dx[d], per[d], iper[d]);
+            r2 += dx[d] * dx[d];
+        }
+        if (r2 < r_min * r_min) continue;
+        for (int d = 0; d < dim; d++) vx += (vi[d] - P->vel[d][j]) * dx[d];
+        const float r = sqrtf(r2);
+        const float dw_over_r = sph_kernel_dw(k, r) / r; /* grad_i W_ij = dw_over_r x_ij */
+        float t = P->mass[j] * vx * dw_over_r;
+        if (diffusion != 0.0f && !sph_is_wall(P, j))
+            t -= diffusion * 2.0f * (P->rho_c[j] - rho_i) * dw_over_r * P->mass[j] / P->rho_c[j];
+        if (dbl) sd += t;
+        else sf += t;
+    }
+    float rate = dbl ? (float)sd : sf;
+    if (sph_sim_wall_volume(sim)) {
+        float grad[3];
+        sph_wall_hidden(sim, k, i, grad);
+        for (int d = 0; d < dim; d++) rate += sim->def.rest_density * grad[d] * vi[d];
+    }
+    P->drho[i] = rate;
+}
+
+static void run(sph_sim *sim)
+{
+    sph_particles *P = &sim->P;
+    const sph_kernel k = sim->k_density;
+    const int n = (int)sim->n, dim = sim->dim;
+    const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
+    const bool periodic = sph_sim_periodic(sim);
+    if (!sim->rho_carried) { /* the start: the density pass sums, and rho_c starts from it */
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+        for (int i = 0; i < n; i++) P->drho[i] = 0.0f;
+        return;
+    }
+    const float diffusion = sim->def.delta * 0.5f * sim->def.h * sqrtf(sim->def.stiffness); /* delta h_s c [m^2/s] */
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, rate_one, sim, &k, diffusion, i);
+}
+
+const sph_pass sph_pass_density_rate = {
+    .name = "density_rate",
+    .summary = "drho/dt: continuity equation with density diffusion (delta-SPH)",
+    .reads = SPH_BIT(PRED) | SPH_BIT(VEL) | SPH_BIT(MASS) | SPH_BIT(RHO_C) | SPH_RES_LISTS,
+    .writes = SPH_BIT(DRHO),
+    .group = SPH_GROUP_DENSITY,
+    .highlight = "density-rate",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
+};
