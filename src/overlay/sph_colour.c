@@ -8,6 +8,27 @@
 #include "overlay_internal.h"
 #include "sph_search.h"
 
+/* ---- shared by the overlay's files (overlay_internal.h) ---------------- */
+
+/* The hash pass has filled the index at least once since the simulation was
+ * made (before that, entries are zeros). */
+bool sph_ov_index_built(const sph_sim *sim)
+{
+    return sim->in_pipeline[SPH_PASS_HASH] && sim->S.entries && sim->timing[SPH_PASS_HASH].calls > 0;
+}
+
+bool sph_ov_lists_built(const sph_sim *sim)
+{
+    return sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start && sim->timing[SPH_PASS_NEIGHBOURS].calls > 0;
+}
+
+float sph_ov_vec_norm(float *const v[3], int dim, uint32_t i)
+{
+    float s = 0;
+    for (int d = 0; d < dim; d++) s += v[d][i] * v[d][i];
+    return sqrtf(s);
+}
+
 /* ---- colour fields ------------------------------------------------------- */
 
 const char *const sph_color_field_names[SPH_COLOR_COUNT] = {

@@ -32,24 +32,8 @@ int sph_overlay_find(const char *name)
 
 static sph_cells cells_of(const sph_sim *sim);
 
-/* The hash pass has filled the index at least once since the simulation was
- * made (before that, entries are zeros). */
-bool sph_ov_index_built(const sph_sim *sim)
-{
-    return sim->in_pipeline[SPH_PASS_HASH] && sim->S.entries && sim->timing[SPH_PASS_HASH].calls > 0;
-}
 
-bool sph_ov_lists_built(const sph_sim *sim)
-{
-    return sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start && sim->timing[SPH_PASS_NEIGHBOURS].calls > 0;
-}
 
-float sph_ov_vec_norm(float *const v[3], int dim, uint32_t i)
-{
-    float s = 0;
-    for (int d = 0; d < dim; d++) s += v[d][i] * v[d][i];
-    return sqrtf(s);
-}
 
 /* The hash the hash pass gives a cell (the dense cell number for the grid search). */
 uint32_t sph_ov_cell_hash(const sph_sim *sim, const int32_t c[3])
