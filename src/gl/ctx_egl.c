@@ -151,6 +151,7 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
         return NULL;
     }
     sph_gl_load_epoxy(gl);
+    sph_gl_pin_driver();
     return c;
 }
 

@@ -54,6 +54,7 @@ sph_glctx *sph_glctx_create_osmesa(sph_gl *gl, char *err, size_t n)
         free(c);
         return NULL;
     }
+    sph_gl_pin_driver();
     return (sph_glctx *)c;
 }
 

@@ -1,7 +1,11 @@
 /* What all kinds of context share: the one sphlab made current last, the
  * caller's context, and the calls that dispatch on a context's kind. */
+#define _GNU_SOURCE /* dl_iterate_phdr, RTLD_NOLOAD, RTLD_NODELETE */
+#include <dlfcn.h>
+#include <link.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "gl_context.h"
 
@@ -15,6 +19,19 @@ typedef struct caller_ctx {
 sph_glctx_kind sph_glctx_kind_of(const sph_glctx *c)
 {
     return *(const sph_glctx_kind *)(const void *)c;
+}
+
+static int pin_module(struct dl_phdr_info *info, size_t size, void *data)
+{
+    (void)size, (void)data;
+    if (info->dlpi_name && (strstr(info->dlpi_name, "/dri/") || strstr(info->dlpi_name, "gallium")))
+        dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+    return 0;
+}
+
+void sph_gl_pin_driver(void)
+{
+    dl_iterate_phdr(pin_module, NULL);
 }
 
 void sph_glctx_forget_current(void)
@@ -31,6 +48,7 @@ sph_glctx *sph_glctx_create_caller(sph_gl *gl, char *err, size_t n)
     }
     c->kind = SPH_GLCTX_CALLER;
     sph_gl_load_epoxy(gl);
+    sph_gl_pin_driver();
     return (sph_glctx *)(void *)c;
 }
 

@@ -44,6 +44,14 @@ void sph_glctx_destroy(sph_glctx *c); /* any kind; NULL is fine */
 extern sph_glctx *sph_glctx_last_current;
 void sph_glctx_forget_current(void);
 
+/* Keeps the GL driver's modules (Mesa's dri and gallium libraries) loaded
+ * until exit, once a context exists: Mesa unloads its driver when the last
+ * display goes, and what the driver keeps until exit would then be reported
+ * by LeakSanitizer from an "unknown module" that no suppression
+ * (tests/lsan.supp) can name. Harmless otherwise: the driver stays loaded for
+ * the process's life anyway. Called by every context's creation. */
+void sph_gl_pin_driver(void);
+
 /* The kinds' own calls (ctx_egl.c, ctx_osmesa.c), dispatched by the above. */
 bool sph_glctx_make_current_egl(sph_glctx *c);
 bool sph_glctx_make_current_osmesa(sph_glctx *c);
