@@ -98,7 +98,9 @@ void sph_watchdog_check(sph_sim *sim, int pass)
  * that starts with almost none) is a runaway even when every speed is below
  * its bound. The mouse does work and a live change of parameters changes the
  * internal energy, so both move the reference. With a backend the state is
- * downloaded for this, so it is checked every 64 steps only. */
+ * downloaded for this, so it is checked every 64 steps only. On the CPU it
+ * runs every step, a serial pass over the particles: about 0.5 ms a step at
+ * 55,000 particles (5 %), not counted in any pass and off in `sphlab bench`. */
 void sph_watchdog_energy(sph_sim *sim, int pass)
 {
     if (sim->alarm.raised || (sim->backend && sim->step % 64 != 0)) return;
