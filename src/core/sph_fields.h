@@ -54,7 +54,14 @@
     X(RHO_C, rho_c, 1, "kg/m^3", "kg/m^2", STATE, DENSITY_RATE, DENSITY, "", "rho carried",                      \
       "density carried by the continuity equation (density_method = continuity): rho_c += dt drho")             \
     X(DRHO, drho, 1, "kg/(m^3 s)", "kg/(m^2 s)", DERIVED, DENSITY_RATE, NONE, "density-rate", "drho/dt",         \
-      "rate of change of the density: continuity equation with density diffusion (delta-SPH)")
+      "rate of change of the density: continuity equation with density diffusion (delta-SPH)")            \
+    X(GRAD_RHO, grad_rho, V, "kg/m^4", "kg/m^3", DERIVED, DENSITY_GRADIENT, NONE, "", "grad rho",             \
+      "renormalised gradient of the carried density, L_i sum_j (rho_j - rho_i) grad W_ij V_j (delta_form = "    \
+      "antuono)")                                                                                              \
+    X(SHIFT, shift, V, "m", "m", DERIVED, SHIFTING, NONE, "", "shift",                                          \
+      "displacement of the particle shifting (shifting = lind): -D grad C, 0 at the free surface")             \
+    X(SURFACE, surface, 1, "1", "1", DERIVED, SHIFTING, NONE, "", "surface",                                  \
+      "1 where the particle is at the free surface (divergence of position below dim - 0.5), else 0")
 
 typedef enum sph_field_id {
 #define SPH_FIELD_ENUM(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) SPH_FIELD_##ID,

@@ -20,6 +20,7 @@
     X(REORDER, reorder)    \
     X(OFFSETS, offsets)    \
     X(NEIGHBOURS, neighbours) \
+    X(DENSITY_GRADIENT, density_gradient) \
     X(DENSITY_RATE, density_rate) \
     X(DENSITY, density)    \
     X(PRESSURE, pressure)  \
@@ -29,6 +30,7 @@
     X(COHESION, cohesion)  \
     X(INTERACTION, interaction) \
     X(INTEGRATE, integrate) \
+    X(SHIFTING, shifting) \
     X(WALLS, walls)
 
 typedef enum sph_pass_id {

@@ -53,6 +53,8 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_WALL_CHOICES(X) X(VOLUME, "volume") X(REFLECT, "reflect") X(PARTICLES, "particles")
 #define SPH_SLIP_CHOICES(X) X(NO, "no") X(FREE, "free")
 #define SPH_DMETHOD_CHOICES(X) X(SUMMATION, "summation") X(CONTINUITY, "continuity")
+#define SPH_DFORM_CHOICES(X) X(MOLTENI, "molteni") X(ANTUONO, "antuono")
+#define SPH_SHIFT_CHOICES(X) X(NONE, "none") X(LIND, "lind")
 #define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
 #define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
@@ -69,6 +71,8 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_WALL(id, name) SPH_WALL_##id,
 #define SPH_CHOICE_ITEM_SPH_SLIP(id, name) SPH_SLIP_##id,
 #define SPH_CHOICE_ITEM_SPH_DMETHOD(id, name) SPH_DMETHOD_##id,
+#define SPH_CHOICE_ITEM_SPH_DFORM(id, name) SPH_DFORM_##id,
+#define SPH_CHOICE_ITEM_SPH_SHIFT(id, name) SPH_SHIFT_##id,
 #define SPH_CHOICE_ITEM_SPH_VFIELD(id, name) SPH_VFIELD_##id,
 #define SPH_CHOICE_ITEM_SPH_ACC(id, name) SPH_ACC_##id,
 #define SPH_CHOICE_ITEM_SPH_ONOFF(id, name) SPH_##id,
@@ -82,6 +86,8 @@ SPH_DECLARE_CHOICES(sph_negative_pressure, SPH_NEGP, SPH_NEGP_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_model, SPH_WALL, SPH_WALL_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_slip, SPH_SLIP, SPH_SLIP_CHOICES)
 SPH_DECLARE_CHOICES(sph_density_method, SPH_DMETHOD, SPH_DMETHOD_CHOICES)
+SPH_DECLARE_CHOICES(sph_delta_form, SPH_DFORM, SPH_DFORM_CHOICES)
+SPH_DECLARE_CHOICES(sph_shifting, SPH_SHIFT, SPH_SHIFT_CHOICES)
 SPH_DECLARE_CHOICES(sph_velocity_field, SPH_VFIELD, SPH_FIELD_CHOICES)
 SPH_DECLARE_CHOICES(sph_accumulate, SPH_ACC, SPH_ACC_CHOICES)
 SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
@@ -96,6 +102,8 @@ extern const char *const sph_negative_pressure_names[SPH_NEGP_COUNT];
 extern const char *const sph_wall_model_names[SPH_WALL_COUNT];
 extern const char *const sph_wall_slip_names[SPH_SLIP_COUNT];
 extern const char *const sph_density_method_names[SPH_DMETHOD_COUNT];
+extern const char *const sph_delta_form_names[SPH_DFORM_COUNT];
+extern const char *const sph_shifting_names[SPH_SHIFT_COUNT];
 extern const char *const sph_axis_names[3];
 extern const char *const sph_velocity_field_names[SPH_VFIELD_COUNT];
 extern const char *const sph_accumulate_names[SPH_ACC_COUNT];
@@ -156,6 +164,9 @@ typedef struct sph_scene_def {
     float damping_time; /* [s] velocities are damped, less and less, over this time; 0: no damping */
     sph_density_method density_method; /* summation each step, or carried by the continuity equation */
     float delta;        /* [1] delta of the density diffusion term (density_method = continuity) */
+    sph_delta_form delta_form; /* the diffusion term: Molteni & Colagrossi 2009, or Antuono et al. 2010 */
+    sph_shifting shifting;     /* particle shifting after each step: none, or Lind et al. 2012 */
+    float shifting_coefficient; /* [1] A of the shift distance D = A h |v| dt (shifting = lind) */
     sph_kernel_kind kernel_density, kernel_pressure, kernel_viscosity;
 
     float dt;           /* [s] time step when cfl = 0; the first step's bound otherwise */

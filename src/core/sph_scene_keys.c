@@ -14,6 +14,8 @@ const char *const sph_negative_pressure_names[SPH_NEGP_COUNT] = {SPH_NEGP_CHOICE
 const char *const sph_wall_model_names[SPH_WALL_COUNT] = {SPH_WALL_CHOICES(NAMES)};
 const char *const sph_wall_slip_names[SPH_SLIP_COUNT] = {SPH_SLIP_CHOICES(NAMES)};
 const char *const sph_density_method_names[SPH_DMETHOD_COUNT] = {SPH_DMETHOD_CHOICES(NAMES)};
+const char *const sph_delta_form_names[SPH_DFORM_COUNT] = {SPH_DFORM_CHOICES(NAMES)};
+const char *const sph_shifting_names[SPH_SHIFT_COUNT] = {SPH_SHIFT_CHOICES(NAMES)};
 const char *const sph_axis_names[3] = {"x", "y", "z"};
 const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICES(NAMES)};
 const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
@@ -108,6 +110,17 @@ const sph_key sph_scene_keys[] = {
     {"physics", "delta", SPH_KEY_FLOAT, S(delta), 0, 1, 0, 0, NULL, 0, "", "0.1",
      "delta of density_method = continuity's diffusion term delta (h/2) c sum_j psi_ij . grad W_ij V_j, "
      "psi_ij = 2 (rho_j - rho_i) x_ji / |x_ji|^2, c = sqrt(stiffness); 0: none; typically 0.1"},
+    {"physics", "delta_form", SPH_KEY_CHOICE, S(delta_form), 0, 0, 0, 0, CH(sph_delta_form_names), "", "molteni",
+     "the density diffusion term of delta: molteni: psi_ij as above (Molteni & Colagrossi 2009); antuono: psi_ij "
+     "minus the renormalised density gradients <grad rho>^L_i + <grad rho>^L_j (Antuono et al. 2010, Comput. Phys. "
+     "Commun. 181:532), which vanishes for a hydrostatic (linear) density, so a column at rest does not drift; "
+     "CPU only"},
+    {"physics", "shifting", SPH_KEY_CHOICE, S(shifting), 0, 0, 0, 0, CH(sph_shifting_names), "", "none",
+     "particle shifting after each step: none; lind: every particle moves by -D grad C_i, C the particle "
+     "concentration (Lind et al. 2012, J. Comput. Phys. 231:1499), D = shifting_coefficient h |v_i| dt; particles "
+     "at the free surface are not shifted; CPU only"},
+    {"physics", "shifting_coefficient", SPH_KEY_FLOAT, S(shifting_coefficient), 0, 100, 0, 0, NULL, 0, "", "2",
+     "A of shifting = lind's D = A h |v_i| dt (2 in Skillen et al. 2013, who scaled Lind's D with the step)"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "

@@ -13,6 +13,9 @@ double sph_wall_particle_count(const sph_scene_def *def);
 void sph_wall_particles_place(sph_sim *sim, uint32_t first);
 /* Is particle i a wall particle? (Never, without wall particles: no field.) */
 #define sph_is_wall(P, i) ((P)->fixed && (P)->fixed[i] != 0.0f)
+/* [kg/m^dim] the density Antuono's diffusion term sees: the carried one of a
+ * fluid particle, the one wall_state set for a wall particle */
+#define sph_rho_diffused(P, j) (sph_is_wall(P, j) ? (P)->rho[j] : (P)->rho_c[j])
 
 /* 1 - prod_w (1 - psi(d_w)), which is exact at one wall and at a corner's tip
  * and counts corners once, not twice. If grad is not NULL it receives the

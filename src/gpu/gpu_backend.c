@@ -94,6 +94,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [physics] density_method = continuity is not implemented by the GL backend yet (its "
                         "density_rate pass and the carried density run on the CPU; accepted there: summation)",
                         def->file);
+    if (sim->in_pipeline[SPH_PASS_SHIFTING])
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] shifting = %s is not implemented by the GL backend yet (its shifting pass "
+                        "runs on the CPU; accepted there: none)",
+                        def->file, sph_shifting_names[def->shifting]);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)

@@ -29,10 +29,17 @@
  * sound waves. Updating both from the old state (explicit Euler) made every
  * acoustic mode grow: a jittered box gained 40 times its kinetic energy in
  * 200 steps.
- * The Antuono et al. 2010 correction (psi_ij minus the renormalised density
- * gradients grad rho^L_i + grad rho^L_j, which removes the diffusion's
- * spurious flux in a hydrostatic column) needs a pass before this one that
- * computes those gradients: not written yet.
+ * With delta_form = antuono (Antuono et al. 2010, Comput. Phys. Commun. 181,
+ * 532-549, eq. 9) psi_ij loses the renormalised density gradients that the
+ * density_gradient pass just made:
+ *   psi_ij = 2 (rho_j - rho_i) x_ji / |x_ji|^2 - (<grad rho>^L_i + <grad rho>^L_j).
+ * For a linear density (a hydrostatic column) the two parts cancel pair by
+ * pair, so the term is zero; Molteni's alone is not zero where the kernel is
+ * cut off (the free surface), and moves density upwards: the column drifts.
+ The wall particles enter the gradients (passes/density_gradient.c) but
+ * not the flux: a flux to a wall particle, whose density wall_state ties to
+ * the fluid's pressure, is a source of mass that feeds itself (tried: the
+ * wall row gained 200 % of rho0 g H in a second).
  *
  * Walls: with wall_model = volume the summation holds rho0 times the
  * kernel's share hidden behind the walls; its time derivative,
@@ -56,8 +63,9 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "continuity equation with density diffusion delta = %g (Molteni & Colagrossi 2009)%s",
-             def->delta, sph_scene_wall_volume(def) ? ", walls' hidden share moved by v" : "");
+    snprintf(out, (size_t)n, "continuity equation with density diffusion delta = %g (%s)%s", def->delta,
+             def->delta_form == SPH_DFORM_ANTUONO ? "Antuono et al. 2010" : "Molteni & Colagrossi 2009",
+             sph_scene_wall_volume(def) ? ", walls' hidden share moved by v" : "");
 }
 
 /* The rate for one particle; dim and dbl are constants (SPH_SPECIALISE_P). */
@@ -73,6 +81,7 @@ static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffu
     const float r_min = SPH_KERNEL_R_MIN * k->h; /* a coincident pair has no direction: left out */
     const float *per = sim->period, *iper = sim->inv_period;
     const float rho_i = P->rho_c[i];
+    const bool antuono = P->grad_rho[0] != NULL;
     float xi[3], vi[3];
     for (int d = 0; d < dim; d++) {
         xi[d] = P->pred[d][i];
@@ -93,8 +102,12 @@ static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffu
         const float r = sqrtf(r2);
         const float dw_over_r = sph_kernel_dw(k, r) / r; /* grad_i W_ij = dw_over_r x_ij */
         float t = P->mass[j] * vx * dw_over_r;
-        if (diffusion != 0.0f && !sph_is_wall(P, j))
-            t -= diffusion * 2.0f * (P->rho_c[j] - rho_i) * dw_over_r * P->mass[j] / P->rho_c[j];
+        if (diffusion != 0.0f && !sph_is_wall(P, j)) {
+            float psi = -2.0f * (P->rho_c[j] - rho_i); /* psi_ij . x_ij, Molteni's part */
+            if (antuono)                               /* Antuono's: - (grad_i + grad_j) . x_ij */
+                for (int d = 0; d < dim; d++) psi -= (P->grad_rho[d][i] + P->grad_rho[d][j]) * dx[d];
+            t += diffusion * psi * dw_over_r * P->mass[j] / P->rho_c[j];
+        }
         if (dbl) sd += t;
         else sf += t;
     }
@@ -127,6 +140,7 @@ static void run(sph_sim *sim)
 const sph_pass sph_pass_density_rate = {
     .name = "density_rate",
     .summary = "drho/dt: continuity equation with density diffusion (delta-SPH)",
+    /* and grad_rho with delta_form = antuono (not in reads: it exists only in those scenes) */
     .reads = SPH_BIT(PRED) | SPH_BIT(VEL) | SPH_BIT(MASS) | SPH_BIT(RHO_C) | SPH_RES_LISTS,
     .writes = SPH_BIT(DRHO),
     .group = SPH_GROUP_DENSITY,
