@@ -257,6 +257,10 @@ float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which);
 /* With a fixed dt (cfl = 0): a warning if dt breaks a CFL condition with the
  * reference factor 0.4, naming it and the largest stable dt; NULL if fine. */
 const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n);
+/* A run to t = until [s] (< 0: a run by steps) that would take over 1e9 steps
+ * at the current dt: a warning naming dt and the step count, said before the
+ * run starts rather than found out after hours; NULL if not. */
+const char *sph_sim_length_warning(const sph_sim *sim, double until, char *buf, size_t n);
 void sph_sim_reset_timings(sph_sim *sim);
 
 /* Time-step choice: fixed, or the CFL conditions. */

@@ -59,3 +59,10 @@ const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n)
     return buf;
 }
 
+const char *sph_sim_length_warning(const sph_sim *sim, double until, char *buf, size_t n)
+{
+    if (!(until >= 0 && sim->dt > 0 && (until - sim->t) / sim->dt > 1e9)) return NULL;
+    snprintf(buf, n, "at the first time step (dt = %.3g s) reaching t = %g s takes about %.3g steps", sim->dt, until,
+             (until - sim->t) / sim->dt);
+    return buf;
+}
