@@ -114,9 +114,11 @@ else
         { bad "render --backend gl on the EGL device platform"; cat "$tmp/dev.txt"; }
 fi
 
-# The hard cases: every verdict must be "pass" (they run headless, a few seconds).
+# The hard cases: every verdict must be "pass" (they run headless, a few seconds), and
+# there are at least 40 of them (issue 17), so a lost table row shows here.
 if sph hardcases --quick > "$tmp/hard.txt" 2>&1; then ok; else bad "hardcases"; cat "$tmp/hard.txt"; fi
-grep -q '^hardcases: [0-9]* passed, 0 failed$' "$tmp/hard.txt" && ok || bad "hardcases summary line"
+hard_n=$(sed -n 's/^hardcases: \([0-9]*\) passed, 0 failed$/\1/p' "$tmp/hard.txt")
+[ "${hard_n:-0}" -ge 40 ] && ok || bad "hardcases summary line: '${hard_n:-none}' passed, want 40 or more"
 
 # every run the limit killed is a failure of its own, whatever its check made of it
 if [ -s "$tmp/timeouts" ]; then

@@ -45,6 +45,29 @@ Test(robust, fixed_dt_warning_states_the_initial_limit)
     sph_sim_destroy(sim);
 }
 
+/* The adaptive step is floored at dt_min: a block at 1e6 m/s needs
+ * cfl (h/2) / (c + |v|) = 8e-9 s, below the default dt_min of 1e-7 s, so each
+ * step moves it 2.5 h. That must be said (it used to run on silently); the
+ * same block at 1000 m/s is within the floor and gets no warning. */
+Test(robust, adaptive_step_held_at_dt_min_is_warned)
+{
+    const char *scene = "[scene]\neffects=pressure viscosity\n[domain]\nmin=0 0\nmax=4 1\n"
+                        "[fluid a]\nmin=0.2 0.4\nmax=0.4 0.6\nspacing=0.02\nvelocity=%s 0\n"
+                        "[kernels]\nh=0.04\n[physics]\nstiffness=400\n[time]\ncfl=0.4\n";
+    char ini[512], buf[512];
+    snprintf(ini, sizeof ini, scene, "1000000");
+    sph_sim *sim = test_sim(ini, 1);
+    const char *w = sph_sim_dt_warning(sim, buf, sizeof buf);
+    cr_assert(w != NULL, "a CFL limit of 8e-9 s under dt_min = 1e-7 s: a warning is due");
+    cr_assert(strstr(w, "dt_min = 1e-07") && strstr(w, "8e-09"), "warning names neither the floor nor the limit: %s", w);
+    sph_sim_destroy(sim);
+    snprintf(ini, sizeof ini, scene, "1000");
+    sim = test_sim(ini, 1);
+    w = sph_sim_dt_warning(sim, buf, sizeof buf);
+    cr_assert(w == NULL, "the CFL limit 7.8e-6 s is above dt_min, yet: %s", w);
+    sph_sim_destroy(sim);
+}
+
 /* Forces at rest: two blocks overlapping at half a spacing start at twice
  * rho0, so the pressure force is large from step 0. The first step must obey
  * the force condition with that acceleration, not with |a|max = 0. */

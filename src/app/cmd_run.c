@@ -177,11 +177,10 @@ int cmd_run(int argc, char **argv)
     bool log_progress = !quiet && !progress;
     const char *every_ms = getenv("SPHLAB_PROGRESS_MS");
     double log_ms = every_ms && atof(every_ms) > 0 ? atof(every_ms) : 10000;
-    if (until >= 0 && sim->dt > 0 && (until - sim->t) / sim->dt > 1e9)
-        fprintf(stderr, "sphlab run: warning: at the first time step (dt = %.3g s) reaching t = %g s takes about %.3g steps\n",
-                sim->dt, until, (until - sim->t) / sim->dt);
     bool warned = false;
     char warning[512];
+    if (sph_sim_length_warning(sim, until, warning, sizeof warning))
+        fprintf(stderr, "sphlab run: warning: %s\n", warning);
     double t0 = sph_now_ms(), last_shown = t0;
     bool vtk_ok = true;
     for (;;) {

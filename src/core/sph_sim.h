@@ -255,8 +255,14 @@ void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n);
  * names the condition that binds ("sound and flow", "forces", "viscosity"). */
 float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which);
 /* With a fixed dt (cfl = 0): a warning if dt breaks a CFL condition with the
- * reference factor 0.4, naming it and the largest stable dt; NULL if fine. */
+ * reference factor 0.4, naming it and the largest stable dt; with the
+ * adaptive step: a warning if dt_min holds it above the scene's own CFL
+ * limit; NULL if fine. */
 const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n);
+/* A run to t = until [s] (< 0: a run by steps) that would take over 1e9 steps
+ * at the current dt: a warning naming dt and the step count, said before the
+ * run starts rather than found out after hours; NULL if not. */
+const char *sph_sim_length_warning(const sph_sim *sim, double until, char *buf, size_t n);
 void sph_sim_reset_timings(sph_sim *sim);
 
 /* Time-step choice: fixed, or the CFL conditions. */

@@ -48,8 +48,19 @@ float sph_time_step_choose(const sph_sim *sim)
 const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n)
 {
     const float ref = 0.4f;
-    if (sim->def.cfl > 0) return NULL;
     const char *which;
+    if (sim->def.cfl > 0) {
+        /* The adaptive step never goes below dt_min: where the CFL limit is
+         * lower, each step is longer than the scheme allows (a block at 1e6 m/s
+         * moved 2.5 h a step with nothing said). */
+        float limit = sph_time_step_limit(sim, sim->def.cfl, &which);
+        if (!(limit < sim->def.dt_min)) return NULL;
+        snprintf(buf, n,
+                 "the adaptive step is held at dt_min = %g s, above the CFL condition of %s with cfl = %g at step "
+                 "%llu, which allows about %.3g s: lower [time] dt_min",
+                 sim->def.dt_min, which, sim->def.cfl, (unsigned long long)sim->step, limit);
+        return buf;
+    }
     float limit = sph_time_step_limit(sim, ref, &which);
     if (!(sim->def.dt > limit)) return NULL;
     snprintf(buf, n,
@@ -59,3 +70,10 @@ const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n)
     return buf;
 }
 
+const char *sph_sim_length_warning(const sph_sim *sim, double until, char *buf, size_t n)
+{
+    if (!(until >= 0 && sim->dt > 0 && (until - sim->t) / sim->dt > 1e9)) return NULL;
+    snprintf(buf, n, "at the first time step (dt = %.3g s) reaching t = %g s takes about %.3g steps", sim->dt, until,
+             (until - sim->t) / sim->dt);
+    return buf;
+}
