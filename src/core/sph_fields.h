@@ -54,7 +54,11 @@
     X(RHO_C, rho_c, 1, "kg/m^3", "kg/m^2", STATE, DENSITY_RATE, DENSITY, "", "rho carried",                      \
       "density carried by the continuity equation (density_method = continuity): rho_c += dt drho")             \
     X(DRHO, drho, 1, "kg/(m^3 s)", "kg/(m^2 s)", DERIVED, DENSITY_RATE, NONE, "density-rate", "drho/dt",         \
-      "rate of change of the density: continuity equation with density diffusion (delta-SPH)")
+      "rate of change of the density: continuity equation with density diffusion (delta-SPH)")                   \
+    X(OBSTACLE, obstacle, 1, "1", "1", STATE, WALL_STATE, NONE, "", "obstacle",                                  \
+      "the obstacle a wall particle belongs to: 1, 2, ... in the scene's order; 0 for the domain box and fluid")  \
+    X(SLIP, slip, 1, "1", "1", STATE, WALL_STATE, NONE, "", "free-slip",                                        \
+      "1 for a free-slip wall particle, 0 for a no-slip one (and fluid)")
 
 typedef enum sph_field_id {
 #define SPH_FIELD_ENUM(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) SPH_FIELD_##ID,

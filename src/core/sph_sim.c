@@ -1,6 +1,7 @@
 /* Simulation set-up, the time step as a list of passes, and statistics. */
 #include "sph_sim.h"
 #include "sph_walls.h"
+#include "sph_obstacles.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -131,6 +132,14 @@ static void place_particles(sph_sim *sim)
             for (int64_t y = 0; y < ny; y++)
                 for (int64_t x = 0; x < nx; x++, i++) {
                     int64_t node[3] = {x, y, z};
+                    if (def->n_obstacles) { /* nodes inside an obstacle make no particle */
+                        double p[3] = {0, 0, 0};
+                        for (int d = 0; d < sim->dim; d++) p[d] = blk->min[d] + ((float)node[d] + 0.5f) * s;
+                        if (sph_obstacles_holding(def, def->n_obstacles, p) >= 0) {
+                            i--;
+                            continue;
+                        }
+                    }
                     P->id[i] = i;
                     P->mass[i] = mass;
                     for (int d = 0; d < sim->dim; d++) {
