@@ -661,10 +661,6 @@ const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n)
     return NULL;
 }
 
-/* Bytes per particle of the largest configuration, neighbour lists of ~60 entries included. */
-#define SPH_BYTES_PER_PARTICLE 512.0
-#define SPH_MAX_PARTICLES 200000000.0
-
 double sph_scene_particle_count(const sph_scene_def *def)
 {
     double total = 0;
@@ -673,10 +669,14 @@ double sph_scene_particle_count(const sph_scene_def *def)
         for (int a = 0; a < def->dim; a++) n *= (double)sph_block_nodes(def, b, a);
         total += n;
     }
-    /* less the nodes that fall inside obstacles (not counted for an absurd scene, which is refused) */
-    return def->n_obstacles && total <= SPH_MAX_PARTICLES ? total - sph_obstacles_fluid_dropped(def) : total;
+    /* less the nodes that fall inside obstacles (not counted beyond 2e8, which validation refuses) */
+    return def->n_obstacles && total <= 2e8 ? total - sph_obstacles_fluid_dropped(def) : total;
 }
 
+
+/* Bytes per particle of the largest configuration, neighbour lists of ~60 entries included. */
+#define SPH_BYTES_PER_PARTICLE 512.0
+#define SPH_MAX_PARTICLES 200000000.0
 
 /* "file:line" for a value set in the file, "--set" for one set on the command line. */
 static const char *origin_text(const sph_scene_def *def, int line, char *buf, size_t n)
