@@ -350,3 +350,33 @@ Test(obstacles, set_reaches_obstacles)
     cr_assert_neq(sph_scene_set(&def, "obstacle.rock.slip=free", &err), SPH_ERR_OK);
     cr_expect(strstr(err.msg, "no obstacle named 'rock' (the scene has: b)"), "%s", err.msg);
 }
+
+/* A live change of slip (the window's reconfiguration) reaches the obstacle's
+ * particles wherever the reorder pass has moved them; moving an obstacle is
+ * refused (it would make other particles). */
+Test(obstacles, reconfigure_changes_slip_not_shape)
+{
+    const char *ini = "[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=1 1\n"
+                      "wall_model=particles\n[fluid w]\nmin=0 0\nmax=1 0.5\nspacing=0.02\n[kernels]\nh=0.04\n"
+                      "[obstacle b]\nmin=0.4 0\nmax=0.6 0.2\n";
+    sph_sim *sim = test_sim(ini, 1);
+    for (int s = 0; s < 3; s++) sph_sim_step(sim);
+    sph_scene_def def = sim->def;
+    def.obstacles[0].slip = SPH_SLIP_FREE;
+    sph_error err;
+    cr_assert_eq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    uint32_t seen = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        double p[3] = {sim->P.pos[0][i], sim->P.pos[1][i], 0};
+        bool inside = sph_is_wall(&sim->P, i) && sph_obstacle_inside(&sim->def.obstacles[0], 2, p);
+        cr_assert_eq(sim->P.obstacle[i] == 1.0f, inside, "particle %u at (%g, %g): obstacle %g", i, p[0], p[1],
+                     sim->P.obstacle[i]);
+        cr_assert_eq(sim->P.slip[i], inside ? 1.0f : 0.0f, "particle %u at (%g, %g)", i, p[0], p[1]);
+        seen += inside;
+    }
+    cr_assert_eq(seen, (uint32_t)sph_obstacle_wall_count(&def, 0));
+    def.obstacles[0].max[0] = 0.62f;
+    cr_assert_neq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK);
+    cr_expect(strstr(err.msg, "reset the scene"), "%s", err.msg);
+    sph_sim_destroy(sim);
+}
