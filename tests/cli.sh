@@ -69,6 +69,16 @@ sph run "$scene" --backend gl --set physics.density_method=continuity --steps 1 
 sph run "$scene" --set compute.backend=opencl --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "\[compute\] backend = 'opencl'" "$tmp/gl.txt" && ok || { bad "compute.backend=opencl: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
 
+# Obstacles: the check names what they take, the stats carry their forces, GL and the volume model refuse them.
+oscene=lessons/scenes/dam-break-obstacle.ini
+sph check "$oscene" --set fluid.column.max="2.1 1" > "$tmp/ob.txt" 2>&1
+grep -q "; 150 fluid nodes of the blocks fall inside obstacles and are not created" "$tmp/ob.txt" && grep -q "^obstacle box: box, 84 wall particles, no-slip" "$tmp/ob.txt" && ok || { bad "check: obstacle counts"; cat "$tmp/ob.txt"; }
+sph run "$oscene" --steps 2 --quiet --stats "$tmp/ob.csv" > "$tmp/ob.txt" 2>&1 && head -1 "$tmp/ob.csv" | grep -q ',obstacle_box_fx,obstacle_box_fy,obstacle_cylinder_fx,obstacle_cylinder_fy$' && ok || { bad "stats: obstacle force columns"; cat "$tmp/ob.txt"; head -1 "$tmp/ob.csv"; }
+sph run "$oscene" --backend gl --steps 1 > "$tmp/ob.txt" 2>&1
+[ $? -eq 1 ] && grep -q "\[obstacle box\]: obstacles are not implemented by the GL backend" "$tmp/ob.txt" && ok || { bad "gl with obstacles: want exit 1 naming the obstacle"; cat "$tmp/ob.txt"; }
+sph check "$oscene" --set domain.wall_model=volume > "$tmp/ob.txt" 2>&1
+[ $? -eq 1 ] && grep -q "dam-break-obstacle.ini:25: \[obstacle box\] needs wall particles.*wall_model = particles (it is volume)" "$tmp/ob.txt" && ok || { bad "obstacle without wall particles: want exit 1 and the reason"; cat "$tmp/ob.txt"; }
+
 # The GL backend (compute shaders; llvmpipe without a GPU): a run, its dump
 # beside the CPU's, and the refusals. Forced onto llvmpipe, as CI has no GPU.
 # No EGL display at all (as the Criterion GL tests decide: EGL fails before a

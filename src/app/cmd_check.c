@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "sph_obstacles.h"
 
 void app_print_pipeline(FILE *f, const sph_sim *sim)
 {
@@ -26,6 +27,16 @@ void app_check_report(FILE *f, const char *path, const sph_sim *sim)
     const sph_scene_def *def = &sim->def;
     fprintf(f, "scene %s: %s, %dD, %u particles in %d block%s, h = %g m\n", path, *def->name ? def->name : "(unnamed)",
             def->dim, sim->n, def->n_blocks, def->n_blocks == 1 ? "" : "s", def->h);
+    if (def->n_obstacles) {
+        double fluid = sph_scene_particle_count(def);
+        fprintf(f, "particles: %.0f fluid, %.0f wall (domain box and obstacles); %.0f fluid nodes of the blocks fall "
+                "inside obstacles and are not created\n", fluid, (double)sim->n - fluid, sph_obstacles_fluid_dropped(def));
+        for (int k = 0; k < def->n_obstacles; k++) {
+            const sph_obstacle_def *o = &def->obstacles[k];
+            fprintf(f, "obstacle %s: %s, %.0f wall particles, %s-slip\n", o->name, sph_shape_names[o->shape],
+                    sph_obstacle_wall_count(def, k), o->slip == SPH_SLIP_FREE ? "free" : "no");
+        }
+    }
     fprintf(f, "effects:");
     if (!def->effects) fprintf(f, " none");
     for (int e = 0; e < SPH_EFFECT_COUNT; e++)

@@ -6,6 +6,7 @@
 
 #include "app.h"
 #include "../io/vtk.h"
+#include "sph_obstacles.h"
 
 static const app_cmd_spec spec = {
     .name = "run",
@@ -22,6 +23,8 @@ void app_stats_header(FILE *f, const sph_sim *sim)
     fprintf(f, "step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed");
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (sim->in_pipeline[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
+    for (int k = 0; k < sim->def.n_obstacles; k++) /* the fluid's force on each obstacle [N or N/m] */
+        for (int d = 0; d < sim->dim; d++) fprintf(f, ",obstacle_%s_f%c", sim->def.obstacles[k].name, "xyz"[d]);
     fprintf(f, "\n");
 }
 
@@ -33,6 +36,12 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
             s.rho_min, s.rho_mean, s.rho_max, s.max_speed);
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (sim->in_pipeline[p]) fprintf(f, ",%.6f", sim->timing[p].last_ms);
+    if (sim->def.n_obstacles) {
+        double force[SPH_MAX_OBSTACLES][3];
+        sph_obstacle_forces(sim, force);
+        for (int k = 0; k < sim->def.n_obstacles; k++)
+            for (int d = 0; d < sim->dim; d++) fprintf(f, ",%.9g", force[k][d]);
+    }
     fprintf(f, "\n");
 }
 

@@ -61,7 +61,11 @@
     X(SHIFT, shift, V, "m", "m", DERIVED, SHIFTING, NONE, "", "shift",                                          \
       "displacement of the particle shifting (shifting = lind): -D grad C, 0 at the free surface")             \
     X(SURFACE, surface, 1, "1", "1", DERIVED, SHIFTING, NONE, "", "surface",                                  \
-      "1 where the particle is at the free surface (divergence of position below dim - 0.5), else 0")
+      "1 where the particle is at the free surface (divergence of position below dim - 0.5), else 0")   \
+    X(OBSTACLE, obstacle, 1, "1", "1", STATE, WALL_STATE, NONE, "", "obstacle",                                  \
+      "the obstacle a wall particle belongs to: 1, 2, ... in the scene's order; 0 for the domain box and fluid")  \
+    X(SLIP, slip, 1, "1", "1", STATE, WALL_STATE, NONE, "", "free-slip",                                        \
+      "1 for a free-slip wall particle, 0 for a no-slip one (and fluid)")
 
 typedef enum sph_field_id {
 #define SPH_FIELD_ENUM(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) SPH_FIELD_##ID,

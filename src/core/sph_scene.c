@@ -1,5 +1,6 @@
 /* Scene files: defaults, the INI parser (libinih) and validation; the key table is in sph_scene_keys.c. */
 #include "sph_scene.h"
+#include "sph_obstacles.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -17,19 +18,54 @@ static const char *const known_sections[] = {"scene", "domain", "physics", "kern
 
 /* ---- values ------------------------------------------------------------- */
 
-static bool is_fluid_section(const char *section)
+/* Sections that name a record of a list: [fluid NAME] blocks and
+ * [obstacle NAME]s. Both are parsed by the same code through this table. */
+typedef struct group {
+    const char *kind, *noun, *example; /* "fluid", "fluid block", "[fluid pool]" */
+    size_t size, name_off, line_off, origin_off, items_off, count_off;
+    int max, name_max;
+} group;
+#define GROUP(T, field, n, max, name_max)                                                                      \
+    sizeof(T), offsetof(T, name), offsetof(T, line), offsetof(T, origin), offsetof(sph_scene_def, field),      \
+        offsetof(sph_scene_def, n), max, name_max
+static const group groups[] = {
+    {"fluid", "fluid block", "[fluid pool]", GROUP(sph_block_def, blocks, n_blocks, SPH_MAX_BLOCKS, SPH_BLOCK_NAME_MAX)},
+    {"obstacle", "obstacle", "[obstacle rock]",
+     GROUP(sph_obstacle_def, obstacles, n_obstacles, SPH_MAX_OBSTACLES, SPH_OBSTACLE_NAME_MAX)},
+};
+#undef GROUP
+#define N_GROUPS (int)(sizeof groups / sizeof groups[0])
+
+/* The group a section header names ("fluid", "fluid pool", "obstacle.rock"), or NULL. */
+static const group *section_group(const char *section)
 {
-    return strncmp(section, "fluid", 5) == 0 &&
-           (section[5] == '\0' || section[5] == ' ' || section[5] == '.' || section[5] == '\t');
+    for (int g = 0; g < N_GROUPS; g++) {
+        size_t n = strlen(groups[g].kind);
+        char c = section[n];
+        if (strncmp(section, groups[g].kind, n) == 0 && (c == '\0' || c == ' ' || c == '.' || c == '\t'))
+            return &groups[g];
+    }
+    return NULL;
 }
+#define is_fluid_section(section) (section_group(section) != NULL)
 
 /* "fluid pool", "fluid.pool" and "fluid   pool" all name the block "pool". */
 static const char *fluid_block_name(const char *section)
 {
-    const char *p = section + 5;
+    const char *p = section + strlen(section_group(section)->kind);
     while (*p == ' ' || *p == '.' || *p == '\t') p++;
     return p;
 }
+
+/* Record r of the group's list, its count, and the parts every record has. */
+static char *group_item(const group *g, sph_scene_def *def, int r)
+{
+    return (char *)def + g->items_off + (size_t)r * g->size;
+}
+#define group_count(g, def) ((int *)((char *)(def) + (g)->count_off))
+#define item_name(g, rec) ((char *)(rec) + (g)->name_off)
+#define item_line(g, rec) ((int *)((char *)(rec) + (g)->line_off))
+#define item_origin(g, rec) ((sph_origin *)((char *)(rec) + (g)->origin_off))
 
 static void range_text(const sph_key *k, char *out, size_t n)
 {
@@ -196,11 +232,13 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
 
 /* ---- defaults ----------------------------------------------------------- */
 
-static void apply_defaults(void *base, bool fluid)
+/* kind: the group whose keys to set ("fluid", "obstacle"), NULL: the scene's own keys. */
+static void apply_defaults(void *base, const char *kind)
 {
     for (int i = 0; i < sph_scene_key_count; i++) {
         const sph_key *k = &sph_scene_keys[i];
-        if ((strcmp(k->section, "fluid") == 0) != fluid) continue;
+        const group *g = section_group(k->section);
+        if (kind ? !g || strcmp(g->kind, kind) != 0 : g != NULL) continue;
         where w = {"(defaults)", 0, k->section};
         int nc;
         sph_error e;
@@ -212,16 +250,8 @@ sph_scene_def sph_default_scene_def(void)
 {
     sph_scene_def def;
     memset(&def, 0, sizeof def);
-    apply_defaults(&def, false);
+    apply_defaults(&def, NULL);
     return def;
-}
-
-static sph_block_def default_block(void)
-{
-    sph_block_def b;
-    memset(&b, 0, sizeof b);
-    apply_defaults(&b, true);
-    return b;
 }
 
 /* ---- parsing ------------------------------------------------------------ */
@@ -244,10 +274,10 @@ typedef struct parse_ctx {
 
 static const sph_key *find_key(const char *section, const char *name, int *index)
 {
-    bool fluid = is_fluid_section(section);
+    const group *g = section_group(section);
     for (int i = 0; i < sph_scene_key_count; i++) {
         const sph_key *k = &sph_scene_keys[i];
-        bool match = fluid ? strcmp(k->section, "fluid") == 0 : strcmp(k->section, section) == 0;
+        bool match = strcmp(k->section, g ? g->kind : section) == 0;
         if (match && strcmp(k->name, name) == 0) {
             *index = i;
             return k;
@@ -266,22 +296,22 @@ static bool known_section(const char *section)
 
 static const char *section_list(void)
 {
-    return "scene, domain, physics, kernels, time, search, interaction, fluid NAME";
+    return "scene, domain, physics, kernels, time, search, interaction, fluid NAME, obstacle NAME";
 }
 
-/* Index of the key among the fluid keys (origin slot of a block). */
+/* Index of the key among its group's keys (origin slot of a record). */
 static int fluid_slot(int key_index)
 {
     int slot = 0;
     for (int i = 0; i < key_index; i++)
-        if (strcmp(sph_scene_keys[i].section, "fluid") == 0) slot++;
+        if (strcmp(sph_scene_keys[i].section, sph_scene_keys[key_index].section) == 0) slot++;
     return slot;
 }
 
-static sph_block_def *find_block(sph_scene_def *def, const char *name)
+static char *find_block(const group *g, sph_scene_def *def, const char *name)
 {
-    for (int b = 0; b < def->n_blocks; b++)
-        if (strcmp(def->blocks[b].name, name) == 0) return &def->blocks[b];
+    for (int b = 0; b < *group_count(g, def); b++)
+        if (strcmp(item_name(g, group_item(g, def, b)), name) == 0) return group_item(g, def, b);
     return NULL;
 }
 
@@ -301,63 +331,67 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
         char keys[512];
         size_t used = 0;
         keys[0] = '\0';
-        bool fluid = is_fluid_section(section);
+        const group *g = section_group(section);
         for (int i = 0; i < sph_scene_key_count && used < sizeof keys; i++) {
             const sph_key *c = &sph_scene_keys[i];
-            if (fluid ? strcmp(c->section, "fluid") == 0 : strcmp(c->section, section) == 0)
+            if (strcmp(c->section, g ? g->kind : section) == 0)
                 used += (size_t)snprintf(keys + used, sizeof keys - used, "%s%s", used ? ", " : "", c->name);
         }
         return sph_fail(err, SPH_ERR_UNKNOWN_KEY, "%s: unknown key '%.60s' in [%.60s] (accepted: %s)", loc, name,
                         section, keys);
     }
     int ncomp;
-    if (is_fluid_section(section)) {
+    const group *g = section_group(section);
+    if (g) {
         const char *bname = fluid_block_name(section);
-        int slot = fluid_slot(index);
-        sph_block_def *targets[SPH_MAX_BLOCKS];
+        int slot = fluid_slot(index), *count = group_count(g, def);
+        char *targets[SPH_MAX_BLOCKS > SPH_MAX_OBSTACLES ? SPH_MAX_BLOCKS : SPH_MAX_OBSTACLES];
         int nt = 0;
         if (line < 0 && *bname == '\0') { /* --set fluid.key=v: every block */
-            for (int b = 0; b < def->n_blocks; b++) targets[nt++] = &def->blocks[b];
+            for (int b = 0; b < *count; b++) targets[nt++] = group_item(g, def, b);
             if (nt == 0)
-                return sph_fail(err, SPH_ERR_SCENE, "--set [%s] %s: the scene has no fluid block", section, name);
+                return sph_fail(err, SPH_ERR_SCENE, "--set [%s] %s: the scene has no %s", section, name, g->noun);
         } else {
-            sph_block_def *b = find_block(def, bname);
+            char *b = find_block(g, def, bname);
             if (!b) {
                 if (line < 0) {
                     char names[256];
                     size_t used = 0;
                     names[0] = '\0';
-                    for (int k2 = 0; k2 < def->n_blocks && used < sizeof names; k2++)
+                    for (int k2 = 0; k2 < *count && used < sizeof names; k2++) {
+                        const char *nm = item_name(g, group_item(g, def, k2));
                         used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", k2 ? ", " : "",
-                                                 *def->blocks[k2].name ? def->blocks[k2].name : "(unnamed)");
+                                                 *nm ? nm : "(unnamed)");
+                    }
                     return sph_fail(err, SPH_ERR_SCENE,
-                                    "--set fluid.%.40s.%.40s: no fluid block named '%.40s' (the scene has: %s)", bname,
-                                    name, bname, def->n_blocks ? names : "none");
+                                    "--set %s.%.40s.%.40s: no %s named '%.40s' (the scene has: %s)", g->kind, bname,
+                                    name, g->noun, bname, *count ? names : "none");
                 }
-                if (def->n_blocks == SPH_MAX_BLOCKS)
-                    return sph_fail(err, SPH_ERR_RANGE, "%s: [%.60s]: more than %d fluid blocks", loc, section,
-                                    SPH_MAX_BLOCKS);
-                if (strlen(bname) >= sizeof b->name)
-                    return sph_fail(err, SPH_ERR_RANGE, "%s: [%.60s]: block name longer than %d characters", loc,
-                                    section, (int)sizeof b->name - 1);
-                b = &def->blocks[def->n_blocks++];
-                *b = default_block();
-                snprintf(b->name, sizeof b->name, "%s", bname);
-                b->line = header_line > 0 ? header_line : line;
+                if (*count == g->max)
+                    return sph_fail(err, SPH_ERR_RANGE, "%s: [%.60s]: more than %d %ss", loc, section, g->max,
+                                    g->noun);
+                if (strlen(bname) > (size_t)g->name_max)
+                    return sph_fail(err, SPH_ERR_RANGE, "%s: [%.60s]: %s name longer than %d characters", loc,
+                                    section, g->noun, g->name_max);
+                b = group_item(g, def, (*count)++);
+                memset(b, 0, g->size);
+                apply_defaults(b, g->kind);
+                snprintf(item_name(g, b), 48, "%s", bname);
+                *item_line(g, b) = header_line > 0 ? header_line : line;
             }
             targets[nt++] = b;
         }
         for (int t = 0; t < nt; t++) {
-            sph_block_def *b = targets[t];
-            if (line > 0 && b->origin[slot].line > 0)
+            sph_origin *origin = item_origin(g, targets[t]);
+            if (line > 0 && origin[slot].line > 0)
                 return sph_fail(err, SPH_ERR_DUPLICATE_KEY,
-                                "%s: duplicate key '%s' in [%.60s] (first set on line %d); give each fluid block its "
-                                "own name, e.g. [fluid pool]",
-                                loc, name, section, b->origin[slot].line);
-            sph_error_code c = set_value(k, b, value, &w, &ncomp, err);
+                                "%s: duplicate key '%s' in [%.60s] (first set on line %d); give each %s its own "
+                                "name, e.g. %s",
+                                loc, name, section, origin[slot].line, g->noun, g->example);
+            sph_error_code c = set_value(k, targets[t], value, &w, &ncomp, err);
             if (c) return c;
-            b->origin[slot].line = line;
-            b->origin[slot].ncomp = ncomp;
+            origin[slot].line = line;
+            origin[slot].ncomp = ncomp;
         }
         return SPH_ERR_OK;
     }
@@ -385,27 +419,39 @@ static int on_key(void *user, const char *section, const char *name, const char 
  * once, whatever separator ("fluid a", "fluid.a", "fluid  a") names it. */
 static bool fluid_header(parse_ctx *ctx, const char *header, char *str, int num)
 {
+    const group *g = section_group(header);
     const char *bname = fluid_block_name(header);
+    const bool fluid = g == &groups[0];
     size_t len = strlen(bname);
-    if (len > SPH_BLOCK_NAME_MAX) {
+    if (len > (size_t)g->name_max) {
         ctx->code = sph_fail(ctx->err, SPH_ERR_RANGE,
-                             "%s:%d: [%.120s]: the block name '%.120s' has %zu characters, more than the limit of %d "
+                             "%s:%d: [%.120s]: the %s name '%.120s' has %zu characters, more than the limit of %d "
                              "characters",
-                             ctx->file, ctx->line, header, bname, len, SPH_BLOCK_NAME_MAX);
+                             ctx->file, ctx->line, header, fluid ? "block" : g->noun, bname, len, g->name_max);
         return false;
     }
+    /* an obstacle's name makes CSV columns (obstacle_NAME_fx): letters, digits, - and _ only */
+    for (const char *c = bname; !fluid && (c == bname || *c); c++)
+        if (!*c || !(isalnum((unsigned char)*c) || *c == '-' || *c == '_')) {
+            ctx->code = sph_fail(ctx->err, SPH_ERR_PARSE,
+                                 "%s:%d: [%.120s]: %s; an obstacle's name, e.g. [obstacle rock], may hold letters, "
+                                 "digits, '-' and '_' (it names --stats columns)",
+                                 ctx->file, ctx->line, header, *c ? "the name has a character outside that set"
+                                                                  : "the obstacle has no name");
+            return false;
+        }
     for (int k = 0; k < ctx->n_sections; k++) {
         const char *seen = ctx->sections[k];
-        if (!is_fluid_section(seen) || strcmp(fluid_block_name(seen), bname) != 0) continue;
+        if (section_group(seen) != g || strcmp(fluid_block_name(seen), bname) != 0) continue;
         bool same = strcmp(seen, header) == 0;
         ctx->code = sph_fail(ctx->err, SPH_ERR_DUPLICATE_KEY,
-                             "%s:%d: [%.60s] opens the fluid block '%s' again (first as [%.60s] on line %d)%s; give "
-                             "each fluid block its own name, e.g. [fluid pool]",
-                             ctx->file, ctx->line, header, bname, seen, ctx->section_lines[k],
-                             same ? ": section appears twice" : "");
+                             "%s:%d: [%.60s] opens the %s '%s' again (first as [%.60s] on line %d)%s; give "
+                             "each %s its own name, e.g. %s",
+                             ctx->file, ctx->line, header, g->noun, bname, seen, ctx->section_lines[k],
+                             same ? ": section appears twice" : "", g->noun, g->example);
         return false;
     }
-    snprintf(str, (size_t)num, *bname ? "[fluid %s]\n" : "[fluid]\n", bname);
+    snprintf(str, (size_t)num, *bname ? "[%s %s]\n" : "[%s]\n", g->kind, bname);
     return true;
 }
 
@@ -623,8 +669,10 @@ double sph_scene_particle_count(const sph_scene_def *def)
         for (int a = 0; a < def->dim; a++) n *= (double)sph_block_nodes(def, b, a);
         total += n;
     }
-    return total;
+    /* less the nodes that fall inside obstacles (not counted beyond 2e8, which validation refuses) */
+    return def->n_obstacles && total <= 2e8 ? total - sph_obstacles_fluid_dropped(def) : total;
 }
+
 
 /* Bytes per particle of the largest configuration, neighbour lists of ~60 entries included. */
 #define SPH_BYTES_PER_PARTICLE 512.0
@@ -656,17 +704,21 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
         for (int i = 0; i < sph_scene_key_count; i++) {
             const sph_key *k = &sph_scene_keys[i];
             if (k->type != SPH_KEY_VEC) continue;
-            if (strcmp(k->section, "fluid") == 0) {
+            const group *g = section_group(k->section);
+            if (g) {
                 int slot = fluid_slot(i);
-                for (int b = 0; b < def->n_blocks; b++)
-                    if (def->blocks[b].origin[slot].line != 0 && def->blocks[b].origin[slot].ncomp < 3) {
+                for (int b = 0; b < *group_count(g, def); b++) {
+                    char *rec = group_item(g, (sph_scene_def *)def, b);
+                    const sph_origin *o = &item_origin(g, rec)[slot];
+                    if (o->line != 0 && o->ncomp < 3) {
                         char loc[300];
                         return sph_fail(err, SPH_ERR_RANGE,
-                                        "%s: [fluid %s] %s has 2 components but the scene is 3D (accepted: 3 "
+                                        "%s: [%s %s] %s has 2 components but the scene is 3D (accepted: 3 "
                                         "numbers)",
-                                        origin_text(def, def->blocks[b].origin[slot].line, loc, sizeof loc),
-                                        def->blocks[b].name, k->name);
+                                        origin_text(def, o->line, loc, sizeof loc), g->kind, item_name(g, rec),
+                                        k->name);
                     }
+                }
             } else if (def->origin[i].line != 0 && def->origin[i].ncomp < 3) {
                 char loc[300];
                 return sph_fail(err, SPH_ERR_RANGE, "%s: [%s] %s has 2 components but the scene is 3D (accepted: 3 numbers)",
@@ -743,6 +795,8 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
             }
         }
     }
+    sph_error_code oc = sph_obstacles_validate(def, err); /* sph_obstacles.c */
+    if (oc) return oc;
     double count = sph_scene_particle_count(def);
     double mem = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGE_SIZE);
     double limit = SPH_MAX_PARTICLES;

@@ -52,6 +52,8 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")
 #define SPH_WALL_CHOICES(X) X(VOLUME, "volume") X(REFLECT, "reflect") X(PARTICLES, "particles")
 #define SPH_SLIP_CHOICES(X) X(NO, "no") X(FREE, "free")
+#define SPH_SIDE_SLIP_CHOICES(X) X(SAME, "same") X(NO, "no") X(FREE, "free")
+#define SPH_SHAPE_CHOICES(X) X(BOX, "box") X(CIRCLE, "circle")
 #define SPH_DMETHOD_CHOICES(X) X(SUMMATION, "summation") X(CONTINUITY, "continuity")
 #define SPH_DFORM_CHOICES(X) X(MOLTENI, "molteni") X(ANTUONO, "antuono")
 #define SPH_SHIFT_CHOICES(X) X(NONE, "none") X(LIND, "lind")
@@ -70,6 +72,8 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_NEGP(id, name) SPH_NEGP_##id,
 #define SPH_CHOICE_ITEM_SPH_WALL(id, name) SPH_WALL_##id,
 #define SPH_CHOICE_ITEM_SPH_SLIP(id, name) SPH_SLIP_##id,
+#define SPH_CHOICE_ITEM_SPH_SIDE_SLIP(id, name) SPH_SIDE_SLIP_##id,
+#define SPH_CHOICE_ITEM_SPH_SHAPE(id, name) SPH_SHAPE_##id,
 #define SPH_CHOICE_ITEM_SPH_DMETHOD(id, name) SPH_DMETHOD_##id,
 #define SPH_CHOICE_ITEM_SPH_DFORM(id, name) SPH_DFORM_##id,
 #define SPH_CHOICE_ITEM_SPH_SHIFT(id, name) SPH_SHIFT_##id,
@@ -85,6 +89,8 @@ SPH_DECLARE_CHOICES(sph_sort, SPH_SORT, SPH_SORT_CHOICES)
 SPH_DECLARE_CHOICES(sph_negative_pressure, SPH_NEGP, SPH_NEGP_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_model, SPH_WALL, SPH_WALL_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_slip, SPH_SLIP, SPH_SLIP_CHOICES)
+SPH_DECLARE_CHOICES(sph_side_slip, SPH_SIDE_SLIP, SPH_SIDE_SLIP_CHOICES)
+SPH_DECLARE_CHOICES(sph_shape, SPH_SHAPE, SPH_SHAPE_CHOICES)
 SPH_DECLARE_CHOICES(sph_density_method, SPH_DMETHOD, SPH_DMETHOD_CHOICES)
 SPH_DECLARE_CHOICES(sph_delta_form, SPH_DFORM, SPH_DFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_shifting, SPH_SHIFT, SPH_SHIFT_CHOICES)
@@ -101,6 +107,8 @@ extern const char *const sph_sort_names[SPH_SORT_COUNT];
 extern const char *const sph_negative_pressure_names[SPH_NEGP_COUNT];
 extern const char *const sph_wall_model_names[SPH_WALL_COUNT];
 extern const char *const sph_wall_slip_names[SPH_SLIP_COUNT];
+extern const char *const sph_side_slip_names[SPH_SIDE_SLIP_COUNT];
+extern const char *const sph_shape_names[SPH_SHAPE_COUNT];
 extern const char *const sph_density_method_names[SPH_DMETHOD_COUNT];
 extern const char *const sph_delta_form_names[SPH_DFORM_COUNT];
 extern const char *const sph_shifting_names[SPH_SHIFT_COUNT];
@@ -132,6 +140,24 @@ typedef struct sph_block_def {
     sph_origin origin[8];
 } sph_block_def;
 
+/* Longest obstacle name: "obstacle " takes 9 of inih's 49 characters. */
+#define SPH_MAX_OBSTACLES 16
+#define SPH_OBSTACLE_NAME_MAX 40
+
+/* A solid obstacle made of wall particles (wall_model = particles,
+ * src/core/sph_obstacles.c): a box, or a circle (a sphere in 3D). */
+typedef struct sph_obstacle_def {
+    char name[48];
+    sph_shape shape;
+    float min[3];      /* [m] box: lower corner */
+    float max[3];      /* [m] box: upper corner */
+    float centre[3];   /* [m] circle: centre */
+    float radius;      /* [m] circle: radius */
+    sph_wall_slip slip; /* no: no-slip surface (velocity mirrored); free: free-slip */
+    int line;          /* line of the [obstacle ...] section header, for messages */
+    sph_origin origin[8];
+} sph_obstacle_def;
+
 typedef struct sph_scene_def {
     char file[256];    /* scene file it was read from, for messages */
     char name[64];     /* title shown in tables and windows */
@@ -144,8 +170,12 @@ typedef struct sph_scene_def {
     sph_wall_slip wall_slip;            /* particles: the wall particles' velocity in the viscous term
                                            (no: mirrored, no-slip; free: the fluid's, free-slip) */
     unsigned periodic;                  /* bit d: axis d wraps around (no walls on it) */
+    sph_side_slip wall_slip_side[6];    /* per side (xmin, xmax, ymin, ymax, zmin, zmax): same as wall_slip,
+                                           or no / free for that side's wall particles */
     int n_blocks;
     sph_block_def blocks[SPH_MAX_BLOCKS];
+    int n_obstacles;
+    sph_obstacle_def obstacles[SPH_MAX_OBSTACLES]; /* [obstacle NAME] blocks, in file order */
 
     float h;            /* [m] kernel support radius (= cell size of the search) */
     float rest_density; /* [kg/m^dim] rho0 */
@@ -221,10 +251,10 @@ typedef enum sph_key_type {
 } sph_key_type;
 
 typedef struct sph_key {
-    const char *section;   /* "fluid" stands for every [fluid NAME] block */
+    const char *section;   /* "fluid" stands for every [fluid NAME] block, "obstacle" for every [obstacle NAME] */
     const char *name;
     sph_key_type type;
-    int offset;            /* into sph_scene_def, or into sph_block_def for fluid keys */
+    int offset;            /* into sph_scene_def, or into sph_block_def (sph_obstacle_def) for fluid (obstacle) keys */
     double min, max;       /* accepted range (inclusive unless min_open/max_open) */
     bool min_open, max_open;
     const char *const *choices; int n_choices;

@@ -16,6 +16,8 @@ const char *const sph_wall_slip_names[SPH_SLIP_COUNT] = {SPH_SLIP_CHOICES(NAMES)
 const char *const sph_density_method_names[SPH_DMETHOD_COUNT] = {SPH_DMETHOD_CHOICES(NAMES)};
 const char *const sph_delta_form_names[SPH_DFORM_COUNT] = {SPH_DFORM_CHOICES(NAMES)};
 const char *const sph_shifting_names[SPH_SHIFT_COUNT] = {SPH_SHIFT_CHOICES(NAMES)};
+const char *const sph_side_slip_names[SPH_SIDE_SLIP_COUNT] = {SPH_SIDE_SLIP_CHOICES(NAMES)};
+const char *const sph_shape_names[SPH_SHAPE_COUNT] = {SPH_SHAPE_CHOICES(NAMES)};
 const char *const sph_axis_names[3] = {"x", "y", "z"};
 const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICES(NAMES)};
 const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
@@ -66,6 +68,13 @@ const sph_key sph_scene_keys[] = {
     {"domain", "wall_slip", SPH_KEY_CHOICE, S(wall_slip), 0, 0, 0, 0, CH(sph_wall_slip_names), "", "no",
      "with wall_model = particles: no: no-slip walls (the wall particles' velocity in the viscous term mirrors the "
      "fluid's); free: free-slip (they take the fluid's velocity, no shear at the wall)"},
+#define SIDE_SLIP(side, k)                                                                                    \
+    {"domain", "wall_slip_" side, SPH_KEY_CHOICE, S(wall_slip_side[k]), 0, 0, 0, 0, CH(sph_side_slip_names), "", \
+     "same", "with wall_model = particles: the " side " side's wall particles: same (as wall_slip), no or free; "  \
+     "a corner particle is free-slip only if every side it lies beyond is"}
+    SIDE_SLIP("xmin", 0), SIDE_SLIP("xmax", 1), SIDE_SLIP("ymin", 2), SIDE_SLIP("ymax", 3), SIDE_SLIP("zmin", 4),
+    SIDE_SLIP("zmax", 5),
+#undef SIDE_SLIP
 
     {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 1e-3, BIG, 0, 0, NULL, 0, "kg/m^dim", "1000",
      "rho0: density at which the pressure is zero; at least 0.001 (a rarefied gas): the pressure force divides by "
@@ -173,5 +182,18 @@ const sph_key sph_scene_keys[] = {
     {"fluid", "field", SPH_KEY_CHOICE, B(field), 0, 0, 0, 0, CH(sph_velocity_field_names), "", "uniform",
      "initial velocity field: uniform, or the Taylor-Green vortex u = U sin(kx) cos(ky), v = -U cos(kx) sin(ky), "
      "k = 2 pi / L with L the domain's x length (it decays as exp(-2 nu k^2 t))"},
+
+#define O(field) (int)offsetof(sph_obstacle_def, field)
+    {"obstacle", "shape", SPH_KEY_CHOICE, O(shape), 0, 0, 0, 0, CH(sph_shape_names), "", "box",
+     "box (min, max) or circle (centre, radius; a sphere in 3D): a solid of wall particles, which needs [domain] "
+     "wall_model = particles"},
+    {"obstacle", "min", SPH_KEY_VEC, O(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "box: lower corner"},
+    {"obstacle", "max", SPH_KEY_VEC, O(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "box: upper corner"},
+    {"obstacle", "centre", SPH_KEY_VEC, O(centre), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "circle: centre"},
+    {"obstacle", "radius", SPH_KEY_FLOAT, O(radius), 0, BIG, 0, 0, NULL, 0, "m", "0",
+     "circle: radius, at least one spacing"},
+    {"obstacle", "slip", SPH_KEY_CHOICE, O(slip), 0, 0, 0, 0, CH(sph_wall_slip_names), "", "no",
+     "no: no-slip surface (its particles' velocity in the viscous term mirrors the fluid's); free: free-slip"},
+#undef O
 };
 const int sph_scene_key_count = (int)(sizeof sph_scene_keys / sizeof sph_scene_keys[0]);

@@ -1,6 +1,7 @@
 /* Simulation set-up, the time step as a list of passes, and statistics. */
 #include "sph_sim.h"
 #include "sph_walls.h"
+#include "sph_obstacles.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -131,6 +132,14 @@ static void place_particles(sph_sim *sim)
             for (int64_t y = 0; y < ny; y++)
                 for (int64_t x = 0; x < nx; x++, i++) {
                     int64_t node[3] = {x, y, z};
+                    if (def->n_obstacles) { /* nodes inside an obstacle make no particle */
+                        double p[3] = {0, 0, 0};
+                        for (int d = 0; d < sim->dim; d++) p[d] = blk->min[d] + ((float)node[d] + 0.5f) * s;
+                        if (sph_obstacles_holding(def, def->n_obstacles, p) >= 0) {
+                            i--;
+                            continue;
+                        }
+                    }
                     P->id[i] = i;
                     P->mass[i] = mass;
                     for (int d = 0; d < sim->dim; d++) {
@@ -393,9 +402,22 @@ void sph_sim_destroy(sph_sim *sim)
 }
 
 
+/* Do two scenes place the same obstacles (their slip aside)? */
+static bool same_obstacles(const sph_scene_def *a, const sph_scene_def *b)
+{
+    if (a->n_obstacles != b->n_obstacles) return false;
+    for (int k = 0; k < a->n_obstacles; k++) {
+        const sph_obstacle_def *x = &a->obstacles[k], *y = &b->obstacles[k];
+        if (x->shape != y->shape || x->radius != y->radius || memcmp(x->min, y->min, sizeof x->min) ||
+            memcmp(x->max, y->max, sizeof x->max) || memcmp(x->centre, y->centre, sizeof x->centre))
+            return false;
+    }
+    return true;
+}
+
 sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err)
 {
-    if (def->dim != sim->def.dim || def->n_blocks != sim->def.n_blocks ||
+    if (def->dim != sim->def.dim || def->n_blocks != sim->def.n_blocks || !same_obstacles(def, &sim->def) ||
         sph_scene_particle_count(def) + sph_wall_particle_count(def) != (double)sim->n)
         return sph_fail(err, SPH_ERR_SCENE, "this change makes other particles: reset the scene instead");
     sph_sim *next;
@@ -406,9 +428,21 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     memcpy(next->P.id, sim->P.id, (size_t)n * sizeof *next->P.id);
     for (int f = 0; f < SPH_FIELD_COUNT; f++) /* the state; derived fields are made again */
         /* fixed: only with wall particles; rho_c: only with density_method = continuity */
-        if (sph_field_infos[f].kind == SPH_KIND_STATE && sim->P.field[f][0] && next->P.field[f][0])
+        if (sph_field_infos[f].kind == SPH_KIND_STATE && sim->P.field[f][0] && next->P.field[f][0] &&
+            f != SPH_FIELD_SLIP && f != SPH_FIELD_OBSTACLE)
             for (int d = 0; d < (sph_field_infos[f].vector ? sim->dim : 1); d++)
                 memcpy(next->P.field[f][d], sim->P.field[f][d], (size_t)n * sizeof(float));
+    /* a wall particle's slip and obstacle come from the new scene (a slip may
+     * have changed), placed in creation order: put them where its id is now */
+    const int wall_fields[2] = {SPH_FIELD_OBSTACLE, SPH_FIELD_SLIP};
+    for (int w = 0; w < 2; w++) {
+        const int f = wall_fields[w];
+        if (next->P.field[f][0] && sim->S.spare_f) {
+            float *fresh = next->P.field[f][0], *moved = sim->S.spare_f; /* [n] scratch of the old sim */
+            for (uint32_t i = 0; i < n; i++) moved[i] = fresh[next->P.id[i]];
+            memcpy(fresh, moved, (size_t)n * sizeof(float));
+        }
+    }
     next->t = sim->t;
     next->step = sim->step;
     next->rho_carried = sim->rho_carried && sim->P.rho_c && next->P.rho_c; /* else summed again */

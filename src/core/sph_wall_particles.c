@@ -4,8 +4,13 @@
  * particle's support (ceil(h / spacing)), corners included. They are ordinary
  * particles of sph_particles after the fluid's (ids n_fluid ..), marked by the
  * field `wall` = 1; the wall_state pass gives them pressure, density and the
- * viscous term's velocity each step, and no pass moves them. */
+ * viscous term's velocity each step, and no pass moves them. The obstacles'
+ * wall particles follow the box's (sph_obstacles.c). Each wall particle
+ * carries its own slip (field `slip`: the side's wall_slip_<side>, or the
+ * scene's wall_slip) and, for an obstacle's, its number (field `obstacle`). */
 #include "sph_walls.h"
+
+#include "sph_obstacles.h"
 
 #include <math.h>
 
@@ -34,7 +39,8 @@ static void axis_nodes(const sph_scene_def *def, int a, double s, int64_t *inner
     *layers = (def->periodic & (1u << a)) ? 0 : (int64_t)ceil(def->h / s - 1e-6);
 }
 
-double sph_wall_particle_count(const sph_scene_def *def)
+/* The domain box's wall particles; the obstacles' are counted in sph_obstacles.c. */
+static double box_count(const sph_scene_def *def)
 {
     if (!sph_scene_wall_particles(def) || def->n_blocks == 0) return 0;
     double s = wall_spacing(def);
@@ -47,6 +53,20 @@ double sph_wall_particle_count(const sph_scene_def *def)
         inside *= (double)inner;
     }
     return all - inside;
+}
+
+double sph_wall_particle_count(const sph_scene_def *def)
+{
+    double n = box_count(def);
+    for (int k = 0; k < def->n_obstacles && n > 0; k++) n += sph_obstacle_wall_count(def, k);
+    return n;
+}
+
+/* Side k of the box (xmin, xmax, ymin, ...) is free-slip? */
+static bool side_free(const sph_scene_def *def, int k)
+{
+    sph_side_slip s = def->wall_slip_side[k];
+    return s == SPH_SIDE_SLIP_SAME ? def->wall_slip == SPH_SLIP_FREE : s == SPH_SIDE_SLIP_FREE;
 }
 
 /* Coordinate of node k along axis a (k < 0 and k >= inner: outside). Nodes
@@ -79,10 +99,16 @@ void sph_wall_particles_place(sph_sim *sim, uint32_t first)
                 P->id[i] = i;
                 P->mass[i] = mass;
                 P->fixed[i] = 1.0f;
+                bool free_slip = true; /* a corner is free-slip only if every side it lies beyond is */
+                for (int a = 0; a < dim; a++)
+                    if (node[a] < 0 || node[a] >= inner[a]) free_slip &= side_free(def, 2 * a + (node[a] >= 0));
+                P->slip[i] = free_slip ? 1.0f : 0.0f;
+                P->obstacle[i] = 0.0f;
                 for (int a = 0; a < dim; a++) {
                     P->pos[a][i] = node_coord(def, a, s, inner[a], node[a]);
                     P->vel[a][i] = 0.0f; /* the box stands still */
                 }
                 i++;
             }
+    for (int k = 0; k < def->n_obstacles; k++) i += sph_obstacle_place(sim, k, i);
 }

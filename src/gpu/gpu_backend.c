@@ -84,6 +84,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
 {
     const sph_scene_def *def = &sim->def;
     /* named by its key before the generic refusal below */
+    if (def->n_obstacles)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s:%d: [obstacle %s]: obstacles are not implemented by the GL backend yet (they are made of "
+                        "wall particles, whose wall_state pass and force run on the CPU; use [compute] backend = cpu)",
+                        def->file, def->obstacles[0].line, def->obstacles[0].name);
     if (sim->in_pipeline[SPH_PASS_WALL_STATE])
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [domain] wall_model = particles is not implemented by the GL backend yet (its wall "

@@ -51,6 +51,8 @@ static void run(sph_sim *sim)
     }
     gather_f(&P->mass, &S->spare_f, e, n);
     if (P->fixed) gather_f(&P->fixed, &S->spare_f, e, n); /* wall particles stay marked */
+    if (P->obstacle) gather_f(&P->obstacle, &S->spare_f, e, n); /* with their obstacle and slip */
+    if (P->slip) gather_f(&P->slip, &S->spare_f, e, n);
     if (P->rho_c) gather_f(&P->rho_c, &S->spare_f, e, n); /* the carried density (density_method = continuity) */
     for (int d = 0; d < sim->dim; d++) {
         gather_f(&P->pos[d], &S->spare_f, e, n);
@@ -68,13 +70,13 @@ static void run(sph_sim *sim)
 const sph_pass sph_pass_reorder = {
     .name = "reorder",
     .summary = "store particles in cell order",
-    /* and the wall flag `fixed` where there are wall particles, the carried
+    /* and the wall flag `fixed` (with `obstacle` and `slip`) where there are wall particles, the carried
      * density rho_c with density_method = continuity: written (moved)
      * when present, not listed in reads (a pass's reads exist in every scene
      * that runs it) */
     .reads = SPH_RES_ENTRIES | SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED),
     .writes = SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED) | SPH_BIT(FIXED) |
-              SPH_BIT(RHO_C) | SPH_RES_ENTRIES,
+              SPH_BIT(RHO_C) | SPH_BIT(OBSTACLE) | SPH_BIT(SLIP) | SPH_RES_ENTRIES,
     .group = SPH_GROUP_SEARCH,
     .highlight = NULL,
     .skip_reason = skip_reason,

@@ -30,8 +30,14 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "Adami et al. 2012: wall pressure from the fluid, %s walls",
-             def->wall_slip == SPH_SLIP_FREE ? "free-slip" : "no-slip");
+    bool mixed = false; /* do some walls slip otherwise than wall_slip says? */
+    for (int k = 0; k < 2 * def->dim; k++)
+        mixed |= def->wall_slip_side[k] != SPH_SIDE_SLIP_SAME &&
+                 (def->wall_slip_side[k] == SPH_SIDE_SLIP_FREE) != (def->wall_slip == SPH_SLIP_FREE);
+    for (int k = 0; k < def->n_obstacles; k++) mixed |= def->obstacles[k].slip != def->wall_slip;
+    snprintf(out, (size_t)n, "Adami et al. 2012: wall pressure from the fluid, %s walls%s",
+             mixed ? "no-slip and free-slip" : def->wall_slip == SPH_SLIP_FREE ? "free-slip" : "no-slip",
+             def->n_obstacles ? ", obstacles" : "");
 }
 
 /* The density at which the equation of state gives pressure p. */
@@ -85,7 +91,7 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
     P->p_rho2[w] = p / (rho * rho);
     P->vol[w] = P->mass[w] / rho;
     for (int d = 0; d < dim; d++)
-        P->vel_visc[d][w] = def->wall_slip == SPH_SLIP_FREE ? vt[d] : 2.0f * P->vel[d][w] - vt[d];
+        P->vel_visc[d][w] = P->slip[w] != 0.0f ? vt[d] : 2.0f * P->vel[d][w] - vt[d];
 }
 
 static void run(sph_sim *sim)
@@ -108,7 +114,8 @@ static void run(sph_sim *sim)
 const sph_pass sph_pass_wall_state = {
     .name = "wall_state",
     .summary = "wall particles' pressure and velocity from the fluid",
-    .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(RHO) | SPH_BIT(P) | SPH_BIT(VEL) | SPH_BIT(FIXED) | SPH_RES_LISTS,
+    .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(RHO) | SPH_BIT(P) | SPH_BIT(VEL) | SPH_BIT(FIXED) | SPH_BIT(SLIP) |
+             SPH_RES_LISTS,
     .writes = SPH_BIT(RHO) | SPH_BIT(VOL) | SPH_BIT(P) | SPH_BIT(PRHO2) | SPH_BIT(VEL_VISC),
     .group = SPH_GROUP_DENSITY,
     .highlight = "pressure",
