@@ -42,6 +42,9 @@ const app_opt app_options[] = {
     /* the scene and the run */
     {"--set", NULL, "S.K=V", "override scene key K of section S (repeatable; `sphlab keys` lists them)",
      RUN | CHECK | RENDER | VIEW | STUDY, LIST(sets)},
+    {"--save-scene", NULL, "FILE.ini",
+     "write the scene, overrides applied, as a scene file (the keys that differ from their defaults)", CHECK,
+     STRING(save_scene)},
     {"--set", NULL, "[LEVEL:]S.K=V", "override scene key K of section S, for one level or all (repeatable)", BENCH,
      LIST(sets)},
     {"--steps", NULL, "N", "simulate N steps (default: the scene's duration or steps)", RUN | RENDER,
