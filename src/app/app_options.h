@@ -38,7 +38,7 @@ typedef struct app_list {
  * defaults after app_opts_init and before app_opts_parse. */
 typedef struct app_opts {
     /* flags */
-    bool quiet, quick, verbose, list, paused, svg, watchdog, trace, dry_run;
+    bool quiet, quick, verbose, list, paused, svg, watchdog, trace, dry_run, panel;
     /* whole numbers */
     long steps, every, threads, frames, steps_per_frame, repeats, dim, bins, seed, at, select;
     long size[2];            /* --size WxH [px], 0 if not given */
