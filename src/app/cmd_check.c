@@ -71,7 +71,6 @@ int cmd_check(int argc, char **argv)
     sph_sim_destroy(sim);
     if (opt.save_scene) {
         char msg[1200];
-        sph_io_add_input(o.path); /* never written over the scene it was read from */
         if (!sph_io_save_scene(opt.save_scene, &def, msg, sizeof msg)) {
             fprintf(stderr, "sphlab check: %s\n", msg);
             return 1;

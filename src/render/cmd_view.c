@@ -623,7 +623,6 @@ int cmd_view(int argc, char **argv)
         if (len > 4 && strcmp(so.path + len - 4, ".ini") == 0) len -= 4;
         snprintf(w.save_path, sizeof w.save_path, "%.*s-saved.ini", (int)(len < 1000 ? len : 1000), so.path);
     }
-    sph_io_add_input(so.path); /* never saved over the scene it was read from */
     w.params = sph_panel_create(win, ctx, w.save_path, err, sizeof err);
     if (!w.params) fprintf(stderr, "sphlab view: no parameter panel: %s\n", err);
     w.params_open = w.params && (opt.panel || !w.scripted);
