@@ -615,13 +615,14 @@ int cmd_view(int argc, char **argv)
     w.user_field = w.v.field;
     w.sel_id = vo.select_id;
     w.cursor[0] = w.cursor[1] = -1;
-    /* Save scene as: --save-scene, else SCENE-saved.ini beside the scene */
+    /* Save scene as: --save-scene, else NAME-saved.ini in the current directory (as the screenshots) */
     if (opt.save_scene) {
         snprintf(w.save_path, sizeof w.save_path, "%s", opt.save_scene);
     } else {
-        size_t len = strlen(so.path);
-        if (len > 4 && strcmp(so.path + len - 4, ".ini") == 0) len -= 4;
-        snprintf(w.save_path, sizeof w.save_path, "%.*s-saved.ini", (int)(len < 1000 ? len : 1000), so.path);
+        const char *base = strrchr(so.path, '/') ? strrchr(so.path, '/') + 1 : so.path;
+        size_t len = strlen(base);
+        if (len > 4 && strcmp(base + len - 4, ".ini") == 0) len -= 4;
+        snprintf(w.save_path, sizeof w.save_path, "%.*s-saved.ini", (int)(len < 1000 ? len : 1000), base);
     }
     w.params = sph_panel_create(win, ctx, w.save_path, err, sizeof err);
     if (!w.params) fprintf(stderr, "sphlab view: no parameter panel: %s\n", err);
