@@ -13,6 +13,7 @@
 
 #include <stb_image.h>
 
+#include "layout.h"
 #include "render.h"
 #include "test_util.h"
 
@@ -390,6 +391,67 @@ Test(render, window_keys_step_pass_by_pass_and_switch_overlays)
     char p1[128];
     snprintf(p1, sizeof p1, "%s/k.png", d);
     cr_expect_eq(access(p1, F_OK), 0);
+    remove_dir(d);
+    remove(scene);
+}
+
+/* The parameter panel open (--panel) in a scripted run: m switches the
+ * search through the panel's path, w saves the scene as the panel's "Save
+ * scene as" does; the saved file reproduces the change. The domain lies left
+ * of the side column (HUD and panel), the panel is drawn in the column, and
+ * tab hides it. */
+Test(render, window_panel_changes_the_run_saves_the_scene_and_stays_beside_the_domain)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    const char *d = temp_dir();
+    char args[1024], out[8192], saved[128], shot[128];
+    snprintf(saved, sizeof saved, "%s/saved.ini", d);
+    snprintf(shot, sizeof shot, "%s/p.png", d);
+    snprintf(args, sizeof args, "view %s --panel --frames 4 --keys 'mfw' --size 640x400 --save-scene %s --screenshot %s",
+             scene, saved, shot);
+    int rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    cr_expect(!strstr(out, "no parameter panel"), "%s", out);
+    cr_expect(strstr(out, "search.method=grid") && strstr(out, "scene saved as"), "%s", out);
+    sph_scene_def def = sph_default_scene_def();
+    sph_error err = {0};
+    cr_assert_eq(sph_scene_load(saved, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_expect_eq(def.search, SPH_SEARCH_GRID, "the saved scene has the live change");
+    cr_expect_eq(def.table_size, 37u);
+    cr_expect_float_eq(def.h, 0.04f, 1e-9f);
+    int w, h;
+    unsigned char *img = load_png(shot, &w, &h);
+    cr_assert(w == 640 && h == 400);
+    sph_layout L;
+    sph_layout_compute(w, h, sph_layout_side_width(w, h), true, false, &L);
+    size_t bg_left = 0, bg_right = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const unsigned char *p = img + 3 * ((size_t)y * w + x);
+            bool bg = SPH_RGBA(p[0], p[1], p[2], 255) == DOMAIN_BG;
+            if (bg && x < L.side[0]) bg_left++;
+            if (bg && x >= L.side[0]) bg_right++;
+        }
+    cr_expect_gt(bg_left, 1000, "the domain is drawn left of the column");
+    cr_expect_eq(bg_right, 0, "%zu domain pixels under the column", bg_right);
+    /* the panel's widgets: many colours in the column's lower half (an empty column has one) */
+    uint32_t seen[64];
+    int n_seen = 0;
+    for (int y = h / 2; y < h && n_seen < 64; y++)
+        for (int x = L.side[0]; x < w && n_seen < 64; x++) {
+            const unsigned char *p = img + 3 * ((size_t)y * w + x);
+            uint32_t c = SPH_RGBA(p[0], p[1], p[2], 255);
+            bool known = false;
+            for (int k = 0; k < n_seen && !known; k++) known = seen[k] == c;
+            if (!known) seen[n_seen++] = c;
+        }
+    cr_expect_gt(n_seen, 8, "only %d colours in the column: no panel drawn", n_seen);
+    stbi_image_free(img);
+    /* tab hides it */
+    snprintf(args, sizeof args, "view %s --panel --frames 2 --keys '\t' --size 320x240", scene);
+    rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    cr_expect_eq(rc, 0, "view exit %d: %s", rc, out);
+    cr_expect(strstr(out, "parameter panel hidden"), "%s", out);
     remove_dir(d);
     remove(scene);
 }

@@ -42,6 +42,10 @@ const app_opt app_options[] = {
     /* the scene and the run */
     {"--set", NULL, "S.K=V", "override scene key K of section S (repeatable; `sphlab keys` lists them)",
      RUN | CHECK | RENDER | VIEW | STUDY, LIST(sets)},
+    {"--save-scene", NULL, "FILE.ini",
+     "write the scene, overrides applied, as a scene file (the keys that differ from their\n"
+     "defaults); view: where the panel's \"Save scene as\" and the key w write it",
+     CHECK | VIEW, STRING(save_scene)},
     {"--set", NULL, "[LEVEL:]S.K=V", "override scene key K of section S, for one level or all (repeatable)", BENCH,
      LIST(sets)},
     {"--steps", NULL, "N", "simulate N steps (default: the scene's duration or steps)", RUN | RENDER,
@@ -88,6 +92,8 @@ const app_opt app_options[] = {
      STRING(center)},
     /* the window */
     {"--paused", NULL, NULL, "start paused", VIEW, FLAG(paused)},
+    {"--panel", NULL, NULL, "open the parameter panel (open by default, except in scripted runs; tab toggles it)", VIEW,
+     FLAG(panel)},
     {"--steps-per-frame", NULL, "K", "steps between frames (default: as many as fit in 15 ms; 1 when scripted)", VIEW,
      INT(steps_per_frame, 0, 1000000)},
     {"--frames", NULL, "N", "scripted: draw N frames, then exit", VIEW, INT(frames, 1, 1000000)},

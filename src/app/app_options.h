@@ -38,7 +38,7 @@ typedef struct app_list {
  * defaults after app_opts_init and before app_opts_parse. */
 typedef struct app_opts {
     /* flags */
-    bool quiet, quick, verbose, list, paused, svg, watchdog, trace, dry_run;
+    bool quiet, quick, verbose, list, paused, svg, watchdog, trace, dry_run, panel;
     /* whole numbers */
     long steps, every, threads, frames, steps_per_frame, repeats, dim, bins, seed, at, select;
     long size[2];            /* --size WxH [px], 0 if not given */
@@ -50,7 +50,8 @@ typedef struct app_opts {
     double slice;            /* --slice [m], NAN if not given */
     /* words, as given (a choice is checked against its accepted words) */
     const char *backend, *gl, *stats, *dump, *vtk, *out, *name, *only, *screenshot, *keys, *metric, *ycols, *xcol,
-        *h_list, *n_list, *function, *kernel, *samples, *levels, *export_dir, *color, *range, *camera, *center;
+        *h_list, *n_list, *function, *kernel, *samples, *levels, *export_dir, *color, *range, *camera, *center,
+        *save_scene;
     /* repeatable */
     app_list sets, vary, overlay, no_overlay;
     /* positional arguments, in order */

@@ -3,6 +3,7 @@
 
 #include "app.h"
 #include "sph_obstacles.h"
+#include "../io/io.h"
 
 void app_print_pipeline(FILE *f, const sph_sim *sim)
 {
@@ -49,7 +50,7 @@ void app_check_report(FILE *f, const char *path, const sph_sim *sim)
 static const app_cmd_spec spec = {
     .name = "check",
     .cmd = APP_CMD(check),
-    .synopsis = "usage: sphlab check SCENE.ini [--set section.key=value ...]\n"
+    .synopsis = "usage: sphlab check SCENE.ini [--set section.key=value ...] [--save-scene FILE.ini]\n"
                 "Validates the scene and prints the passes it runs, in order, with their variants,\n"
                 "and the passes left out with the reason.\n",
     .max_pos = 1,
@@ -79,5 +80,13 @@ int cmd_check(int argc, char **argv)
     }
     app_check_report(stdout, o.path, sim);
     sph_sim_destroy(sim);
+    if (opt.save_scene) {
+        char msg[1200];
+        if (!sph_io_save_scene(opt.save_scene, &def, msg, sizeof msg)) {
+            fprintf(stderr, "sphlab check: %s\n", msg);
+            return 1;
+        }
+        printf("saved %s\n", opt.save_scene);
+    }
     return 0;
 }

@@ -9,6 +9,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "sph_error.h"
 #include "sph_kernel.h"
@@ -265,5 +266,14 @@ typedef struct sph_key {
 
 extern const sph_key sph_scene_keys[];
 extern const int sph_scene_key_count;
+
+/* The value of key k stored at base (the def, or a block for fluid keys) as a
+ * scene file writes it (floats with 9 digits, so they read back exactly). */
+void sph_scene_value_text(const sph_key *k, const void *base, char *out, size_t n);
+/* Writes def as a scene file (sph_scene_write.c): name, dimension, every key
+ * that differs from its default, each fluid block. Loading the text over the
+ * defaults gives the same values. The I/O layer's sph_io_save_scene writes it
+ * to a path atomically. */
+sph_error_code sph_scene_write(const sph_scene_def *def, FILE *f, sph_error *err);
 
 #endif

@@ -8,10 +8,11 @@
  *   io_dir.c   mkdir -p, and an output folder's checks;
  *   io_png.c   PNG through stb_image_write's callback, into the writer;
  *   io_json.c  JSON through cJSON, printed or saved through the writer;
- *   vtk.c      particles as legacy VTK (vtk.h).
+ *   vtk.c      particles as legacy VTK (vtk.h);
+ *   io_scene.c a scene definition as a scene file (the core's sph_scene_write).
  *
- * GL-free and free of the commands; only vtk.c reads the simulation (through
- * the core's public sph_sim.h). Functions that can fail return false and put
+ * GL-free and free of the commands; only vtk.c and io_scene.c use the core (through
+ * the core's public sph_sim.h and sph_scene.h). Functions that can fail return false and put
  * the reason, naming the path, in err (n bytes; err may be NULL). */
 #ifndef SPH_IO_H
 #define SPH_IO_H
@@ -73,5 +74,10 @@ bool sph_output_dir(const char *dir, char *err, size_t n);
 
 /* An RGB image (w x h, rows top first, 3 bytes a pixel) as a PNG through the writer. */
 bool sph_io_write_png(const char *path, const uint8_t *rgb, int w, int h, char *err, size_t n);
+
+/* A scene definition as a scene file at PATH (the keys that differ from their
+ * defaults; sph_scene_write), through the writer. */
+struct sph_scene_def;
+bool sph_io_save_scene(const char *path, const struct sph_scene_def *def, char *err, size_t n);
 
 #endif

@@ -1,12 +1,12 @@
 # The I/O layer (src/io/): how every command writes a file. One atomic writer
 # (a unique temporary, checked writes, rename on commit), mkdir -p, the
 # signal handler that removes temporaries, PNG (stb_image_write), VTK, JSON
-# (cJSON). GL-free; stands on libc, stb and cJSON, and (vtk.c only) on the
-# core's sph_sim.h. Included by the top Makefile, which links build/io/libio.a
+# (cJSON), scene files. GL-free; stands on libc, stb and cJSON, and (vtk.c, io_scene.c) on the
+# core's sph_sim.h; io_scene.c on sph_scene.h. Included by the top Makefile, which links build/io/libio.a
 # (IO_LIB, then the
 # core; IO_SYS_LIBS with the system libraries): every module above may call it.
 
-IO_SRC    := io_out io_dir io_png io_json vtk
+IO_SRC    := io_out io_dir io_png io_json vtk io_scene
 IO_CFLAGS := $(shell pkg-config --cflags stb 2>/dev/null || echo -I/usr/include/stb)
 IO_LIB      := $(BUILD)/io/libio.a
 IO_SYS_LIBS := $(shell pkg-config --libs libcjson 2>/dev/null || echo -lcjson) \

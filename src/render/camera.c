@@ -11,6 +11,17 @@ sph_orbit sph_orbit_default(void)
     return (sph_orbit){.yaw = 30.0f, .pitch = 25.0f, .zoom = 1.0f, .pan = {0, 0, 0}};
 }
 
+void sph_orbit_zoom_at(sph_orbit *o, const float lo[3], const float hi[3], const float at[3], float factor)
+{
+    /* the centre c = mid + pan maps to the rect's centre at s px/m: at's pixel offset (at - c) s stays
+     * fixed when (at - c') s f = (at - c) s, so c' = at - (at - c) / f */
+    for (int d = 0; d < 3; d++) {
+        float centre = 0.5f * (lo[d] + hi[d]) + o->pan[d];
+        o->pan[d] += (at[d] - centre) * (1.0f - 1.0f / factor);
+    }
+    o->zoom *= factor;
+}
+
 static void identity(float m[16])
 {
     memset(m, 0, 16 * sizeof *m);

@@ -26,6 +26,11 @@ typedef struct sph_orbit {
 
 sph_orbit sph_orbit_default(void);
 
+/* Zooms the orbit by factor towards the world point at, whose pixel stays
+ * where it is in 2D (3D: the orbit's target moves towards it alike);
+ * lo, hi: the domain box the camera is fitted to. */
+void sph_orbit_zoom_at(sph_orbit *o, const float lo[3], const float hi[3], const float at[3], float factor);
+
 /* Fits the domain box [lo, hi] into rect (2D: x-y, aspect kept; 3D: the
  * orbit looks at the box's centre from a distance that shows all of it). */
 void sph_camera_fit(sph_camera *c, int dim, const float lo[3], const float hi[3], const sph_orbit *orbit, int img_w,

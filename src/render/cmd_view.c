@@ -19,6 +19,9 @@
 #include "commands.h"
 #include "gl_context.h"
 #include "gpu.h"
+#include "io.h"
+#include "layout.h"
+#include "panel.h"
 
 /* The key bindings, written once: the help panel, `--help` and
  * docs/rendering.md list them from here. */
@@ -26,7 +29,10 @@
     X("space", "pause / run")                                                 \
     X(".", "advance one pass (colours by what it wrote)")                     \
     X("enter", "advance one whole step")                                      \
-    X("r", "reset: the scene from its start")                                 \
+    X("r", "reset: the scene from its start (and fit it to the view)")       \
+    X("tab", "parameter panel: show / hide")                                  \
+    X("w", "write the scene (as the panel's Save scene as)")                  \
+    X("f", "fit the domain to the view")                                      \
     X("F1..F12", "switch pass 1..12 on or off (order of the pipeline)")       \
     X("k / shift+k", "cycle the density / pressure kernel")                   \
     X("o", "cycle the sort: bitonic, counting, qsort")                        \
@@ -35,7 +41,8 @@
     X("c / shift+c", "next / previous colour field")                          \
     X("z / x", "3D: slice down / up by h")                                    \
     X("arrows", "3D: orbit; 2D: pan")                                         \
-    X("+ / - / wheel", "zoom")                                                \
+    X("+ / -", "zoom towards the picked particle (or the centre)")            \
+    X("wheel", "zoom towards the cursor")                                     \
     X("left click", "pick a particle (inspector, neighbours)")                \
     X("left / right drag", "pull / push the fluid")                           \
     X("middle drag", "3D: orbit")                                             \
@@ -93,6 +100,11 @@ typedef struct viewer {
     int shots;
     char panel[24][128];
     bool scripted;
+    /* the parameter panel (src/panel/) beside the view */
+    sph_panel *params;
+    bool params_open;
+    char save_path[1024]; /* where Save scene as and the key w write */
+    float cursor[2];      /* [px] the mouse in the frame, or -1 when outside the window */
 } viewer;
 
 static void say(viewer *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -106,44 +118,98 @@ static void say(viewer *w, const char *fmt, ...)
     if (w->scripted) fprintf(stderr, "sphlab view: %s\n", w->msg);
 }
 
-/* Rebuilds the simulation for w->def (a variant changed), keeping the particles. */
-static void reconfigure(viewer *w, const sph_scene_def *next, const char *what)
+/* The camera shows the whole domain again: zoom 1, no pan (3D keeps its orbit's angles). */
+static void fit(viewer *w)
 {
-    sph_error err;
-    if (sph_sim_reconfigure(w->sim, next, &err) != SPH_ERR_OK) {
-        say(w, "%s: %s", what, err.msg);
-        return;
-    }
-    w->def = *next;
-    if (sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
-    say(w, "%s", what);
+    w->v.orbit.zoom = 1.0f;
+    memset(w->v.orbit.pan, 0, sizeof w->v.orbit.pan);
 }
 
-static void set_variant(viewer *w, const char *assignment)
-{
-    sph_scene_def next = w->def;
-    sph_error err;
-    if (sph_scene_set(&next, assignment, &err) != SPH_ERR_OK) {
-        say(w, "%s", err.msg);
-        return;
-    }
-    reconfigure(w, &next, assignment);
-}
-
-static void reset(viewer *w)
+/* A new simulation of def from t = 0, fitted to the view; false (and the
+ * reason said) if it cannot be made, the running one left as it was. */
+static bool restart(viewer *w, const sph_scene_def *def, const char *what)
 {
     sph_sim *fresh;
     sph_error err;
     /* in the context the simulation it replaces ran in (the window's, if shared) */
-    if (sph_sim_create_shared(&w->def, w->threads, w->sim->backend_share, &fresh, &err) != SPH_ERR_OK) {
-        say(w, "reset: %s", err.msg);
-        return;
+    if (sph_sim_create_shared(def, w->threads, w->sim->backend_share, &fresh, &err) != SPH_ERR_OK) {
+        say(w, "%s: %s", what, err.msg);
+        return false;
     }
     memcpy(fresh->enabled, w->sim->enabled, sizeof fresh->enabled);
     sph_sim_destroy(w->sim);
     w->sim = fresh;
+    w->def = *def;
     w->last_pass = -1;
-    say(w, "reset to t = 0");
+    if (sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
+    fit(w);
+    return true;
+}
+
+static void reset(viewer *w)
+{
+    if (restart(w, &w->def, "reset")) say(w, "reset to t = 0");
+}
+
+/* Keys that make other particles or place them at the start (the blocks,
+ * the dimension, the jitter, the box): their change starts the scene again
+ * from t = 0. Every other key changes the running simulation, its particles
+ * kept (sph_sim_reconfigure), as the keys k, o and m do. */
+static bool key_refills(const char *assignment)
+{
+    static const char *const refill[] = {"fluid", "scene.dimension=", "scene.jitter=", "scene.seed=",
+                                         "domain.min=", "domain.max=", "domain.periodic="};
+    for (size_t k = 0; k < sizeof refill / sizeof *refill; k++)
+        if (strncmp(assignment, refill[k], strlen(refill[k])) == 0) return true;
+    return false;
+}
+
+/* A change from the parameter panel: parsed and checked as a --set option,
+ * then applied to the running simulation, or as a new scene where it must. */
+static void apply_change(viewer *w, const char *assignment)
+{
+    sph_scene_def next = w->def;
+    sph_error err;
+    if (sph_scene_set(&next, assignment, &err) != SPH_ERR_OK || sph_scene_validate(&next, &err) != SPH_ERR_OK) {
+        say(w, "%s", err.msg);
+        return;
+    }
+    bool refill = key_refills(assignment);
+    if (!refill) {
+        if (sph_sim_reconfigure(w->sim, &next, &err) == SPH_ERR_OK) {
+            w->def = next;
+            if (sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
+            say(w, "%s", assignment);
+            return;
+        }
+        refill = err.code == SPH_ERR_SCENE; /* it makes other particles (e.g. wall particles): a new scene */
+        if (!refill) {
+            say(w, "%s: %s", assignment, err.msg);
+            return;
+        }
+    }
+    if (restart(w, &next, assignment)) say(w, "%s: the scene starts again from t = 0", assignment);
+}
+
+/* The keys k, o and m: the same path as the panel's changes. */
+static void set_variant(viewer *w, const char *assignment)
+{
+    apply_change(w, assignment);
+}
+
+static void save_scene(viewer *w, const char *path)
+{
+    char err[1200];
+    if (sph_io_save_scene(path, &w->def, err, sizeof err))
+        say(w, "scene saved as %s", path);
+    else
+        say(w, "save: %s", err);
+}
+
+/* Zooms by factor towards the world point at (camera.c). */
+static void zoom_at(viewer *w, float factor, const float at[3])
+{
+    sph_orbit_zoom_at(&w->v.orbit, w->def.domain_min, w->def.domain_max, at, factor);
 }
 
 static void cycle_field(viewer *w, int dir)
@@ -254,6 +320,16 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
         w->v.field = w->user_field;
         break;
     case SDLK_r: reset(w); break;
+    case SDLK_f: fit(w); break;
+    case SDLK_TAB:
+        if (w->params) {
+            w->params_open = !w->params_open;
+            say(w, "parameter panel %s", w->params_open ? "open" : "hidden");
+        } else {
+            say(w, "no parameter panel (Dear ImGui could not start; see the terminal)");
+        }
+        break;
+    case SDLK_w: save_scene(w, w->save_path); break;
     case SDLK_k: cycle_kernel(w, shift); break;
     case SDLK_o: {
         char a[64];
@@ -287,19 +363,30 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
     }
     case SDLK_PLUS:
     case SDLK_EQUALS:
-    case SDLK_KP_PLUS: o->zoom *= 1.25f; break;
+    case SDLK_KP_PLUS:
     case SDLK_MINUS:
-    case SDLK_KP_MINUS: o->zoom /= 1.25f; break;
+    case SDLK_KP_MINUS: { /* towards the picked particle, else the view's centre */
+        float at[3];
+        sph_sim_sync(w->sim, SPH_SYNC_ALL); /* the positions below are read from the host copy */
+        int32_t i = sim_index_of_id(w->sim, w->sel_id);
+        for (int d = 0; d < 3; d++)
+            at[d] = i >= 0 && d < w->sim->dim ? w->sim->P.pos[d][i]
+                                              : 0.5f * (w->def.domain_min[d] + w->def.domain_max[d]) + o->pan[d];
+        zoom_at(w, k == SDLK_MINUS || k == SDLK_KP_MINUS ? 1.0f / 1.25f : 1.25f, at);
+        break;
+    }
     case SDLK_p: screenshot(w, NULL); break;
     case SDLK_h: w->help = !w->help; break;
     default: break;
     }
 }
 
-/* Scripted keys: one character each ('.', ' ', digits, letters; '\n' is enter). */
+/* Scripted keys: one character each ('.', ' ', digits, letters; '\n' is enter, '\t' tab). */
 static void press_char(viewer *w, char c)
 {
-    SDL_Keycode k = c == '\n' ? SDLK_RETURN : (SDL_Keycode)(unsigned char)(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    SDL_Keycode k = c == '\n'   ? SDLK_RETURN
+                    : c == '\t' ? SDLK_TAB
+                                : (SDL_Keycode)(unsigned char)(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
     handle_key(w, k, (c >= 'A' && c <= 'Z') ? KMOD_SHIFT : 0);
 }
 
@@ -314,10 +401,19 @@ static void mouse_world(viewer *w, float x, float y, float out[3])
 static void start_interaction(viewer *w, float sign)
 {
     if (!(w->def.effects & SPH_EFFECT(INTERACTION))) {
+        /* as the panel would: scene.effects with interaction added */
         sph_scene_def next = w->def;
         next.effects |= SPH_EFFECT(INTERACTION);
-        reconfigure(w, &next, "added the interaction effect (mouse push/pull)");
+        for (int i = 0; i < sph_scene_key_count; i++) {
+            const sph_key *k = &sph_scene_keys[i];
+            if (strcmp(k->section, "scene") != 0 || strcmp(k->name, "effects") != 0) continue;
+            char value[256], a[320];
+            sph_scene_value_text(k, &next, value, sizeof value);
+            snprintf(a, sizeof a, "scene.effects=%s", value);
+            apply_change(w, a);
+        }
         if (!(w->def.effects & SPH_EFFECT(INTERACTION))) return;
+        say(w, "added the interaction effect (mouse push/pull)");
     }
     w->sim->interaction_active = true;
     w->sim->interaction_sign = sign;
@@ -354,6 +450,8 @@ static void handle_event(viewer *w, const SDL_Event *e, float scale)
     }
     case SDL_MOUSEMOTION: {
         float x = (float)e->motion.x * scale, y = (float)e->motion.y * scale;
+        w->cursor[0] = x;
+        w->cursor[1] = y;
         if (!(w->down[0] || w->down[1] || w->down[2])) break;
         if (!w->dragging && fabsf(x - w->press[0]) + fabsf(y - w->press[1]) > 4) {
             w->dragging = true;
@@ -368,9 +466,17 @@ static void handle_event(viewer *w, const SDL_Event *e, float scale)
         }
         break;
     }
-    case SDL_MOUSEWHEEL:
-        if (e->wheel.y > 0) w->v.orbit.zoom *= 1.1f;
-        if (e->wheel.y < 0) w->v.orbit.zoom /= 1.1f;
+    case SDL_MOUSEWHEEL: { /* towards the point under the cursor */
+        int mx, my;
+        SDL_GetMouseState(&mx, &my);
+        float at[3];
+        mouse_world(w, (float)mx * scale, (float)my * scale, at);
+        if (e->wheel.y > 0) zoom_at(w, 1.1f, at);
+        if (e->wheel.y < 0) zoom_at(w, 1.0f / 1.1f, at);
+        break;
+    }
+    case SDL_WINDOWEVENT:
+        if (e->window.event == SDL_WINDOWEVENT_LEAVE) w->cursor[0] = w->cursor[1] = -1;
         break;
     default: break;
     }
@@ -508,6 +614,19 @@ int cmd_view(int argc, char **argv)
     if (!chose) w.v.overlays |= SPH_OV_BIT(TIMINGS);
     w.user_field = w.v.field;
     w.sel_id = vo.select_id;
+    w.cursor[0] = w.cursor[1] = -1;
+    /* Save scene as: --save-scene, else NAME-saved.ini in the current directory (as the screenshots) */
+    if (opt.save_scene) {
+        snprintf(w.save_path, sizeof w.save_path, "%s", opt.save_scene);
+    } else {
+        const char *base = strrchr(so.path, '/') ? strrchr(so.path, '/') + 1 : so.path;
+        size_t len = strlen(base);
+        if (len > 4 && strcmp(base + len - 4, ".ini") == 0) len -= 4;
+        snprintf(w.save_path, sizeof w.save_path, "%.*s-saved.ini", (int)(len < 1000 ? len : 1000), base);
+    }
+    w.params = sph_panel_create(win, ctx, w.save_path, err, sizeof err);
+    if (!w.params) fprintf(stderr, "sphlab view: no parameter panel: %s\n", err);
+    w.params_open = w.params && (opt.panel || !w.scripted);
     if (!w.scripted) {
         printf("sphlab view: %s%s; press h for the keys\n", sph_renderer_info(w.r),
                shared ? "; the GL backend runs in this context, drawn from its buffers" : "");
@@ -528,7 +647,11 @@ int cmd_view(int argc, char **argv)
         SDL_GL_GetDrawableSize(win, &dw, &dh);
         float scale = ww > 0 ? (float)dw / (float)ww : 1.0f;
         SDL_Event e;
-        while (SDL_PollEvent(&e)) handle_event(&w, &e, scale);
+        while (SDL_PollEvent(&e)) {
+            /* the panel first: what it takes (the mouse over it, typing) the view does not see */
+            bool taken = w.params && sph_panel_event(w.params, &e) && w.params_open;
+            if (!taken || e.type == SDL_QUIT) handle_event(&w, &e, scale);
+        }
         if (w.scripted && frame < (long)strlen(keys)) press_char(&w, keys[frame]);
         if (w.quit) break;
         if (dw < 64 || dh < 64) { /* minimised: nothing to draw */
@@ -569,6 +692,18 @@ int cmd_view(int argc, char **argv)
         w.v.hud.message = now < w.msg_until ? w.msg : NULL;
         w.v.selected = sim_index_of_id(w.sim, w.sel_id);
         fill_panel(&w);
+        /* the HUD, timings, text panel and parameter panel sit in a column beside the view */
+        const bool column = w.params_open || (w.v.overlays & (SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS))) || w.v.panel_lines;
+        w.v.side_px = column ? sph_layout_side_width(dw, dh) : 0;
+        /* the push/pull reach at the cursor, over the view (2D: in the plane; 3D: on the slice) */
+        w.v.ring_radius = 0;
+        const sph_camera *cam = sph_renderer_camera(w.r);
+        if (w.cursor[0] >= cam->rect[0] && w.cursor[0] < cam->rect[0] + cam->rect[2] && w.cursor[1] >= cam->rect[1] &&
+            w.cursor[1] < cam->rect[1] + cam->rect[3] && cam->img_w == dw && cam->img_h == dh) {
+            mouse_world(&w, w.cursor[0], w.cursor[1], w.v.ring_at);
+            w.v.ring_radius = w.def.interaction_radius;
+            w.v.ring_active = w.sim->interaction_active;
+        }
         if (w.sim->backend && !w.sim->backend_share) {
             /* read the backend's buffers back now, while its context is the
              * current one (sph_render would otherwise switch to it) */
@@ -584,6 +719,17 @@ int cmd_view(int argc, char **argv)
         if (!sph_render(w.r, w.sim, &w.v, err, sizeof err)) {
             fprintf(stderr, "sphlab view: %s\n", err);
             goto out;
+        }
+        /* the panel draws into the renderer's frame (still bound), so the window and a screenshot both show it */
+        if (w.params && w.params_open) {
+            int side[4];
+            sph_renderer_side_free(w.r, side);
+            for (int k = 0; k < 4; k++) side[k] = (int)((float)side[k] / scale); /* drawable pixels to window units */
+            sph_panel_out po;
+            sph_panel_frame(w.params, &w.def, side, now < w.msg_until ? w.msg : "", &po);
+            sph_panel_draw(w.params);
+            if (po.set[0]) apply_change(&w, po.set);
+            if (po.save[0]) save_scene(&w, po.save);
         }
         sph_renderer_present(w.r, dw, dh);
         SDL_GL_SwapWindow(win);
@@ -609,6 +755,11 @@ int cmd_view(int argc, char **argv)
 out:
     /* the simulation first: a shared context must still be there */
     sph_sim_destroy(w.sim);
+    if (w.params) { /* its GL objects live in the window's context */
+        SDL_GL_MakeCurrent(win, NULL);
+        SDL_GL_MakeCurrent(win, ctx);
+        sph_panel_destroy(w.params);
+    }
     if (ctx) { /* a backend of its own may have taken the thread's GL */
         SDL_GL_MakeCurrent(win, NULL);
         SDL_GL_MakeCurrent(win, ctx);

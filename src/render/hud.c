@@ -1,35 +1,27 @@
 /* The renderer's text and layout (see renderer_impl.h): where the view,
- * legend and index strip go, the HUD with its pass timings, the window's
+ * legend, index strip and side column go (the arithmetic in layout.c), the HUD with its pass timings, the window's
  * panel, the colour legend and the overlay builder's notes. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "layout.h"
 #include "renderer_impl.h"
 
 /* ---- layout, notes --------------------------------------------------------- */
 
-bool hud_layout(sph_renderer *r, const sph_sim *sim, unsigned layers, int rc[4], int *legend_w)
+bool hud_layout(sph_renderer *r, const sph_sim *sim, unsigned layers, int side_w, int rc[4], int *legend_w)
 {
-    const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
-    const int pad = (int)roundf(0.6f * fn);
-    const int lw = (layers & SPH_OV_BIT(LEGEND)) ? (int)roundf(6.0f * fn) : 0;
     const bool strip = (layers & SPH_OV_BIT(INDEX)) && sim->in_pipeline[SPH_PASS_HASH];
-    const int row_h = (int)roundf(1.5f * fs);
-    const int strip_h = strip ? 6 * row_h + pad : 0;
-    rc[0] = pad;
-    rc[1] = pad;
-    rc[2] = r->w - lw - 2 * pad;
-    rc[3] = r->h - strip_h - 2 * pad;
-    r->legend[0] = r->w - lw;
-    r->legend[1] = pad;
-    r->legend[2] = lw - pad / 2;
-    r->legend[3] = r->h - strip_h - 2 * pad;
-    r->strip[0] = pad;
-    r->strip[1] = r->h - strip_h;
-    r->strip[2] = r->w - 2 * pad;
-    r->strip[3] = strip_h - pad;
-    *legend_w = lw;
+    const bool legend = layers & SPH_OV_BIT(LEGEND);
+    sph_layout L;
+    sph_layout_compute(r->w, r->h, side_w, legend, strip, &L);
+    memcpy(rc, L.view, sizeof L.view);
+    memcpy(r->legend, L.legend, sizeof r->legend);
+    memcpy(r->strip, L.strip, sizeof r->strip);
+    memcpy(r->side, L.side, sizeof r->side);
+    r->side_used = 0;
+    *legend_w = legend ? L.side[0] - L.legend[0] : 0; /* the legend column, right edge at the side column */
     return strip;
 }
 
@@ -72,15 +64,22 @@ void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
             }
     if (!nl && !bars) return;
     float w = 0;
-    for (int i = 0; i < nl; i++) w = fmaxf(w, sph_font_width(&r->font, SPH_TEXT_NORMAL, lines[i]));
+    /* in the side column the lines take the small size, so they fit its width */
+    const bool side = r->side[2] > 0;
+    const int tsz = side ? SPH_TEXT_SMALL : SPH_TEXT_NORMAL;
+    const float ft = r->font.px[tsz];
+    for (int i = 0; i < nl; i++) w = fmaxf(w, sph_font_width(&r->font, tsz, lines[i]));
     const float name_w = sph_font_width(&r->font, SPH_TEXT_SMALL, "pressure_force  "), bar_w = 6.0f * fn;
     const float ms_w = sph_font_width(&r->font, SPH_TEXT_SMALL, " 00.000 ms");
     if (bars) w = fmaxf(w, name_w + bar_w + ms_w);
-    float x0 = (float)r->cam.rect[0] + 4, y0 = (float)r->cam.rect[1] + 4;
-    float hgt = (float)nl * fn * 1.2f + (float)bars * fs * 1.25f + (bars ? 0.3f * fn : 0) + 8;
+    /* in the side column when there is one (the window), else over the view's top-left corner */
+    float x0 = side ? (float)r->side[0] + 4 : (float)r->cam.rect[0] + 4;
+    float y0 = side ? (float)r->side[1] + (float)r->cam.rect[1] : (float)r->cam.rect[1] + 4;
+    float hgt = (float)nl * ft * 1.2f + (float)bars * fs * 1.25f + (bars ? 0.3f * fn : 0) + 8;
+    if (side) r->side_used = y0 + hgt - (float)r->side[1];
     canvas_rect(r, x0, y0, x0 + w + 12, y0 + hgt, SPH_RGBA(0, 0, 0, 160));
     float y = y0 + 4;
-    for (int i = 0; i < nl; i++, y += fn * 1.2f) canvas_text(r, SPH_TEXT_NORMAL, x0 + 6, y, SPH_RGBA(235, 235, 240, 255), lines[i]);
+    for (int i = 0; i < nl; i++, y += ft * 1.2f) canvas_text(r, tsz, x0 + 6, y, SPH_RGBA(235, 235, 240, 255), lines[i]);
     if (bars) y += 0.3f * fn;
     for (int p = 0; p < SPH_PASS_COUNT && bars; p++) {
         if (!sim->in_pipeline[p]) continue;
@@ -104,8 +103,21 @@ void hud_panel(sph_renderer *r, const char (*lines)[128], int n)
     const float fs = r->font.px[SPH_TEXT_SMALL];
     float w = 0;
     for (int i = 0; i < n; i++) w = fmaxf(w, sph_font_width(&r->font, SPH_TEXT_SMALL, lines[i]));
-    float x1 = (float)(r->cam.rect[0] + r->cam.rect[2]) - 4, x0 = x1 - w - 12, y0 = (float)r->cam.rect[1] + 4;
+    /* in the side column, below the HUD, when there is one (the window); else at the view's top-right corner */
+    const bool side = r->side[2] > 0;
+    float x0, x1, y0;
+    if (side) {
+        x0 = (float)r->side[0] + 4;
+        x1 = x0 + w + 12;
+        y0 = (float)r->side[1] + r->side_used + 4;
+        if (r->side_used == 0) y0 += (float)r->cam.rect[1];
+    } else {
+        x1 = (float)(r->cam.rect[0] + r->cam.rect[2]) - 4;
+        x0 = x1 - w - 12;
+        y0 = (float)r->cam.rect[1] + 4;
+    }
     canvas_rect(r, x0, y0, x1, y0 + (float)n * 1.25f * fs + 8, SPH_RGBA(0, 0, 0, 185));
+    if (side) r->side_used = y0 + (float)n * 1.25f * fs + 8 - (float)r->side[1];
     for (int i = 0; i < n; i++)
         canvas_text(r, SPH_TEXT_SMALL, x0 + 6, y0 + 4 + (float)i * 1.25f * fs, SPH_RGBA(235, 235, 240, 255), lines[i]);
 }

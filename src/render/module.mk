@@ -16,7 +16,7 @@ RENDER_LIBS   := $(shell pkg-config --libs $(RENDER_PKGS) 2>/dev/null || echo -l
 # xvfb are not needed: the window test uses SDL's offscreen video driver.
 DEB_PKGS += libstb-dev libsdl2-dev fonts-dejavu-core
 
-RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font renderer canvas hud)
+RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font renderer canvas hud layout)
 RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view)
 
 MOD_OBJ       += $(RENDER_LIB_OBJ) $(RENDER_CMD_OBJ)
@@ -50,6 +50,8 @@ $(BUILD)/render:
 # The render tests include src/render/ headers (tests/test_render.c and tests/test_render_*.c).
 $(BUILD)/tests/test_render.o: CORE_CFLAGS += $(RENDER_INC) $(RENDER_CFLAGS)
 $(BUILD)/tests/test_render_%.o: CORE_CFLAGS += $(RENDER_INC) -Isrc/gpu $(RENDER_CFLAGS)
+# and are rebuilt when those headers change (sph_view's layout, for one)
+$(patsubst tests/%.c,$(BUILD)/tests/%.o,$(wildcard tests/test_render*.c)): src/render/*.h
 
 # `make asan`: Mesa (LLVM's JIT, the drivers) keeps allocations until exit
 # by design; tests/lsan.supp (set by the Makefile) tells LeakSanitizer so.

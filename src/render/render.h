@@ -45,6 +45,16 @@ typedef struct sph_view {
      * list); NULL or 0 lines: none. */
     const char (*panel)[128];
     int panel_lines;
+    /* [px] width of a column at the right edge that holds the HUD, timings
+     * and text panel beside the view, never over it (the window's, with its
+     * parameter panel; sph_layout_side_width); 0: none, they sit over the
+     * view's top corners (sphlab render). */
+    int side_px;
+    /* A circle of radius ring_radius [m] about ring_at [m] in the x-y plane
+     * (the window's push/pull reach at the cursor); radius 0: none. */
+    float ring_at[3];
+    float ring_radius;
+    bool ring_active; /* drawn brighter: the push/pull is on */
     /* The GL backend's buffers of the simulation drawn (sph_gpu_fields in
      * src/gpu/gpu.h), or NULL: the particles are drawn straight from them
      * when they live in the renderer's own context. Set it before each
@@ -82,6 +92,10 @@ void sph_renderer_read_rgb(sph_renderer *r, uint8_t *rgb);
 /* Copies the frame to the default framebuffer (the window), w x h pixels. */
 void sph_renderer_present(sph_renderer *r, int w, int h);
 
+/* The part of the last frame's side column (sph_view.side_px) that the HUD
+ * and text panel left free, in pixels (x, y, width, height; width 0 without
+ * a column): the window puts its parameter panel there. */
+void sph_renderer_side_free(const sph_renderer *r, int rc[4]);
 /* The camera and overlays of the last frame (picking, tests). */
 const sph_camera *sph_renderer_camera(const sph_renderer *r);
 const sph_overlay *sph_renderer_overlay(const sph_renderer *r);

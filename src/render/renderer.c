@@ -19,6 +19,7 @@
 #include "io.h" /* sph_io_write_png */
 
 #include "gl_fields.h"
+#include "layout.h"
 #include "renderer_impl.h"
 #include "shaders.h" /* generated from shaders/ by src/render/module.mk */
 
@@ -42,18 +43,10 @@ static GLuint program(sph_renderer *r, const char *vs, const char *fs, const cha
 
 /* Text sizes follow the image's height, so a small test image and a large
  * figure both stay readable. */
-static void font_sizes(int h, float *small, float *normal)
-{
-    float nm = roundf((float)h / 42.0f);
-    nm = nm < 11 ? 11 : nm > 24 ? 24 : nm;
-    *normal = nm;
-    *small = roundf(nm * 0.85f) < 10 ? 10 : roundf(nm * 0.85f);
-}
-
 static bool make_font(sph_renderer *r, char *err, size_t n)
 {
     float s, nm;
-    font_sizes(r->h, &s, &nm);
+    sph_layout_font_sizes(r->h, &s, &nm);
     if (r->have_font && r->font.px[0] == s && r->font.px[1] == nm) return true;
     if (r->have_font) sph_font_free(&r->font);
     r->have_font = false;
@@ -383,6 +376,33 @@ static void clip_to_view(sph_renderer *r, bool on)
     gl->Scissor(rc[0], r->h - rc[1] - rc[3], rc[2], rc[3]); /* GL counts rows from the bottom */
 }
 
+/* The view's ring (the push/pull reach at the cursor), as 64 segments. */
+static void draw_ring(sph_renderer *r, const sph_view *v)
+{
+    const uint32_t c = v->ring_active ? SPH_RGBA(255, 210, 90, 230) : SPH_RGBA(230, 230, 240, 150);
+    float prev[2] = {0, 0};
+    bool have = false;
+    for (int k = 0; k <= 64; k++) {
+        float a = 6.2831853f * (float)k / 64.0f, p[3] = {v->ring_at[0] + v->ring_radius * cosf(a),
+                                                          v->ring_at[1] + v->ring_radius * sinf(a), v->ring_at[2]};
+        float px[2], depth;
+        bool ok = sph_camera_project(&r->cam, p, px, &depth);
+        if (ok && have) canvas_line(r, prev[0], prev[1], px[0], px[1], 1.5f, c);
+        prev[0] = px[0];
+        prev[1] = px[1];
+        have = ok;
+    }
+}
+
+void sph_renderer_side_free(const sph_renderer *r, int rc[4])
+{
+    const int used = (int)ceilf(r->side_used);
+    rc[0] = r->side[0];
+    rc[1] = r->side[1] + used;
+    rc[2] = r->side[2];
+    rc[3] = r->side[3] > used ? r->side[3] - used : 0;
+}
+
 /* The backend's field a colour field is made of (norm: a vector's length);
  * -1 for those the device does not hold (keys, neighbour counts). */
 static int device_field(sph_color_field f, bool *norm)
@@ -439,7 +459,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     if (direct && !make_direct(r, err, n)) return false;
     const float fs = r->font.px[SPH_TEXT_SMALL];
     int rc[4], legend_w;
-    const bool strip = hud_layout(r, sim, L, rc, &legend_w);
+    const bool strip = hud_layout(r, sim, L, v->side_px, rc, &legend_w);
     sph_camera_fit(&r->cam, sim->dim, sim->def.domain_min, sim->def.domain_max, &v->orbit, r->w, r->h, rc);
 
     /* overlays (GL-free) */
@@ -583,10 +603,13 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
 
     /* canvas over: world overlays (clipped), then the strip, notes, HUD, legend */
     canvas_overlay(r, SPH_SPACE_WORLD);
+    if (v->ring_radius > 0) draw_ring(r, v);
     if (!canvas_flush(r)) goto oom;
     clip_to_view(r, false);
     canvas_overlay(r, SPH_SPACE_STRIP);
     if (L & ~(SPH_OV_BIT(HUD) | SPH_OV_BIT(LEGEND) | SPH_OV_BIT(TIMINGS))) hud_notes(r, rc);
+    if (r->side[2] > 0) canvas_rect(r, (float)r->side[0], (float)r->side[1], (float)(r->side[0] + r->side[2]),
+                                    (float)(r->side[1] + r->side[3]), SPH_RGBA(24, 26, 32, 255));
     if (L & (SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS))) hud_draw(r, sim, v);
     if (legend_w) hud_legend(r, sim, f, lo, hi);
     if (v->panel && v->panel_lines > 0) hud_panel(r, v->panel, v->panel_lines);

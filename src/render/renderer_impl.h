@@ -53,6 +53,8 @@ struct sph_renderer {
     sph_overlay ov;
     float radius_px;
     int strip[4], legend[4];
+    int side[4];     /* [px] the side column (HUD, timings, text panel); width 0: none */
+    float side_used; /* [px] height of the column the HUD and text panel took, from its top */
 };
 
 /* ---- the canvas (canvas.c): triangles in pixels, batched, drawn with one
@@ -74,14 +76,15 @@ void canvas_overlay(sph_renderer *r, sph_space space);
 
 /* ---- HUD, panel, legend and layout (hud.c) ----------------------------------- */
 
-/* The frame's layout: the legend on the right (r->legend; *legend_w 0
+/* The frame's layout (layout.c): a side column side_w pixels wide at the
+ * right (r->side; 0: none), the legend left of it (r->legend; *legend_w 0
  * without it), the index strip at the bottom (r->strip; returns whether it
  * is shown), the view in the rest (rc: x, y, w, h in pixels). */
-bool hud_layout(sph_renderer *r, const sph_sim *sim, unsigned layers, int rc[4], int *legend_w);
+bool hud_layout(sph_renderer *r, const sph_sim *sim, unsigned layers, int side_w, int rc[4], int *legend_w);
 /* The overlay builder's notes, upwards from the bottom of the view rc. */
 void hud_notes(sph_renderer *r, const int rc[4]);
 void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v);
-/* A box of text lines at the view's top-right corner. */
+/* A box of text lines: in the side column below the HUD, or at the view's top-right corner without one. */
 void hud_panel(sph_renderer *r, const char (*lines)[128], int n);
 void hud_legend(sph_renderer *r, const sph_sim *sim, sph_color_field f, float lo, float hi);
 
