@@ -28,7 +28,7 @@ static void expect_same_def(const sph_scene_def *a, const sph_scene_def *b, cons
 {
     for (int i = 0; i < sph_scene_key_count; i++) {
         const sph_key *k = &sph_scene_keys[i];
-        if (strcmp(k->section, "fluid") == 0) continue;
+        if (strcmp(k->section, "fluid") == 0 || strcmp(k->section, "obstacle") == 0) continue;
         cr_expect(memcmp((const char *)a + k->offset, (const char *)b + k->offset, key_size(k)) == 0,
                   "%s: [%s] %s differs after the round trip", what, k->section, k->name);
     }
@@ -41,6 +41,17 @@ static void expect_same_def(const sph_scene_def *a, const sph_scene_def *b, cons
             cr_expect(memcmp((const char *)&a->blocks[bl] + k->offset, (const char *)&b->blocks[bl] + k->offset,
                              key_size(k)) == 0,
                       "%s: [fluid %s] %s differs after the round trip", what, a->blocks[bl].name, k->name);
+        }
+    }
+    cr_assert_eq(a->n_obstacles, b->n_obstacles, "%s: %d obstacles, then %d", what, a->n_obstacles, b->n_obstacles);
+    for (int o = 0; o < a->n_obstacles; o++) {
+        cr_expect_str_eq(a->obstacles[o].name, b->obstacles[o].name, "%s: obstacle %d's name", what, o);
+        for (int i = 0; i < sph_scene_key_count; i++) {
+            const sph_key *k = &sph_scene_keys[i];
+            if (strcmp(k->section, "obstacle") != 0) continue;
+            cr_expect(memcmp((const char *)&a->obstacles[o] + k->offset, (const char *)&b->obstacles[o] + k->offset,
+                             key_size(k)) == 0,
+                      "%s: [obstacle %s] %s differs after the round trip", what, a->obstacles[o].name, k->name);
         }
     }
 }
@@ -82,6 +93,16 @@ Test(scene_write, a_scene_with_two_blocks_reads_back_the_same)
     round_trip(&def, "two blocks");
 }
 
+Test(scene_write, obstacles_read_back_the_same)
+{
+    sph_scene_def def = test_scene(BASE2 "[domain]\nwall_model = particles\nwall_slip_xmin = free\n"
+                                         "[obstacle box]\nshape = box\nmin = 0.3 0\nmax = 0.4 0.1\n"
+                                         "[obstacle ball]\nshape = circle\ncentre = 0.8 0.2\nradius = 0.05\n"
+                                         "slip = free\n");
+    cr_assert_eq(def.n_obstacles, 2);
+    round_trip(&def, "two obstacles");
+}
+
 /* A value other than the default, inside the key's range, as a file would write it. */
 static void other_value(const sph_key *k, char *out, size_t n)
 {
@@ -114,6 +135,7 @@ Test(scene_write, every_key_reads_back_the_value_it_was_given)
     for (int i = 0; i < sph_scene_key_count; i++) {
         const sph_key *k = &sph_scene_keys[i];
         if (strcmp(k->section, "scene") == 0 && strcmp(k->name, "dimension") == 0) continue; /* the blocks are 2D */
+        if (strcmp(k->section, "obstacle") == 0) continue; /* the base has none: obstacles_read_back_the_same */
         char value[128], assignment[256];
         other_value(k, value, sizeof value);
         snprintf(assignment, sizeof assignment, "%s.%s=%s", k->section, k->name, value);

@@ -246,6 +246,11 @@ static void apply_defaults(void *base, const char *kind)
     }
 }
 
+void sph_scene_block_defaults(void *block, const char *kind)
+{
+    apply_defaults(block, kind);
+}
+
 sph_scene_def sph_default_scene_def(void)
 {
     sph_scene_def def;

@@ -270,6 +270,8 @@ extern const int sph_scene_key_count;
 /* The value of key k stored at base (the def, or a block for fluid keys) as a
  * scene file writes it (floats with 9 digits, so they read back exactly). */
 void sph_scene_value_text(const sph_key *k, const void *base, char *out, size_t n);
+/* Set every key of one [fluid] or [obstacle] block (kind "fluid", "obstacle") to its default. */
+void sph_scene_block_defaults(void *block, const char *kind);
 /* Writes def as a scene file (sph_scene_write.c): name, dimension, every key
  * that differs from its default, each fluid block. Loading the text over the
  * defaults gives the same values. The I/O layer's sph_io_save_scene writes it

@@ -72,9 +72,26 @@ void sph_scene_value_text(const sph_key *k, const void *base, char *out, size_t 
     }
 }
 
-static bool is_fluid_key(const sph_key *k)
+/* [fluid NAME] and [obstacle NAME]: sections that repeat, one per block, their keys stored per block. */
+static bool is_block_key(const sph_key *k)
 {
-    return strcmp(k->section, "fluid") == 0;
+    return strcmp(k->section, "fluid") == 0 || strcmp(k->section, "obstacle") == 0;
+}
+
+/* One block's keys that differ from a default block of its kind; `always` keys are written anyway. */
+static void write_block(FILE *f, const char *kind, const char *name, const void *blk, const void *ref,
+                        const char *const always[2])
+{
+    char have[256], want[256];
+    fprintf(f, *name ? "\n[%s %s]\n" : "\n[%s]\n", kind, name);
+    for (int j = 0; j < sph_scene_key_count; j++) {
+        const sph_key *k = &sph_scene_keys[j];
+        if (strcmp(k->section, kind) != 0) continue;
+        sph_scene_value_text(k, blk, have, sizeof have);
+        sph_scene_value_text(k, ref, want, sizeof want);
+        bool forced = strcmp(k->name, always[0]) == 0 || strcmp(k->name, always[1]) == 0;
+        if (forced || strcmp(have, want) != 0) fprintf(f, "%s = %s\n", k->name, have);
+    }
 }
 
 /* The first key of each section, in table order (a section may appear in several runs of the table). */
@@ -90,18 +107,16 @@ sph_error_code sph_scene_write(const sph_scene_def *def, FILE *f, sph_error *err
     if (strpbrk(def->name, "\n\r;#")) /* a scene file could not read it back */
         return sph_fail(err, SPH_ERR_RANGE, "scene name '%.60s' has a newline, ';' or '#': it cannot be written", def->name);
     sph_scene_def ref = sph_default_scene_def();
-    sph_error lerr = {0};
-    /* a block of default values: a [fluid] section that sets one key to its default */
-    char block[128] = "";
-    for (int i = 0; i < sph_scene_key_count && !*block; i++)
-        if (is_fluid_key(&sph_scene_keys[i]))
-            snprintf(block, sizeof block, "[fluid]\n%s = %s\n", sph_scene_keys[i].name, sph_scene_keys[i].def);
-    if (sph_scene_load_string(block, "defaults", &ref, &lerr) != SPH_ERR_OK || ref.n_blocks != 1)
-        return sph_fail(err, SPH_ERR_SCENE, "cannot make the default fluid block: %s", lerr.msg);
+    sph_block_def ref_block;
+    sph_obstacle_def ref_obstacle;
+    memset(&ref_block, 0, sizeof ref_block);
+    memset(&ref_obstacle, 0, sizeof ref_obstacle);
+    sph_scene_block_defaults(&ref_block, "fluid");
+    sph_scene_block_defaults(&ref_obstacle, "obstacle");
     char have[256], want[256];
     fprintf(f, "# written by sphlab: the keys that differ from their defaults (sphlab keys lists them all)\n");
     for (int i = 0; i < sph_scene_key_count; i++) {
-        if (!first_of_section(i) || is_fluid_key(&sph_scene_keys[i])) continue;
+        if (!first_of_section(i) || is_block_key(&sph_scene_keys[i])) continue;
         const char *section = sph_scene_keys[i].section;
         bool opened = false;
         for (int j = i; j < sph_scene_key_count; j++) {
@@ -116,18 +131,12 @@ sph_error_code sph_scene_write(const sph_scene_def *def, FILE *f, sph_error *err
             fprintf(f, "%s = %s\n", k->name, have);
         }
     }
-    for (int b = 0; b < def->n_blocks; b++) {
-        const sph_block_def *blk = &def->blocks[b];
-        fprintf(f, *blk->name ? "\n[fluid %s]\n" : "\n[fluid]\n", blk->name);
-        for (int j = 0; j < sph_scene_key_count; j++) {
-            const sph_key *k = &sph_scene_keys[j];
-            if (!is_fluid_key(k)) continue;
-            sph_scene_value_text(k, blk, have, sizeof have);
-            sph_scene_value_text(k, &ref.blocks[0], want, sizeof want);
-            bool always = strcmp(k->name, "min") == 0 || strcmp(k->name, "max") == 0;
-            if (always || strcmp(have, want) != 0) fprintf(f, "%s = %s\n", k->name, have);
-        }
-    }
+    static const char *const fluid_always[2] = {"min", "max"};
+    for (int b = 0; b < def->n_blocks; b++)
+        write_block(f, "fluid", def->blocks[b].name, &def->blocks[b], &ref_block, fluid_always);
+    static const char *const obstacle_always[2] = {"shape", "slip"};
+    for (int o = 0; o < def->n_obstacles; o++)
+        write_block(f, "obstacle", def->obstacles[o].name, &def->obstacles[o], &ref_obstacle, obstacle_always);
     if (fflush(f) != 0 || ferror(f)) return sph_fail(err, SPH_ERR_IO, "cannot write the scene");
     return SPH_ERR_OK;
 }
