@@ -144,6 +144,8 @@ typedef struct sph_scene_def {
     sph_wall_slip wall_slip;            /* particles: the wall particles' velocity in the viscous term
                                            (no: mirrored, no-slip; free: the fluid's, free-slip) */
     unsigned periodic;                  /* bit d: axis d wraps around (no walls on it) */
+    float wall_velocity[3];             /* [m/s] particles: velocity of the wall particles beyond the top
+                                           wall (y max), tangential; they stay in place (Couette, a lid) */
     int n_blocks;
     sph_block_def blocks[SPH_MAX_BLOCKS];
 

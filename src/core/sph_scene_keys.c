@@ -66,6 +66,10 @@ const sph_key sph_scene_keys[] = {
     {"domain", "wall_slip", SPH_KEY_CHOICE, S(wall_slip), 0, 0, 0, 0, CH(sph_wall_slip_names), "", "no",
      "with wall_model = particles: no: no-slip walls (the wall particles' velocity in the viscous term mirrors the "
      "fluid's); free: free-slip (they take the fluid's velocity, no shear at the wall)"},
+    {"domain", "wall_velocity", SPH_KEY_VEC, S(wall_velocity), -BIG, BIG, 0, 0, NULL, 0, "m/s", "0 0 0",
+     "with wall_model = particles: velocity of the wall beyond the top side (y max), along the wall (its y "
+     "component must be 0): its wall particles stay in place but the viscous term sees them move, so a no-slip "
+     "top wall drags the fluid (Couette flow, a lid-driven cavity); the other walls stand still"},
 
     {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 1e-3, BIG, 0, 0, NULL, 0, "kg/m^dim", "1000",
      "rho0: density at which the pressure is zero; at least 0.001 (a rarefied gas): the pressure force divides by "

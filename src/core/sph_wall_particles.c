@@ -4,7 +4,9 @@
  * particle's support (ceil(h / spacing)), corners included. They are ordinary
  * particles of sph_particles after the fluid's (ids n_fluid ..), marked by the
  * field `wall` = 1; the wall_state pass gives them pressure, density and the
- * viscous term's velocity each step, and no pass moves them. */
+ * viscous term's velocity each step, and no pass moves them. Those beyond
+ * the top wall carry [domain] wall_velocity (zero by default): they stay in
+ * place, but the no-slip mirror 2 v_w - v~_w drags the fluid along. */
 #include "sph_walls.h"
 
 #include <math.h>
@@ -81,7 +83,8 @@ void sph_wall_particles_place(sph_sim *sim, uint32_t first)
                 P->fixed[i] = 1.0f;
                 for (int a = 0; a < dim; a++) {
                     P->pos[a][i] = node_coord(def, a, s, inner[a], node[a]);
-                    P->vel[a][i] = 0.0f; /* the box stands still */
+                    /* the box stands still, but for a top wall given a velocity (wall_velocity) */
+                    P->vel[a][i] = node[1] >= inner[1] ? def->wall_velocity[a] : 0.0f;
                 }
                 i++;
             }
