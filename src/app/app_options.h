@@ -50,7 +50,8 @@ typedef struct app_opts {
     double slice;            /* --slice [m], NAN if not given */
     /* words, as given (a choice is checked against its accepted words) */
     const char *backend, *gl, *stats, *dump, *vtk, *out, *name, *only, *screenshot, *keys, *metric, *ycols, *xcol,
-        *h_list, *n_list, *function, *kernel, *samples, *levels, *export_dir, *color, *range, *camera, *center;
+        *h_list, *n_list, *function, *kernel, *samples, *levels, *export_dir, *color, *range, *camera, *center,
+        *resolution;
     /* repeatable */
     app_list sets, vary, overlay, no_overlay;
     /* positional arguments, in order */
