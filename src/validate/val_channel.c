@@ -135,13 +135,14 @@ int val_channel_run(const val_ctx *c, const val_problem *p, const val_channel *c
         plot_lines pl;
         memset(&pl, 0, sizeof pl);
         val_append(pl.title, sizeof pl.title, "%s (%d particles across)", ch->title, c->res[done - 1]);
-        val_append(pl.subtitle, sizeof pl.subtitle, "worst row error / scale at t = %g ... %g s: %.150s", o->times[0],
-                 o->times[VAL_CHANNEL_TIMES - 1], trend);
+        val_append(pl.subtitle, sizeof pl.subtitle, "worst row |u - u#dexact#u| / scale at each time:");
+        for (int k = 0; k < o->taken; k++)
+            val_append(pl.subtitle, sizeof pl.subtitle, " %.2f%%", 100 * o->err[k]);
         snprintf(pl.xlabel, sizeof pl.xlabel, "y/L [-]");
         pl.np = 1;
         pl.xlo = 0;
         pl.xhi = 1;
-        snprintf(pl.p[0].ylabel, sizeof pl.p[0].ylabel, "u [m/s] (lines: exact; markers: sphlab)");
+        snprintf(pl.p[0].ylabel, sizeof pl.p[0].ylabel, "u [m/s]");
         for (int k = 0; k < VAL_CHANNEL_TIMES && pl.p[0].n + 2 <= PLOT_MAX_SERIES; k++) {
             for (int i = 0; i < NE; i++) {
                 ey[k][i] = i / (NE - 1.0);

@@ -86,7 +86,7 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
         }
     }
     if (!c->quiet)
-        fprintf(stderr, "\r  %-40.40s done: %u particles, %llu steps, %.1f s\n", label, sim->n,
+        fprintf(stderr, "\r%-62s\r  %-40.40s done: %u particles, %llu steps, %.1f s\n", "", label, sim->n,
                 (unsigned long long)sim->step, (sph_now_ms() - start) / 1e3);
     sph_sim_destroy(sim);
     return ok;
