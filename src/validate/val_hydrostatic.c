@@ -12,7 +12,7 @@
 #include "sph_walls.h"
 #include "validate_run.h"
 
-#define T_SETTLE 1.0 /* [s] twice the gravity ramp of the scene */
+#define T_SETTLE 1.0 /* [s] more than three times the gravity ramp of the scene */
 #define FRAMES 5     /* sampled frames after settling, evenly to the end */
 
 typedef struct hyd_obs {
@@ -70,7 +70,7 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
     int done = 0;
     for (int r = 0; r < c->nres && ok; r++) {
         sph_scene_def def;
-        if (!val_scene("hydrostatic.ini", 0.3 / c->res[r], &def)) {
+        if (!val_scene("hydrostatic.ini", 0.3 / c->res[r], &def)) { /* H = 0.3 m */
             ok = false;
             break;
         }
