@@ -115,8 +115,7 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
         plot_lines ch;
         memset(&ch, 0, sizeof ch);
         snprintf(ch.title, sizeof ch.title, "Hydrostatic tank: centre-line pressure error (last frame) and max speed");
-        val_append(ch.subtitle, sizeof ch.subtitle, "worst over %d frames after t = %g s / sqrt(gH): %.150s", FRAMES,
-                 T_SETTLE, trend);
+        val_append(ch.subtitle, sizeof ch.subtitle, "worst after t = %g s: %s", T_SETTLE, trend);
         snprintf(ch.xlabel, sizeof ch.xlabel, "top: height y/H [-]; bottom: time t/t#dend#u [-]");
         ch.xlo = 0;
         ch.xhi = 1;
