@@ -34,6 +34,7 @@
 #define ESTIMATE APP_CMD(estimate)
 #define LESSON APP_CMD(lesson)
 #define BENCH APP_CMD(bench)
+#define VALIDATE APP_CMD(validate)
 #define MANY 2000000000L
 
 /* A command's --help lists its options in this order. Two rows may share a
@@ -52,7 +53,7 @@ const app_opt app_options[] = {
      INT(steps, 0, MANY)},
     {"--steps", NULL, "N", "run length in steps (default: the scene's duration or steps)", STUDY, INT(steps, 1, MANY)},
     {"--time", NULL, "T", "simulate until T seconds (instead of --steps)", RUN | RENDER | STUDY, DOUBLE(time, 0, 1e6)},
-    {"--threads", NULL, "N", "worker threads (default: one per core)", RUN | RENDER | VIEW | STUDY,
+    {"--threads", NULL, "N", "worker threads (default: one per core)", RUN | RENDER | VIEW | STUDY | VALIDATE,
      INT(threads, 1, SPH_MAX_THREADS)},
     {"--backend", NULL, "cpu|gl",
      "where the passes run (overrides [compute] backend): gl runs them as\n"
@@ -177,10 +178,21 @@ const app_opt app_options[] = {
      FLAG(watchdog)},
     {"--trace", NULL, NULL, "one line per measurement on stderr (size, steps/s, repeats, others)", BENCH,
      FLAG(trace)},
+    /* validate */
+    {"--resolution", NULL, "R[,R...]",
+     "the resolutions to run, in the problem's unit (`sphlab validate list`:\n"
+     "a/spacing, particles per side, ...; default: three per problem)",
+     VALIDATE, STRING(resolution)},
+    {"--out", NULL, "DIR", "where NAME.csv, NAME.png and NAME.pdf go (made if missing;\ndefault out/validate)",
+     VALIDATE, PATH(out)},
+    {"--quick", NULL, NULL,
+     "one small resolution and a short run (for tests: seconds a problem)",
+     VALIDATE, FLAG(quick)},
     /* every command */
     {"--quiet", "-q", NULL, "no progress line, no tables, no list of files written (files are still written)",
-     RUN | RENDER | PLOT | STUDY | ESTIMATE | BENCH, FLAG(quiet)},
-    {"--help", "-h", NULL, "this text", RUN | CHECK | PLOT | RENDER | VIEW | HARDCASES | STUDY | ESTIMATE | LESSON | BENCH,
+     RUN | RENDER | PLOT | STUDY | ESTIMATE | BENCH | VALIDATE, FLAG(quiet)},
+    {"--help", "-h", NULL, "this text",
+     RUN | CHECK | PLOT | RENDER | VIEW | HARDCASES | STUDY | ESTIMATE | LESSON | BENCH | VALIDATE,
      HELP},
 };
 const int app_option_count = (int)(sizeof app_options / sizeof app_options[0]);

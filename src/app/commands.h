@@ -15,7 +15,8 @@
     X(study, "SCENE.ini", "error against wall time over combinations of knobs (CSV, Pareto chart)") \
     X(estimate, "", "kernel estimate of a known function: error against h and sample count") \
     X(lesson, "N", "the course: list the lessons, open one in the window, or export its figures and report") \
-    X(bench, "WHAT", "the optimisation ladder: largest N at 60 steps/s per level, checks, scaling (CSV, JSON, charts)")
+    X(bench, "WHAT", "the optimisation ladder: largest N at 60 steps/s per level, checks, scaling (CSV, JSON, charts)") \
+    X(validate, "NAME", "reference problems against published data or exact solutions: CSV, chart, PASS/FAIL (exit 0 pass, 1 fail, 2 usage, 3 run failed)")
 
 #define SPH_COMMAND_DECL(name, args, about) int cmd_##name(int argc, char **argv);
 SPH_COMMANDS(SPH_COMMAND_DECL)

@@ -758,6 +758,26 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                             "would meet its own image)",
                             loc, axes[a], len, 3.0 * def->h);
     }
+    /* a moving top wall: only wall particles carry it, and they cannot move along their normal */
+    if (def->wall_velocity[0] != 0 || def->wall_velocity[1] != 0 || def->wall_velocity[2] != 0) {
+        int li = key_index("domain", "wall_velocity");
+        char loc[300];
+        origin_text(def, def->origin[li].line, loc, sizeof loc);
+        if (!(def->effects & SPH_EFFECT(WALLS)) || def->wall_model != SPH_WALL_PARTICLES ||
+            !(def->effects & SPH_EFFECT(PRESSURE)))
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s: [domain] wall_velocity = %g %g: a moving wall needs wall particles ([domain] "
+                            "wall_model = particles, effects walls and pressure)",
+                            loc, def->wall_velocity[0], def->wall_velocity[1]);
+        if (def->wall_velocity[1] != 0)
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s: [domain] wall_velocity y = %g: the top wall may only move along itself (accepted: "
+                            "a y component of 0)",
+                            loc, def->wall_velocity[1]);
+        if (def->periodic & 2u)
+            return sph_fail(err, SPH_ERR_RANGE, "%s: [domain] wall_velocity: y is periodic, there is no top wall",
+                            loc);
+    }
     /* Morris's form divides x_ij . grad W = r W'(r) by r^2: it needs W'(r) / r
      * bounded, that is W'(0) = 0, which the viscosity and spiky kernels lack */
     if (def->viscosity_form == SPH_VFORM_MORRIS &&

@@ -173,6 +173,8 @@ typedef struct sph_scene_def {
     unsigned periodic;                  /* bit d: axis d wraps around (no walls on it) */
     sph_side_slip wall_slip_side[6];    /* per side (xmin, xmax, ymin, ymax, zmin, zmax): same as wall_slip,
                                            or no / free for that side's wall particles */
+    float wall_velocity[3];             /* [m/s] particles: velocity of the wall particles beyond the top
+                                           wall (y max), tangential; they stay in place (Couette, a lid) */
     int n_blocks;
     sph_block_def blocks[SPH_MAX_BLOCKS];
     int n_obstacles;

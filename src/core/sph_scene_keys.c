@@ -75,6 +75,10 @@ const sph_key sph_scene_keys[] = {
     SIDE_SLIP("xmin", 0), SIDE_SLIP("xmax", 1), SIDE_SLIP("ymin", 2), SIDE_SLIP("ymax", 3), SIDE_SLIP("zmin", 4),
     SIDE_SLIP("zmax", 5),
 #undef SIDE_SLIP
+    {"domain", "wall_velocity", SPH_KEY_VEC, S(wall_velocity), -BIG, BIG, 0, 0, NULL, 0, "m/s", "0 0 0",
+     "with wall_model = particles: velocity of the wall beyond the top side (y max), along the wall (its y "
+     "component must be 0): its wall particles stay in place but the viscous term sees them move, so a no-slip "
+     "top wall drags the fluid (Couette flow, a lid-driven cavity); the other walls stand still"},
 
     {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 1e-3, BIG, 0, 0, NULL, 0, "kg/m^dim", "1000",
      "rho0: density at which the pressure is zero; at least 0.001 (a rarefied gas): the pressure force divides by "

@@ -243,7 +243,10 @@ static void set_bounds(sph_sim *sim)
             for (int d = 0; d < sim->dim; d++) a2 += (double)sim->P.acc_c[d][i] * sim->P.acc_c[d][i];
             pull = fmax(pull, sqrt(2.0 * sqrt(a2) * def->h));
         }
-    sim->speed_scale = (float)(fall + v0 + mouse + squeeze + pull);
+    /* a moving top wall drags the fluid up to its own speed */
+    double lid = 0;
+    for (int d = 0; d < def->dim; d++) lid += (double)def->wall_velocity[d] * def->wall_velocity[d];
+    sim->speed_scale = (float)(fall + v0 + mouse + squeeze + pull + sqrt(lid));
     sim->speed_fall = (float)fall;
     sim->speed_bound = (float)(SPH_SPEED_FACTOR * sim->speed_scale + 1.0);
     sim->density_bound = 100.0f * def->rest_density;

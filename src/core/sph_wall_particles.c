@@ -7,7 +7,9 @@
  * viscous term's velocity each step, and no pass moves them. The obstacles'
  * wall particles follow the box's (sph_obstacles.c). Each wall particle
  * carries its own slip (field `slip`: the side's wall_slip_<side>, or the
- * scene's wall_slip) and, for an obstacle's, its number (field `obstacle`). */
+ * scene's wall_slip) and, for an obstacle's, its number (field `obstacle`).
+ * Those beyond the top wall carry [domain] wall_velocity (zero by default): they stay in
+ * place, but the no-slip mirror 2 v_w - v~_w drags the fluid along. */
 #include "sph_walls.h"
 
 #include "sph_obstacles.h"
@@ -106,7 +108,8 @@ void sph_wall_particles_place(sph_sim *sim, uint32_t first)
                 P->obstacle[i] = 0.0f;
                 for (int a = 0; a < dim; a++) {
                     P->pos[a][i] = node_coord(def, a, s, inner[a], node[a]);
-                    P->vel[a][i] = 0.0f; /* the box stands still */
+                    /* the box stands still, but for a top wall given a velocity (wall_velocity) */
+                    P->vel[a][i] = node[1] >= inner[1] ? def->wall_velocity[a] : 0.0f;
                 }
                 i++;
             }

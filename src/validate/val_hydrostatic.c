@@ -1,0 +1,156 @@
+/* validate hydrostatic: water at rest in a tank of no-slip wall particles
+ * (scenes/validate/hydrostatic.ini). After settling (t >= T_SETTLE), in
+ * single frames (no time average), the pressure of every fluid particle
+ * within one spacing of the centre line x = W/2, the row next to the floor
+ * included, is compared with p = rho0 g (H - y), H the depth the fluid's
+ * mass gives (rho0 H W = mass); and the largest fluid speed is followed over
+ * time. Targets: |p - p_exact| <= 1 % of rho0 g H in every frame; max speed
+ * < 1 % of sqrt(g H). */
+#include <math.h>
+#include <string.h>
+
+#include "sph_walls.h"
+#include "validate_run.h"
+
+#define T_SETTLE 1.0 /* [s] more than three times the gravity ramp of the scene */
+#define FRAMES 5     /* sampled frames after settling, evenly to the end */
+
+typedef struct hyd_obs {
+    double t_end, next_frame, H, rho0, g, s;
+    int frames;
+    double worst_p;                 /* [1] largest |p - p_exact| / (rho0 g H) over the frames */
+    double worst_speed;             /* [m/s] after settling */
+    val_series speed;               /* max speed [m/s] against t */
+    val_series prof_y, prof_p;      /* the last frame's centre line: y [m], p / (rho0 g H) */
+    bool oom;
+} hyd_obs;
+
+static void observe(void *vctx, const sph_sim *sim)
+{
+    hyd_obs *o = vctx;
+    const sph_particles *P = &sim->P;
+    const sph_scene_def *def = &sim->def;
+    if (o->H == 0) { /* the depth, from the fluid's mass */
+        double mass = 0;
+        for (uint32_t i = 0; i < sim->n; i++)
+            if (!sph_is_wall(P, i)) mass += P->mass[i];
+        o->H = mass / (def->rest_density * ((double)def->domain_max[0] - def->domain_min[0]));
+        o->rho0 = def->rest_density;
+        o->g = -def->gravity[1];
+    }
+    double vmax = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (sph_is_wall(P, i)) continue;
+        double v2 = 0;
+        for (int d = 0; d < sim->dim; d++) v2 += (double)P->vel[d][i] * P->vel[d][i];
+        vmax = fmax(vmax, sqrt(v2));
+    }
+    o->oom |= !val_series_add(&o->speed, sim->t, vmax);
+    if (sim->t >= T_SETTLE) o->worst_speed = fmax(o->worst_speed, vmax);
+    if (sim->t < o->next_frame - 1e-9) return;
+    o->next_frame += (o->t_end - T_SETTLE) / (FRAMES - 1);
+    o->frames++;
+    const double xc = 0.5 * ((double)def->domain_min[0] + def->domain_max[0]), scale = o->rho0 * o->g * o->H;
+    o->prof_y.n = o->prof_p.n = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (sph_is_wall(P, i) || fabs(P->pos[0][i] - xc) > o->s) continue;
+        double y = P->pos[1][i] - def->domain_min[1];
+        double e = (P->p[i] - o->rho0 * o->g * (o->H - y)) / scale;
+        o->worst_p = fmax(o->worst_p, fabs(e));
+        o->oom |= !val_series_add(&o->prof_y, y, P->p[i] / scale);
+        (void)val_series_add(&o->prof_p, y, e);
+    }
+}
+
+int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
+{
+    hyd_obs obs[VAL_MAX_RES];
+    memset(obs, 0, sizeof obs);
+    bool ok = true;
+    int done = 0;
+    for (int r = 0; r < c->nres && ok; r++) {
+        sph_scene_def def;
+        if (!val_scene("hydrostatic.ini", 0.3 / c->res[r], &def)) { /* H = 0.3 m */
+            ok = false;
+            break;
+        }
+        hyd_obs *o = &obs[r];
+        o->s = def.blocks[0].spacing;
+        o->t_end = c->quick ? T_SETTLE + 0.2 : def.duration;
+        o->next_frame = T_SETTLE;
+        char label[64];
+        snprintf(label, sizeof label, "hydrostatic H/spacing = %d", c->res[r]);
+        ok = val_run(c, label, &def, o->t_end, observe, o) && !o->oom;
+        done = r + 1;
+    }
+    FILE *f = ok ? val_csv(c, "hydrostatic.csv") : NULL;
+    ok = ok && f;
+    if (f) {
+        /* kind 0: max speed over time; kind 1: the last frame's centre line */
+        fprintf(f, "kind,resolution,x,value,exact\n");
+        for (int r = 0; r < done; r++) {
+            const hyd_obs *o = &obs[r];
+            for (size_t i = 0; i < o->speed.n; i++)
+                fprintf(f, "0,%d,%.6f,%.6g,0\n", c->res[r], o->speed.x[i], o->speed.y[i]);
+            for (size_t i = 0; i < o->prof_y.n; i++)
+                fprintf(f, "1,%d,%.6f,%.6g,%.6g\n", c->res[r], o->prof_y.x[i], o->prof_y.y[i],
+                        (o->H - o->prof_y.x[i]) / o->H);
+        }
+        ok = val_csv_close(c, f, "hydrostatic.csv");
+    }
+    char trend[512] = "";
+    bool pass = done > 0;
+    for (int r = 0; r < done; r++) {
+        const hyd_obs *o = &obs[r];
+        double sp = o->worst_speed / sqrt(o->g * o->H);
+        pass &= o->worst_p <= 0.01 && sp < 0.01;
+        val_append(trend, sizeof trend, "%sR=%d p %.2f%% speed %.2f%%", r ? ", " : "", c->res[r], 100 * o->worst_p,
+                   100 * sp);
+    }
+    /* the chart: the last frame's pressure error on the centre line against depth, and the speed over time */
+    val_series err_y[VAL_MAX_RES], err_t[VAL_MAX_RES];
+    memset(err_y, 0, sizeof err_y);
+    memset(err_t, 0, sizeof err_t);
+    if (ok) {
+        plot_lines ch;
+        memset(&ch, 0, sizeof ch);
+        snprintf(ch.title, sizeof ch.title, "Hydrostatic tank: centre-line pressure error (last frame) and max speed");
+        val_append(ch.subtitle, sizeof ch.subtitle, "worst after t = %g s: %s", T_SETTLE, trend);
+        snprintf(ch.xlabel, sizeof ch.xlabel, "top: height y/H [-]; bottom: time t/t#dend#u [-]");
+        ch.xlo = 0;
+        ch.xhi = 1;
+        ch.np = 2;
+        snprintf(ch.p[0].ylabel, sizeof ch.p[0].ylabel, "(p - #gr#d0#ug(H-y)) / #gr#d0#ugH [-]");
+        snprintf(ch.p[1].ylabel, sizeof ch.p[1].ylabel, "max speed / sqrt(gH) [-]");
+        ch.p[0].zero_line = true;
+        for (int r = 0; r < done && r < PLOT_MAX_SERIES; r++) {
+            hyd_obs *o = &obs[r];
+            /* sorted by height, scaled to y/H; the speed scaled to t/t_end and sqrt(gH) */
+            for (size_t i = 0; i < o->prof_p.n; i++) {
+                size_t best = i;
+                for (size_t j = i + 1; j < o->prof_p.n; j++)
+                    if (o->prof_p.x[j] < o->prof_p.x[best]) best = j;
+                double tx = o->prof_p.x[i], ty = o->prof_p.y[i];
+                o->prof_p.x[i] = o->prof_p.x[best], o->prof_p.y[i] = o->prof_p.y[best];
+                o->prof_p.x[best] = tx, o->prof_p.y[best] = ty;
+                ok &= val_series_add(&err_y[r], o->prof_p.x[i] / o->H, o->prof_p.y[i]);
+            }
+            for (size_t i = 0; i < o->speed.n; i++)
+                ok &= val_series_add(&err_t[r], o->speed.x[i] / o->t_end, o->speed.y[i] / sqrt(o->g * o->H));
+            plot_series *s = &ch.p[0].s[ch.p[0].n++], *t = &ch.p[1].s[ch.p[1].n++];
+            snprintf(s->label, sizeof s->label, "H/spacing = %d", c->res[r]);
+            snprintf(t->label, sizeof t->label, "H/spacing = %d", c->res[r]);
+            s->x = err_y[r].x, s->y = err_y[r].y, s->n = err_y[r].n, s->style = r;
+            t->x = err_t[r].x, t->y = err_t[r].y, t->n = err_t[r].n, t->style = r;
+        }
+        ok = ok && val_chart(c, "hydrostatic", &ch);
+    }
+    for (int r = 0; r < done; r++) {
+        val_series_free(&obs[r].speed), val_series_free(&obs[r].prof_y), val_series_free(&obs[r].prof_p);
+        val_series_free(&err_y[r]), val_series_free(&err_t[r]);
+    }
+    return val_verdict(c, p, ok, pass,
+                       "worst centre-line |p - rho0 g (H - y)| / rho0 g H in %d single frames after t = %g s, the "
+                       "row at the floor included, and max speed / sqrt(g H) after it: %s (target: <= 1 %%, < 1 %%)",
+                       FRAMES, T_SETTLE, trend);
+}

@@ -1,0 +1,107 @@
+/* sphlab validate: reference problems with published data or exact
+ * solutions, each run by one command that writes a CSV, a chart against the
+ * reference (PNG + PDF) and a pass/fail line with its tolerance
+ * (docs/accuracy.md, "Validation").
+ *
+ *   validate_ref.c       the published numbers and the exact solutions (no
+ *                        simulation, no PLplot: the tests link it as
+ *                        build/validate/libvalidate.a)
+ *   validate_run.c       what every problem shares: its scene at a
+ *                        resolution, the stepping loop, the outputs, the verdict
+ *   cmd_validate.c       the command and the table of problems
+ *   val_dam_break.c, val_hydrostatic.c, val_taylor_green.c,
+ *   val_poiseuille.c, val_couette.c   one problem each */
+#ifndef SPH_VALIDATE_H
+#define SPH_VALIDATE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+/* ---- reference data (validate_ref.c) ------------------------------------- */
+
+/* A published curve: n points (x[i], y[i]), x increasing. */
+typedef struct val_curve {
+    const char *label;  /* legend text */
+    const char *source; /* the publication, figure or table */
+    const double *x, *y;
+    int n;
+} val_curve;
+
+/* Surge front of the collapsing column, n^2 = 2 (height 2a, width a):
+ * Z = front / a against T = t sqrt(2 g / a).
+ *   [0] Martin & Moyce 1952, a = 1.125 in
+ *   [1] Martin & Moyce 1952, a = 2.25 in
+ *   [2] Koshizuka & Oka 1996 (experiment, column L x 2L) */
+enum { VAL_SURGE_CURVES = 3 };
+extern const val_curve val_surge[VAL_SURGE_CURVES];
+
+/* Linear interpolation of the curve at x; NaN outside [x[0], x[n-1]]. */
+double val_curve_at(const val_curve *c, double x);
+
+/* Start-up plane Poiseuille flow between no-slip walls at y = 0 and y = L,
+ * driven by the body force F [m/s^2] along x, fluid at rest at t = 0
+ * (Morris, Fox & Zhu 1997, J. Comput. Phys. 136:214, eq. 21):
+ *   u(y, t) = F/(2 nu) y (L - y)
+ *           - sum_{n>=0} 4 F L^2 / (nu pi^3 (2n+1)^3) sin(pi y (2n+1)/L)
+ *                        exp(-(2n+1)^2 pi^2 nu t / L^2)
+ * summed over `terms` terms [m/s]. */
+double val_poiseuille(double y, double t, double F, double nu, double L, int terms);
+/* Its steady state F/(2 nu) y (L - y) and the largest speed F L^2 / (8 nu). */
+double val_poiseuille_steady(double y, double F, double nu, double L);
+
+/* Start-up Couette flow: the wall at y = L moves at U from t = 0, the wall
+ * at y = 0 stands still (Morris et al. 1997, section 5.1, the series of the
+ * same diffusion problem):
+ *   u(y, t) = U y / L + sum_{n>=1} 2 U (-1)^n / (n pi) sin(n pi y / L)
+ *                       exp(-n^2 pi^2 nu t / L^2)   [m/s] */
+double val_couette(double y, double t, double U, double nu, double L, int terms);
+
+/* The Taylor-Green vortex in the periodic square of side L, as the scene's
+ * field = taylor-green starts it (x, y from the domain's corner):
+ * u = U exp(b t) sin(2 pi x/L) cos(2 pi y/L), v = -U exp(b t) cos(2 pi x/L)
+ * sin(2 pi y/L), b = -8 pi^2 nu / L^2. PySPH's example (Re = U L / nu) uses
+ * the same vortex shifted by a quarter period, so the speed, the kinetic
+ * energy and the L1 error of the speed are the same. */
+double val_tg_decay(double nu, double L, double t); /* exp(b t) [1] */
+void val_tg_velocity(double x, double y, double t, double U, double nu, double L, double v[2]);
+
+/* Observed order of convergence between two resolutions: log(e1/e2) / log(r2/r1). */
+double val_order(double r1, double e1, double r2, double e2);
+
+/* ---- the command's parts (validate_run.c, the binary only) ---------------- */
+
+enum {
+    VAL_PASS = 0,   /* every target met */
+    VAL_FAIL = 1,   /* a target missed: the line says which and by how much */
+    VAL_USAGE = 2,  /* bad command line */
+    VAL_ERROR = 3,  /* the run could not be made or finished: scene, watchdog, output */
+};
+
+#define VAL_MAX_RES 8
+
+typedef struct val_ctx {
+    const char *out;        /* directory of the outputs */
+    int res[VAL_MAX_RES];   /* the resolutions to run, in order */
+    int nres;
+    bool quick;             /* the quick resolution and a shorter run, for tests */
+    bool quiet;
+    int threads;
+} val_ctx;
+
+typedef struct val_problem {
+    const char *name;
+    const char *about;      /* one line */
+    const char *reference;  /* what it is compared with */
+    const char *target;     /* the tolerance, in words */
+    const char *res_meaning; /* what R counts */
+    int res_default[3];     /* the three resolutions of a plain run */
+    int res_quick;          /* --quick */
+    int res_min, res_max;   /* accepted range of R */
+    int (*run)(const val_ctx *c, const struct val_problem *p); /* NULL: not written yet */
+} val_problem;
+
+extern const val_problem val_problems[];
+extern const int val_problem_count;
+
+#endif

@@ -1,0 +1,84 @@
+/* The published numbers and the exact solutions the problems of `sphlab
+ * validate` are measured against (validate.h). */
+#include "validate.h"
+
+#include <math.h>
+
+#define PI 3.14159265358979323846
+
+/* Martin, J. C. & Moyce, W. J. 1952, "Part IV. An experimental study of the
+ * collapse of liquid columns on a rigid horizontal plane", Phil. Trans. R.
+ * Soc. Lond. A 244:312-324, the n^2 = 2 columns: Z = front/a against
+ * T = t sqrt(2g/a), read from their Figure 3 as PySPH's dam-break example
+ * keeps them (pysph/examples/db_exp_data.py). */
+static const double mm1_T[] = {0.849, 1.212, 1.602, 2.283, 2.950, 3.598, 3.905, 4.592, 4.961, 5.316};
+static const double mm1_Z[] = {1.245, 1.443, 1.884, 2.689, 3.728, 4.528, 4.999, 5.841, 6.271, 6.717};
+static const double mm2_T[] = {0.832, 1.219, 1.997, 2.547, 3.345, 4.034, 4.418, 5.091,
+                               5.685, 6.306, 6.822, 7.439, 8.031, 8.633, 9.237};
+static const double mm2_Z[] = {1.217, 1.474, 2.292, 2.995, 4.134, 4.944,  5.881,  6.980,
+                               7.945, 8.966, 9.986, 10.963, 11.977, 13.005, 13.970};
+/* Koshizuka, S. & Oka, Y. 1996, "Moving-particle semi-implicit method for
+ * fragmentation of incompressible fluid", Nucl. Sci. Eng. 123:421-434, their
+ * experiment (column L wide, 2L high): z/L against t sqrt(2g/L), as kept by
+ * the same PySPH file. */
+static const double ko_T[] = {0.0, 0.381, 0.769, 1.153, 1.537, 1.935, 2.323, 2.719, 3.096};
+static const double ko_Z[] = {1.000, 1.111, 1.252, 1.505, 1.892, 2.241, 2.615, 3.003, 3.624};
+
+#define N(a) ((int)(sizeof a / sizeof a[0]))
+const val_curve val_surge[VAL_SURGE_CURVES] = {
+    {"Martin & Moyce 1952, a = 1.125 in", "Martin & Moyce 1952, Fig. 3", mm1_T, mm1_Z, N(mm1_T)},
+    {"Martin & Moyce 1952, a = 2.25 in", "Martin & Moyce 1952, Fig. 3", mm2_T, mm2_Z, N(mm2_T)},
+    {"Koshizuka & Oka 1996, experiment", "Koshizuka & Oka 1996", ko_T, ko_Z, N(ko_T)},
+};
+
+double val_curve_at(const val_curve *c, double x)
+{
+    if (c->n < 1 || !(x >= c->x[0]) || !(x <= c->x[c->n - 1])) return NAN;
+    for (int i = 1; i < c->n; i++)
+        if (x <= c->x[i]) {
+            double f = (x - c->x[i - 1]) / (c->x[i] - c->x[i - 1]);
+            return c->y[i - 1] + f * (c->y[i] - c->y[i - 1]);
+        }
+    return c->y[c->n - 1];
+}
+
+double val_poiseuille_steady(double y, double F, double nu, double L)
+{
+    return F / (2.0 * nu) * y * (L - y);
+}
+
+double val_poiseuille(double y, double t, double F, double nu, double L, int terms)
+{
+    double u = val_poiseuille_steady(y, F, nu, L);
+    for (int n = 0; n < terms; n++) {
+        double m = 2.0 * n + 1.0;
+        u -= 4.0 * F * L * L / (nu * PI * PI * PI * m * m * m) * sin(PI * y * m / L) * exp(-m * m * PI * PI * nu * t / (L * L));
+    }
+    return u;
+}
+
+double val_couette(double y, double t, double U, double nu, double L, int terms)
+{
+    double u = U * y / L;
+    for (int n = 1; n <= terms; n++)
+        u += 2.0 * U * (n % 2 ? -1.0 : 1.0) / (n * PI) * sin(n * PI * y / L) * exp(-(double)n * n * PI * PI * nu * t / (L * L));
+    return u;
+}
+
+double val_tg_decay(double nu, double L, double t)
+{
+    return exp(-8.0 * PI * PI * nu / (L * L) * t);
+}
+
+void val_tg_velocity(double x, double y, double t, double U, double nu, double L, double v[2])
+{
+    double e = U * val_tg_decay(nu, L, t), k = 2.0 * PI / L;
+    v[0] = e * sin(k * x) * cos(k * y);
+    v[1] = -e * cos(k * x) * sin(k * y);
+}
+
+double val_order(double r1, double e1, double r2, double e2)
+{
+    if (!(e1 > 0) || !(e2 > 0) || !(r1 > 0) || !(r2 > 0) || r1 == r2) return NAN;
+    return log(e1 / e2) / log(r2 / r1);
+}

@@ -1,0 +1,181 @@
+/* What every problem of `sphlab validate` shares: its scene at a resolution,
+ * the stepping loop with an observer, the output files and the verdict. */
+#include "validate_run.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sph_walls.h"
+
+/* scenes/validate/FILE from the working directory, else beside the binary
+ * (a build run from elsewhere still finds the scenes it was built with). */
+static bool scene_path(const char *file, char *out, size_t n)
+{
+    snprintf(out, n, "scenes/validate/%s", file);
+    if (access(out, R_OK) == 0) return true;
+    char exe[PATH_MAX];
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len > 0) {
+        exe[len] = '\0';
+        char *slash = strrchr(exe, '/');
+        if (slash) *slash = '\0';
+        snprintf(out, n, "%s/scenes/validate/%s", exe, file);
+        if (access(out, R_OK) == 0) return true;
+    }
+    snprintf(out, n, "scenes/validate/%s", file);
+    return false;
+}
+
+bool val_scene(const char *file, double spacing, sph_scene_def *def)
+{
+    char path[PATH_MAX + 64];
+    if (!scene_path(file, path, sizeof path)) {
+        fprintf(stderr, "sphlab validate: %s: not found (run from the project's directory, or beside the binary)\n",
+                path);
+        return false;
+    }
+    sph_error err;
+    *def = sph_default_scene_def();
+    if (sph_scene_load(path, def, &err) != SPH_ERR_OK) {
+        fprintf(stderr, "sphlab validate: %s\n", err.msg);
+        return false;
+    }
+    /* every block on the new spacing; h keeps its ratio to the spacing */
+    double ratio = def->h / def->blocks[0].spacing;
+    for (int b = 0; b < def->n_blocks; b++) def->blocks[b].spacing = (float)spacing;
+    def->h = (float)(ratio * spacing);
+    if (sph_scene_validate(def, &err) != SPH_ERR_OK) {
+        fprintf(stderr, "sphlab validate: %s (at spacing %g m)\n", err.msg, spacing);
+        return false;
+    }
+    return true;
+}
+
+bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, double t_end, val_observe_fn fn, void *ctx)
+{
+    sph_sim *sim;
+    sph_error err;
+    if (sph_sim_create(def, c->threads, &sim, &err) != SPH_ERR_OK) {
+        fprintf(stderr, "sphlab validate: %s: %s\n", label, err.msg);
+        return false;
+    }
+    bool ok = true;
+    double shown = sph_now_ms(), start = shown;
+    fn(ctx, sim);
+    while (sim->t < t_end - 1e-12) {
+        sph_sim_step(sim);
+        if (sim->alarm.raised) {
+            char report[4096];
+            sph_sim_alarm_report(sim, report, sizeof report);
+            char *nl = strchr(report, '\n');
+            if (nl) *nl = '\0';
+            fprintf(stderr, "%ssphlab validate: %s: stopped by the watchdog at t = %.4g s: %s\n", c->quiet ? "" : "\n",
+                    label, sim->t, report);
+            ok = false;
+            break;
+        }
+        fn(ctx, sim);
+        double now = sph_now_ms();
+        if (!c->quiet && now - shown > 250) {
+            shown = now;
+            fprintf(stderr, "\r  %-40.40s %3.0f%%  %5.0f s", label, 100 * sim->t / t_end, (now - start) / 1e3);
+        }
+    }
+    if (!c->quiet)
+        fprintf(stderr, "\r%-62s\r  %-40.40s done: %u particles, %llu steps, %.1f s\n", "", label, sim->n,
+                (unsigned long long)sim->step, (sph_now_ms() - start) / 1e3);
+    sph_sim_destroy(sim);
+    return ok;
+}
+
+double val_fluid_count(const sph_sim *sim)
+{
+    double n = 0;
+    for (uint32_t i = 0; i < sim->n; i++) n += !sph_is_wall(&sim->P, i);
+    return n;
+}
+
+FILE *val_csv(const val_ctx *c, const char *file)
+{
+    return plot_out_stage_csv(c->out, file);
+}
+
+bool val_csv_close(const val_ctx *c, FILE *f, const char *file)
+{
+    return plot_out_close_csv(f, c->out, file);
+}
+
+bool val_chart(const val_ctx *c, const char *base, const plot_lines *chart)
+{
+    return plot_chart(PLOT_LINES, chart, c->out, base, 1400, 1000);
+}
+
+int val_verdict(const val_ctx *c, const val_problem *p, bool outputs_ok, bool pass, const char *fmt, ...)
+{
+    if (!outputs_ok) {
+        plot_out_abort();
+        fprintf(stderr, "sphlab validate %s: the run or its outputs failed (above); no verdict\n", p->name);
+        return VAL_ERROR;
+    }
+    if (!plot_out_commit(c->quiet)) return VAL_ERROR;
+    char text[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    printf("validate %s: %s: %s\n", p->name, pass ? "PASS" : "FAIL", text);
+    fflush(stdout);
+    return pass ? VAL_PASS : VAL_FAIL;
+}
+
+void val_append(char *buf, size_t n, const char *fmt, ...)
+{
+    size_t len = strlen(buf);
+    if (len >= n) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf + len, n - len, fmt, ap);
+    va_end(ap);
+}
+
+/* ---- a growing series ---------------------------------------------------- */
+
+bool val_series_add(val_series *s, double x, double y)
+{
+    if (s->n == s->cap) {
+        size_t cap = s->cap ? 2 * s->cap : 256;
+        double *nx = realloc(s->x, cap * sizeof *nx);
+        if (!nx) return false;
+        s->x = nx;
+        double *ny = realloc(s->y, cap * sizeof *ny);
+        if (!ny) return false;
+        s->y = ny;
+        s->cap = cap;
+    }
+    s->x[s->n] = x;
+    s->y[s->n] = y;
+    s->n++;
+    return true;
+}
+
+void val_series_free(val_series *s)
+{
+    free(s->x);
+    free(s->y);
+    memset(s, 0, sizeof *s);
+}
+
+double val_series_at(const val_series *s, double x)
+{
+    if (s->n == 0 || x < s->x[0] || x > s->x[s->n - 1]) return NAN;
+    for (size_t i = 1; i < s->n; i++)
+        if (x <= s->x[i]) {
+            double d = s->x[i] - s->x[i - 1], f = d > 0 ? (x - s->x[i - 1]) / d : 1.0;
+            return s->y[i - 1] + f * (s->y[i] - s->y[i - 1]);
+        }
+    return s->y[s->n - 1];
+}

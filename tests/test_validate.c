@@ -1,0 +1,196 @@
+/* sphlab validate: the published numbers and exact solutions it measures
+ * against (src/validate/validate_ref.c), the moving top wall the Couette
+ * problem needs, and the command's outputs, verdicts and refusals. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "sph_walls.h"
+#include "test_util.h"
+#include "validate.h"
+
+#define PI 3.14159265358979323846
+
+/* ---- reference data ------------------------------------------------------- */
+
+Test(validate, surge_data_are_the_published_numbers)
+{
+    cr_assert_eq(VAL_SURGE_CURVES, 3);
+    /* a value from each curve, as read from the papers (validate_ref.c names the sources) */
+    cr_assert_float_eq(val_surge[0].y[2], 1.884, 1e-12, "Martin & Moyce, a = 1.125 in, T = 1.602");
+    cr_assert_float_eq(val_surge[1].x[2], 1.997, 1e-12);
+    cr_assert_float_eq(val_surge[1].y[2], 2.292, 1e-12, "Martin & Moyce, a = 2.25 in, T = 1.997");
+    cr_assert_float_eq(val_surge[2].y[0], 1.0, 1e-12, "Koshizuka & Oka start at the column's width");
+    cr_assert_eq(val_surge[0].n, 10);
+    cr_assert_eq(val_surge[1].n, 15);
+    cr_assert_eq(val_surge[2].n, 9);
+    for (int k = 0; k < VAL_SURGE_CURVES; k++)
+        for (int i = 1; i < val_surge[k].n; i++) {
+            cr_assert_gt(val_surge[k].x[i], val_surge[k].x[i - 1], "curve %d: T increasing", k);
+            cr_assert_gt(val_surge[k].y[i], val_surge[k].y[i - 1], "curve %d: the front only advances", k);
+        }
+}
+
+Test(validate, curve_interpolates_inside_and_is_nan_outside)
+{
+    const val_curve *c = &val_surge[2];
+    cr_assert_float_eq(val_curve_at(c, c->x[3]), c->y[3], 1e-12);
+    double mid = 0.5 * (c->x[3] + c->x[4]);
+    cr_assert_float_eq(val_curve_at(c, mid), 0.5 * (c->y[3] + c->y[4]), 1e-12);
+    cr_assert(isnan(val_curve_at(c, -0.1)));
+    cr_assert(isnan(val_curve_at(c, c->x[c->n - 1] + 0.1)));
+}
+
+/* ---- exact solutions -------------------------------------------------------- */
+
+Test(validate, poiseuille_series_tends_to_the_parabola_and_starts_at_rest)
+{
+    const double F = 2e-4, nu = 1e-6, L = 1e-3, umax = F * L * L / (8 * nu);
+    cr_assert_float_eq(val_poiseuille_steady(L / 2, F, nu, L), umax, 1e-15 * umax + 1e-20);
+    for (int i = 1; i < 10; i++) {
+        double y = i * L / 10;
+        /* t -> infinity (ten e-folding times of the slowest mode): the parabola */
+        cr_assert_float_eq(val_poiseuille(y, 10 * L * L / nu, F, nu, L, 200), val_poiseuille_steady(y, F, nu, L),
+                           1e-12 * umax);
+        /* t = 0: at rest (the series is the parabola's sine series; 200 terms leave < 1e-5) */
+        cr_assert_lt(fabs(val_poiseuille(y, 0, F, nu, L, 200)), 1e-5 * umax, "y = %g", y);
+    }
+    /* it solves u_t = F + nu u_yy (finite differences, at a start-up time) */
+    double y = 0.3 * L, t = 0.05 * L * L / nu, dy = 1e-3 * L, dt = 1e-4 * t;
+    double ut = (val_poiseuille(y, t + dt, F, nu, L, 200) - val_poiseuille(y, t - dt, F, nu, L, 200)) / (2 * dt);
+    double uyy = (val_poiseuille(y + dy, t, F, nu, L, 200) - 2 * val_poiseuille(y, t, F, nu, L, 200) +
+                  val_poiseuille(y - dy, t, F, nu, L, 200)) / (dy * dy);
+    cr_assert_float_eq(ut, F + nu * uyy, 1e-4 * F);
+}
+
+Test(validate, couette_series_tends_to_the_line_and_keeps_the_walls)
+{
+    const double U = 0.025, nu = 1, L = 1;
+    for (int i = 0; i <= 10; i++) {
+        double y = i * L / 10;
+        cr_assert_float_eq(val_couette(y, 10, U, nu, L, 400), U * y / L, 1e-12, "steady at y = %g", y);
+    }
+    cr_assert_float_eq(val_couette(0, 0.01, U, nu, L, 400), 0, 1e-15, "the still wall");
+    cr_assert_float_eq(val_couette(L, 0.01, U, nu, L, 400), U, 1e-12, "the moving wall");
+    cr_assert_lt(fabs(val_couette(0.5, 0, U, nu, L, 400)), 2e-3 * U, "at rest at t = 0");
+    double y = 0.6, t = 0.05, dy = 1e-3, dt = 1e-5;
+    double ut = (val_couette(y, t + dt, U, nu, L, 400) - val_couette(y, t - dt, U, nu, L, 400)) / (2 * dt);
+    double uyy = (val_couette(y + dy, t, U, nu, L, 400) - 2 * val_couette(y, t, U, nu, L, 400) +
+                  val_couette(y - dy, t, U, nu, L, 400)) / (dy * dy);
+    cr_assert_float_eq(ut, nu * uyy, 1e-4 * U, "u_t = nu u_yy");
+}
+
+Test(validate, taylor_green_decays_at_8_pi2_nu_and_is_divergence_free)
+{
+    const double U = 1, nu = 0.01, L = 1, t = 0.7;
+    cr_assert_float_eq(val_tg_decay(nu, L, t), exp(-8 * PI * PI * nu * t), 1e-15);
+    /* the largest speed is U exp(bt), at (L/4, 0) */
+    double v[2];
+    val_tg_velocity(0.25 * L, 0, t, U, nu, L, v);
+    cr_assert_float_eq(hypot(v[0], v[1]), U * val_tg_decay(nu, L, t), 1e-12);
+    /* div v = 0 at a few points (central differences) */
+    const double d = 1e-6;
+    for (int i = 0; i < 5; i++) {
+        double x = 0.13 + 0.17 * i, y = 0.71 - 0.11 * i, a[2], b[2], c[2], e[2];
+        val_tg_velocity(x + d, y, t, U, nu, L, a);
+        val_tg_velocity(x - d, y, t, U, nu, L, b);
+        val_tg_velocity(x, y + d, t, U, nu, L, c);
+        val_tg_velocity(x, y - d, t, U, nu, L, e);
+        cr_assert_lt(fabs((a[0] - b[0]) / (2 * d) + (c[1] - e[1]) / (2 * d)), 1e-6);
+    }
+    cr_assert_float_eq(val_order(25, 0.08, 50, 0.02), 2.0, 1e-12);
+    cr_assert(isnan(val_order(25, 0, 50, 0.02)));
+}
+
+/* ---- the moving top wall ---------------------------------------------------- */
+
+static const char *channel_ini(const char *extra)
+{
+    static char ini[1024];
+    snprintf(ini, sizeof ini,
+             "[scene]\ndimension=2\neffects=pressure viscosity walls\n[domain]\nmin=0 0\nmax=1.2 1\nperiodic=x\n"
+             "wall_model=particles\nwall_slip=no\n%s\n[fluid c]\nmin=0 0\nmax=1.2 1\nspacing=0.1\n"
+             "[physics]\nstiffness=1\nviscosity=1\nviscosity_form=morris\nnegative_pressure=keep\n"
+             "[kernels]\nh=0.3\ndensity=wendland\npressure=wendland\nviscosity=wendland\n[time]\ncfl=0.125\ndt=0.01\n",
+             extra);
+    return ini;
+}
+
+Test(validate, wall_velocity_drags_the_fluid_and_is_refused_where_it_cannot_be)
+{
+    sph_sim *sim = test_sim(channel_ini("wall_velocity=0.025 0"), 1);
+    while (sim->t < 0.3) sph_sim_step(sim);
+    double top = 0, bottom = 0;
+    int nt = 0, nb = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (sph_is_wall(&sim->P, i)) {
+            /* the wall particles stay where they were put */
+            cr_assert(sim->P.pos[1][i] < 0 || sim->P.pos[1][i] > 1);
+            continue;
+        }
+        if (sim->P.pos[1][i] > 0.8) top += sim->P.vel[0][i], nt++;
+        if (sim->P.pos[1][i] < 0.2) bottom += sim->P.vel[0][i], nb++;
+    }
+    top /= nt;
+    bottom /= nb;
+    /* the exact mean over the top rows at t = 0.3 s is about 0.6 U; the bottom's about 0.1 U */
+    cr_assert_gt(top, 0.4 * 0.025, "top rows move with the wall: %g m/s", top);
+    cr_assert_lt(bottom, 0.25 * 0.025, "bottom rows lag: %g m/s", bottom);
+    sph_sim_destroy(sim);
+
+    sph_scene_def def = sph_default_scene_def();
+    sph_error err;
+    cr_assert_eq(sph_scene_set(&def, "domain.wall_velocity=1 0", &err), SPH_ERR_OK);
+    cr_assert_neq(sph_scene_validate(&def, &err), SPH_ERR_OK, "wall_model = volume cannot move a wall");
+    cr_assert(strstr(err.msg, "wall_velocity") && strstr(err.msg, "wall_model = particles"), "%s", err.msg);
+    cr_assert_eq(sph_scene_set(&def, "domain.wall_model=particles", &err), SPH_ERR_OK);
+    cr_assert_eq(sph_scene_set(&def, "domain.wall_velocity=0 1", &err), SPH_ERR_OK);
+    cr_assert_neq(sph_scene_validate(&def, &err), SPH_ERR_OK, "a wall moving along its normal");
+    cr_assert(strstr(err.msg, "wall_velocity y = 1"), "%s", err.msg);
+}
+
+/* ---- the command ------------------------------------------------------------ */
+
+static bool nonempty(const char *dir, const char *name, const char *ext)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s.%s", dir, name, ext);
+    struct stat st;
+    return stat(path, &st) == 0 && st.st_size > 0;
+}
+
+Test(validate, each_problem_at_quick_writes_csv_png_pdf_and_a_verdict, .timeout = 300)
+{
+    static const char *const names[] = {"dam-break", "hydrostatic", "taylor-green", "poiseuille", "couette"};
+    char dir[] = "/tmp/sphlab-validate-XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+        char args[600], out[16384], want[64];
+        snprintf(args, sizeof args, "validate %s --quick --quiet --threads 2 --out %s", names[k], dir);
+        int rc = test_sphlab(args, out, sizeof out);
+        cr_assert(rc == 0 || rc == 1, "%s: exit %d (want 0 pass or 1 fail): %s", names[k], rc, out);
+        snprintf(want, sizeof want, "validate %s: %s: ", names[k], rc == 0 ? "PASS" : "FAIL");
+        cr_assert(strstr(out, want) && strstr(out, "target"), "%s: no verdict line with its target: %s", names[k], out);
+        cr_assert(nonempty(dir, names[k], "csv") && nonempty(dir, names[k], "png") && nonempty(dir, names[k], "pdf"),
+                  "%s: CSV, PNG or PDF missing in %s", names[k], dir);
+    }
+}
+
+Test(validate, bad_input_is_refused_with_exit_2)
+{
+    char out[8192];
+    cr_assert_eq(test_sphlab("validate nosuch", out, sizeof out), 2);
+    cr_assert(strstr(out, "unknown problem 'nosuch'") && strstr(out, "dam-break"), "%s", out);
+    cr_assert_eq(test_sphlab("validate taylor-green --resolution 20,,40", out, sizeof out), 2);
+    cr_assert(strstr(out, "--resolution '20,,40'"), "%s", out);
+    cr_assert_eq(test_sphlab("validate taylor-green --resolution 3", out, sizeof out), 2);
+    cr_assert(strstr(out, "out of range") && strstr(out, "particles per side"), "%s", out);
+    cr_assert_eq(test_sphlab("validate", out, sizeof out), 2);
+    cr_assert(strstr(out, "name a problem"), "%s", out);
+    cr_assert_eq(test_sphlab("validate obstacle", out, sizeof out), 2);
+    cr_assert(strstr(out, "not written yet"), "%s", out);
+    cr_assert_eq(test_sphlab("validate list", out, sizeof out), 0);
+    cr_assert(strstr(out, "couette") && strstr(out, "obstacle"), "%s", out);
+}
