@@ -18,7 +18,7 @@ void main()
     float rho = sum;
 #if WALL_VOLUME
     vec3 g;
-    rho += RHO0 * wall_hidden(0, WALL_FULL_D, xi, g);
+    rho += RHO0 * wall_hidden(xi, g);
 #endif
     rho_[i] = rho;
     vol_[i] = mass_[i] / rho;

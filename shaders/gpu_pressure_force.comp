@@ -35,8 +35,8 @@ void main()
     sph_walk(i, xi);
 #if WALL_VOLUME
     vec3 grad;
-    wall_hidden(WALL_FLOATS, WALL_FULL_P, xi, grad); // the pressure kernel's tables
-    for (int d = 0; d < DIM; d++) acc[d] -= WALL_FORCE * RHO0 * pi_over * grad[d];
+    wall_hidden(xi, grad);
+    for (int d = 0; d < DIM; d++) acc[d] -= RHO0 * pi_over * grad[d];
 #endif
     for (int d = 0; d < DIM; d++) acc_p_[uint(d) * N + i] = acc[d];
 }

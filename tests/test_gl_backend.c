@@ -241,9 +241,8 @@ Test(gl_backend, passes_match_cpu_other_forms)
     lockstep_steps(scene_2d, sets, 8, 1);
 }
 
-/* The volume walls with the shared form (wall force factor 1, where the
- * symmetric form's is 2) and other kernels: the density's and the pressure's
- * wall tables differ, the block fills a corner (two walls in 2D, three in 3D). */
+/* The volume walls with the shared form and other kernels: the block fills a
+ * corner (the corner table in 2D, the three walls' vertex in 3D). */
 Test(gl_backend, passes_match_cpu_volume_walls_shared)
 {
     const char *sets[] = {"physics.pressure_form=shared", "domain.wall_model=volume", "kernels.density=wendland",

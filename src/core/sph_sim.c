@@ -283,7 +283,6 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     for (int b = 0; b < def->n_blocks; b++)
         if (wall_s == 0.0f || def->blocks[b].spacing < wall_s) wall_s = def->blocks[b].spacing;
     sph_kernel_wall_lattice(&sim->k_density, wall_s);
-    sph_kernel_wall_lattice(&sim->k_pressure, wall_s);
 
     /* Only the buffers of passes in the pipeline are allocated. */
     uint32_t n = sim->n;

@@ -70,20 +70,4 @@ static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int
     return hidden;
 }
 
-/* The factor of the volume walls' pressure force, a = -factor (p_i / rho_i^2)
- * rho0 grad H with H the pressure kernel's hidden share: the pressure force's
- * own pair term over the hidden lattice, each hidden node carrying the
- * particle's pressure and density (zero normal pressure gradient at the wall,
- * as mirrored ghost particles have: Colagrossi & Landrini 2003; the wall
- * pressure of Ferrand et al. 2013, eq. 37, taken as the particle's). The
- * symmetric form's pair term is m (p_i/rho_i^2 + p_j/rho_j^2): factor 2; the
- * shared form's (m_j / rho_j)(p_i + p_j)/(2 rho_i): factor 1. With the
- * density's share (factor 1 in both), the force would be the energy's
- * gradient, but the first row would need twice the pressure to stand on the
- * wall (docs/accuracy.md, section 6: the wall row read +100 %). */
-static inline float sph_wall_force_factor(const sph_scene_def *def)
-{
-    return def->pressure_form == SPH_PFORM_SYMMETRIC ? 2.0f : 1.0f;
-}
-
 #endif

@@ -146,23 +146,20 @@ static bool make_buffers(gpu *g, const sph_sim *sim)
     }
     g->buf[B_REDUCE] = new_buffer(g, 4 * sizeof(uint32_t), NULL);
     g->range = new_buffer(g, 4 * sizeof(uint32_t), NULL); /* 16 bytes: a uniform block's vec4 */
-    /* the volume walls' tables (sph_wall_hidden): the density kernel's, then
-     * the pressure kernel's, each its lattice share, slope, corner share and
-     * corner slope (shaders/gpu_common.glsl, wall_hidden) */
-    float *wall = malloc(2 * GPU_WALL_FLOATS * sizeof *wall);
+    /* the volume walls' tables (sph_wall_hidden), the density kernel's: its
+     * lattice share, slope, corner share and corner slope (shaders/gpu_common.glsl) */
+    const sph_kernel *kd = &sim->k_density;
+    float *wall = malloc(GPU_WALL_FLOATS * sizeof *wall);
     if (!wall) return false;
-    for (int t = 0; t < 2; t++) {
-        const sph_kernel *k = t ? &sim->k_pressure : &sim->k_density;
-        float *o = wall + t * GPU_WALL_FLOATS;
-        memcpy(o, k->wall_lat_psi, sizeof k->wall_lat_psi);
-        o += SPH_WALL_TABLE + 1;
-        memcpy(o, k->wall_lat_area, sizeof k->wall_lat_area);
-        o += SPH_WALL_TABLE + 1;
-        memcpy(o, k->wall_corner, sizeof k->wall_corner);
-        o += (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1);
-        memcpy(o, k->wall_corner_slope, sizeof k->wall_corner_slope);
-    }
-    g->buf[B_WALL] = new_buffer(g, 2 * GPU_WALL_FLOATS * sizeof *wall, wall);
+    float *o = wall;
+    memcpy(o, kd->wall_lat_psi, sizeof kd->wall_lat_psi);
+    o += SPH_WALL_TABLE + 1;
+    memcpy(o, kd->wall_lat_area, sizeof kd->wall_lat_area);
+    o += SPH_WALL_TABLE + 1;
+    memcpy(o, kd->wall_corner, sizeof kd->wall_corner);
+    o += (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1);
+    memcpy(o, kd->wall_corner_slope, sizeof kd->wall_corner_slope);
+    g->buf[B_WALL] = new_buffer(g, GPU_WALL_FLOATS * sizeof *wall, wall);
     free(wall);
     for (int b = 0; b < B_TOTAL; b++)
         if (g->buf[b]) gpu_bind(g, b, g->buf[b]);

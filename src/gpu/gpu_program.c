@@ -10,7 +10,6 @@
 #include <string.h>
 
 #include "gpu_internal.h"
-#include "sph_walls.h"
 
 const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT] = {
 #define GPU_B_NAME(name) #name,
@@ -119,11 +118,8 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put_vec3(&t, "DOM_MAX", sim->def.domain_max);
     put(&t, "#define HAS_GRAVITY %d\n", (def->effects & SPH_EFFECT(GRAVITY)) != 0);
     put_vec3(&t, "GRAVITY", sim->def.gravity);
-    put(&t, "#define WALL_VOLUME %d\n#define WALL_CORNER %d\n#define WALL_FLOATS %d\n", sph_sim_wall_volume(sim),
-        SPH_WALL_CORNER, GPU_WALL_FLOATS);
-    put_float(&t, "WALL_FULL_D", sim->k_density.wall_lat_full);
-    put_float(&t, "WALL_FULL_P", sim->k_pressure.wall_lat_full);
-    put_float(&t, "WALL_FORCE", sph_wall_force_factor(def));
+    put(&t, "#define WALL_VOLUME %d\n#define WALL_CORNER %d\n", sph_sim_wall_volume(sim), SPH_WALL_CORNER);
+    put_float(&t, "WALL_FULL", sim->k_density.wall_lat_full);
     put_float(&t, "RHO0", def->rest_density);
     put_float(&t, "STIFF", def->stiffness);
     put(&t, "#define EOS_TAIT %d\n#define CLAMP_NEG %d\n", def->eos == SPH_EOS_TAIT,

@@ -76,12 +76,13 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
     float a[3];
     for (int d = 0; d < dim; d++) a[d] = dbl ? (float)ad[d] : af[d];
     if (sph_sim_wall_volume(sim)) {
-        /* The pair term over the hidden lattice (sph_wall_force_factor):
-         * a = -factor (p_i / rho_i^2) rho0 grad(hidden share), the share of
-         * the pressure kernel, so a lattice at rest stands on the wall. */
-        float grad[3], f = sph_wall_force_factor(&sim->def) * sim->def.rest_density * pi_over;
-        sph_wall_hidden(sim, k, i, grad);
-        for (int d = 0; d < dim; d++) a[d] -= f * grad[d];
+        /* The force that makes the walls' density term conservative:
+         * a = -(p_i / rho_i^2) grad(rho0 * hidden share), with the density
+         * kernel, so walls neither add nor remove energy (docs/accuracy.md,
+         * section 6: why not the pair term over the hidden lattice). */
+        float grad[3];
+        sph_wall_hidden(sim, &sim->k_density, i, grad);
+        for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * pi_over * grad[d];
     }
     for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
 }
@@ -133,9 +134,9 @@ static inline void pressure_one_avx512(const sph_sim *sim, const sph_kernel *k, 
     }
     float a[3] = {_mm512_reduce_add_ps(ax), _mm512_reduce_add_ps(ay), _mm512_reduce_add_ps(az)};
     if (sph_sim_wall_volume(sim)) {
-        float grad[3], f = sph_wall_force_factor(&sim->def) * sim->def.rest_density * P->p_rho2[i];
-        sph_wall_hidden(sim, &sim->k_pressure, i, grad);
-        for (int d = 0; d < dim; d++) a[d] -= f * grad[d];
+        float grad[3];
+        sph_wall_hidden(sim, &sim->k_density, i, grad);
+        for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * P->p_rho2[i] * grad[d];
     }
     for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
 }
