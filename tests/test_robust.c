@@ -168,8 +168,8 @@ Test(robust, defaults_give_a_stable_run)
 /* A column at rest with stiffness 4e6 (c = 2000 m/s): the lattice's 1.5%
  * summation error is then a 60 kPa overpressure, twenty times the
  * hydrostatic pressure, and it launches the column (at k = 1e6, 24-28 m/s in
- * 15 ms with the integral volume walls, whose first row read 3 % more; 16 m/s
- * with the lattice's, under the 18.7 m/s bound), while a fall in the box
+ * 15 ms with the integral volume walls, whose first row read 3 % more; under
+ * the 18.7 m/s bound with the lattice's), while a fall in the box
  * reaches 4.4 m/s. The watchdog's speed bound once grew with the stiffness
  * (20 c), so it never fired; it must stop this, naming speed. */
 Test(robust, watchdog_stops_a_stiff_pool_launched_by_its_lattice)
