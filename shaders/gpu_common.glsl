@@ -32,7 +32,10 @@ layout(std430, binding = B_COUNT) buffer BufCount { uint count_[]; };
 layout(std430, binding = B_REDUCE) buffer BufReduce { uint reduce_[]; };
 #endif
 #if USE_WALL
-layout(std430, binding = B_WALL) buffer BufWall { float wall_[]; }; // psi[WALL_TABLE + 1], then area[WALL_TABLE + 1]
+// the density kernel's lattice share [WALL_TABLE + 1], its slope
+// [WALL_TABLE + 1], the corner share and its slope [(WALL_CORNER + 1)^2
+// each] (src/gpu/gpu_backend.c)
+layout(std430, binding = B_WALL) buffer BufWall { float wall_[]; };
 #endif
 #if USE_SRC
 layout(std430, binding = B_SRC) buffer BufSrc { uint src_[]; };
@@ -135,7 +138,7 @@ float kernel_lap(int kind, float s, float r)
 }
 
 #if USE_WALL
-// The density kernel's wall tables (sph_kernel_wall): psi(d) and the plane integral.
+// The lattice share and its slope (sph_kernel_wall_lat).
 float kernel_wall(float d, out float area)
 {
     float t = d * INV_H * float(WALL_TABLE);
@@ -143,40 +146,79 @@ float kernel_wall(float d, out float area)
     if (t < 0.0) t = 0.0;
     int i = int(t);
     float f = t - float(i);
-    int a = WALL_TABLE + 1 + i;
+    int p = i, a = WALL_TABLE + 1 + i;
     area = wall_[a] + f * (wall_[a + 1] - wall_[a]);
-    return wall_[i] + f * (wall_[i + 1] - wall_[i]);
+    return wall_[p] + f * (wall_[p + 1] - wall_[p]);
+}
+
+// Bilinear in a (WALL_CORNER + 1)^2 table at index tab (sph_kernel_corner_lerp).
+float corner_lerp(int tab, int a, int b, float fa, float fb)
+{
+    const int n = WALL_CORNER + 1;
+    float lo = wall_[tab + a * n + b] + fb * (wall_[tab + a * n + b + 1] - wall_[tab + a * n + b]);
+    float hi = wall_[tab + (a + 1) * n + b] + fb * (wall_[tab + (a + 1) * n + b + 1] - wall_[tab + (a + 1) * n + b]);
+    return lo + fa * (hi - lo);
+}
+
+// The corner share beyond two walls and its slopes (sph_kernel_wall_corner).
+float kernel_corner(float d1, float d2, out float s1, out float s2)
+{
+    const float c = float(WALL_CORNER);
+    float t1 = d1 * INV_H * c, t2 = d2 * INV_H * c;
+    if (!(t1 < c) || !(t2 < c)) { s1 = 0.0; s2 = 0.0; return 0.0; }
+    if (t1 < 0.0) t1 = 0.0;
+    if (t2 < 0.0) t2 = 0.0;
+    int i1 = int(t1), i2 = int(t2);
+    float f1 = t1 - float(i1), f2 = t2 - float(i2);
+    int tab = 2 * (WALL_TABLE + 1), slope = tab + (WALL_CORNER + 1) * (WALL_CORNER + 1);
+    s1 = corner_lerp(slope, i1, i2, f1, f2);
+    s2 = corner_lerp(slope, i2, i1, f2, f1);
+    return corner_lerp(tab, i1, i2, f1, f2);
 }
 
 // Share of the support hidden behind the domain walls, and its gradient
-// (sph_wall_hidden in src/passes/density.c).
+// (sph_wall_hidden in src/core/sph_walls.h: inclusion-exclusion over the walls).
 float wall_hidden(vec3 x, out vec3 grad)
 {
-    float vis[6], dvis[6];
-    float all = 1.0;
-    for (int d = 0; d < DIM; d++) {
-        if (PER[d] > 0.0) { vis[2 * d] = 1.0; vis[2 * d + 1] = 1.0; dvis[2 * d] = 0.0; dvis[2 * d + 1] = 0.0; continue; }
-        float area;
-        float lo = kernel_wall(x[d] - DOM_MIN[d], area);
-        vis[2 * d] = 1.0 - lo;
-        dvis[2 * d] = area;
-        float hi = kernel_wall(DOM_MAX[d] - x[d], area);
-        vis[2 * d + 1] = 1.0 - hi;
-        dvis[2 * d + 1] = -area;
-        all *= vis[2 * d] * vis[2 * d + 1];
-    }
+    float dist[6], sgn[6];
+    int axis[6], nw = 0;
+    float hidden = 0.0;
     grad = vec3(0.0);
     for (int d = 0; d < DIM; d++) {
-        float g = 0.0;
-        for (int w = 2 * d; w <= 2 * d + 1; w++) {
-            float others = 1.0;
-            for (int o = 0; o < 2 * DIM; o++)
-                if (o != w) others *= vis[o];
-            g += dvis[w] * others;
+        if (PER[d] > 0.0) continue;
+        for (int side = 0; side < 2; side++) {
+            float ds = side == 0 ? x[d] - DOM_MIN[d] : DOM_MAX[d] - x[d], area;
+            float share = kernel_wall(ds, area);
+            if (share == 0.0 && area == 0.0) continue;
+            dist[nw] = ds;
+            sgn[nw] = side == 1 ? -1.0 : 1.0;
+            axis[nw] = d;
+            hidden += share;
+            grad[d] -= area * sgn[nw];
+            nw++;
         }
-        grad[d] = -g;
     }
-    return 1.0 - all;
+    for (int a = 0; a < nw; a++)
+        for (int b = a + 1; b < nw; b++) {
+            if (axis[a] == axis[b]) continue;
+            float sa, sb, both = kernel_corner(dist[a], dist[b], sa, sb);
+            hidden -= both;
+            grad[axis[a]] += sa * sgn[a];
+            grad[axis[b]] += sb * sgn[b];
+            for (int c = b + 1; c < nw; c++) {
+                if (axis[c] == axis[a] || axis[c] == axis[b]) continue;
+                float ac1, ac3, bc2, bc3;
+                float ac = kernel_corner(dist[a], dist[c], ac1, ac3);
+                float bc = kernel_corner(dist[b], dist[c], bc2, bc3);
+                if (!(both > 0.0 && ac > 0.0 && bc > 0.0)) continue;
+                float all = sqrt(both * ac * bc / WALL_FULL);
+                hidden += all;
+                grad[axis[a]] -= 0.5 * all * (sa / both + ac1 / ac) * sgn[a];
+                grad[axis[b]] -= 0.5 * all * (sb / both + bc2 / bc) * sgn[b];
+                grad[axis[c]] -= 0.5 * all * (ac3 / ac + bc3 / bc) * sgn[c];
+            }
+        }
+    return hidden;
 }
 #endif
 

@@ -241,6 +241,16 @@ Test(gl_backend, passes_match_cpu_other_forms)
     lockstep_steps(scene_2d, sets, 8, 1);
 }
 
+/* The volume walls with the shared form and other kernels: the block fills a
+ * corner (the corner table in 2D, the three walls' vertex in 3D). */
+Test(gl_backend, passes_match_cpu_volume_walls_shared)
+{
+    const char *sets[] = {"physics.pressure_form=shared", "domain.wall_model=volume", "kernels.density=wendland",
+                          "kernels.pressure=cubic"};
+    lockstep_steps(scene_2d, sets, 4, 1);
+    lockstep_steps(scene_3d, sets, 4, 1);
+}
+
 /* Every effect at once, so every pass of the pipeline runs: a pass without
  * a row in the GL table is refused and fails here, one whose shader differs
  * from its C fails the lockstep. */

@@ -86,6 +86,83 @@ static void kernel_wall_tables(sph_kernel *k)
     }
 }
 
+/* The hidden share as a particle sum. A first-row particle of a lattice
+ * block sits s/2 from the wall; its density sum covers the rows at 0, s,
+ * 2s, ... from it, where an interior particle also has the rows at -s, -2s,
+ * ...: those are what the wall must stand for, node by node, for the row to
+ * read what the interior reads (the interior's own lattice sum is not
+ * exactly 1: docs/accuracy.md, section 2). The integral psi(d) stands for
+ * them only in the limit s/h -> 0: at h = 2 s the first row read 1.5 to
+ * 3.9 % above the interior. So the hidden share at distance d is
+ *   H(d) = s^dim sum_{k >= 0} sum_{m} W(|(d + s/2 + k s, m s)|),
+ * m over the tangential lattice (a line in 2D, a plane in 3D) through the
+ * particle: the midpoint rule on cells of volume s^dim, the quadrature the
+ * density sum itself is, and the integral psi(d) as s -> 0. It is the
+ * fixed-ghost lattice of the fluid continued behind the wall (ghost
+ * particles: Colagrossi & Landrini 2003, J. Comput. Phys. 191, 448-475),
+ * summed once per distance instead of stored as particles; the share enters
+ * as gamma does in the unified semi-analytical walls (Ferrand et al. 2013,
+ * Int. J. Numer. Meth. Fluids 71, 446-472, eq. 11), but evaluated with the
+ * particles' quadrature instead of exactly. */
+void sph_kernel_wall_lattice(sph_kernel *k, float spacing)
+{
+    const int nc = SPH_WALL_CORNER + 1, step = SPH_WALL_TABLE / SPH_WALL_CORNER;
+    if (!(spacing > 0.0f)) {
+        memcpy(k->wall_lat_psi, k->wall_psi, sizeof k->wall_psi);
+        memcpy(k->wall_lat_area, k->wall_area, sizeof k->wall_area);
+        k->wall_lat_full = 1.0f;
+        for (int a = 0; a < nc; a++)
+            for (int b = 0; b < nc; b++) {
+                k->wall_corner[a * nc + b] = k->wall_psi[a * step] * k->wall_psi[b * step];
+                k->wall_corner_slope[a * nc + b] = k->wall_area[a * step] * k->wall_psi[b * step];
+            }
+        return;
+    }
+    const double s = spacing, h = k->h, cell = k->dim == 3 ? s * s * s : s * s;
+    const int reach = (int)ceil(h / s) + 1; /* nodes each side */
+    double full = 0;
+    for (int a = -reach; a <= reach; a++)
+        for (int b = -reach; b <= reach; b++)
+            for (int c = k->dim == 3 ? -reach : 0; c <= (k->dim == 3 ? reach : 0); c++)
+                full += sph_kernel_w(k, (float)(s * sqrt((double)(a * a + b * b + c * c))));
+    k->wall_lat_full = (float)(full * cell);
+    for (int i = 0; i <= SPH_WALL_TABLE; i++) {
+        const double d = h * i / SPH_WALL_TABLE;
+        double psi = 0, area = 0;
+        for (int row = 0;; row++) {
+            const double y = d + 0.5 * s + row * s; /* normal distance of the row */
+            if (y >= h) break;
+            for (int a = -reach; a <= reach; a++)
+                for (int b = k->dim == 3 ? -reach : 0; b <= (k->dim == 3 ? reach : 0); b++) {
+                    const double t2 = (a * a + b * b) * s * s, r = sqrt(y * y + t2);
+                    if (r >= h) continue;
+                    psi += sph_kernel_w(k, (float)r);
+                    area -= sph_kernel_dw(k, (float)r) * (y / r); /* -dW/dd: W falls as the row recedes */
+                }
+        }
+        k->wall_lat_psi[i] = (float)(psi * cell);
+        k->wall_lat_area[i] = (float)(area * cell);
+    }
+    /* beyond two walls: rows along both normals, a line of nodes along the third axis in 3D */
+    for (int a = 0; a < nc; a++)
+        for (int b = 0; b < nc; b++) {
+            const double d1 = h * a / SPH_WALL_CORNER, d2 = h * b / SPH_WALL_CORNER;
+            double psi = 0, slope = 0;
+            for (int r1 = 0; d1 + (r1 + 0.5) * s < h; r1++)
+                for (int r2 = 0; d2 + (r2 + 0.5) * s < h; r2++) {
+                    const double y1 = d1 + (r1 + 0.5) * s, y2 = d2 + (r2 + 0.5) * s;
+                    for (int c = k->dim == 3 ? -reach : 0; c <= (k->dim == 3 ? reach : 0); c++) {
+                        const double r = sqrt(y1 * y1 + y2 * y2 + c * c * s * s);
+                        if (r >= h) continue;
+                        psi += sph_kernel_w(k, (float)r);
+                        slope -= sph_kernel_dw(k, (float)r) * (y1 / r);
+                    }
+                }
+            k->wall_corner[a * nc + b] = (float)(psi * cell);
+            k->wall_corner_slope[a * nc + b] = (float)(slope * cell);
+        }
+}
+
 sph_kernel sph_kernel_make(sph_kernel_kind kind, int dim, float h)
 {
     sph_kernel k;
@@ -98,6 +175,7 @@ sph_kernel sph_kernel_make(sph_kernel_kind kind, int dim, float h)
     k.sigma = (float)kernel_sigma(kind, k.dim, h);
     k.m2 = kernel_second_moment(&k);
     kernel_wall_tables(&k);
+    sph_kernel_wall_lattice(&k, 0.0f);
     return k;
 }
 

@@ -35,6 +35,7 @@ extern const char *const sph_kernel_names[SPH_KERNEL_COUNT];
 extern const char *const sph_kernel_about[SPH_KERNEL_COUNT];
 
 #define SPH_WALL_TABLE 128
+#define SPH_WALL_CORNER 32
 
 /* A kernel bound to a dimension and a support radius, with its constants
  * precomputed so the per-pair functions do no divisions by h. */
@@ -52,9 +53,29 @@ typedef struct sph_kernel {
      * Tabulated at d = i h / SPH_WALL_TABLE; 0.5 and its slope at d = 0. */
     float wall_psi[SPH_WALL_TABLE + 1];
     float wall_area[SPH_WALL_TABLE + 1];
+    /* The same share as the particles count it (the volume wall model): the
+     * space beyond the wall cut into cells of the fluid's particle volume
+     * s^dim, a lattice whose first row lies s/2 beyond the wall, each cell
+     * counted at its centre as the density sum counts a particle
+     * (sph_kernel_wall_lattice). wall_lat_psi(d) [1], wall_lat_area(d) =
+     * -d wall_lat_psi / dd [1/m]; same points as wall_psi. Equal to the
+     * integral tables when no spacing is known. */
+    float wall_lat_psi[SPH_WALL_TABLE + 1];
+    float wall_lat_area[SPH_WALL_TABLE + 1];
+    float wall_lat_full; /* [1] the whole lattice's sum s^dim sum W (1 when no spacing is known) */
+    /* Two walls meeting (a corner in 2D, an edge in 3D), at distances d1 and
+     * d2: the share of the lattice beyond both, which inclusion-exclusion
+     * subtracts once (sph_wall_hidden). wall_corner[i1 * (C + 1) + i2] at
+     * d = i h / C, C = SPH_WALL_CORNER [1]; wall_corner_slope: -d/dd1 [1/m]
+     * (-d/dd2 is the transposed entry: the share is symmetric). */
+    float wall_corner[(SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1)];
+    float wall_corner_slope[(SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1)];
 } sph_kernel;
 
 sph_kernel sph_kernel_make(sph_kernel_kind kind, int dim, float h);
+/* Fills the lattice tables (one wall, two walls) for the fluid's spacing [m];
+ * spacing <= 0 makes them from the integral's (the corner share psi1 psi2). */
+void sph_kernel_wall_lattice(sph_kernel *k, float spacing);
 
 /* The per-pair functions are forced inline so that a pass's loop, which
  * calls them with a loop-invariant kind, gets them inlined (gcc -O2 keeps
@@ -77,7 +98,8 @@ int sph_kernel_find(const char *name);
 
 /* psi(d) and, in *area, the plane integral at distance d from a wall (linear
  * interpolation in the tables); both 0 for d >= h, and d < 0 counts as 0. */
-SPH_INLINE float sph_kernel_wall(const sph_kernel *k, float d, float *area)
+SPH_INLINE float sph_kernel_wall_table(const sph_kernel *k, const float *psi, const float *slope, float d,
+                                       float *area)
 {
     float t = d * k->inv_h * (float)SPH_WALL_TABLE;
     if (!(t < (float)SPH_WALL_TABLE)) {
@@ -87,8 +109,43 @@ SPH_INLINE float sph_kernel_wall(const sph_kernel *k, float d, float *area)
     if (t < 0.0f) t = 0.0f;
     int i = (int)t;
     float f = t - (float)i;
-    *area = k->wall_area[i] + f * (k->wall_area[i + 1] - k->wall_area[i]);
-    return k->wall_psi[i] + f * (k->wall_psi[i + 1] - k->wall_psi[i]);
+    *area = slope[i] + f * (slope[i + 1] - slope[i]);
+    return psi[i] + f * (psi[i + 1] - psi[i]);
+}
+SPH_INLINE float sph_kernel_wall(const sph_kernel *k, float d, float *area)
+{
+    return sph_kernel_wall_table(k, k->wall_psi, k->wall_area, d, area);
+}
+/* Bilinear interpolation in a (C + 1)^2 corner table at fractional indices (a, b). */
+SPH_INLINE float sph_kernel_corner_lerp(const float *tab, int a, int b, float fa, float fb)
+{
+    const int n = SPH_WALL_CORNER + 1;
+    float lo = tab[a * n + b] + fb * (tab[a * n + b + 1] - tab[a * n + b]);
+    float hi = tab[(a + 1) * n + b] + fb * (tab[(a + 1) * n + b + 1] - tab[(a + 1) * n + b]);
+    return lo + fa * (hi - lo);
+}
+/* The corner share at distances d1, d2 from two walls of different axes, and
+ * in *s1, *s2 its slopes -d/dd1 and -d/dd2; all 0 if either is >= h. */
+SPH_INLINE float sph_kernel_wall_corner(const sph_kernel *k, float d1, float d2, float *s1, float *s2)
+{
+    const float c = (float)SPH_WALL_CORNER;
+    float t1 = d1 * k->inv_h * c, t2 = d2 * k->inv_h * c;
+    if (!(t1 < c) || !(t2 < c)) {
+        *s1 = *s2 = 0.0f;
+        return 0.0f;
+    }
+    if (t1 < 0.0f) t1 = 0.0f;
+    if (t2 < 0.0f) t2 = 0.0f;
+    int i1 = (int)t1, i2 = (int)t2;
+    float f1 = t1 - (float)i1, f2 = t2 - (float)i2;
+    *s1 = sph_kernel_corner_lerp(k->wall_corner_slope, i1, i2, f1, f2);
+    *s2 = sph_kernel_corner_lerp(k->wall_corner_slope, i2, i1, f2, f1);
+    return sph_kernel_corner_lerp(k->wall_corner, i1, i2, f1, f2);
+}
+/* The lattice's share (wall_lat_psi), as sph_kernel_wall: what the volume wall model counts. */
+SPH_INLINE float sph_kernel_wall_lat(const sph_kernel *k, float d, float *area)
+{
+    return sph_kernel_wall_table(k, k->wall_lat_psi, k->wall_lat_area, d, area);
 }
 
 SPH_INLINE float sph_kernel_w(const sph_kernel *k, float r)

@@ -60,8 +60,9 @@ const sph_key sph_scene_keys[] = {
      "axes that wrap around: a particle leaving at max comes back at min (no walls there); each needs a length of "
      "at least 3 h"},
     {"domain", "wall_model", SPH_KEY_CHOICE, S(wall_model), 0, 0, 0, 0, CH(sph_wall_model_names), "", "volume",
-     "volume: the space behind each wall counts as fluid at rest in the density sum and pushes back with the "
-     "particle's pressure, so particles near a wall miss none of their support; reflect: only the seed's damped "
+     "volume: the space behind each wall counts as the fluid's lattice continued at rest (one table per distance, "
+     "the finest block's spacing) in the density sum and pushes back with the particle's pressure, so particles "
+     "near a wall miss none of their support and a lattice's first row reads its interior's density; reflect: only the seed's damped "
      "reflection (particles near walls lack neighbours and sink into them); particles: layers of fixed wall "
      "particles outside the box, on the fluid's lattice, whose pressure is extrapolated from the fluid (Adami, Hu "
      "& Adams 2012; CPU only)"},

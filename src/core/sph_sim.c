@@ -290,6 +290,11 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     sim->k_density = sph_kernel_make(def->kernel_density, def->dim, def->h);
     sim->k_pressure = sph_kernel_make(def->kernel_pressure, def->dim, def->h);
     sim->k_viscosity = sph_kernel_make(def->kernel_viscosity, def->dim, def->h);
+    /* the volume walls' hidden lattice: the finest block's, as the wall particles' */
+    float wall_s = 0.0f;
+    for (int b = 0; b < def->n_blocks; b++)
+        if (wall_s == 0.0f || def->blocks[b].spacing < wall_s) wall_s = def->blocks[b].spacing;
+    sph_kernel_wall_lattice(&sim->k_density, wall_s);
 
     /* Only the buffers of passes in the pipeline are allocated. */
     uint32_t n = sim->n;

@@ -17,42 +17,60 @@ void sph_wall_particles_place(sph_sim *sim, uint32_t first);
  * fluid particle, the one wall_state set for a wall particle */
 #define sph_rho_diffused(P, j) (sph_is_wall(P, j) ? (P)->rho[j] : (P)->rho_c[j])
 
-/* 1 - prod_w (1 - psi(d_w)), which is exact at one wall and at a corner's tip
- * and counts corners once, not twice. If grad is not NULL it receives the
- * gradient of that share [1/m] with respect to the particle's position. */
+/* The share of particle i's support hidden behind the walls: the fluid's
+ * lattice continued behind each wall (sph_kernel_wall_lattice), the nodes
+ * beyond two walls counted once by inclusion-exclusion,
+ *   H = sum_w H_w - sum_{w < v} H_wv + H_uvw,
+ * H_wv the corner table (zero for the two walls of one axis: nothing lies
+ * beyond both), exact for a lattice at a wall and in a 2D corner. The 3D
+ * vertex term H_uvw is estimated as sqrt(H_uv H_uw H_vw / H_full), exact for
+ * a kernel that factorises along the axes. If grad is not NULL it receives
+ * the gradient of H [1/m] with respect to the particle's position. */
 static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad[3])
 {
     const int dim = sim->dim;
-    float vis[6], dvis[6]; /* per wall: visible share 1 - psi, and its derivative along the axis */
-    float all = 1.0f;
+    float dist[6], sgn[6], g[3] = {0, 0, 0}; /* per wall within reach: distance [m], d dist / dx */
+    int axis[6], nw = 0;
+    float hidden = 0.0f;
     for (int d = 0; d < dim; d++) {
-        if (sim->period[d] > 0) { /* no walls on a periodic axis */
-            vis[2 * d] = vis[2 * d + 1] = 1.0f;
-            dvis[2 * d] = dvis[2 * d + 1] = 0.0f;
-            continue;
+        if (sim->period[d] > 0) continue; /* no walls on a periodic axis */
+        const float x = sim->P.pred[d][i];
+        const float ds[2] = {x - sim->def.domain_min[d], sim->def.domain_max[d] - x};
+        for (int side = 0; side < 2; side++) {
+            float area, share = sph_kernel_wall_lat(k, ds[side], &area);
+            if (share == 0.0f && area == 0.0f) continue; /* beyond reach */
+            dist[nw] = ds[side];
+            sgn[nw] = side ? -1.0f : 1.0f;
+            axis[nw] = d;
+            hidden += share;
+            g[d] -= area * sgn[nw]; /* moving away from the wall uncovers support */
+            nw++;
         }
-        float x = sim->P.pred[d][i], area;
-        float lo = sph_kernel_wall(k, x - sim->def.domain_min[d], &area);
-        vis[2 * d] = 1.0f - lo;
-        dvis[2 * d] = area; /* moving away from the low wall uncovers support */
-        float hi = sph_kernel_wall(k, sim->def.domain_max[d] - x, &area);
-        vis[2 * d + 1] = 1.0f - hi;
-        dvis[2 * d + 1] = -area;
-        all *= vis[2 * d] * vis[2 * d + 1];
     }
-    if (grad) {
-        for (int d = 0; d < dim; d++) {
-            float g = 0;
-            for (int w = 2 * d; w <= 2 * d + 1; w++) {
-                float others = 1.0f; /* product of the other walls' visible shares */
-                for (int o = 0; o < 2 * dim; o++)
-                    if (o != w) others *= vis[o];
-                g += dvis[w] * others;
+    for (int a = 0; a < nw; a++)
+        for (int b = a + 1; b < nw; b++) {
+            if (axis[a] == axis[b]) continue;
+            float sa, sb, both = sph_kernel_wall_corner(k, dist[a], dist[b], &sa, &sb);
+            hidden -= both;
+            g[axis[a]] += sa * sgn[a];
+            g[axis[b]] += sb * sgn[b];
+            for (int c = b + 1; c < nw; c++) {
+                if (axis[c] == axis[a] || axis[c] == axis[b]) continue;
+                float ac1, ac3, bc2, bc3;
+                float ac = sph_kernel_wall_corner(k, dist[a], dist[c], &ac1, &ac3);
+                float bc = sph_kernel_wall_corner(k, dist[b], dist[c], &bc2, &bc3);
+                if (!(both > 0.0f && ac > 0.0f && bc > 0.0f)) continue;
+                float all = sqrtf(both * ac * bc / k->wall_lat_full);
+                hidden += all;
+                /* d all / d dist_a = -all/2 (sa / both + ac1 / ac), and so on */
+                g[axis[a]] -= 0.5f * all * (sa / both + ac1 / ac) * sgn[a];
+                g[axis[b]] -= 0.5f * all * (sb / both + bc2 / bc) * sgn[b];
+                g[axis[c]] -= 0.5f * all * (ac3 / ac + bc3 / bc) * sgn[c];
             }
-            grad[d] = -g; /* hidden = 1 - visible */
         }
-    }
-    return 1.0f - all;
+    if (grad)
+        for (int d = 0; d < dim; d++) grad[d] = g[d];
+    return hidden;
 }
 
 #endif

@@ -156,10 +156,21 @@ static bool make_buffers(gpu *g, const sph_sim *sim)
     }
     g->buf[B_REDUCE] = new_buffer(g, 4 * sizeof(uint32_t), NULL);
     g->range = new_buffer(g, 4 * sizeof(uint32_t), NULL); /* 16 bytes: a uniform block's vec4 */
-    float wall[2 * (SPH_WALL_TABLE + 1)];
-    memcpy(wall, sim->k_density.wall_psi, sizeof sim->k_density.wall_psi);
-    memcpy(wall + SPH_WALL_TABLE + 1, sim->k_density.wall_area, sizeof sim->k_density.wall_area);
-    g->buf[B_WALL] = new_buffer(g, sizeof wall, wall);
+    /* the volume walls' tables (sph_wall_hidden), the density kernel's: its
+     * lattice share, slope, corner share and corner slope (shaders/gpu_common.glsl) */
+    const sph_kernel *kd = &sim->k_density;
+    float *wall = malloc(GPU_WALL_FLOATS * sizeof *wall);
+    if (!wall) return false;
+    float *o = wall;
+    memcpy(o, kd->wall_lat_psi, sizeof kd->wall_lat_psi);
+    o += SPH_WALL_TABLE + 1;
+    memcpy(o, kd->wall_lat_area, sizeof kd->wall_lat_area);
+    o += SPH_WALL_TABLE + 1;
+    memcpy(o, kd->wall_corner, sizeof kd->wall_corner);
+    o += (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1);
+    memcpy(o, kd->wall_corner_slope, sizeof kd->wall_corner_slope);
+    g->buf[B_WALL] = new_buffer(g, GPU_WALL_FLOATS * sizeof *wall, wall);
+    free(wall);
     for (int b = 0; b < B_TOTAL; b++)
         if (g->buf[b]) gpu_bind(g, b, g->buf[b]);
     return g->gl.GetError() == GL_NO_ERROR;

@@ -60,6 +60,8 @@ enum {
 };
 
 #define MAX_SCAN_LEVELS 8
+/* floats of the density kernel's volume-wall tables, the B_WALL buffer (gpu_backend.c) */
+#define GPU_WALL_FLOATS (2 * (SPH_WALL_TABLE + 1) + 2 * (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1))
 
 typedef struct gpu {
     sph_backend base;     /* first: the core's table */

@@ -1,8 +1,9 @@
 /* Pass: density by summation, rho_i = sum_j m_j W(|x_i - x_j|, h), the
  * particle itself included (its W(0) term is most of the sum at low
  * neighbour counts). With walls of the volume model, rho0 times the share of
- * the kernel hidden behind the walls is added (sph_wall_hidden): a particle at
- * a wall is not missing half its neighbours. With density_method = continuity
+ * the kernel hidden behind the walls is added (sph_wall_hidden: the fluid's
+ * lattice continued behind them): a particle at a wall is not missing half
+ * its neighbours. With density_method = continuity
  * the sum is made only at the start, where rho_c takes it; afterwards
  * rho_c += dt drho (drho from the density_rate pass just before) and rho = rho_c. */
 #include "simd.h"
@@ -20,7 +21,7 @@ static const char *skip_reason(const sph_scene_def *def)
 static void describe(const sph_scene_def *def, char *out, int n)
 {
     snprintf(out, (size_t)n, "summation with the %s kernel%s%s", sph_kernel_names[def->kernel_density],
-             sph_scene_wall_volume(def) ? ", walls count as fluid at rest" : "",
+             sph_scene_wall_volume(def) ? ", walls count as the lattice continued at rest" : "",
              def->density_method == SPH_DMETHOD_CONTINUITY ? "; at the start only, then the carried rho_c" : "");
 }
 

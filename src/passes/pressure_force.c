@@ -78,7 +78,8 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
     if (sph_sim_wall_volume(sim)) {
         /* The force that makes the walls' density term conservative:
          * a = -(p_i / rho_i^2) grad(rho0 * hidden share), with the density
-         * kernel, so walls neither add nor remove energy. */
+         * kernel, so walls neither add nor remove energy (docs/accuracy.md,
+         * section 6: why not the pair term over the hidden lattice). */
         float grad[3];
         sph_wall_hidden(sim, &sim->k_density, i, grad);
         for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * pi_over * grad[d];

@@ -1,0 +1,150 @@
+/* Walls of the volume model ([domain] wall_model = volume; src/core/sph_walls.h,
+ * sph_kernel_wall_lattice): the space behind a wall counts as the fluid's
+ * lattice continued, so the first row of a lattice block reads the interior's
+ * density for every kernel (2D and 3D, h = 2 spacings); a box full of fluid
+ * without gravity, with each wall model. The figures are in
+ * docs/accuracy.md, sections 2 and 6 (`--verbose` prints them). */
+#include <criterion/criterion.h>
+#include <criterion/logging.h>
+#include <math.h>
+#include <stdio.h>
+
+#include "sph_walls.h"
+#include "test_util.h"
+
+static const char *const KERNELS[] = {"poly6", "spiky", "viscosity", "cubic", "wendland"};
+enum { N_KERNELS = 5 };
+
+static void run_through(sph_sim *sim, sph_pass_id last)
+{
+    for (int guard = 0; guard < 2 * SPH_PASS_COUNT; guard++)
+        if (sph_sim_step_pass(sim) == last) return;
+    cr_assert_fail("pass %s never ran", sph_passes[last]->name);
+}
+
+/* First density pass of a block filling a box's lower part, lattice spacing
+ * 0.01 m, h = 0.02 m: the mean density of the row on the floor and of the
+ * interior (at least 3 h from every wall and from the surface), both away
+ * from the side walls by 3 h. */
+static void first_row(int dim, const char *model, const char *kernel, double *row, double *inner)
+{
+    char ini[1024];
+    if (dim == 2)
+        snprintf(ini, sizeof ini,
+                 "[scene]\ndimension=2\neffects=gravity pressure walls\n[domain]\nmin=0 0\nmax=0.4 0.5\n"
+                 "wall_model=%s\n[fluid water]\nmin=0 0\nmax=0.4 0.3\nspacing=0.01\n[kernels]\nh=0.02\n"
+                 "density=%s\npressure=%s\n",
+                 model, kernel, kernel);
+    else
+        snprintf(ini, sizeof ini,
+                 "[scene]\ndimension=3\neffects=gravity pressure walls\n[domain]\nmin=0 0 0\nmax=0.2 0.3 0.2\n"
+                 "wall_model=%s\n[fluid water]\nmin=0 0 0\nmax=0.2 0.2 0.2\nspacing=0.01\n[kernels]\nh=0.02\n"
+                 "density=%s\npressure=%s\n",
+                 model, kernel, kernel);
+    sph_sim *sim = test_sim(ini, 2);
+    run_through(sim, SPH_PASS_DENSITY);
+    const float lo = 0.06f, hi = dim == 2 ? 0.34f : 0.14f, top = dim == 2 ? 0.24f : 0.14f;
+    double sr = 0, si = 0;
+    int nr = 0, ni = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (sph_is_wall(&sim->P, i)) continue;
+        float x = sim->P.pos[0][i], y = sim->P.pos[1][i], z = dim == 3 ? sim->P.pos[2][i] : 0.5f * (lo + hi);
+        if (x < lo || x > hi || z < lo || z > hi) continue;
+        if (y < 0.01f) {
+            sr += sim->P.rho[i];
+            nr++;
+        } else if (y > 0.06f && y < top) {
+            si += sim->P.rho[i];
+            ni++;
+        }
+    }
+    cr_assert(nr > 0 && ni > 0);
+    *row = sr / nr;
+    *inner = si / ni;
+    sph_sim_destroy(sim);
+}
+
+static void first_row_within(int dim)
+{
+    for (int k = 0; k < N_KERNELS; k++) {
+        double row, inner;
+        first_row(dim, "volume", KERNELS[k], &row, &inner);
+        cr_log_info("%dD %s, h = 2 spacings: first row / interior %.4f (interior / rho0 %.4f)", dim, KERNELS[k],
+                    row / inner, inner / 1000.0);
+        /* the walls issue's target: within 0.5 %; the integral psi(d) gave
+         * +1.5 % (poly6) to +3.9 % (Wendland) in 2D */
+        cr_assert(fabs(row / inner - 1.0) < 0.005, "%dD %s: first row %.2f, interior %.2f", dim, KERNELS[k], row,
+                  inner);
+    }
+}
+
+Test(volume_walls, first_row_reads_the_interior_2d) { first_row_within(2); }
+Test(volume_walls, first_row_reads_the_interior_3d) { first_row_within(3); }
+
+/* The tables: the lattice share tends to the integral psi as the spacing
+ * shrinks, and its slope table is its derivative. */
+Test(volume_walls, lattice_share_tends_to_the_integral)
+{
+    for (int dim = 2; dim <= 3; dim++)
+        for (int kind = 0; kind < SPH_KERNEL_COUNT; kind++) {
+            sph_kernel k = sph_kernel_make((sph_kernel_kind)kind, dim, 1.0f);
+            double err[2];
+            const float spacing[2] = {0.5f, 0.05f};
+            for (int s = 0; s < 2; s++) {
+                sph_kernel_wall_lattice(&k, spacing[s]);
+                err[s] = 0;
+                for (int i = 0; i <= SPH_WALL_TABLE; i++) err[s] = fmax(err[s], fabs(k.wall_lat_psi[i] - k.wall_psi[i]));
+            }
+            cr_assert_lt(err[1], 0.01, "%dD %s: |lattice - integral| %g at s = h/20", dim, sph_kernel_names[kind],
+                         err[1]);
+            if (kind != SPH_KERNEL_VISCOSITY) /* its shape is almost flat: close at both spacings */
+                cr_assert_lt(err[1], err[0], "%dD %s", dim, sph_kernel_names[kind]);
+            /* slope = -d psi / dd, by central differences of the table (h / 128 apart) */
+            sph_kernel_wall_lattice(&k, 0.25f);
+            for (int i = 8; i < SPH_WALL_TABLE - 8; i += 8) {
+                double slope = -(k.wall_lat_psi[i + 1] - k.wall_lat_psi[i - 1]) * SPH_WALL_TABLE / 2.0;
+                cr_assert(fabs(slope - k.wall_lat_area[i]) <= 0.05 * k.wall_lat_area[0] + 1e-3,
+                          "%dD %s at %d: slope %g, table %g", dim, sph_kernel_names[kind], i, slope,
+                          k.wall_lat_area[i]);
+            }
+        }
+}
+
+static const char *const MODELS[] = {"volume", "particles", "reflect"};
+
+/* A box full of fluid, no gravity: every particle's support is full (with
+ * the walls' share), the lattice's density is the same everywhere and so is
+ * the pressure. With wall particles nothing moves. */
+Test(volume_walls, full_box_without_gravity_stays_at_rest)
+{
+    int fails = 0;
+    for (int m = 0; m < 3; m++)
+        for (int k = 0; k < N_KERNELS; k += 3) { /* poly6 and cubic */
+            char ini[1024];
+            snprintf(ini, sizeof ini,
+                     "[scene]\ndimension=2\neffects=pressure viscosity walls\n[domain]\nmin=0 0\nmax=0.2 0.2\n"
+                     "wall_model=%s\n[fluid a]\nmin=0 0\nmax=0.2 0.2\nspacing=0.01\n[physics]\nstiffness=400\n"
+                     "viscosity_form=morris\n[kernels]\nh=0.02\ndensity=%s\npressure=cubic\nviscosity=cubic\n"
+                     "[time]\ncfl=0.25\n",
+                     MODELS[m], KERNELS[k]);
+            sph_sim *sim = test_sim(ini, 2);
+            for (int s = 0; s < 300; s++) sph_sim_step(sim);
+            sph_stats st;
+            sph_sim_stats(sim, &st);
+            cr_assert(!sim->alarm.raised);
+            cr_log_info("full box, %s walls, density %s, 300 steps: max speed %.3g m/s (c = 20 m/s)", MODELS[m],
+                        KERNELS[k], st.max_speed);
+            /* wall particles: at rest (measured 6e-5, 7e-5 m/s). Volume walls
+             * (measured 0.316, 0.0116 m/s; the integral share gave 0.497,
+             * 0.325): the force -(p/rho^2) grad(rho0 H) is half the pair
+             * term the hidden lattice would exert, so under the lattice's
+             * own overpressure the first rows move (docs/accuracy.md,
+             * section 6). Reflecting walls: the rows at the walls miss
+             * support, nothing holds them (0.27, 0.018 m/s). */
+            const double bound = m == 1 ? 1e-4 : m == 0 ? (k == 0 ? 0.4 : 0.03) : INFINITY;
+            fails += st.max_speed >= bound;
+            sph_sim_destroy(sim);
+        }
+    cr_assert_eq(fails, 0);
+}
+
