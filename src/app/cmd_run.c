@@ -22,6 +22,8 @@ void app_stats_header(FILE *f, const sph_sim *sim)
     fprintf(f, "step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed");
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (sim->in_pipeline[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
+    if (sim->def.pressure_solver != SPH_PSOLVER_EOS) /* the pressure solver's step: iterations, error reached */
+        fprintf(f, ",iterations,density_error,div_iterations,divergence_error,capped");
     fprintf(f, "\n");
 }
 
@@ -33,6 +35,9 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
             s.rho_min, s.rho_mean, s.rho_max, s.max_speed);
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (sim->in_pipeline[p]) fprintf(f, ",%.6f", sim->timing[p].last_ms);
+    if (sim->def.pressure_solver != SPH_PSOLVER_EOS)
+        fprintf(f, ",%d,%.6g,%d,%.6g,%llu", sim->solver.iterations, sim->solver.density_error,
+                sim->solver.div_iterations, sim->solver.divergence_error, (unsigned long long)sim->solver.capped);
     fprintf(f, "\n");
 }
 

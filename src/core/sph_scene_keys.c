@@ -19,6 +19,7 @@ const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICE
 const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
 const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
 const char *const sph_backend_names[SPH_BACKEND_COUNT] = {SPH_BACKEND_CHOICES(NAMES)};
+const char *const sph_pressure_solver_names[SPH_PSOLVER_COUNT] = {SPH_PSOLVER_CHOICES(NAMES)};
 #undef NAMES
 #define EFFECT_NAME(id, name, about, needs) name,
 const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
@@ -108,6 +109,18 @@ const sph_key sph_scene_keys[] = {
     {"physics", "delta", SPH_KEY_FLOAT, S(delta), 0, 1, 0, 0, NULL, 0, "", "0.1",
      "delta of density_method = continuity's diffusion term delta (h/2) c sum_j psi_ij . grad W_ij V_j, "
      "psi_ij = 2 (rho_j - rho_i) x_ji / |x_ji|^2, c = sqrt(stiffness); 0: none; typically 0.1"},
+    {"physics", "pressure_solver", SPH_KEY_CHOICE, S(pressure_solver), 0, 0, 0, 0, CH(sph_pressure_solver_names),
+     "", "eos",
+     "eos: pressure from the equation of state (weakly compressible, dt bound by the speed of sound); pcisph: "
+     "predictive-corrective iterations (Solenthaler & Pajarola 2009); dfsph: divergence-free and constant-density "
+     "solves (Bender & Koschier 2015/2017); both iterate until solver_tolerance, and dt follows the flow speed "
+     "(CPU only; walls: volume or reflect)"},
+    {"physics", "solver_tolerance", SPH_KEY_FLOAT, S(solver_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
+     "pcisph, dfsph: the largest relative density error (rho - rho_rest) / rho_rest a step may end with"},
+    {"physics", "solver_max_iterations", SPH_KEY_INT, S(solver_max_iterations), 1, 10000, 0, 0, NULL, 0, "", "100",
+     "pcisph, dfsph: iterations a solve takes at most; a step that reaches it is counted (HUD, --stats)"},
+    {"physics", "divergence_tolerance", SPH_KEY_FLOAT, S(divergence_tolerance), 0, 1e3, 1, 0, NULL, 0, "1/s", "0.01",
+     "dfsph: the largest |D rho/Dt| / rho_rest the divergence-free solve may leave"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "
