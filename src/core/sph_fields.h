@@ -71,6 +71,8 @@
       "DFSPH's divergence-free stiffness (times dt) of the last step (warm start)")                             \
     X(RHO_DF, rho_df, 1, "kg/m^3", "kg/m^2", DERIVED, DFSPH, NONE, "dfsph-density", "rho dfsph",               \
       "DFSPH's predicted density (constant-density solve) or D rho/Dt times dt (divergence solve)")             \
+    X(DV_DF, dv_df, V, "m/s", "m/s", DERIVED, DFSPH, NONE, "", "",                                               \
+      "DFSPH's velocity change this step, dt (other accelerations + a dfsph): v* = v + dv")                     \
     X(ACC_DF, acc_df, V, "m/s^2", "m/s^2", ACCELERATION, DFSPH, NONE, "dfsph-acc", "a dfsph",                    \
       "pressure acceleration of DFSPH (divergence-free plus constant-density)")
 

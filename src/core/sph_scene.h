@@ -163,7 +163,7 @@ typedef struct sph_scene_def {
     sph_pressure_solver pressure_solver; /* eos: pressure from the equation of state; pcisph, dfsph: iterated */
     float solver_tolerance;     /* [1] pcisph, dfsph: largest relative density error a step may end with */
     int solver_max_iterations;  /* [1] pcisph, dfsph: iterations a solve may take at most */
-    float divergence_tolerance; /* [1/s] dfsph: largest |D rho/Dt| / rho0 the divergence solve may leave */
+    float divergence_tolerance; /* [1] dfsph: largest dt |D rho/Dt| / rho_rest the divergence solve may leave */
     sph_kernel_kind kernel_density, kernel_pressure, kernel_viscosity;
 
     float dt;           /* [s] time step when cfl = 0; the first step's bound otherwise */

@@ -119,8 +119,9 @@ const sph_key sph_scene_keys[] = {
      "pcisph, dfsph: the largest relative density error (rho - rho_rest) / rho_rest a step may end with"},
     {"physics", "solver_max_iterations", SPH_KEY_INT, S(solver_max_iterations), 1, 10000, 0, 0, NULL, 0, "", "100",
      "pcisph, dfsph: iterations a solve takes at most; a step that reaches it is counted (HUD, --stats)"},
-    {"physics", "divergence_tolerance", SPH_KEY_FLOAT, S(divergence_tolerance), 0, 1e3, 1, 0, NULL, 0, "1/s", "0.01",
-     "dfsph: the largest |D rho/Dt| / rho_rest the divergence-free solve may leave"},
+    {"physics", "divergence_tolerance", SPH_KEY_FLOAT, S(divergence_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
+     "dfsph: the largest dt |D rho/Dt| / rho_rest (the density change the flow makes in one step) the "
+     "divergence-free solve may leave, where rho >= rho_rest"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "

@@ -165,6 +165,7 @@ typedef sph_error_code (*sph_backend_factory)(sph_sim *sim, void *share, sph_bac
 /* Registers the factory of a backend kind (the app does this at start-up). */
 void sph_backend_register(sph_backend_kind kind, sph_backend_factory make);
 
+#define SPH_SOLVER_WALL_SAMPLES 256
 /* The pressure solvers' progress in the current step and what the last
  * complete step reached (pressure_solver = pcisph or dfsph). */
 typedef struct sph_solver_state {
@@ -175,10 +176,15 @@ typedef struct sph_solver_state {
     int iterations;          /* [1] the last complete step: iterations of the constant-density solve */
     int div_iterations;      /* [1] the last complete step: iterations of the divergence-free solve (dfsph) */
     double density_error;    /* [1] the last complete step: the density error reached */
-    double divergence_error; /* [1/s] the last complete step: max |D rho/Dt| / rho_rest reached (dfsph) */
+    double divergence_error; /* [1] the last complete step: max dt |D rho/Dt| / rho_rest reached (dfsph) */
     uint64_t capped;         /* [1] solves that stopped at solver_max_iterations, since the start */
     float rho_rest;          /* [kg/m^dim] the density held: the sum a particle of the initial lattice reads */
-    float delta;             /* [m^2/s^2 * s^2 / (kg/m^dim)] pcisph: delta at dt = 1 s (delta(dt) = delta / dt^2) */
+    float delta;             /* [m^2] pcisph: delta at dt = 1 s (delta(dt) = delta / dt^2, in m^2/s^2) */
+    /* The walls as the lattice continued behind them (src/passes/solver.h):
+     * at distance d = i h / SPH_SOLVER_WALL_SAMPLES from a wall, the share of
+     * rho_rest the rows behind it add, and its derivative in d. */
+    float wall_share[SPH_SOLVER_WALL_SAMPLES + 1];  /* [1] */
+    float wall_slope[SPH_SOLVER_WALL_SAMPLES + 1];  /* [1/m] */
 } sph_solver_state;
 
 struct sph_sim {

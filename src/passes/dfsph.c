@@ -4,21 +4,23 @@
  * Each step makes two solves at the step's predicted positions x + dt v
  * (where the neighbour lists and the density were made), both on the
  * velocity v* = v + dt (other accelerations + this pass's a):
- *   divergence-free: D_i = sum_j m_j (v*_i - v*_j) . grad W_ij (+ rho_r grad(hidden share) . v*_i at walls),
- *     kappa^v_i += max(D_i, 0) alpha_i / dt, until max D_i / rho_r <= divergence_tolerance;
- *   constant density: rho*_i = rho_i + dt^2 (sum_j m_j (a_i - a_j) . grad W_ij + rho_r grad(hidden) . a_i),
+ *   divergence-free: D_i = sum_j m_j (v*_i - v*_j) . grad W_ij (+ rho_r grad(walls' share) . v*_i at walls, solver.h),
+ *     kappa^v_i += max(D_i, 0) alpha_i / dt, until max dt D_i / rho_r <= divergence_tolerance (the density
+ *     change the flow would make in one step, counted where rho_i >= rho_r);
+ *   constant density: rho*_i = rho_i + dt^2 (sum_j m_j (a_i - a_j) . grad W_ij + rho_r grad(walls' share) . a_i),
  *     the density integration will reach (a: every acceleration), kappa_i += max(rho*_i - rho_r, 0) alpha_i / dt^2,
  *     until max (rho*_i - rho_r) / rho_r <= solver_tolerance;
  * with the factor alpha_i = rho_r / (G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij),
- * G_i = sum_j m_j grad W_ij + rho_r grad(hidden share) (Bender & Koschier 2017, eq. 12 with rho_i = rho_r)
- * and the acceleration a_i = -sum_j m_j (K_i + K_j) / rho_r grad W^p_ij - K_i grad(hidden share),
+ * G_i = sum_j m_j grad W_ij + rho_r grad(walls' share) (Bender & Koschier 2017, eq. 12 with rho_i = rho_r)
+ * and the acceleration a_i = -sum_j m_j (K_i + K_j) / rho_r grad W^p_ij - K_i grad(walls' share),
  * K = kappa^v + kappa (eq. 10). Compressions only: a particle below rho_r (a free surface) pulls no one.
  * Bender & Koschier solve the divergence after moving the particles, with
  * new neighbours; here both solves use the step's lists, the divergence one
  * first, so the density solve accounts for the positions it changes. Warm
  * start (Bender & Koschier 2017 start each solve from the last step's kappa):
- * written, but off (SPH_DFSPH_WARM below). rho_r is the lattice's rest density (solver.h), and the
- * density pass's sum counts the walls with it here. */
+ * written, but off (SPH_DFSPH_WARM below). rho_r is the lattice's rest density (solver.h); the walls
+ * count as the lattice continued behind them (solver.h), in place of the
+ * density pass's volume-model term. */
 #include "solver.h"
 
 #include <stdio.h>
@@ -38,7 +40,7 @@ static const char *skip_reason(const sph_scene_def *def)
 static void describe(const sph_scene_def *def, char *out, int n)
 {
     snprintf(out, (size_t)n,
-             "divergence-free solve to |D rho/Dt| / rho <= %g /s, then constant density to %g (at most %d "
+             "divergence-free solve to dt |D rho/Dt| / rho <= %g, then constant density to %g (at most %d "
              "iterations each)%s",
              def->divergence_tolerance, def->solver_tolerance, def->solver_max_iterations,
              sph_scene_wall_volume(def) ? ", walls count and push back" : "");
@@ -61,12 +63,6 @@ static inline void pair_dx(const sph_sim *sim, int i, uint32_t j, float dx[3], f
     }
 }
 
-/* The velocity change per dt so far: other accelerations and this pass's. */
-static inline void acc_total(const sph_sim *sim, int i, float a[3])
-{
-    sph_solver_other_acc(sim, i, a);
-    for (int d = 0; d < sim->dim; d++) a[d] += sim->P.acc_df[d][i];
-}
 
 static void factors(sph_sim *sim)
 {
@@ -92,7 +88,7 @@ static void factors(sph_sim *sim)
         }
         if (walls) {
             float g[3];
-            sph_wall_hidden(sim, &sim->k_density, i, g);
+            sph_solver_walls_pred(sim, i, g);
             for (int d = 0; d < dim; d++) {
                 gr[d] += rho_r * g[d];
                 gp[d] += rho_r * g[d];
@@ -125,15 +121,23 @@ static void force(sph_sim *sim, bool with_density)
         }
         if (walls) {
             float g[3];
-            sph_wall_hidden(sim, &sim->k_density, i, g);
+            sph_solver_walls_pred(sim, i, g);
             for (int d = 0; d < dim; d++) a[d] -= k_i * g[d];
         }
-        for (int d = 0; d < dim; d++) P->acc_df[d][i] = a[d];
+        float other[3];
+        sph_solver_other_acc(sim, i, other);
+        for (int d = 0; d < dim; d++) {
+            P->acc_df[d][i] = a[d];
+            P->dv_df[d][i] = sim->dt * (other[d] + a[d]);
+        }
     }
 }
 
 /* rho_df: dt D rho/Dt of v* (density false), or the predicted density rho*
- * (density true); returns the error: max D / rho_r [1/s], or max (rho* - rho_r) / rho_r. */
+ * (density true); returns the error: max dt D / rho_r, or max (rho* - rho_r) / rho_r.
+ * The divergence counts only where the density is at least rho_r: a
+ * particle below it (a free surface) may expand or approach, and one with a
+ * thin neighbourhood (alpha small) could not be corrected anyway. */
 static double measure(sph_sim *sim, bool density)
 {
     sph_particles *P = &sim->P;
@@ -144,34 +148,33 @@ static double measure(sph_sim *sim, bool density)
     float worst = 0.0f;
 #pragma omp parallel for schedule(static) reduction(max : worst) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
-        float ai[3], vi[3] = {0, 0, 0};
-        acc_total(sim, i, ai);
-        for (int d = 0; d < dim; d++) vi[d] = density ? ai[d] : P->vel[d][i] + dt * ai[d];
+        float vi[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) vi[d] = P->dv_df[d][i] + (density ? 0.0f : P->vel[d][i]);
         float sum = 0;
         for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
             const uint32_t j = S->nbr[e];
-            float dx[3], r2, aj[3];
+            float dx[3], r2;
             pair_dx(sim, i, j, dx, &r2);
-            acc_total(sim, (int)j, aj);
             const float f = P->mass[j] * grad_factor(&sim->k_density, r2);
             for (int d = 0; d < dim; d++) {
-                const float vj = density ? aj[d] : P->vel[d][j] + dt * aj[d];
+                const float vj = P->dv_df[d][j] + (density ? 0.0f : P->vel[d][j]);
                 sum += f * (vi[d] - vj) * dx[d];
             }
         }
         float rho = P->rho[i];
         if (walls) {
             float g[3];
-            const float hidden = sph_wall_hidden(sim, &sim->k_density, i, g);
+            const float share = sph_solver_walls_pred(sim, i, g);
             for (int d = 0; d < dim; d++) sum += rho_r * g[d] * vi[d];
-            rho += (rho_r - rho0) * hidden; /* the density pass counted the walls at rho0 */
+            /* the density pass counted the walls as the volume model does: count them as the solvers do */
+            rho += rho_r * share - rho0 * sph_wall_hidden(sim, &sim->k_density, i, NULL);
         }
         if (density) {
-            P->rho_df[i] = rho + dt * dt * sum;
+            P->rho_df[i] = rho + dt * sum; /* sum: of dv, so dt sum is dt^2 sum of the accelerations */
             worst = fmaxf(worst, (P->rho_df[i] - rho_r) / rho_r);
         } else {
-            P->rho_df[i] = dt * sum;
-            worst = fmaxf(worst, sum / rho_r);
+            P->rho_df[i] = rho >= rho_r ? dt * sum : 0.0f;
+            worst = fmaxf(worst, P->rho_df[i] / rho_r);
         }
     }
     return worst;
@@ -200,7 +203,10 @@ static void run(sph_sim *sim)
 {
     sph_solver_state *s = &sim->solver;
     sph_particles *P = &sim->P;
-    if (!(s->rho_rest > 0)) s->rho_rest = sph_solver_rest_density(sim);
+    if (!(s->rho_rest > 0)) {
+        s->rho_rest = sph_solver_rest_density(sim);
+        sph_solver_wall_table(sim);
+    }
     if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */
         for (int d = 0; d < sim->dim; d++)
             for (uint32_t i = 0; i < sim->n; i++) P->acc_df[d][i] = 0.0f;
@@ -244,7 +250,7 @@ const sph_pass sph_pass_dfsph = {
     .summary = "DFSPH: one iteration of the divergence-free or the constant-density solve",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VEL) | SPH_BIT(RHO) | SPH_MASK_ACCELERATIONS |
              SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_RES_LISTS,
-    .writes = SPH_BIT(ALPHA) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(RHO_DF) | SPH_BIT(ACC_DF),
+    .writes = SPH_BIT(ALPHA) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(RHO_DF) | SPH_BIT(DV_DF) | SPH_BIT(ACC_DF),
     .group = SPH_GROUP_FORCES,
     .highlight = "dfsph-density",
     .skip_reason = skip_reason,

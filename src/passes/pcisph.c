@@ -4,10 +4,10 @@
  * With the other forces known (gravity is in v, viscosity and cohesion in
  * their fields), each iteration:
  *   1. pressure acceleration a_i = -(1/rho_r^2) sum_j m_j (p_i + p_j) grad W_ij (at the predicted positions of
- *      the step, x + dt v), walls of the volume model pushing back with -(p_i / rho_r) grad(hidden share);
+ *      the step, x + dt v), walls pushing back with -(p_i / rho_r) grad(walls' share) (solver.h);
  *   2. predicted positions x*_i = x_i + dt v_i + dt^2 (a_i + the other accelerations): where integration
  *      will put the particle with this pressure;
- *   3. predicted density rho*_i = sum_j m_j W(x*_i - x*_j) + rho_r (hidden share at x*_i), and the error
+ *   3. predicted density rho*_i = sum_j m_j W(x*_i - x*_j) + rho_r (walls' share at x*_i), and the error
  *      max_i (rho*_i - rho_r) / rho_r over the fluid;
  *   4. if the error is above [physics] solver_tolerance (and the iteration cap is not reached):
  *      p_i += delta (rho*_i - rho_r), clamped at 0 with negative_pressure = clamp, and the pass asks to
@@ -103,7 +103,7 @@ static void force(sph_sim *sim)
         }
         if (walls) {
             float grad[3];
-            sph_wall_hidden(sim, &sim->k_density, i, grad);
+            sph_solver_walls_pred(sim, i, grad);
             for (int d = 0; d < dim; d++) a[d] -= p_i * inv_r * grad[d];
         }
         sph_solver_other_acc(sim, i, other);
@@ -137,7 +137,7 @@ static double predict(sph_sim *sim)
             }
             rho += P->mass[j] * sph_kernel_w(&sim->k_density, sqrtf(r2));
         }
-        if (walls) rho += rho_r * sph_solver_wall_hidden_at(sim, &sim->k_density, xi);
+        if (walls) rho += rho_r * sph_solver_walls(sim, xi, NULL);
         P->rho_pci[i] = rho;
         worst = fmaxf(worst, (rho - rho_r) / rho_r);
     }
@@ -160,6 +160,7 @@ static void run(sph_sim *sim)
     sph_solver_state *s = &sim->solver;
     if (!(s->rho_rest > 0)) {
         s->rho_rest = sph_solver_rest_density(sim);
+        sph_solver_wall_table(sim);
         s->delta = delta_unit(sim, s->rho_rest);
     }
     sph_particles *P = &sim->P;
