@@ -49,7 +49,9 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
         }
         if (so->iteration > 0) {
             HUD_LINE("this step: %s iteration %d, error %.3f %%",
-                     so->phase == 1 ? "density" : sim->def.pressure_solver == SPH_PSOLVER_DFSPH ? "divergence" : "",
+                     sim->def.pressure_solver == SPH_PSOLVER_PCISPH ? "pcisph"
+                     : so->phase == 1                                ? "density"
+                                                                     : "divergence",
                      so->iteration, 100 * so->error);
         }
     }
