@@ -66,6 +66,17 @@ sph run "$scene" --backend gl --set search.sort=qsort --steps 1 > "$tmp/gl.txt" 
 [ $? -eq 1 ] && grep -q "\[search\] sort = qsort is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl with sort = qsort: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
 sph run "$scene" --backend gl --set physics.density_method=continuity --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "\[physics\] density_method = continuity is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl with density_method = continuity: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
+sph run "$scene" --backend gl --set physics.pressure_solver=pcisph --steps 1 > "$tmp/gl.txt" 2>&1
+[ $? -eq 1 ] && grep -q "\[physics\] pressure_solver = pcisph is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl with pressure_solver = pcisph: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
+# The pressure solvers on the CPU: their --stats columns, every step within the tolerance.
+for solver in pcisph dfsph; do
+    if sph run "$scene" --steps 20 --quiet --set physics.pressure_solver=$solver --set time.dt=0.0005 --stats "$tmp/solver.csv" 2> "$tmp/err.txt"; then
+        head -1 "$tmp/solver.csv" | grep -q ",iterations,density_error,div_iterations,divergence_error,capped$" && ok || bad "$solver: stats columns"
+        awk -F, 'NR > 1 && ($(NF-3) > 0.001 || $NF > 0) { bad = 1 } END { exit bad }' "$tmp/solver.csv" && ok || { bad "$solver: a step above the tolerance or capped"; cat "$tmp/solver.csv"; }
+    else
+        bad "run $scene with pressure_solver = $solver"; cat "$tmp/err.txt"
+    fi
+done
 sph run "$scene" --set compute.backend=opencl --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "\[compute\] backend = 'opencl'" "$tmp/gl.txt" && ok || { bad "compute.backend=opencl: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
 

@@ -25,6 +25,8 @@ void app_stats_header(FILE *f, const sph_sim *sim)
         if (sim->in_pipeline[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
     for (int k = 0; k < sim->def.n_obstacles; k++) /* the fluid's force on each obstacle [N or N/m] */
         for (int d = 0; d < sim->dim; d++) fprintf(f, ",obstacle_%s_f%c", sim->def.obstacles[k].name, "xyz"[d]);
+    if (sim->def.pressure_solver != SPH_PSOLVER_EOS) /* the pressure solver's step: iterations, error reached */
+        fprintf(f, ",iterations,density_error,div_iterations,divergence_error,capped");
     fprintf(f, "\n");
 }
 
@@ -42,6 +44,9 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
         for (int k = 0; k < sim->def.n_obstacles; k++)
             for (int d = 0; d < sim->dim; d++) fprintf(f, ",%.9g", force[k][d]);
     }
+    if (sim->def.pressure_solver != SPH_PSOLVER_EOS)
+        fprintf(f, ",%d,%.6g,%d,%.6g,%llu", sim->solver.iterations, sim->solver.density_error,
+                sim->solver.div_iterations, sim->solver.divergence_error, (unsigned long long)sim->solver.capped);
     fprintf(f, "\n");
 }
 

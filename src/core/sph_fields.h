@@ -65,7 +65,27 @@
     X(OBSTACLE, obstacle, 1, "1", "1", STATE, WALL_STATE, NONE, "", "obstacle",                                  \
       "the obstacle a wall particle belongs to: 1, 2, ... in the scene's order; 0 for the domain box and fluid")  \
     X(SLIP, slip, 1, "1", "1", STATE, WALL_STATE, NONE, "", "free-slip",                                        \
-      "1 for a free-slip wall particle, 0 for a no-slip one (and fluid)")
+      "1 for a free-slip wall particle, 0 for a no-slip one (and fluid)")   \
+    X(P_PCI, p_pci, 1, "Pa", "N/m", DERIVED, PCISPH, NONE, "pcisph-pressure", "p pcisph",                         \
+      "pressure PCISPH iterated to in this step")                                                     \
+    X(X_PCI, x_pci, V, "m", "m", DERIVED, PCISPH, NONE, "", "",                                                  \
+      "PCISPH's predicted position x + dt v + dt^2 a with this iteration's pressure")                           \
+    X(RHO_PCI, rho_pci, 1, "kg/m^3", "kg/m^2", DERIVED, PCISPH, NONE, "pcisph-density", "rho pcisph",           \
+      "PCISPH's predicted density at the predicted positions, this iteration")                                  \
+    X(ACC_PCI, acc_pci, V, "m/s^2", "m/s^2", ACCELERATION, PCISPH, NONE, "pcisph-acc", "a pcisph",               \
+      "pressure acceleration of PCISPH")                                                                         \
+    X(ALPHA, alpha, 1, "m^3/kg", "m^2/kg", DERIVED, DFSPH, NONE, "", "alpha",                                    \
+      "DFSPH's factor rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2)")                              \
+    X(KAPPA, kappa, 1, "m^2/s^2", "m^2/s^2", STATE, DFSPH, NONE, "", "kappa",                                    \
+      "DFSPH's constant-density stiffness kappa = p / rho of the last step (warm start)")                       \
+    X(KAPPA_V, kappa_v, 1, "m^2/s^2", "m^2/s^2", STATE, DFSPH, NONE, "", "kappa div",                            \
+      "DFSPH's divergence-free stiffness (times dt) of the last step (warm start)")                             \
+    X(RHO_DF, rho_df, 1, "kg/m^3", "kg/m^2", DERIVED, DFSPH, NONE, "dfsph-density", "rho dfsph",               \
+      "DFSPH's predicted density (constant-density solve) or D rho/Dt times dt (divergence solve)")             \
+    X(DV_DF, dv_df, V, "m/s", "m/s", DERIVED, DFSPH, NONE, "", "",                                               \
+      "DFSPH's velocity change this step, dt (other accelerations + a dfsph): v* = v + dv")                     \
+    X(ACC_DF, acc_df, V, "m/s^2", "m/s^2", ACCELERATION, DFSPH, NONE, "dfsph-acc", "a dfsph",                    \
+      "pressure acceleration of DFSPH (divergence-free plus constant-density)")
 
 typedef enum sph_field_id {
 #define SPH_FIELD_ENUM(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) SPH_FIELD_##ID,

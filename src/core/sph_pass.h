@@ -29,6 +29,8 @@
     X(VISCOSITY, viscosity) \
     X(COHESION, cohesion)  \
     X(INTERACTION, interaction) \
+    X(PCISPH, pcisph)      \
+    X(DFSPH, dfsph)        \
     X(INTEGRATE, integrate) \
     X(SHIFTING, shifting) \
     X(WALLS, walls)

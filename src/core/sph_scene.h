@@ -62,6 +62,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
 #define SPH_BACKEND_CHOICES(X) X(CPU, "cpu") X(GL, "gl")
+#define SPH_PSOLVER_CHOICES(X) X(EOS, "eos") X(PCISPH, "pcisph") X(DFSPH, "dfsph")
 
 #define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
     typedef enum type { LIST(SPH_CHOICE_ITEM_##PREFIX) PREFIX##_COUNT } type;
@@ -82,6 +83,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_ACC(id, name) SPH_ACC_##id,
 #define SPH_CHOICE_ITEM_SPH_ONOFF(id, name) SPH_##id,
 #define SPH_CHOICE_ITEM_SPH_BACKEND(id, name) SPH_BACKEND_##id,
+#define SPH_CHOICE_ITEM_SPH_PSOLVER(id, name) SPH_PSOLVER_##id,
 SPH_DECLARE_CHOICES(sph_eos, SPH_EOS, SPH_EOS_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_form, SPH_PFORM, SPH_PFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_viscosity_form, SPH_VFORM, SPH_VFORM_CHOICES)
@@ -99,6 +101,7 @@ SPH_DECLARE_CHOICES(sph_velocity_field, SPH_VFIELD, SPH_FIELD_CHOICES)
 SPH_DECLARE_CHOICES(sph_accumulate, SPH_ACC, SPH_ACC_CHOICES)
 SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
 SPH_DECLARE_CHOICES(sph_backend_kind, SPH_BACKEND, SPH_BACKEND_CHOICES)
+SPH_DECLARE_CHOICES(sph_pressure_solver, SPH_PSOLVER, SPH_PSOLVER_CHOICES)
 
 extern const char *const sph_eos_names[SPH_EOS_COUNT];
 extern const char *const sph_pressure_form_names[SPH_PFORM_COUNT];
@@ -118,6 +121,7 @@ extern const char *const sph_velocity_field_names[SPH_VFIELD_COUNT];
 extern const char *const sph_accumulate_names[SPH_ACC_COUNT];
 extern const char *const sph_onoff_names[SPH_ONOFF_COUNT];
 extern const char *const sph_backend_names[SPH_BACKEND_COUNT];
+extern const char *const sph_pressure_solver_names[SPH_PSOLVER_COUNT];
 
 /* Where a value came from, for messages: the file's line, or 0 for the default. */
 typedef struct sph_origin {
@@ -200,6 +204,10 @@ typedef struct sph_scene_def {
     sph_delta_form delta_form; /* the diffusion term: Molteni & Colagrossi 2009, or Antuono et al. 2010 */
     sph_shifting shifting;     /* particle shifting after each step: none, or Lind et al. 2012 */
     float shifting_coefficient; /* [1] A of the shift distance D = A h |v| dt (shifting = lind) */
+    sph_pressure_solver pressure_solver; /* eos: pressure from the equation of state; pcisph, dfsph: iterated */
+    float solver_tolerance;     /* [1] pcisph, dfsph: largest relative density error a step may end with */
+    int solver_max_iterations;  /* [1] pcisph, dfsph: iterations a solve may take at most */
+    float divergence_tolerance; /* [1] dfsph: largest dt |D rho/Dt| / rho_rest the divergence solve may leave */
     sph_kernel_kind kernel_density, kernel_pressure, kernel_viscosity;
 
     float dt;           /* [s] time step when cfl = 0; the first step's bound otherwise */

@@ -23,6 +23,7 @@ const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICE
 const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
 const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
 const char *const sph_backend_names[SPH_BACKEND_COUNT] = {SPH_BACKEND_CHOICES(NAMES)};
+const char *const sph_pressure_solver_names[SPH_PSOLVER_COUNT] = {SPH_PSOLVER_CHOICES(NAMES)};
 #undef NAMES
 #define EFFECT_NAME(id, name, about, needs) name,
 const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
@@ -63,6 +64,8 @@ const sph_key sph_scene_keys[] = {
      "volume: the space behind each wall counts as the fluid's lattice continued at rest (one table per distance, "
      "the finest block's spacing) in the density sum and pushes back with the particle's pressure, so particles "
      "near a wall miss none of their support and a lattice's first row reads its interior's density; reflect: only the seed's damped "
+     "volume: the space behind each wall counts as fluid at rest in the density sum and pushes back with the "
+     "particle's pressure, so particles near a wall miss none of their support; reflect: only the seed's damped "
      "reflection (particles near walls lack neighbours and sink into them); particles: layers of fixed wall "
      "particles outside the box, on the fluid's lattice, whose pressure is extrapolated from the fluid (Adami, Hu "
      "& Adams 2012; CPU only)"},
@@ -135,6 +138,19 @@ const sph_key sph_scene_keys[] = {
      "at the free surface are not shifted; CPU only"},
     {"physics", "shifting_coefficient", SPH_KEY_FLOAT, S(shifting_coefficient), 0, 100, 0, 0, NULL, 0, "", "2",
      "A of shifting = lind's D = A h |v_i| dt (2 in Skillen et al. 2013, who scaled Lind's D with the step)"},
+    {"physics", "pressure_solver", SPH_KEY_CHOICE, S(pressure_solver), 0, 0, 0, 0, CH(sph_pressure_solver_names),
+     "", "eos",
+     "eos: pressure from the equation of state (weakly compressible, dt bound by the speed of sound); pcisph: "
+     "predictive-corrective iterations (Solenthaler & Pajarola 2009); dfsph: divergence-free and constant-density "
+     "solves (Bender & Koschier 2015/2017); both iterate until solver_tolerance, and dt follows the flow speed "
+     "(CPU only; walls: volume or reflect)"},
+    {"physics", "solver_tolerance", SPH_KEY_FLOAT, S(solver_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
+     "pcisph, dfsph: the largest relative density error (rho - rho_rest) / rho_rest a step may end with"},
+    {"physics", "solver_max_iterations", SPH_KEY_INT, S(solver_max_iterations), 1, 10000, 0, 0, NULL, 0, "", "100",
+     "pcisph, dfsph: iterations a solve takes at most; a step that reaches it is counted (HUD, --stats)"},
+    {"physics", "divergence_tolerance", SPH_KEY_FLOAT, S(divergence_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
+     "dfsph: the largest dt |D rho/Dt| / rho_rest (the density change the flow makes in one step) the "
+     "divergence-free solve may leave, where rho >= rho_rest"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "

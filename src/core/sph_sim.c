@@ -520,8 +520,12 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
     if (sim->next_pass == 0) sim->dt = sph_time_step_choose(sim);
     int p = sim->next_pass;
     while (p < SPH_PASS_COUNT && !(sim->in_pipeline[p] && sim->enabled[p])) p++;
+    const bool again = sim->pass_again; /* an iteration of the pass before: its time adds up */
+    double before = p < SPH_PASS_COUNT ? sim->timing[p].last_ms : 0.0;
+    sim->pass_again = false;
     if (p < SPH_PASS_COUNT) run_timed(sim, p);
-    int next = p + 1;
+    if (again && p < SPH_PASS_COUNT) sim->timing[p].last_ms += before;
+    int next = sim->pass_again && p < SPH_PASS_COUNT ? p : p + 1; /* an iterative pass asks for another call */
     while (next < SPH_PASS_COUNT && !(sim->in_pipeline[next] && sim->enabled[next])) next++;
     if (next >= SPH_PASS_COUNT) { /* that was the step's last pass */
         sim->t += sim->dt;

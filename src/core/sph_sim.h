@@ -165,6 +165,28 @@ typedef sph_error_code (*sph_backend_factory)(sph_sim *sim, void *share, sph_bac
 /* Registers the factory of a backend kind (the app does this at start-up). */
 void sph_backend_register(sph_backend_kind kind, sph_backend_factory make);
 
+#define SPH_SOLVER_WALL_SAMPLES 256
+/* The pressure solvers' progress in the current step and what the last
+ * complete step reached (pressure_solver = pcisph or dfsph). */
+typedef struct sph_solver_state {
+    int phase;               /* dfsph: 0 divergence-free solve, 1 constant-density solve; pcisph: 0 */
+    int iteration;           /* iterations of the current solve so far */
+    double error;            /* [1] the current solve's error after its latest iteration (density: max
+                                (rho* - rho_rest) / rho_rest over the fluid; divergence: max dt |D rho/Dt| / rho_rest) */
+    int iterations;          /* [1] the last complete step: iterations of the constant-density solve */
+    int div_iterations;      /* [1] the last complete step: iterations of the divergence-free solve (dfsph) */
+    double density_error;    /* [1] the last complete step: the density error reached */
+    double divergence_error; /* [1] the last complete step: max dt |D rho/Dt| / rho_rest reached (dfsph) */
+    uint64_t capped;         /* [1] solves that stopped at solver_max_iterations, since the start */
+    float rho_rest;          /* [kg/m^dim] the density held: the sum a particle of the initial lattice reads */
+    float delta;             /* [m^2] pcisph: delta at dt = 1 s (delta(dt) = delta / dt^2, in m^2/s^2) */
+    /* The walls as the lattice continued behind them (src/passes/solver.h):
+     * at distance d = i h / SPH_SOLVER_WALL_SAMPLES from a wall, the share of
+     * rho_rest the rows behind it add, and its derivative in d. */
+    float wall_share[SPH_SOLVER_WALL_SAMPLES + 1];  /* [1] */
+    float wall_slope[SPH_SOLVER_WALL_SAMPLES + 1];  /* [1/m] */
+} sph_solver_state;
+
 struct sph_sim {
     sph_scene_def def;    /* the scene it was made from; passes read their options here */
     int dim;
@@ -202,6 +224,11 @@ struct sph_sim {
     bool interaction_active; /* the button is down */
     float interaction_point[3]; /* [m] */
     float interaction_sign;  /* +1 pull, -1 push (times the scene's strength) */
+    /* An iterative pass (the pressure solvers) runs one iteration per call
+     * and sets pass_again to be called again before the step moves on, so
+     * stepping pass by pass shows every iteration (sph_sim_step_pass). */
+    bool pass_again;
+    sph_solver_state solver;
     int threads;
     sph_backend *backend; /* NULL: the passes run here, on P and S */
     void *backend_share;  /* what the backend was made to share (sph_sim_create_shared); reconfigure keeps it */
@@ -265,6 +292,9 @@ const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n);
 const char *sph_sim_length_warning(const sph_sim *sim, double until, char *buf, size_t n);
 void sph_sim_reset_timings(sph_sim *sim);
 
+/* Why the time step has its value now, in words: fixed, the cap [time] dt,
+ * the floor dt_min, or the CFL condition that binds. */
+const char *sph_time_step_reason(const sph_sim *sim, char *buf, size_t n);
 /* Time-step choice: fixed, or the CFL conditions. */
 float sph_time_step_choose(const sph_sim *sim);
 

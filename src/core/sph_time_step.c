@@ -7,7 +7,8 @@
 #include "sph_sim.h"
 
 /* The CFL conditions, with h_s = h / 2 the smoothing length:
- *   sound and flow:  dt <= cfl h_s / (c + |v|max)   (c = sqrt(k) with pressure)
+ *   sound and flow:  dt <= cfl h_s / (c + |v|max)   (c = sqrt(k) with pressure and
+ *                    pressure_solver = eos; c = 0 with pcisph or dfsph)
  *   forces:          dt <= cfl sqrt(h_s / |a|max)
  *   viscosity:       dt <= cfl h_s^2 / nu
  * An explicit step longer than these lets a signal cross more than a particle
@@ -17,11 +18,14 @@ float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which)
     const sph_scene_def *def = &sim->def;
     double hs = 0.5 * def->h, dt = INFINITY;
     const char *w = "none";
-    double c = (def->effects & SPH_EFFECT(PRESSURE)) ? sqrt(def->stiffness) : 0.0;
+    /* an incompressible solver (pcisph, dfsph) has no speed of sound: the flow alone limits dt */
+    const bool eos = def->pressure_solver == SPH_PSOLVER_EOS;
+    double c = (def->effects & SPH_EFFECT(PRESSURE)) && eos ? sqrt(def->stiffness) : 0.0;
     double speed = c + sim->max_speed;
     if (speed > 0) {
         dt = cfl * hs / speed;
-        w = "sound and flow: dt <= cfl (h/2) / (c + |v|max)";
+        w = eos ? "sound and flow: dt <= cfl (h/2) / (c + |v|max)"
+                : "flow (incompressible solver, no sound speed): dt <= cfl (h/2) / |v|max";
     }
     if (sim->max_acc > 0 && cfl * sqrt(hs / sim->max_acc) < dt) {
         dt = cfl * sqrt(hs / sim->max_acc);
@@ -75,5 +79,23 @@ const char *sph_sim_length_warning(const sph_sim *sim, double until, char *buf, 
     if (!(until >= 0 && sim->dt > 0 && (until - sim->t) / sim->dt > 1e9)) return NULL;
     snprintf(buf, n, "at the first time step (dt = %.3g s) reaching t = %g s takes about %.3g steps", sim->dt, until,
              (until - sim->t) / sim->dt);
+    return buf;
+}
+
+const char *sph_time_step_reason(const sph_sim *sim, char *buf, size_t n)
+{
+    const sph_scene_def *def = &sim->def;
+    if (def->cfl <= 0) {
+        snprintf(buf, n, "fixed ([time] cfl = 0)");
+        return buf;
+    }
+    const char *which;
+    float limit = sph_time_step_limit(sim, def->cfl, &which);
+    if (!(limit < def->dt))
+        snprintf(buf, n, "the cap [time] dt = %g s (CFL allows %.3g s: %s)", def->dt, limit, which);
+    else if (!(limit >= def->dt_min))
+        snprintf(buf, n, "the floor [time] dt_min = %g s", def->dt_min);
+    else
+        snprintf(buf, n, "CFL %g, %s", def->cfl, which);
     return buf;
 }

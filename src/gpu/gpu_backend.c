@@ -104,6 +104,12 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [physics] shifting = %s is not implemented by the GL backend yet (its shifting pass "
                         "runs on the CPU; accepted there: none)",
                         def->file, sph_shifting_names[def->shifting]);
+    if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)))
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] pressure_solver = %s is not implemented by the GL backend yet (its iterations "
+                        "run on the CPU, a pass called again until the density error is reached; accepted there: "
+                        "eos)",
+                        def->file, sph_pressure_solver_names[def->pressure_solver]);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)

@@ -34,6 +34,27 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
     } else {
         HUD_LINE("density not computed (no effect needs it)");
     }
+    if (sim->def.pressure_solver != SPH_PSOLVER_EOS && sim->def.effects & SPH_EFFECT(PRESSURE)) {
+        const sph_solver_state *so = &sim->solver;
+        char why[160];
+        HUD_LINE("dt: %s", sph_time_step_reason(sim, why, sizeof why));
+        if (sim->def.pressure_solver == SPH_PSOLVER_DFSPH) {
+            HUD_LINE("dfsph last step: %d divergence + %d density iterations, error %.3f %% (tol %.3g %%), %llu capped",
+                     so->div_iterations, so->iterations, 100 * so->density_error, 100 * sim->def.solver_tolerance,
+                     (unsigned long long)so->capped);
+        } else {
+            HUD_LINE("pcisph last step: %d iterations, density error %.3f %% (tol %.3g %%), %llu capped",
+                     so->iterations, 100 * so->density_error, 100 * sim->def.solver_tolerance,
+                     (unsigned long long)so->capped);
+        }
+        if (so->iteration > 0) {
+            HUD_LINE("this step: %s iteration %d, error %.3f %%",
+                     sim->def.pressure_solver == SPH_PSOLVER_PCISPH ? "pcisph"
+                     : so->phase == 1                                ? "density"
+                                                                     : "divergence",
+                     so->iteration, 100 * so->error);
+        }
+    }
     double drift = sph_sim_energy_drift(sim);
     if (drift == drift) HUD_LINE("energy drift since step 1 = %+.2f %%", 100 * drift);
     char off[100] = "";

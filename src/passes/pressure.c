@@ -11,6 +11,7 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
+    if (def->pressure_solver != SPH_PSOLVER_EOS) return "pressure_solver is not eos: its own pass makes the pressure";
     return (def->effects & SPH_EFFECT(PRESSURE)) ? NULL : "effects do not list pressure";
 }
 

@@ -54,6 +54,8 @@ static void run(sph_sim *sim)
     if (P->obstacle) gather_f(&P->obstacle, &S->spare_f, e, n); /* with their obstacle and slip */
     if (P->slip) gather_f(&P->slip, &S->spare_f, e, n);
     if (P->rho_c) gather_f(&P->rho_c, &S->spare_f, e, n); /* the carried density (density_method = continuity) */
+    if (P->kappa) gather_f(&P->kappa, &S->spare_f, e, n); /* DFSPH's warm starts */
+    if (P->kappa_v) gather_f(&P->kappa_v, &S->spare_f, e, n);
     for (int d = 0; d < sim->dim; d++) {
         gather_f(&P->pos[d], &S->spare_f, e, n);
         gather_f(&P->vel[d], &S->spare_f, e, n);
@@ -76,7 +78,8 @@ const sph_pass sph_pass_reorder = {
      * that runs it) */
     .reads = SPH_RES_ENTRIES | SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED),
     .writes = SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED) | SPH_BIT(FIXED) |
-              SPH_BIT(RHO_C) | SPH_BIT(OBSTACLE) | SPH_BIT(SLIP) | SPH_RES_ENTRIES,
+              SPH_BIT(RHO_C) | SPH_BIT(OBSTACLE) | SPH_BIT(SLIP) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) |
+              SPH_RES_ENTRIES,
     .group = SPH_GROUP_SEARCH,
     .highlight = NULL,
     .skip_reason = skip_reason,

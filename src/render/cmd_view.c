@@ -37,6 +37,7 @@
     X("k / shift+k", "cycle the density / pressure kernel")                   \
     X("o", "cycle the sort: bitonic, counting, qsort")                        \
     X("m", "cycle the search: hash, grid, brute")                             \
+    X("s", "cycle the pressure solver: eos, pcisph, dfsph")                   \
     X("1..9", "overlays: grid keys collisions neighbours forces index hud timings legend") \
     X("c / shift+c", "next / previous colour field")                          \
     X("z / x", "3D: slice down / up by h")                                    \
@@ -340,6 +341,13 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
     case SDLK_m: {
         char a[64];
         snprintf(a, sizeof a, "search.method=%s", sph_search_names[(w->def.search + 1) % SPH_SEARCH_COUNT]);
+        set_variant(w, a);
+        break;
+    }
+    case SDLK_s: {
+        char a[64];
+        snprintf(a, sizeof a, "physics.pressure_solver=%s",
+                 sph_pressure_solver_names[(w->def.pressure_solver + 1) % SPH_PSOLVER_COUNT]);
         set_variant(w, a);
         break;
     }

@@ -1,0 +1,201 @@
+/* Pass: PCISPH, predictive-corrective incompressible SPH (Solenthaler &
+ * Pajarola 2009, Algorithm 1 and eq. 8), one iteration per call.
+ *
+ * With the other forces known (gravity is in v, viscosity and cohesion in
+ * their fields), each iteration:
+ *   1. pressure acceleration a_i = -(1/rho_r^2) sum_j m_j (p_i + p_j) grad W_ij (at the predicted positions of
+ *      the step, x + dt v), walls pushing back with -(p_i / rho_r) grad(walls' share) (solver.h);
+ *   2. predicted positions x*_i = x_i + dt v_i + dt^2 (a_i + the other accelerations): where integration
+ *      will put the particle with this pressure;
+ *   3. predicted density rho*_i = sum_j m_j W(x*_i - x*_j) + rho_r (walls' share at x*_i), and the error
+ *      max_i (rho*_i - rho_r) / rho_r over the fluid;
+ *   4. if the error is above [physics] solver_tolerance (and the iteration cap is not reached):
+ *      p_i += delta (rho*_i - rho_r), clamped at 0 with negative_pressure = clamp, and the pass asks to
+ *      be called again (sim->pass_again): stepping pass by pass shows each iteration.
+ * The acceleration written by the last iteration is the one whose density
+ * was measured, so the step ends with that density error. rho_r is the
+ * density of the lattice at rest (solver.h); the forces divide by it, not by
+ * each particle's density, as delta's derivation assumes (eq. 8).
+ *
+ * delta: with p_j = p_i = p~ around a particle whose neighbourhood is full,
+ * its pressure moves it and its neighbours by dt^2 a, which changes its
+ * density by -dt^2 2 m^2 / rho_r^2 p~ ((sum grad W) . (sum grad W) + sum grad W . grad W); setting that to
+ * -(rho* - rho_r) gives p~ = delta (rho* - rho_r) with
+ *   delta = rho_r^2 / (2 dt^2 m^2 S),  S = (sum_j grad W^rho_ij) . (sum_j grad W^p_ij) + sum_j grad W^rho_ij . grad W^p_ij
+ * over the finest block's lattice (Solenthaler & Pajarola's beta = 2 (dt m / rho0)^2, eq. 8), with this
+ * scene's two kernels: the density kernel's gradient moves the density, the pressure kernel's the particles.
+ * Each step starts from p = 0. Starting from the last step's pressure (a
+ * warm start) made the 2D dam break of tests/test_solvers.c blow up at
+ * dt = 2 ms: the pressure that had just stopped a compression pushed again. */
+#include "solver.h"
+
+#include <stdio.h>
+
+static const char *skip_reason(const sph_scene_def *def)
+{
+    if (def->pressure_solver != SPH_PSOLVER_PCISPH) return "pressure_solver is not pcisph";
+    return (def->effects & SPH_EFFECT(PRESSURE)) ? NULL : "effects do not list pressure";
+}
+
+static void describe(const sph_scene_def *def, char *out, int n)
+{
+    snprintf(out, (size_t)n, "predict-correct until the density error <= %g (at most %d iterations)%s",
+             def->solver_tolerance, def->solver_max_iterations,
+             sph_scene_wall_volume(def) ? ", walls count and push back" : "");
+}
+
+/* delta at dt = 1 s, on the finest block's full lattice (see the top). */
+static float delta_unit(const sph_sim *sim, float rho_r)
+{
+    const sph_scene_def *def = &sim->def;
+    float s = 0;
+    for (int b = 0; b < def->n_blocks; b++)
+        if (s == 0 || def->blocks[b].spacing < s) s = def->blocks[b].spacing;
+    if (!(s > 0)) return 0.0f;
+    const int dim = sim->dim, r = (int)ceilf(def->h / s);
+    const double m = def->rest_density * (dim == 3 ? (double)s * s * s : (double)s * s);
+    double sum_r[3] = {0, 0, 0}, sum_p[3] = {0, 0, 0}, dots = 0;
+    for (int z = dim == 3 ? -r : 0; z <= (dim == 3 ? r : 0); z++)
+        for (int y = -r; y <= r; y++)
+            for (int x = -r; x <= r; x++) {
+                float dx[3] = {-(float)x * s, -(float)y * s, -(float)z * s}; /* x_i - x_j, i at the origin */
+                float d = sqrtf(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+                if (d == 0.0f || d >= def->h) continue;
+                double gr = sph_kernel_dw(&sim->k_density, d) / d, gp = sph_kernel_dw(&sim->k_pressure, d) / d;
+                for (int a = 0; a < 3; a++) {
+                    sum_r[a] += gr * dx[a];
+                    sum_p[a] += gp * dx[a];
+                    dots += gr * gp * dx[a] * dx[a];
+                }
+            }
+    double S = dots + sum_r[0] * sum_p[0] + sum_r[1] * sum_p[1] + sum_r[2] * sum_p[2];
+    return S > 0 ? (float)((double)rho_r * rho_r / (2.0 * m * m * S)) : 0.0f;
+}
+
+/* 1 and 2 above: the pressure acceleration from p_pci, then x_pci. */
+static void force(sph_sim *sim)
+{
+    sph_particles *P = &sim->P;
+    const sph_search_data *S = &sim->S;
+    const int n = (int)sim->n, dim = sim->dim;
+    const float dt = sim->dt, inv_r2 = 1.0f / (sim->solver.rho_rest * sim->solver.rho_rest);
+    const float inv_r = 1.0f / sim->solver.rho_rest, r_min = SPH_KERNEL_R_MIN * sim->def.h;
+    const bool walls = sph_sim_wall_volume(sim);
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) {
+        float a[3] = {0, 0, 0}, other[3];
+        const float p_i = P->p_pci[i];
+        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+            const uint32_t j = S->nbr[e];
+            float dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < dim; d++) {
+                dx[d] = sph_solver_dx(sim, P->pred[d][i] - P->pred[d][j], d);
+                r2 += dx[d] * dx[d];
+            }
+            if (r2 < r_min * r_min) { /* coincident: apart along x, as pressure_force.c */
+                dx[0] = (uint32_t)i < j ? -r_min : r_min;
+                dx[1] = dx[2] = 0.0f;
+                r2 = r_min * r_min;
+            }
+            const float r = sqrtf(r2);
+            const float c = P->mass[j] * (p_i + P->p_pci[j]) * inv_r2 * sph_kernel_dw(&sim->k_pressure, r) / r;
+            for (int d = 0; d < dim; d++) a[d] -= c * dx[d];
+        }
+        if (walls) {
+            float grad[3];
+            sph_solver_walls_pred(sim, i, grad);
+            for (int d = 0; d < dim; d++) a[d] -= p_i * inv_r * grad[d];
+        }
+        sph_solver_other_acc(sim, i, other);
+        for (int d = 0; d < dim; d++) {
+            P->acc_pci[d][i] = a[d];
+            P->x_pci[d][i] = P->pred[d][i] + dt * dt * (a[d] + other[d]);
+        }
+    }
+}
+
+/* 3 above: rho_pci at x_pci; returns the largest relative excess over rho_r. */
+static double predict(sph_sim *sim)
+{
+    sph_particles *P = &sim->P;
+    const sph_search_data *S = &sim->S;
+    const int n = (int)sim->n, dim = sim->dim;
+    const float rho_r = sim->solver.rho_rest;
+    const bool walls = sph_sim_wall_volume(sim);
+    float worst = 0.0f;
+#pragma omp parallel for schedule(static) reduction(max : worst) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) {
+        float xi[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) xi[d] = P->x_pci[d][i];
+        float rho = P->mass[i] * sph_kernel_w(&sim->k_density, 0.0f);
+        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+            const uint32_t j = S->nbr[e];
+            float r2 = 0;
+            for (int d = 0; d < dim; d++) {
+                const float dx = sph_solver_dx(sim, xi[d] - P->x_pci[d][j], d);
+                r2 += dx * dx;
+            }
+            rho += P->mass[j] * sph_kernel_w(&sim->k_density, sqrtf(r2));
+        }
+        if (walls) rho += rho_r * sph_solver_walls(sim, xi, NULL);
+        P->rho_pci[i] = rho;
+        worst = fmaxf(worst, (rho - rho_r) / rho_r);
+    }
+    return worst;
+}
+
+/* 4 above: p += delta (rho* - rho_r). */
+static void correct(sph_sim *sim)
+{
+    sph_particles *P = &sim->P;
+    const int n = (int)sim->n;
+    const float delta = sim->solver.delta / (sim->dt * sim->dt), rho_r = sim->solver.rho_rest;
+    const float floor = sim->def.negative_pressure == SPH_NEGP_CLAMP ? 0.0f : -INFINITY;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) P->p_pci[i] = fmaxf(floor, P->p_pci[i] + delta * (P->rho_pci[i] - rho_r));
+}
+
+static void run(sph_sim *sim)
+{
+    sph_solver_state *s = &sim->solver;
+    if (!(s->rho_rest > 0)) {
+        s->rho_rest = sph_solver_rest_density(sim);
+        sph_solver_wall_table(sim);
+        s->delta = delta_unit(sim, s->rho_rest);
+    }
+    sph_particles *P = &sim->P;
+    if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */
+        for (int d = 0; d < sim->dim; d++)
+            for (uint32_t i = 0; i < sim->n; i++) {
+                P->acc_pci[d][i] = 0.0f;
+                P->x_pci[d][i] = P->pred[d][i];
+            }
+        return;
+    }
+    if (s->iteration == 0) { /* the step's first call: from p = 0 (see the top) */
+        for (uint32_t i = 0; i < sim->n; i++) P->p_pci[i] = 0.0f;
+        force(sim);
+    }
+    const double error = predict(sim);
+    if (sph_solver_done(sim, error, sim->def.solver_tolerance)) {
+        s->iterations = s->iteration;
+        s->density_error = error;
+        s->iteration = 0;
+        return;
+    }
+    correct(sim);
+    force(sim);
+    sim->pass_again = true;
+}
+
+const sph_pass sph_pass_pcisph = {
+    .name = "pcisph",
+    .summary = "PCISPH: one predict-correct iteration of the pressure",
+    .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VEL) | SPH_MASK_ACCELERATIONS | SPH_BIT(P_PCI) | SPH_RES_LISTS,
+    .writes = SPH_BIT(P_PCI) | SPH_BIT(X_PCI) | SPH_BIT(RHO_PCI) | SPH_BIT(ACC_PCI),
+    .group = SPH_GROUP_FORCES,
+    .highlight = "pcisph-density",
+    .skip_reason = skip_reason,
+    .describe = describe,
+    .run = run,
+};

@@ -1,0 +1,154 @@
+/* What the two incompressible pressure solvers (pcisph.c, dfsph.c) share:
+ * the density they hold, the non-pressure accelerations, the walls' share at
+ * any position, the end of a solve. Internal to src/passes/. */
+#ifndef SPH_SOLVER_H
+#define SPH_SOLVER_H
+
+#include "sph_search.h"
+#include "sph_walls.h"
+
+#include <math.h>
+
+/* The density a particle of the scene's finest lattice reads at rest, with
+ * its whole support inside the fluid: rho0 (1 + e), where e is the
+ * summation's own excess on a lattice (+3.3 % for poly6 at h = 2 s in 2D).
+ * The solvers hold this density, not rho0: holding rho0 would expand every
+ * block by e at its first step. Computed from the kernel and the lattice,
+ * nothing fitted. */
+static inline float sph_solver_spacing(const sph_scene_def *def)
+{
+    float s = 0;
+    for (int b = 0; b < def->n_blocks; b++)
+        if (s == 0 || def->blocks[b].spacing < s) s = def->blocks[b].spacing;
+    return s;
+}
+
+static inline float sph_solver_rest_density(const sph_sim *sim)
+{
+    const sph_scene_def *def = &sim->def;
+    const float s = sph_solver_spacing(def);
+    if (!(s > 0)) return def->rest_density;
+    const int dim = sim->dim, r = (int)ceilf(def->h / s);
+    const double m = def->rest_density * (dim == 3 ? (double)s * s * s : (double)s * s);
+    double sum = 0;
+    for (int z = dim == 3 ? -r : 0; z <= (dim == 3 ? r : 0); z++)
+        for (int y = -r; y <= r; y++)
+            for (int x = -r; x <= r; x++) {
+                float d = s * sqrtf((float)(x * x + y * y + z * z));
+                if (d < def->h) sum += m * sph_kernel_w(&sim->k_density, d);
+            }
+    return (float)sum;
+}
+
+/* The accelerations other than pressure at particle i (viscosity, cohesion,
+ * the mouse; gravity is in the velocity already): every acceleration field
+ * of the registry except the solvers' own. */
+static inline void sph_solver_other_acc(const sph_sim *sim, int i, float a[3])
+{
+    const sph_particles *P = &sim->P;
+    a[0] = a[1] = a[2] = 0.0f;
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        if ((SPH_MASK_ACCELERATIONS & SPH_FIELD_BIT(f)) && f != SPH_FIELD_ACC_PCI && f != SPH_FIELD_ACC_DF &&
+            P->field[f][0])
+            for (int d = 0; d < sim->dim; d++) a[d] += P->field[f][d][i];
+}
+
+/* The walls as the solvers count them: the fluid's lattice continued
+ * behind each wall, its rows at s/2, 3s/2, ... beyond it, each row summed
+ * along the wall at the lattice's own nodes. A block placed on the lattice
+ * then reads rho_rest in every row, at the walls too; the volume model's
+ * continuous integral (sph_wall_hidden) made the first row read 1.5 % more
+ * (2D, poly6, h = 2 s), and the solvers pushed that row off the wall at
+ * 3.7 m/s in their first step. Tabulated once over d in [0, h]. */
+static inline void sph_solver_wall_table(sph_sim *sim)
+{
+    sph_solver_state *st = &sim->solver;
+    const sph_scene_def *def = &sim->def;
+    const float s = sph_solver_spacing(def), h = def->h;
+    const int dim = sim->dim, R = s > 0 ? (int)ceilf(h / s) : 0;
+    const double m = s > 0 ? def->rest_density * (dim == 3 ? (double)s * s * s : (double)s * s) : 0.0;
+    for (int t = 0; t <= SPH_SOLVER_WALL_SAMPLES; t++) {
+        const double d = (double)h * t / SPH_SOLVER_WALL_SAMPLES;
+        double sum = 0, slope = 0;
+        for (int k = 0; s > 0 && d + (k + 0.5) * s < h; k++) {
+            const double n = d + (k + 0.5) * s; /* the row's distance from the particle, across the wall */
+            for (int a = -R; a <= R; a++)
+                for (int b = dim == 3 ? -R : 0; b <= (dim == 3 ? R : 0); b++) {
+                    const double r = sqrt(n * n + (double)s * s * (a * a + b * b));
+                    if (r >= h) continue;
+                    sum += m * sph_kernel_w(&sim->k_density, (float)r);
+                    slope += m * sph_kernel_dw(&sim->k_density, (float)r) * n / r;
+                }
+        }
+        st->wall_share[t] = (float)(sum / st->rho_rest);
+        st->wall_slope[t] = (float)(slope / st->rho_rest);
+    }
+}
+
+/* The share of rho_rest the walls add at position x (combined over walls as
+ * sph_wall_hidden does: 1 - prod (1 - share)), and its gradient [1/m]. */
+static inline float sph_solver_walls(const sph_sim *sim, const float x[3], float grad[3])
+{
+    const sph_solver_state *st = &sim->solver;
+    const int dim = sim->dim;
+    const float scale = (float)SPH_SOLVER_WALL_SAMPLES / sim->def.h;
+    float vis[6], dvis[6], all = 1.0f;
+    for (int d = 0; d < dim; d++)
+        for (int side = 0; side < 2; side++) {
+            const int w = 2 * d + side;
+            vis[w] = 1.0f;
+            dvis[w] = 0.0f;
+            if (sim->period[d] > 0) continue; /* no walls on a periodic axis */
+            const float dist = side == 0 ? x[d] - sim->def.domain_min[d] : sim->def.domain_max[d] - x[d];
+            float t = fmaxf(dist, 0.0f) * scale;
+            if (!(t < (float)SPH_SOLVER_WALL_SAMPLES)) continue;
+            const int i = (int)t;
+            const float f = t - (float)i;
+            vis[w] = 1.0f - (st->wall_share[i] + f * (st->wall_share[i + 1] - st->wall_share[i]));
+            const float slope = st->wall_slope[i] + f * (st->wall_slope[i + 1] - st->wall_slope[i]);
+            dvis[w] = side == 0 ? -slope : slope; /* d(visible)/dx along the axis */
+            all *= vis[w];
+        }
+    if (grad)
+        for (int d = 0; d < 3; d++) {
+            grad[d] = 0.0f;
+            if (d >= dim) continue;
+            for (int w = 2 * d; w <= 2 * d + 1; w++) {
+                float others = 1.0f;
+                for (int o = 0; o < 2 * dim; o++)
+                    if (o != w) others *= vis[o];
+                grad[d] -= dvis[w] * others;
+            }
+        }
+    return 1.0f - all;
+}
+
+/* The same at particle i's predicted position (where the lists were made). */
+static inline float sph_solver_walls_pred(const sph_sim *sim, int i, float grad[3])
+{
+    float x[3] = {0, 0, 0};
+    for (int d = 0; d < sim->dim; d++) x[d] = sim->P.pred[d][i];
+    return sph_solver_walls(sim, x, grad);
+}
+
+/* A solve's iteration ends: another call of the pass, or the step's record. */
+static inline bool sph_solver_done(sph_sim *sim, double error, double tolerance)
+{
+    sph_solver_state *s = &sim->solver;
+    s->error = error;
+    s->iteration++;
+    if (error <= tolerance) return true;
+    if (s->iteration >= sim->def.solver_max_iterations) {
+        s->capped++;
+        return true;
+    }
+    return false;
+}
+
+/* The minimum image along periodic axes (a no-op elsewhere). */
+static inline float sph_solver_dx(const sph_sim *sim, float dx, int d)
+{
+    return sim->period[d] > 0 ? sph_min_image(dx, sim->period[d], sim->inv_period[d]) : dx;
+}
+
+#endif
