@@ -162,6 +162,26 @@ static const hardcase cases[] = {
     {"defaults-3d", "one 3D block, every other default: speed <= 2 x a fall across the 1 m box, 8.9 m/s",
      "[scene]\ndimension = 3\n[fluid a]\nmin = 0 0 0\nmax = 0.3 0.5 0.3\n", 1500, false, -1, 0.05, -1, NULL,
      8.9, 5625, NULL},
+    {"far-x-1e4", "a 0.3 x 0.5 m column moved to x = 1e4 m: its 15 x 25 = 375 particles, as at the origin",
+     "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 9999.5 0\nmax = 10000.5 1\n"
+     "[fluid column]\nmin = 10000 0\nmax = 10000.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
+     300, false, -1, 0.05, -1, NULL, 0, 375, NULL},
+    {"far-x-1e5-speed", "the column at x = 1e5 m: speed <= 1.5 x a fall across the 1 m box, 6.6 m/s",
+     "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 99999.5 0\nmax = 100000.5 1\n"
+     "[fluid column]\nmin = 100000 0\nmax = 100000.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
+     1500, false, -1, 0.05, -1, NULL, 6.6, 375, NULL},
+    {"zero-viscosity-mueller", "nu = 0 with the default kernels (poly6 density, spiky pressure): energy "
+                                       "(kinetic + potential + internal) from step 0 within 5% of its scale",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
+     "[physics]\nstiffness = 400\nviscosity = 0\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
+     5000, false, -1, 0.05, -1, NULL, 0, 375, NULL},
+    {"huge-table", "table_size = 2^31 on a 100-particle scene (16 GiB of keys): refused by check, naming "
+                   "table_size",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid a]\nmin = 0 0\nmax = 0.2 0.2\nspacing = 0.02\n[kernels]\nh = 0.04\n[search]\n"
+     "table_size = 2147483648\n" WATER,
+     10, false, -1, 0.05, -1, NULL, 0, 0, "table_size"},
 };
 #define N_CASES (int)(sizeof cases / sizeof cases[0])
 
