@@ -1,0 +1,164 @@
+/* The scene key table: every key of a scene file, its type, range, unit, default and meaning, as data.
+ * The parser (sph_scene.c) and docs/scene-format.md (`sphlab help --scene`) both follow it. */
+#include "sph_scene.h"
+
+#include <stddef.h>
+
+#define NAMES(id, name) name,
+const char *const sph_eos_names[SPH_EOS_COUNT] = {SPH_EOS_CHOICES(NAMES)};
+const char *const sph_pressure_form_names[SPH_PFORM_COUNT] = {SPH_PFORM_CHOICES(NAMES)};
+const char *const sph_viscosity_form_names[SPH_VFORM_COUNT] = {SPH_VFORM_CHOICES(NAMES)};
+const char *const sph_search_names[SPH_SEARCH_COUNT] = {SPH_SEARCH_CHOICES(NAMES)};
+const char *const sph_sort_names[SPH_SORT_COUNT] = {SPH_SORT_CHOICES(NAMES)};
+const char *const sph_negative_pressure_names[SPH_NEGP_COUNT] = {SPH_NEGP_CHOICES(NAMES)};
+const char *const sph_wall_model_names[SPH_WALL_COUNT] = {SPH_WALL_CHOICES(NAMES)};
+const char *const sph_wall_slip_names[SPH_SLIP_COUNT] = {SPH_SLIP_CHOICES(NAMES)};
+const char *const sph_density_method_names[SPH_DMETHOD_COUNT] = {SPH_DMETHOD_CHOICES(NAMES)};
+const char *const sph_axis_names[3] = {"x", "y", "z"};
+const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICES(NAMES)};
+const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
+const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
+const char *const sph_backend_names[SPH_BACKEND_COUNT] = {SPH_BACKEND_CHOICES(NAMES)};
+#undef NAMES
+#define EFFECT_NAME(id, name, about, needs) name,
+const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
+#undef EFFECT_NAME
+#define EFFECT_ABOUT(id, name, about, needs) about,
+const char *const sph_effect_about[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_ABOUT)};
+#undef EFFECT_ABOUT
+
+/* ---- the key table ------------------------------------------------------ */
+
+#define S(field) (int)offsetof(sph_scene_def, field)
+#define B(field) (int)offsetof(sph_block_def, field)
+#define CH(names) names, (int)(sizeof names / sizeof names[0])
+#define BIG 1e6
+
+const sph_key sph_scene_keys[] = {
+    {"scene", "name", SPH_KEY_STRING, S(name), 0, 0, 0, 0, NULL, 0, "", "", "title shown in tables and windows"},
+    {"scene", "dimension", SPH_KEY_INT, S(dim), 2, 3, 0, 0, NULL, 0, "", "2", "2 or 3"},
+    {"scene", "effects", SPH_KEY_FLAGS, S(effects), 0, 0, 0, 0, CH(sph_effect_names), "",
+     "gravity pressure viscosity walls",
+     "the effects to simulate; passes needed only by others are left out"},
+    {"scene", "steps", SPH_KEY_INT, S(steps), 1, 1e9, 0, 0, NULL, 0, "", "1000",
+     "default run length in steps (--steps overrides)"},
+    {"scene", "duration", SPH_KEY_FLOAT, S(duration), 0, BIG, 0, 0, NULL, 0, "s", "0",
+     "default run length in simulated seconds; 0: use steps (--time overrides)"},
+    {"scene", "jitter", SPH_KEY_FLOAT, S(jitter), 0, 0.5, 0, 0, NULL, 0, "spacing", "0",
+     "random offset of each particle from its lattice node, as a fraction of the spacing"},
+    {"scene", "seed", SPH_KEY_UINT, S(seed), 0, 4294967295.0, 0, 0, NULL, 0, "", "1", "random seed of the jitter"},
+
+    {"domain", "min", SPH_KEY_VEC, S(domain_min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the box"},
+    {"domain", "max", SPH_KEY_VEC, S(domain_max), -BIG, BIG, 0, 0, NULL, 0, "m", "1 1 1", "upper corner of the box"},
+    {"domain", "wall_damping", SPH_KEY_FLOAT, S(wall_damping), 0, 1, 0, 0, NULL, 0, "", "0.5",
+     "share of the normal speed a particle keeps when it bounces off a wall"},
+    {"domain", "periodic", SPH_KEY_FLAGS, S(periodic), 0, 0, 0, 0, CH(sph_axis_names), "", "none",
+     "axes that wrap around: a particle leaving at max comes back at min (no walls there); each needs a length of "
+     "at least 3 h"},
+    {"domain", "wall_model", SPH_KEY_CHOICE, S(wall_model), 0, 0, 0, 0, CH(sph_wall_model_names), "", "volume",
+     "volume: the space behind each wall counts as fluid at rest in the density sum and pushes back with the "
+     "particle's pressure, so particles near a wall miss none of their support; reflect: only the seed's damped "
+     "reflection (particles near walls lack neighbours and sink into them); particles: layers of fixed wall "
+     "particles outside the box, on the fluid's lattice, whose pressure is extrapolated from the fluid (Adami, Hu "
+     "& Adams 2012; CPU only)"},
+    {"domain", "wall_slip", SPH_KEY_CHOICE, S(wall_slip), 0, 0, 0, 0, CH(sph_wall_slip_names), "", "no",
+     "with wall_model = particles: no: no-slip walls (the wall particles' velocity in the viscous term mirrors the "
+     "fluid's); free: free-slip (they take the fluid's velocity, no shear at the wall)"},
+
+    {"physics", "rest_density", SPH_KEY_FLOAT, S(rest_density), 1e-3, BIG, 0, 0, NULL, 0, "kg/m^dim", "1000",
+     "rho0: density at which the pressure is zero; at least 0.001 (a rarefied gas): the pressure force divides by "
+     "rho^2, which a float loses below about 1e-19"},
+    {"physics", "eos", SPH_KEY_CHOICE, S(eos), 0, 0, 0, 0, CH(sph_eos_names), "", "linear",
+     "equation of state: linear p = k (rho - rho0) as in the seeds, or tait p = (k rho0 / gamma) ((rho/rho0)^gamma - 1)"},
+    {"physics", "stiffness", SPH_KEY_FLOAT, S(stiffness), 0, 1e9, 1, 0, NULL, 0, "m^2/s^2", "1000",
+     "k; the speed of sound is sqrt(k), keep it about 10x the fastest flow"},
+    {"physics", "tait_gamma", SPH_KEY_FLOAT, S(tait_gamma), 1, 20, 0, 0, NULL, 0, "", "7", "exponent of the Tait equation"},
+    {"physics", "negative_pressure", SPH_KEY_CHOICE, S(negative_pressure), 0, 0, 0, 0,
+     CH(sph_negative_pressure_names), "", "clamp",
+     "keep: below rho0 particles attract (the seeds); clamp: pressure >= 0, no tensile clumping"},
+    {"physics", "pressure_form", SPH_KEY_CHOICE, S(pressure_form), 0, 0, 0, 0, CH(sph_pressure_form_names), "",
+     "symmetric",
+     "symmetric: -m_j (p_i/rho_i^2 + p_j/rho_j^2) grad W, conserves momentum; shared: the seed's (p_i+p_j)/2 form"},
+    {"physics", "viscosity", SPH_KEY_FLOAT, S(viscosity), 0, 1e3, 0, 0, NULL, 0, "m^2/s", "0.001",
+     "kinematic viscosity nu"},
+    {"physics", "viscosity_form", SPH_KEY_CHOICE, S(viscosity_form), 0, 0, 0, 0, CH(sph_viscosity_form_names), "",
+     "laplacian",
+     "laplacian: Mueller's nu m_j (v_j - v_i)/rho_j lap W; smoothing: the seed's kernel-weighted velocity average; "
+     "morris: nu m_j (rho_i + rho_j)/(rho_i rho_j) (x_ij . grad W)/(r^2 + 1e-4 h^2) (v_i - v_j), a Laplacian from "
+     "the kernel's gradient (needs a kernel whose slope vanishes at r = 0: [kernels] viscosity = cubic, wendland or "
+     "poly6)"},
+    {"physics", "cohesion", SPH_KEY_FLOAT, S(cohesion), 0, 1e6, 0, 0, NULL, 0, "m^4/(kg s^2)", "1",
+     "gamma of the cohesion effect (Akinci 2013): a_i = -gamma sum_j 2 rho0/(rho_i + rho_j) m_j C(r) x_ij/r"},
+    {"physics", "accumulate", SPH_KEY_CHOICE, S(accumulate), 0, 0, 0, 0, CH(sph_accumulate_names), "", "float",
+     "precision of the density and force sums: float, or double (slower; shows what round-off costs)"},
+    {"physics", "gravity", SPH_KEY_VEC, S(gravity), -1e4, 1e4, 0, 0, NULL, 0, "m/s^2", "0 -9.81 0", "g"},
+    {"physics", "alpha", SPH_KEY_FLOAT, S(alpha), 0, 10, 0, 0, NULL, 0, "", "0.1",
+     "alpha of viscosity_form = artificial (Monaghan 1992): Pi_ij = -alpha c (h/2) (v_ij . x_ij) / (rho_avg (r^2 + "
+     "0.01 (h/2)^2)) for approaching pairs, c = sqrt(stiffness); typically 0.01 to 0.1"},
+    {"physics", "gravity_ramp", SPH_KEY_FLOAT, S(gravity_ramp), 0, BIG, 0, 0, NULL, 0, "s", "0",
+     "gravity grows as g (1 - cos(pi t / T)) / 2 over the first T seconds (as in Adami et al. 2012's hydrostatic "
+     "tank), so a column at rest is loaded without a pressure shock; 0: full g from the start"},
+    {"physics", "damping_time", SPH_KEY_FLOAT, S(damping_time), 0, BIG, 0, 0, NULL, 0, "s", "0",
+     "over the first T seconds every step multiplies the velocities by (1 - cos(pi t / T)) / 2: all motion is "
+     "removed at t = 0 and none at T, so an initial state settles; 0: no damping"},
+    {"physics", "density_method", SPH_KEY_CHOICE, S(density_method), 0, 0, 0, 0, CH(sph_density_method_names), "",
+     "summation",
+     "summation: rho = sum_j m_j W_ij every step; continuity: rho summed at the start, then carried by "
+     "drho/dt = sum_j m_j v_ij . grad W_ij plus the density diffusion term of delta (Molteni & Colagrossi 2009)"},
+    {"physics", "delta", SPH_KEY_FLOAT, S(delta), 0, 1, 0, 0, NULL, 0, "", "0.1",
+     "delta of density_method = continuity's diffusion term delta (h/2) c sum_j psi_ij . grad W_ij V_j, "
+     "psi_ij = 2 (rho_j - rho_i) x_ji / |x_ji|^2, c = sqrt(stiffness); 0: none; typically 0.1"},
+
+    {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
+     "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "
+     "kernels' factors (315 / (64 pi h^9) for poly6 in 3D) overflow a float"},
+    {"kernels", "density", SPH_KEY_KERNEL, S(kernel_density), 0, 0, 0, 0, CH(sph_kernel_names), "", "poly6",
+     "kernel of the density sum"},
+    {"kernels", "pressure", SPH_KEY_KERNEL, S(kernel_pressure), 0, 0, 0, 0, CH(sph_kernel_names), "", "spiky",
+     "kernel whose gradient drives the pressure force"},
+    {"kernels", "viscosity", SPH_KEY_KERNEL, S(kernel_viscosity), 0, 0, 0, 0, CH(sph_kernel_names), "", "viscosity",
+     "kernel of the viscous force (its Laplacian, or its value for the smoothing form)"},
+
+    {"time", "dt", SPH_KEY_FLOAT, S(dt), 0, 1, 1, 0, NULL, 0, "s", "0.0005",
+     "time step with cfl = 0; upper bound of the adaptive step otherwise"},
+    {"time", "cfl", SPH_KEY_FLOAT, S(cfl), 0, 1, 0, 0, NULL, 0, "", "0.4",
+     "Courant factor; > 0 chooses dt each step from h, the speed of sound, speeds, forces and viscosity"},
+    {"time", "dt_min", SPH_KEY_FLOAT, S(dt_min), 0, 1, 1, 0, NULL, 0, "s", "1e-7",
+     "the adaptive step never goes below this"},
+
+    {"search", "method", SPH_KEY_CHOICE, S(search), 0, 0, 0, 0, CH(sph_search_names), "", "hash",
+     "hash: the seed's spatial hash; grid: a dense grid over the domain; brute: all pairs, O(N^2)"},
+    {"search", "sort", SPH_KEY_CHOICE, S(sort), 0, 0, 0, 0, CH(sph_sort_names), "", "counting",
+     "how hash entries are sorted by key: bitonic (the seed), counting, qsort (reference); none: no sort, each key "
+     "chains its particles in a linked list (the unsorted hash)"},
+    {"search", "table_size", SPH_KEY_UINT, S(table_size), 0, 2147483648.0, 0, 0, NULL, 0, "", "0",
+     "number of hash keys; 0: the particle count, as in the seed"},
+
+    {"interaction", "radius", SPH_KEY_FLOAT, S(interaction_radius), 0, BIG, 1, 0, NULL, 0, "m", "0.2",
+     "reach of the push/pull around the mouse point"},
+    {"interaction", "strength", SPH_KEY_FLOAT, S(interaction_strength), -1e6, 1e6, 0, 0, NULL, 0, "m/s^2", "40",
+     "acceleration at the point, fading to 0 at the radius; > 0 pulls, < 0 pushes"},
+
+    {"search", "reorder", SPH_KEY_CHOICE, S(reorder), 0, 0, 0, 0, CH(sph_onoff_names), "", "on",
+     "on: after the sort, store the particle data in cell order, so neighbours sit close in memory and the search "
+     "scans contiguous runs; off: keep the creation order (the seed)"},
+
+    {"search", "vector", SPH_KEY_CHOICE, S(vector), 0, 0, 0, 0, CH(sph_onoff_names), "", "on",
+     "on: inner loops written with the CPU's vector instructions (AVX-512, 16 floats at a time) use them, where the "
+     "build has them; off: plain scalar loops"},
+
+    {"compute", "backend", SPH_KEY_CHOICE, S(backend), 0, 0, 0, 0, CH(sph_backend_names), "", "cpu",
+     "where the passes run: cpu (C with OpenMP), or gl (GLSL compute shaders, OpenGL 4.3 through EGL: the GPU, or "
+     "Mesa's llvmpipe without one); sphlab run --backend overrides it"},
+
+    {"fluid", "min", SPH_KEY_VEC, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
+    {"fluid", "max", SPH_KEY_VEC, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
+    {"fluid", "spacing", SPH_KEY_FLOAT, B(spacing), 0, BIG, 1, 0, NULL, 0, "m", "0.02",
+     "lattice spacing; particles sit at the centres of the lattice cells"},
+    {"fluid", "velocity", SPH_KEY_VEC, B(velocity), -BIG, BIG, 0, 0, NULL, 0, "m/s", "0 0 0",
+     "initial velocity; with field = taylor-green, its x component is the vortex's amplitude U"},
+    {"fluid", "field", SPH_KEY_CHOICE, B(field), 0, 0, 0, 0, CH(sph_velocity_field_names), "", "uniform",
+     "initial velocity field: uniform, or the Taylor-Green vortex u = U sin(kx) cos(ky), v = -U cos(kx) sin(ky), "
+     "k = 2 pi / L with L the domain's x length (it decays as exp(-2 nu k^2 t))"},
+};
+const int sph_scene_key_count = (int)(sizeof sph_scene_keys / sizeof sph_scene_keys[0]);
