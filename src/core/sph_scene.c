@@ -44,7 +44,7 @@ static void range_text(const sph_key *k, char *out, size_t n)
         return;
     }
     const char *unit = k->unit && *k->unit ? k->unit : "";
-    const char *what = k->type == SPH_KEY_VEC ? "2 or 3 numbers, each " : "";
+    const char *what = k->type == SPH_KEY_VEC || k->type == SPH_KEY_POINT ? "2 or 3 numbers, each " : "";
     snprintf(out, n, "%s%s %g and %s %g%s%s", what, k->min_open ? "above" : "from", k->min,
              k->max_open ? "below" : "up to", k->max, *unit ? " " : "", unit);
 }
@@ -143,8 +143,9 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
             *(uint32_t *)field = (uint32_t)v;
         return SPH_ERR_OK;
     }
-    case SPH_KEY_VEC: {
-        float v[3] = {0, 0, 0};
+    case SPH_KEY_VEC:
+    case SPH_KEY_POINT: {
+        double v[3] = {0, 0, 0};
         int n = 0;
         const char *p = value;
         while (*p) {
@@ -157,11 +158,14 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
                 return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a list of numbers");
             if (!in_range(k, d) || !stored_in_range(k, (float)d))
                 return bad_value(err, SPH_ERR_RANGE, w, k, value, "a component is out of range");
-            v[n++] = (float)d;
+            v[n++] = k->type == SPH_KEY_POINT ? d : (float)d;
             p = end;
         }
         if (n < 2) return bad_value(err, SPH_ERR_PARSE, w, k, value, "needs 2 (2D) or 3 (3D) numbers");
-        memcpy(field, v, sizeof v);
+        if (k->type == SPH_KEY_POINT)
+            memcpy(field, v, sizeof v);
+        else
+            for (int c = 0; c < 3; c++) ((float *)field)[c] = (float)v[c];
         *ncomp = n;
         return SPH_ERR_OK;
     }
@@ -626,8 +630,6 @@ double sph_scene_particle_count(const sph_scene_def *def)
     return total;
 }
 
-/* Bytes per particle of the largest configuration, neighbour lists of ~60 entries included. */
-#define SPH_BYTES_PER_PARTICLE 512.0
 #define SPH_MAX_PARTICLES 200000000.0
 
 /* "file:line" for a value set in the file, "--set" for one set on the command line. */
@@ -655,7 +657,7 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
     if (dim == 3) {
         for (int i = 0; i < sph_scene_key_count; i++) {
             const sph_key *k = &sph_scene_keys[i];
-            if (k->type != SPH_KEY_VEC) continue;
+            if (k->type != SPH_KEY_VEC && k->type != SPH_KEY_POINT) continue;
             if (strcmp(k->section, "fluid") == 0) {
                 int slot = fluid_slot(i);
                 for (int b = 0; b < def->n_blocks; b++)
@@ -744,14 +746,11 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
         }
     }
     double count = sph_scene_particle_count(def);
-    double mem = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGE_SIZE);
-    double limit = SPH_MAX_PARTICLES;
-    if (mem > 0 && mem / 2 / SPH_BYTES_PER_PARTICLE < limit) limit = floor(mem / 2 / SPH_BYTES_PER_PARTICLE);
-    if (count > limit)
+    if (count > SPH_MAX_PARTICLES) /* particle indices are 32-bit, with room for wall particles */
         return sph_fail(err, SPH_ERR_MEMORY,
-                        "%s: the fluid blocks make %.3g particles, more than memory allows (at most %.0f here, "
-                        "about %.0f bytes each); raise [fluid] spacing or shrink the blocks",
-                        def->file, count, limit, SPH_BYTES_PER_PARTICLE);
+                        "%s: the fluid blocks make %.3g particles, more than memory allows (at most %.0f); raise "
+                        "[fluid] spacing or shrink the blocks",
+                        def->file, count, SPH_MAX_PARTICLES);
     if (def->search == SPH_SEARCH_GRID) {
         double cells = 1;
         for (int a = 0; a < dim; a++) cells *= ceil(((double)def->domain_max[a] - def->domain_min[a]) / def->h) + 1;

@@ -48,8 +48,8 @@ const sph_key sph_scene_keys[] = {
      "random offset of each particle from its lattice node, as a fraction of the spacing"},
     {"scene", "seed", SPH_KEY_UINT, S(seed), 0, 4294967295.0, 0, 0, NULL, 0, "", "1", "random seed of the jitter"},
 
-    {"domain", "min", SPH_KEY_VEC, S(domain_min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the box"},
-    {"domain", "max", SPH_KEY_VEC, S(domain_max), -BIG, BIG, 0, 0, NULL, 0, "m", "1 1 1", "upper corner of the box"},
+    {"domain", "min", SPH_KEY_POINT, S(domain_min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the box"},
+    {"domain", "max", SPH_KEY_POINT, S(domain_max), -BIG, BIG, 0, 0, NULL, 0, "m", "1 1 1", "upper corner of the box"},
     {"domain", "wall_damping", SPH_KEY_FLOAT, S(wall_damping), 0, 1, 0, 0, NULL, 0, "", "0.5",
      "share of the normal speed a particle keeps when it bounces off a wall"},
     {"domain", "periodic", SPH_KEY_FLAGS, S(periodic), 0, 0, 0, 0, CH(sph_axis_names), "", "none",
@@ -151,8 +151,8 @@ const sph_key sph_scene_keys[] = {
      "where the passes run: cpu (C with OpenMP), or gl (GLSL compute shaders, OpenGL 4.3 through EGL: the GPU, or "
      "Mesa's llvmpipe without one); sphlab run --backend overrides it"},
 
-    {"fluid", "min", SPH_KEY_VEC, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
-    {"fluid", "max", SPH_KEY_VEC, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
+    {"fluid", "min", SPH_KEY_POINT, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
+    {"fluid", "max", SPH_KEY_POINT, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
     {"fluid", "spacing", SPH_KEY_FLOAT, B(spacing), 0, BIG, 1, 0, NULL, 0, "m", "0.02",
      "lattice spacing; particles sit at the centres of the lattice cells"},
     {"fluid", "velocity", SPH_KEY_VEC, B(velocity), -BIG, BIG, 0, 0, NULL, 0, "m/s", "0 0 0",

@@ -29,10 +29,10 @@ static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int
             continue;
         }
         float x = sim->P.pred[d][i], area;
-        float lo = sph_kernel_wall(k, x - sim->def.domain_min[d], &area);
+        float lo = sph_kernel_wall(k, x - (float)sim->def.domain_min[d], &area);
         vis[2 * d] = 1.0f - lo;
         dvis[2 * d] = area; /* moving away from the low wall uncovers support */
-        float hi = sph_kernel_wall(k, sim->def.domain_max[d] - x, &area);
+        float hi = sph_kernel_wall(k, (float)sim->def.domain_max[d] - x, &area);
         vis[2 * d + 1] = 1.0f - hi;
         dvis[2 * d + 1] = -area;
         all *= vis[2 * d] * vis[2 * d + 1];
