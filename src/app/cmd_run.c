@@ -169,7 +169,7 @@ int cmd_run(int argc, char **argv)
         fprintf(stderr, "sphlab: %s\n", err.msg);
         app_out_abort(&stats);
         app_out_abort(&dump);
-        return 1;
+        return app_error_status(err.code);
     }
     if (stats.f) app_stats_header(stats.f, sim);
     bool progress = !quiet && isatty(STDERR_FILENO);

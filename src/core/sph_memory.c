@@ -25,13 +25,13 @@ const char *sph_memory_text(double bytes, char *buf, size_t n)
     return buf;
 }
 
-static void add(sph_mem_estimate *e, const char *name, double bytes, const char *fmt, double a)
+static void add(sph_mem_estimate *e, const char *name, double bytes, const char *fmt, double a, double b)
 {
     if (!(bytes > 0) || e->n == SPH_MEM_ITEMS) return;
     sph_mem_item *it = &e->item[e->n];
     it->name = name;
     it->bytes = bytes;
-    snprintf(it->detail, sizeof it->detail, fmt, a);
+    snprintf(it->detail, sizeof it->detail, fmt, a, b);
     if (!e->n || bytes > e->item[e->largest].bytes) e->largest = e->n;
     e->n++;
     e->total += bytes;
@@ -64,7 +64,7 @@ void sph_memory_estimate(const sph_scene_def *def, sph_mem_estimate *out)
         if (info->made_by != SPH_PASS_COUNT && !in[info->made_by]) continue;
         comps += info->vector ? def->dim : 1;
     }
-    add(out, "particle fields", n * comps * f, "%.3g particles", n);
+    add(out, "particle fields", n * comps * f, "%.3g particles x %.0f floats", n, comps);
 
     double index = 0, table = 0;
     if (in[SPH_PASS_HASH]) {
@@ -73,27 +73,27 @@ void sph_memory_estimate(const sph_scene_def *def, sph_mem_estimate *out)
         if (def->sort == SPH_SORT_NONE) index += n * sizeof(uint32_t);
         if (def->sort == SPH_SORT_COUNTING) index += n * entry;
         if (in[SPH_PASS_REORDER]) index += n * (2 * sizeof(uint32_t) + f);
-        add(out, "search index", index, "%.3g entries", n);
+        add(out, "search index", index, "%.3g entries", n, 0);
         /* the start table, and the counting sort's histogram of the same size */
         double per_key = sizeof(uint32_t) * (def->sort == SPH_SORT_COUNTING ? 2 : 1);
         if (def->search == SPH_SEARCH_GRID) {
             double cells = sph_memory_grid_cells(def);
             table = cells * per_key;
-            add(out, "grid cells", table, "%.3g cells of the dense grid ([search] method = grid)", cells);
+            add(out, "grid cells", table, "%.3g cells of the dense grid", cells, 0);
         } else {
             double keys = def->table_size ? (double)def->table_size : fmax(n, 1);
             table = keys * per_key;
             add(out, "hash table", table, def->table_size ? "table_size = %.0f" : "table_size = %.0f (the particle count)",
-                keys);
+                keys, 0);
         }
     }
     if (in[SPH_PASS_NEIGHBOURS]) {
         /* each row once in its thread's buffer and once in the merged lists */
         double nb = sph_scene_neighbour_estimate(def);
-        add(out, "neighbour lists", n * nb * 2 * sizeof(uint32_t), "%.3g neighbours per particle", nb);
+        add(out, "neighbour lists", n * nb * 2 * sizeof(uint32_t), "%.3g particles x %.3g neighbours", n, nb);
     }
     if (def->backend == SPH_BACKEND_GL) /* the device's copy (in host memory with llvmpipe) */
-        add(out, "GL buffers", n * comps * f + index + table, "%.3g particles", n);
+        add(out, "GL buffers", n * comps * f + index + table, "the device's copy of the above", 0, 0);
 }
 
 /* A number from the first line of a file; false if absent or "max". */
@@ -184,19 +184,33 @@ void sph_memory_limit(sph_mem_limit *out)
     sph_memory_limit_at("", out);
 }
 
+const char *sph_memory_list(const sph_mem_estimate *e, char *buf, size_t n)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < e->n && used < n; i++) {
+        char b[32];
+        used += (size_t)snprintf(buf + used, n - used, "%s %s, ", e->item[i].name,
+                                 sph_memory_text(e->item[i].bytes, b, sizeof b));
+    }
+    if (used < n) {
+        char b[32];
+        snprintf(buf + used, n - used, "total %s", sph_memory_text(e->total, b, sizeof b));
+    }
+    return buf;
+}
+
 sph_error_code sph_memory_check(const sph_scene_def *def, const sph_mem_limit *limit, sph_error *err)
 {
     sph_mem_estimate e;
     sph_memory_estimate(def, &e);
     if (!(e.total > limit->bytes)) return SPH_ERR_OK;
     const sph_mem_item *big = &e.item[e.largest];
-    char need[32], all[32], lim[32];
-    return sph_fail(err, SPH_ERR_MEMORY,
-                    "%s: does not fit in memory: %s: %s needs %s (of %s in all); limit %s (%s). Shrink the "
-                    "largest item (sphlab check lists them all)",
+    char need[32], lim[32], all[400];
+    sph_memory_list(&e, all, sizeof all);
+    return sph_fail(err, SPH_ERR_MEMORY, "%s: does not fit in memory: %s (%s) needs %s; limit %s (%s). In all: %s",
                     def->file, big->name, big->detail, sph_memory_text(big->bytes, need, sizeof need),
-                    sph_memory_text(e.total, all, sizeof all), sph_memory_text(limit->bytes, lim, sizeof lim),
-                    limit->source);
+                    sph_memory_text(limit->bytes, lim, sizeof lim), limit->source, all);
 }
 
 void sph_memory_fail(const char *what, double bytes)

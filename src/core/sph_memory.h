@@ -47,6 +47,29 @@ void sph_memory_limit_at(const char *root, sph_mem_limit *out);
  * does not fit in the limit. */
 sph_error_code sph_memory_check(const sph_scene_def *def, const sph_mem_limit *limit, sph_error *err);
 
+/* Cells of the dense grid ([search] method = grid) as sph_sim_create counts
+ * them, in double: before validation the count can be absurd. */
+double sph_memory_grid_cells(const sph_scene_def *def);
+
+/* ---- limits of a scene (sph_scene_limits.c) ---- */
+
+/* Positions are floats relative to the domain's min corner; a float's step
+ * at the domain's length must be at most this share of h (why: there). */
+#define SPH_POSITION_STEP (1.0 / 2048)
+/* The dense grid's cells at most (its start table is 4 bytes a cell). */
+#define SPH_GRID_CELLS_MAX (1 << 28)
+/* [search] table_size at most max(64 n, 2^20) keys (why: sph_scene_limits.c). */
+#define SPH_TABLE_PER_PARTICLE 64
+#define SPH_TABLE_FLOOR (1 << 20)
+/* [m] the largest float step of a position the scene accepts: h / 2048. */
+double sph_scene_position_step_bound(const sph_scene_def *def);
+/* Float precision over the domain, the search's cell counts, and memory
+ * against sph_memory_limit(): the checks sph_scene_validate makes last. */
+sph_error_code sph_scene_check_limits(const sph_scene_def *def, sph_error *err);
+
+/* "particle fields 1.2 GiB, hash table 4 MiB, ..., total 2 GiB" into buf. */
+const char *sph_memory_list(const sph_mem_estimate *e, char *buf, size_t n);
+
 /* Prints "N.N GiB" (or MiB, KiB, bytes) into buf. */
 const char *sph_memory_text(double bytes, char *buf, size_t n);
 

@@ -1,5 +1,6 @@
 /* Scene files: defaults, the INI parser (libinih) and validation; the key table is in sph_scene_keys.c. */
 #include "sph_scene.h"
+#include "sph_memory.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -751,16 +752,5 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                         "%s: the fluid blocks make %.3g particles, more than memory allows (at most %.0f); raise "
                         "[fluid] spacing or shrink the blocks",
                         def->file, count, SPH_MAX_PARTICLES);
-    if (def->search == SPH_SEARCH_GRID) {
-        double cells = 1;
-        for (int a = 0; a < dim; a++) cells *= ceil(((double)def->domain_max[a] - def->domain_min[a]) / def->h) + 1;
-        char loc[300];
-        if (cells > 1 << 28)
-            return sph_fail(err, SPH_ERR_RANGE,
-                            "%s: [search] method = grid needs %.3g cells for this domain and h (at most %d); use "
-                            "method = hash",
-                            origin_text(def, def->origin[key_index("search", "method")].line, loc, sizeof loc),
-                            cells, 1 << 28);
-    }
-    return SPH_ERR_OK;
+    return sph_scene_check_limits(def, err); /* precision, cells, memory (sph_scene_limits.c) */
 }

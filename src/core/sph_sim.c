@@ -1,6 +1,7 @@
 /* Simulation set-up, the time step as a list of passes, and statistics. */
 #include "sph_sim.h"
 #include "sph_walls.h"
+#include "sph_memory.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -363,7 +364,16 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     }
     if (!ok) {
         sph_sim_destroy(sim);
-        return sph_fail(err, SPH_ERR_MEMORY, "%s: out of memory for %u particles", def->file, n);
+        sph_mem_estimate e;
+        sph_mem_limit lim;
+        sph_memory_estimate(def, &e);
+        sph_memory_limit(&lim);
+        char need[32], have[32];
+        return sph_fail(err, SPH_ERR_MEMORY,
+                        "%s: out of memory making the simulation of %u particles (estimated %s in all, the largest "
+                        "item %s; limit %s, %s)",
+                        def->file, n, sph_memory_text(e.total, need, sizeof need), e.n ? e.item[e.largest].name : "-",
+                        sph_memory_text(lim.bytes, have, sizeof have), lim.source);
     }
     place_particles(sim);
     if (P->fixed) sph_wall_particles_place(sim, (uint32_t)sph_scene_particle_count(&sim->def));

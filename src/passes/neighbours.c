@@ -9,6 +9,7 @@
  *   brute: every pair, O(N^2): the reference the others are tested against.
  * The stencil's cells have distinct hashes (tests/test_search.c checks the
  * primes), so no entry is visited twice. Every variant gives the same sets. */
+#include "sph_memory.h"
 #include "sph_search.h"
 
 #include <stdio.h>
@@ -43,10 +44,7 @@ static void list_grow(list *l, size_t need)
     size_t cap = l->cap ? l->cap : 4096;
     while (cap < need) cap *= 2;
     uint32_t *b = realloc(l->buf, cap * sizeof *b);
-    if (!b) {
-        fprintf(stderr, "sphlab: out of memory for neighbour lists (%zu entries)\n", cap);
-        exit(3);
-    }
+    if (!b) sph_memory_fail("a thread's neighbour list", (double)cap * sizeof *b);
     l->buf = b;
     l->cap = cap;
 }
@@ -352,17 +350,12 @@ static void run(sph_sim *sim)
             base[0] = 0;
             for (int k = 0; k < nt; k++) base[k + 1] += base[k];
             for (int k = nt + 1; k <= T; k++) base[k] = base[nt];
-            if (base[nt] > UINT32_MAX) {
-                fprintf(stderr, "sphlab: more than 2^32 neighbour pairs\n");
-                exit(3);
-            }
+            if (base[nt] > UINT32_MAX) /* row offsets are 32-bit */
+                sph_memory_fail("more than 2^32 neighbour pairs (the lists' limit)", (double)base[nt] * 4);
             if (base[nt] > S->nbr_cap) {
                 size_t cap = base[nt] + base[nt] / 4 + 1024;
                 uint32_t *b = realloc(S->nbr, cap * sizeof *b);
-                if (!b) {
-                    fprintf(stderr, "sphlab: out of memory for %zu neighbour pairs\n", base[nt]);
-                    exit(3);
-                }
+                if (!b) sph_memory_fail("the neighbour lists", (double)cap * sizeof *b);
                 S->nbr = b;
                 S->nbr_cap = cap;
             }
