@@ -117,8 +117,8 @@ static sph_error_code check_table(const sph_scene_def *def, sph_error *err)
 
 sph_error_code sph_scene_check_limits(const sph_scene_def *def, sph_error *err)
 {
-    sph_error_code c = check_precision(def, err);
-    if (!c) c = check_cells(def, err);
+    sph_error_code c = check_cells(def, err);
+    if (!c) c = check_precision(def, err);
     if (!c) c = check_table(def, err);
     if (!c) {
         sph_mem_limit limit;
