@@ -1,5 +1,5 @@
 /* Far coordinates: a scene shifted far from 0 runs as at 0 (the simulation
- * works relative to the domain's min corner); a domain too long for float
+ * works relative to the domain's point nearest 0); a domain too long for float
  * positions at its h, or for int cell counts, is refused with the reason. */
 #include <criterion/criterion.h>
 #include <math.h>
@@ -91,8 +91,9 @@ Test(far, periodic_hash_matches_brute_force_far_from_zero, .timeout = 60)
     cr_expect(worst < 1e-5, "hash and brute force densities differ by %.3g (relative)", worst);
 }
 
-/* The issue's periodic axis of +-1e4 m with h = 0.5 mm: a float's step at
- * 2e4 m is 2 mm, four times h. Refused at load, naming the key and why. */
+/* The issue's periodic axis of +-1e4 m with h = 0.5 mm: the frame stays at 0
+ * (the domain contains it) and a float's step at 1e4 m is 1 mm, twice h.
+ * Refused at load, naming the key and why. */
 Test(far, periodic_axis_too_long_for_float_positions_is_refused)
 {
     const char *ini = "[scene]\neffects = gravity pressure viscosity\n[domain]\nmin = -1e4 0\nmax = 1e4 1\n"
@@ -100,7 +101,7 @@ Test(far, periodic_axis_too_long_for_float_positions_is_refused)
     sph_scene_def def;
     sph_error err;
     cr_assert_eq(load(ini, &def, &err), SPH_ERR_RANGE);
-    cr_expect(strstr(err.msg, "far.ini:5") && strstr(err.msg, "[domain] max.x") && strstr(err.msg, "20000 m") &&
+    cr_expect(strstr(err.msg, "far.ini:5: [domain] x from -10000 to 10000 m") && strstr(err.msg, "10000 m from it") &&
                   strstr(err.msg, "float"),
               "%s", err.msg);
 }

@@ -7,6 +7,7 @@
 #include "sph_walls.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -89,7 +90,7 @@ void sph_memory_estimate(const sph_scene_def *def, sph_mem_estimate *out)
     }
     if (in[SPH_PASS_NEIGHBOURS]) {
         /* each row once in its thread's buffer and once in the merged lists */
-        double nb = sph_scene_neighbour_estimate(def);
+        double nb = fmin(sph_scene_neighbour_estimate(def), n); /* no particle has more neighbours than particles */
         add(out, "neighbour lists", n * nb * 2 * sizeof(uint32_t), "%.3g particles x %.3g neighbours", n, nb);
     }
     if (def->backend == SPH_BACKEND_GL) /* the device's copy (in host memory with llvmpipe) */
@@ -213,10 +214,13 @@ sph_error_code sph_memory_check(const sph_scene_def *def, const sph_mem_limit *l
                     sph_memory_text(limit->bytes, lim, sizeof lim), limit->source, all);
 }
 
-void sph_memory_fail(const char *what, double bytes)
+void sph_memory_fail(const char *fmt, ...)
 {
-    char b[32];
-    fprintf(stderr, "sphlab: out of memory: %s needs %s more; the run stops (exit status %d)\n", what,
-            sph_memory_text(bytes, b, sizeof b), SPH_EXIT_MEMORY);
+    char msg[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "sphlab: out of memory: %s; the run stops (exit status %d)\n", msg, SPH_EXIT_MEMORY);
     exit(SPH_EXIT_MEMORY);
 }

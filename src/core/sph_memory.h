@@ -53,8 +53,12 @@ double sph_memory_grid_cells(const sph_scene_def *def);
 
 /* ---- limits of a scene (sph_scene_limits.c) ---- */
 
-/* Positions are floats relative to the domain's min corner; a float's step
- * at the domain's length must be at most this share of h (why: there). */
+/* [m] The simulation's frame along axis d: the domain's point nearest 0 (0
+ * for a domain that contains 0, its min corner for one beyond 0). Positions
+ * are floats relative to it (sph_sim_create). */
+double sph_scene_origin(const sph_scene_def *def, int d);
+/* A float's step at the largest |coordinate| of the domain in that frame
+ * must be at most this share of h (why: sph_scene_limits.c). */
 #define SPH_POSITION_STEP (1.0 / 2048)
 /* The dense grid's cells at most (its start table is 4 bytes a cell). */
 #define SPH_GRID_CELLS_MAX (1 << 28)
@@ -74,7 +78,8 @@ const char *sph_memory_list(const sph_mem_estimate *e, char *buf, size_t n);
 const char *sph_memory_text(double bytes, char *buf, size_t n);
 
 /* A run-time allocation failed inside a pass, where no error can be returned:
- * prints what (and how much) and exits with SPH_EXIT_MEMORY. */
-_Noreturn void sph_memory_fail(const char *what, double bytes);
+ * prints "out of memory: " and the message (what, how much) and exits with
+ * SPH_EXIT_MEMORY. */
+_Noreturn void sph_memory_fail(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 #endif

@@ -37,31 +37,40 @@ double sph_scene_position_step_bound(const sph_scene_def *def)
     return (double)def->h * SPH_POSITION_STEP;
 }
 
-/* Positions are floats relative to the domain's min corner (sph_sim_create),
- * so the largest coordinate is the domain's length L along the axis, and
- * there a float's step is ulp(L). The search's cells exceed h by 2^-10 h
- * (sph_cells) so that rounding cannot put a pair closer than h two cells
- * apart; a pair's two coordinates each round by up to ulp / 2, so ulp must
- * stay within half that margin: ulp(L) <= 2^-11 h (SPH_POSITION_STEP). The
- * kernels then see r / h to 5e-4. That allows L up to 4096-8192 h. */
+double sph_scene_origin(const sph_scene_def *def, int d)
+{
+    double lo = def->domain_min[d], hi = def->domain_max[d];
+    return lo > 0 ? lo : hi < 0 ? hi : 0.0;
+}
+
+/* Positions are floats relative to sph_scene_origin (sph_sim_create), so
+ * the largest coordinate within the domain is its end furthest from that
+ * point, and there a float's step is ulp(x). The search's cells exceed h by
+ * 2^-10 h (sph_cells) so that rounding cannot put a pair closer than h two
+ * cells apart; a pair's two coordinates each round by up to ulp / 2, so ulp
+ * must stay within half that margin: ulp(x) <= 2^-11 h (SPH_POSITION_STEP).
+ * The kernels then see r / h to 5e-4. That allows 4096-8192 h from the
+ * frame's origin: a domain from 0, or far from 0, 4096 h long at least. */
 static sph_error_code check_precision(const sph_scene_def *def, sph_error *err)
 {
     const double bound = sph_scene_position_step_bound(def);
     for (int d = 0; d < def->dim; d++) {
-        double len = def->domain_max[d] - def->domain_min[d];
-        double step = float_step(len);
+        double o = sph_scene_origin(def, d);
+        double far = fmax(fabs(def->domain_min[d] - o), fabs(def->domain_max[d] - o));
+        double step = float_step(far);
         if (step <= bound) continue;
-        /* the longest axis that keeps the bound: below the power of two where the step doubles past it */
-        double longest = ldexp(1.0, (int)floor(log2(bound)) + 24);
+        /* the furthest reach that keeps the bound: below the power of two where the step doubles past it */
+        double reach = ldexp(1.0, (int)floor(log2(bound)) + 24);
+        const char axis = sph_axis_names[d][0];
         char loc[300];
         return sph_fail(err, SPH_ERR_RANGE,
-                        "%s: [domain] max.%c - min.%c = %g m: positions are floats relative to the domain's min "
-                        "corner, and at %g m a float's step is %.3g m, more than h / 2048 = %.3g m that the "
-                        "neighbour search needs with h = %g m (accepted: a domain at most %g m long along %c at this "
-                        "h, or h of at least %.3g m)",
-                        key_place(def, "domain", "max", loc, sizeof loc), sph_axis_names[d][0],
-                        sph_axis_names[d][0], len, len, step, bound, (double)def->h, longest,
-                        sph_axis_names[d][0], step / SPH_POSITION_STEP);
+                        "%s: [domain] %c from %g to %g m: positions are floats relative to %g m (the domain's "
+                        "point nearest 0), and %g m from it a float's step is %.3g m, more than h / 2048 = %.3g m "
+                        "that the neighbour search needs with h = %g m (accepted: a domain reaching at most %g m "
+                        "from that point along %c at this h, or h of at least %.3g m)",
+                        key_place(def, "domain", "max", loc, sizeof loc), axis, def->domain_min[d],
+                        def->domain_max[d], o, far, step, bound, (double)def->h, reach, axis,
+                        step / SPH_POSITION_STEP);
     }
     return SPH_ERR_OK;
 }

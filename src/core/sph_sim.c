@@ -242,17 +242,18 @@ static void set_bounds(sph_sim *sim)
 }
 
 /* Moves sim->def into the simulation's frame: coordinates relative to the
- * domain's min corner, rounded to float as the particles are, so the passes
- * compare float with float as before. A scene whose domain starts at 0 is
- * unchanged; one far from 0 keeps the precision of its size, not of its
- * distance from 0 (validation checks the float precision over that size). */
+ * domain's point nearest 0 (sph_scene_origin), rounded to float as the
+ * particles are, so the passes compare float with float as before. A domain
+ * that contains 0 is unchanged; one far from 0 keeps the precision of its
+ * size, not of its distance from 0 (validation checks the float precision
+ * over that size). */
 static void to_relative(sph_sim *sim)
 {
     sph_scene_def *def = &sim->def;
     for (int d = 0; d < def->dim; d++) {
-        double o = def->domain_min[d];
+        double o = sph_scene_origin(def, d);
         sim->origin[d] = o;
-        def->domain_min[d] = 0;
+        def->domain_min[d] = (float)(def->domain_min[d] - o);
         def->domain_max[d] = (float)(def->domain_max[d] - o);
         for (int b = 0; b < def->n_blocks; b++) {
             def->blocks[b].min[d] = (float)(def->blocks[b].min[d] - o);

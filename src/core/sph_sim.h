@@ -206,8 +206,9 @@ struct sph_sim {
     sph_backend *backend; /* NULL: the passes run here, on P and S */
     void *backend_share;  /* what the backend was made to share (sph_sim_create_shared); reconfigure keeps it */
     /* Far coordinates: positions (P.pos, P.pred) and sim->def's domain and
-     * blocks are relative to the domain's min corner, so a box at x = 1e4 m
-     * runs exactly as one at 0. Output adds this back (sph_sim_abs). */
+     * blocks are relative to the domain's point nearest 0 (0 if it contains
+     * 0), so a box at x = 1e4 m runs exactly as one at 0. Output adds this
+     * back (sph_sim_abs). */
     double origin[3];     /* [m] absolute position of the simulation frame's zero */
 };
 

@@ -114,7 +114,7 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put(&t, "#define PERIODIC %d\n", sph_sim_periodic(sim));
     put_vec3(&t, "PER", sim->period);
     put_vec3(&t, "INV_PER", sim->inv_period);
-    /* the domain as the particles see it: relative to its min corner (sph_sim_create), in float */
+    /* the domain as the particles see it: relative to sim->origin (sph_sim_create), in float */
     float lo[3], hi[3];
     for (int d = 0; d < 3; d++) lo[d] = (float)sim->def.domain_min[d], hi[d] = (float)sim->def.domain_max[d];
     put_vec3(&t, "DOM_MIN", lo);

@@ -306,7 +306,7 @@ static void press_char(viewer *w, char c)
 static void mouse_world(viewer *w, float x, float y, float out[3])
 {
     float px[2] = {x, y}, on[3];
-    /* the camera works in the simulation's frame (relative to the domain's min corner) */
+    /* the camera works in the simulation's frame (sim->origin) */
     for (int d = 0; d < 3; d++) on[d] = 0.5f * ((float)w->sim->def.domain_min[d] + (float)w->sim->def.domain_max[d]);
     if (w->sim->dim == 3) on[2] = w->v.slice_z;
     sph_camera_unproject(sph_renderer_camera(w->r), px, on, out);

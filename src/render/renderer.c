@@ -504,7 +504,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     clip_to_view(r, true);
 
     /* canvas under: the domain */
-    float dl[3], dh[3]; /* the domain in the particles' frame (relative to its min corner) */
+    float dl[3], dh[3]; /* the domain in the particles' frame (sim->origin: the domain's point nearest 0) */
     for (int d = 0; d < 3; d++) dl[d] = (float)sim->def.domain_min[d], dh[d] = (float)sim->def.domain_max[d];
     if (sim->dim == 2) {
         float a[2], b[2];
