@@ -26,9 +26,10 @@ static double item(const sph_mem_estimate *e, const char *name)
  * pipeline has (counted from the sim's own arrays) and the start table. */
 Test(memory, estimate_matches_the_simulation_allocations)
 {
+#define CUBE "[scene]\ndimension = 3\n[domain]\nmin = 0 0 0\nmax = 1 1 1\n[fluid a]\nmin = 0 0 0\n" \
+             "max = 0.2 0.2 0.2\nspacing = 0.04\n[kernels]\nh = 0.08\n"
     const char *inis[] = {BOX BLOCK, BOX BLOCK "[search]\nmethod = grid\n", BOX BLOCK "[search]\ntable_size = 1000\n",
-                          "[scene]\ndimension = 3\n[domain]\nmin = 0 0 0\nmax = 1 1 1\n[fluid a]\nmin = 0 0 0\n"
-                          "max = 0.2 0.2 0.2\nspacing = 0.04\n[kernels]\nh = 0.08\n"};
+                          CUBE};
     for (size_t k = 0; k < sizeof inis / sizeof inis[0]; k++) {
         sph_sim *sim = test_sim(inis[k], 1);
         sph_mem_estimate e;
