@@ -37,7 +37,7 @@ static uint32_t count_of(const sph_sim *sim, int k)
 }
 
 /* Distance from p to the surface of box [lo, hi] (p inside). */
-static double box_depth(const sph_sim *sim, int i, const float lo[3], const float hi[3])
+static double box_depth(const sph_sim *sim, int i, const double lo[3], const double hi[3])
 {
     double d = INFINITY;
     for (int a = 0; a < sim->dim; a++) {
@@ -289,7 +289,7 @@ Test(obstacles, parse_errors)
         {"[obstacle c]\nshape=circle\ncentre=0.5 0.5\nradius=0.01\n", "test.ini:17: [obstacle c] radius = 0.01: smaller than one spacing"},
         {"[obstacle c]\nshape=circle\ncentre=0.5 0.5\nradius=0.1\nmin=0 0\n", "not min"},
         {"[obstacle b]\nmin=0.4 0.4\n", "shape = box needs max"},
-        {"[obstacle b]\nmin=0.4 0.4\nmax=0.41 0.6\n", "test.ini:16: [obstacle b] max.x = 0.41: the box is 0.00999999 m thick"},
+        {"[obstacle b]\nmin=0.4 0.4\nmax=0.41 0.6\n", "test.ini:16: [obstacle b] max.x = 0.41: the box is 0.01 m thick"},
         {"[obstacle b]\nmin=2 2\nmax=3 3\n", "test.ini:15: [obstacle b] lies outside the domain"},
         {"[obstacle b]\nshape=cylinder\n", "test.ini:15: [obstacle b] shape = 'cylinder': unknown choice (accepted: one of: box, circle)"},
         {"[obstacle b]\nslip=partial\n", "[obstacle b] slip = 'partial': unknown choice (accepted: one of: no, free)"},

@@ -18,6 +18,7 @@ static size_t key_size(const sph_key *k)
     switch (k->type) {
     case SPH_KEY_STRING: return 64;
     case SPH_KEY_VEC: return 3 * sizeof(float);
+    case SPH_KEY_POINT: return 3 * sizeof(double);
     default: return 4;
     }
 }
@@ -112,6 +113,7 @@ static void other_value(const sph_key *k, char *out, size_t n)
     case SPH_KEY_INT:
     case SPH_KEY_UINT: snprintf(out, n, "%.0f", floor(lo + 0.5 * (hi - lo)) + 1.0); return;
     case SPH_KEY_VEC: snprintf(out, n, "0.125 -0.25 0.5"); return;
+    case SPH_KEY_POINT: snprintf(out, n, "0.1 -0.3 0.7"); return; /* not exact in binary: 17 digits needed */
     case SPH_KEY_CHOICE:
     case SPH_KEY_KERNEL:
         for (int c = 0; c < k->n_choices; c++)

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "app_options.h"
+#include "sph_memory.h"
 #include "sph_sim.h"
 #include "../io/io.h"
 
@@ -32,6 +33,9 @@ bool app_scene_add_backend(app_scene_opts *o, const char *value);
 bool app_load_scene(const app_scene_opts *o, sph_scene_def *def);
 /* The same, returning the exit status: 0 loaded, 1 a bad scene, 2 a bad --set. */
 int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def);
+/* The exit status for an error: 2 for the command line, SPH_EXIT_MEMORY (5)
+ * for a scene that does not fit in memory, 1 for any other. */
+int app_error_status(sph_error_code code);
 
 
 /* Output files go through the I/O layer's atomic writer (src/io/io.h): a

@@ -44,6 +44,13 @@ void app_check_report(FILE *f, const char *path, const sph_sim *sim)
         if (def->effects & (1u << e)) fprintf(f, " %s", sph_effect_names[e]);
     fprintf(f, "\n");
     app_print_pipeline(f, sim);
+    sph_mem_estimate e;
+    sph_mem_limit lim;
+    sph_memory_estimate(def, &e); /* its frame (relative coordinates) changes no size */
+    sph_memory_limit(&lim);
+    char items[400], lb[32];
+    fprintf(f, "memory: %s; limit %s (%s)\n", sph_memory_list(&e, items, sizeof items),
+            sph_memory_text(lim.bytes, lb, sizeof lb), lim.source);
     fprintf(f, "ok\n");
 }
 
@@ -76,7 +83,7 @@ int cmd_check(int argc, char **argv)
     sph_error err;
     if (sph_sim_create(&def, 1, &sim, &err) != SPH_ERR_OK) {
         fprintf(stderr, "sphlab: %s\n", err.msg);
-        return 1;
+        return app_error_status(err.code);
     }
     app_check_report(stdout, o.path, sim);
     sph_sim_destroy(sim);

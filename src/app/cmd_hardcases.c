@@ -291,6 +291,27 @@ static const hardcase cases[] = {
      "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 0.12 0.12\n"
      "[fluid a]\nmin = 0 0\nmax = 0.12 0.12\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
      1500, false, 0.2, 0.05, -1, NULL, 1.53, 36, NULL, 0, NULL},
+    {"far-x-1e4", "a 0.3 x 0.5 m column moved to x = 1e4 m: its 15 x 25 = 375 particles, as at the origin",
+     "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 9999.5 0\nmax = 10000.5 1\n"
+     "[fluid column]\nmin = 10000 0\nmax = 10000.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
+     300, false, -1, 0.05, -1, NULL, 0, 375, NULL, 0, NULL},
+    {"far-x-1e5-speed", "the column at x = 1e5 m: speed <= 1.5 x a fall across the 1 m box, 6.6 m/s",
+     "[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmin = 99999.5 0\nmax = 100000.5 1\n"
+     "[fluid column]\nmin = 100000 0\nmax = 100000.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n" WATER,
+     1500, false, -1, 0.05, -1, NULL, 6.6, 375, NULL, 0, NULL},
+    {"zero-viscosity-mueller", "nu = 0 with the default kernels (poly6 density, spiky pressure), which do not "
+                               "conserve energy (check and run warn): energy from step 0 stays under the "
+                               "watchdog's bound, half its scale (it peaks at +27%)",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid column]\nmin = 0 0\nmax = 0.3 0.5\nspacing = 0.02\n[kernels]\nh = 0.04\n"
+     "[physics]\nstiffness = 400\nviscosity = 0\nnegative_pressure = clamp\n[time]\ncfl = 0.4\n",
+     5000, false, -1, 0.5, -1, NULL, 0, 375, NULL, 0, NULL},
+    {"huge-table", "table_size = 2^31 on a 100-particle scene (16 GiB of keys): refused by check, naming "
+                   "table_size",
+     "[scene]\neffects = gravity pressure viscosity walls\n" BOX2
+     "[fluid a]\nmin = 0 0\nmax = 0.2 0.2\nspacing = 0.02\n[kernels]\nh = 0.04\n[search]\n"
+     "table_size = 2147483648\n" WATER,
+     10, false, -1, 0.05, -1, NULL, 0, 0, "table_size", 0, NULL},
 };
 #define N_CASES (int)(sizeof cases / sizeof cases[0])
 

@@ -77,20 +77,28 @@ void app_dump_write(FILE *f, const sph_sim *sim)
             fprintf(f, ",%s", sph_field_infos[fi].name);
     }
     fputc('\n', f);
+    /* positions are absolute: the simulation frame's plus sim->origin, with the digits a far one needs */
+    const bool far = sph_sim_shifted(sim);
     for (uint32_t k = 0; k < sim->n; k++) {
         uint32_t i = order[k];
-        float x[3] = {0, 0, 0}, v[3] = {0, 0, 0};
+        double x[3] = {0, 0, 0};
+        float v[3] = {0, 0, 0};
         for (int d = 0; d < sim->dim; d++) {
-            x[d] = P->pos[d][i];
+            x[d] = sph_sim_abs(sim, d, P->pos[d][i]);
             v[d] = P->vel[d][i];
         }
-        fprintf(f, "%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", P->id[i], x[0], x[1], x[2], v[0], v[1], v[2],
-                P->rho ? P->rho[i] : 0.0f, P->p ? P->p[i] : 0.0f);
+        fprintf(f, far ? "%u,%.15g,%.15g,%.15g" : "%u,%.9g,%.9g,%.9g", P->id[i], x[0], x[1], x[2]);
+        fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g", v[0], v[1], v[2], P->rho ? P->rho[i] : 0.0f, P->p ? P->p[i] : 0.0f);
         for (int fi = 0; fi < SPH_FIELD_COUNT; fi++) {
             if (fi == SPH_FIELD_POS || fi == SPH_FIELD_VEL || fi == SPH_FIELD_RHO || fi == SPH_FIELD_P ||
                 !P->field[fi][0])
                 continue;
             int nc = sph_field_infos[fi].vector ? 3 : 1;
+            if (fi == SPH_FIELD_PRED) { /* a position too */
+                for (int d = 0; d < nc; d++)
+                    fprintf(f, far ? ",%.15g" : ",%.9g", d < sim->dim ? sph_sim_abs(sim, d, P->field[fi][d][i]) : 0.0);
+                continue;
+            }
             for (int d = 0; d < nc; d++) fprintf(f, ",%.9g", d < sim->dim || nc == 1 ? P->field[fi][d][i] : 0.0f);
         }
         fputc('\n', f);
@@ -183,7 +191,7 @@ int cmd_run(int argc, char **argv)
         fprintf(stderr, "sphlab: %s\n", err.msg);
         app_out_abort(&stats);
         app_out_abort(&dump);
-        return 1;
+        return app_error_status(err.code);
     }
     if (stats.f) app_stats_header(stats.f, sim);
     bool progress = !quiet && isatty(STDERR_FILENO);

@@ -56,7 +56,13 @@ int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def)
     }
 fail:
     fprintf(stderr, "sphlab: %s\n", err.msg);
-    return err.code == SPH_ERR_USAGE ? 2 : 1; /* a malformed --set is a command-line error */
+    return app_error_status(err.code);
+}
+
+int app_error_status(sph_error_code code)
+{
+    if (code == SPH_ERR_USAGE) return 2; /* a malformed --set is a command-line error */
+    return code == SPH_ERR_MEMORY ? SPH_EXIT_MEMORY : 1;
 }
 
 bool app_scene_add_set(app_scene_opts *o, const char *set)

@@ -136,8 +136,8 @@ typedef struct sph_origin {
 /* A box filled with particles on a square/cubic lattice. */
 typedef struct sph_block_def {
     char name[48];
-    float min[3];      /* [m] lower corner of the box */
-    float max[3];      /* [m] upper corner of the box */
+    double min[3];     /* [m] lower corner of the box (double: a far box keeps its exact size) */
+    double max[3];     /* [m] upper corner of the box */
     float spacing;     /* [m] lattice spacing; each particle carries rest_density * spacing^dim of mass */
     float velocity[3]; /* [m/s] initial velocity (uniform); amplitude U = velocity.x (taylor-green) */
     sph_velocity_field field; /* uniform, or the Taylor-Green vortex of the domain's size */
@@ -154,9 +154,9 @@ typedef struct sph_block_def {
 typedef struct sph_obstacle_def {
     char name[48];
     sph_shape shape;
-    float min[3];      /* [m] box: lower corner */
-    float max[3];      /* [m] box: upper corner */
-    float centre[3];   /* [m] circle: centre */
+    double min[3];     /* [m] box: lower corner (double, as the domain's: exact far from 0) */
+    double max[3];     /* [m] box: upper corner */
+    double centre[3];  /* [m] circle: centre */
     float radius;      /* [m] circle: radius */
     sph_wall_slip slip; /* no: no-slip surface (velocity mirrored); free: free-slip */
     int line;          /* line of the [obstacle ...] section header, for messages */
@@ -168,7 +168,8 @@ typedef struct sph_scene_def {
     char name[64];     /* title shown in tables and windows */
     int dim;           /* [1] 2 or 3 */
     unsigned effects;  /* SPH_EFFECT(...) bits */
-    float domain_min[3], domain_max[3]; /* [m] the box walls bound */
+    double domain_min[3], domain_max[3]; /* [m] the box walls bound; double, so a box far from 0 keeps
+                                            its exact size (the simulation works relative to domain_min) */
     float wall_damping;                 /* [1] share of the normal speed kept at a wall bounce */
     sph_wall_model wall_model;          /* volume: walls also count in density and pressure; particles:
                                            layers of fixed wall particles (Adami et al. 2012) */
@@ -258,7 +259,8 @@ int64_t sph_block_nodes(const sph_scene_def *def, int b, int axis);
 /* The key table, for help text and docs. */
 typedef enum sph_key_type {
     SPH_KEY_FLOAT, SPH_KEY_INT, SPH_KEY_UINT, SPH_KEY_VEC, SPH_KEY_CHOICE, SPH_KEY_KERNEL,
-    SPH_KEY_FLAGS, SPH_KEY_STRING
+    SPH_KEY_FLAGS, SPH_KEY_STRING,
+    SPH_KEY_POINT /* a vector stored as double[3]: a position, exact far from the origin */
 } sph_key_type;
 
 typedef struct sph_key {

@@ -53,8 +53,8 @@ const sph_key sph_scene_keys[] = {
      "random offset of each particle from its lattice node, as a fraction of the spacing"},
     {"scene", "seed", SPH_KEY_UINT, S(seed), 0, 4294967295.0, 0, 0, NULL, 0, "", "1", "random seed of the jitter"},
 
-    {"domain", "min", SPH_KEY_VEC, S(domain_min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the box"},
-    {"domain", "max", SPH_KEY_VEC, S(domain_max), -BIG, BIG, 0, 0, NULL, 0, "m", "1 1 1", "upper corner of the box"},
+    {"domain", "min", SPH_KEY_POINT, S(domain_min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the box"},
+    {"domain", "max", SPH_KEY_POINT, S(domain_max), -BIG, BIG, 0, 0, NULL, 0, "m", "1 1 1", "upper corner of the box"},
     {"domain", "wall_damping", SPH_KEY_FLOAT, S(wall_damping), 0, 1, 0, 0, NULL, 0, "", "0.5",
      "share of the normal speed a particle keeps when it bounces off a wall"},
     {"domain", "periodic", SPH_KEY_FLAGS, S(periodic), 0, 0, 0, 0, CH(sph_axis_names), "", "none",
@@ -64,8 +64,6 @@ const sph_key sph_scene_keys[] = {
      "volume: the space behind each wall counts as the fluid's lattice continued at rest (one table per distance, "
      "the finest block's spacing) in the density sum and pushes back with the particle's pressure, so particles "
      "near a wall miss none of their support and a lattice's first row reads its interior's density; reflect: only the seed's damped "
-     "volume: the space behind each wall counts as fluid at rest in the density sum and pushes back with the "
-     "particle's pressure, so particles near a wall miss none of their support; reflect: only the seed's damped "
      "reflection (particles near walls lack neighbours and sink into them); particles: layers of fixed wall "
      "particles outside the box, on the fluid's lattice, whose pressure is extrapolated from the fluid (Adami, Hu "
      "& Adams 2012; CPU only)"},
@@ -194,8 +192,8 @@ const sph_key sph_scene_keys[] = {
      "where the passes run: cpu (C with OpenMP), or gl (GLSL compute shaders, OpenGL 4.3 through EGL: the GPU, or "
      "Mesa's llvmpipe without one); sphlab run --backend overrides it"},
 
-    {"fluid", "min", SPH_KEY_VEC, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
-    {"fluid", "max", SPH_KEY_VEC, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
+    {"fluid", "min", SPH_KEY_POINT, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
+    {"fluid", "max", SPH_KEY_POINT, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
     {"fluid", "spacing", SPH_KEY_FLOAT, B(spacing), 0, BIG, 1, 0, NULL, 0, "m", "0.02",
      "lattice spacing; particles sit at the centres of the lattice cells"},
     {"fluid", "velocity", SPH_KEY_VEC, B(velocity), -BIG, BIG, 0, 0, NULL, 0, "m/s", "0 0 0",
@@ -208,9 +206,9 @@ const sph_key sph_scene_keys[] = {
     {"obstacle", "shape", SPH_KEY_CHOICE, O(shape), 0, 0, 0, 0, CH(sph_shape_names), "", "box",
      "box (min, max) or circle (centre, radius; a sphere in 3D): a solid of wall particles, which needs [domain] "
      "wall_model = particles"},
-    {"obstacle", "min", SPH_KEY_VEC, O(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "box: lower corner"},
-    {"obstacle", "max", SPH_KEY_VEC, O(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "box: upper corner"},
-    {"obstacle", "centre", SPH_KEY_VEC, O(centre), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "circle: centre"},
+    {"obstacle", "min", SPH_KEY_POINT, O(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "box: lower corner"},
+    {"obstacle", "max", SPH_KEY_POINT, O(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "box: upper corner"},
+    {"obstacle", "centre", SPH_KEY_POINT, O(centre), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "circle: centre"},
     {"obstacle", "radius", SPH_KEY_FLOAT, O(radius), 0, BIG, 0, 0, NULL, 0, "m", "0",
      "circle: radius, at least one spacing"},
     {"obstacle", "slip", SPH_KEY_CHOICE, O(slip), 0, 0, 0, 0, CH(sph_wall_slip_names), "", "no",

@@ -19,6 +19,15 @@ static void float_text(float v, char *out, size_t n)
     }
 }
 
+/* The same for a double (SPH_KEY_POINT): 17 digits always read back. */
+static void double_text(double v, char *out, size_t n)
+{
+    for (int digits = 6; digits <= 17; digits++) {
+        snprintf(out, n, "%.*g", digits, v);
+        if (strtod(out, NULL) == v) return;
+    }
+}
+
 /* The value of key k stored at base, as a scene file writes it; floats read
  * back to the same bits. */
 void sph_scene_value_text(const sph_key *k, const void *base, char *out, size_t n)
@@ -49,6 +58,14 @@ void sph_scene_value_text(const sph_key *k, const void *base, char *out, size_t 
         char c[3][32];
         memcpy(v, field, sizeof v);
         for (int d = 0; d < 3; d++) float_text(v[d], c[d], sizeof c[d]);
+        snprintf(out, n, "%s %s %s", c[0], c[1], c[2]);
+        return;
+    }
+    case SPH_KEY_POINT: { /* a position kept in double (far from 0) */
+        double v[3];
+        char c[3][32];
+        memcpy(v, field, sizeof v);
+        for (int d = 0; d < 3; d++) double_text(v[d], c[d], sizeof c[d]);
         snprintf(out, n, "%s %s %s", c[0], c[1], c[2]);
         return;
     }

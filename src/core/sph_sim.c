@@ -2,6 +2,7 @@
 #include "sph_sim.h"
 #include "sph_walls.h"
 #include "sph_obstacles.h"
+#include "sph_memory.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -144,7 +145,7 @@ static void place_particles(sph_sim *sim)
                     P->mass[i] = mass;
                     for (int d = 0; d < sim->dim; d++) {
                         float jit = def->jitter > 0 ? def->jitter * s * rng_symmetric(&rng) : 0.0f;
-                        float v = blk->min[d] + ((float)node[d] + 0.5f) * s + jit;
+                        float v = (float)blk->min[d] + ((float)node[d] + 0.5f) * s + jit;
                         /* jitter must not push a particle out of the domain */
                         if (v < def->domain_min[d]) v = def->domain_min[d];
                         if (v > def->domain_max[d]) v = def->domain_max[d];
@@ -252,6 +253,33 @@ static void set_bounds(sph_sim *sim)
     sim->density_bound = 100.0f * def->rest_density;
 }
 
+/* Moves sim->def into the simulation's frame: coordinates relative to the
+ * domain's point nearest 0 (sph_scene_origin), rounded to float as the
+ * particles are, so the passes compare float with float as before. A domain
+ * that contains 0 is unchanged; one far from 0 keeps the precision of its
+ * size, not of its distance from 0 (validation checks the float precision
+ * over that size). */
+static void to_relative(sph_sim *sim)
+{
+    sph_scene_def *def = &sim->def;
+    for (int d = 0; d < def->dim; d++) {
+        double o = sph_scene_origin(def, d);
+        sim->origin[d] = o;
+        def->domain_min[d] = (float)(def->domain_min[d] - o);
+        def->domain_max[d] = (float)(def->domain_max[d] - o);
+        for (int b = 0; b < def->n_blocks; b++) {
+            def->blocks[b].min[d] = (float)(def->blocks[b].min[d] - o);
+            def->blocks[b].max[d] = (float)(def->blocks[b].max[d] - o);
+        }
+        for (int k = 0; k < def->n_obstacles; k++) {
+            sph_obstacle_def *ob = &def->obstacles[k];
+            ob->min[d] = (float)(ob->min[d] - o);
+            ob->max[d] = (float)(ob->max[d] - o);
+            ob->centre[d] = (float)(ob->centre[d] - o);
+        }
+    }
+}
+
 sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **out, sph_error *err)
 {
     return sph_sim_create_shared(def, threads, NULL, out, err);
@@ -272,8 +300,10 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
         sim->def.gravity[2] = 0;
         sim->def.domain_min[2] = sim->def.domain_max[2] = 0;
     }
+    to_relative(sim);
     /* the fluid's particles, then the walls' (wall_model = particles) */
-    sim->n = (uint32_t)(sph_scene_particle_count(def) + sph_wall_particle_count(def));
+    /* counted in the frame the particles are placed in */
+    sim->n = (uint32_t)(sph_scene_particle_count(&sim->def) + sph_wall_particle_count(&sim->def));
 #ifdef _OPENMP
     sim->threads = threads > 0 ? threads : omp_get_num_procs();
     if (sim->threads > SPH_MAX_THREADS) sim->threads = SPH_MAX_THREADS;
@@ -358,10 +388,19 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     }
     if (!ok) {
         sph_sim_destroy(sim);
-        return sph_fail(err, SPH_ERR_MEMORY, "%s: out of memory for %u particles", def->file, n);
+        sph_mem_estimate e;
+        sph_mem_limit lim;
+        sph_memory_estimate(def, &e);
+        sph_memory_limit(&lim);
+        char need[32], have[32];
+        return sph_fail(err, SPH_ERR_MEMORY,
+                        "%s: out of memory making the simulation of %u particles (estimated %s in all, the largest "
+                        "item %s; limit %s, %s)",
+                        def->file, n, sph_memory_text(e.total, need, sizeof need), e.n ? e.item[e.largest].name : "-",
+                        sph_memory_text(lim.bytes, have, sizeof have), lim.source);
     }
     place_particles(sim);
-    if (P->fixed) sph_wall_particles_place(sim, (uint32_t)sph_scene_particle_count(def));
+    if (P->fixed) sph_wall_particles_place(sim, (uint32_t)sph_scene_particle_count(&sim->def));
     measure_start(sim);
     set_bounds(sim);
     sim->dt = sph_time_step_choose(sim);
@@ -425,12 +464,16 @@ static bool same_obstacles(const sph_scene_def *a, const sph_scene_def *b)
 
 sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err)
 {
-    if (def->dim != sim->def.dim || def->n_blocks != sim->def.n_blocks || !same_obstacles(def, &sim->def) ||
-        sph_scene_particle_count(def) + sph_wall_particle_count(def) != (double)sim->n)
-        return sph_fail(err, SPH_ERR_SCENE, "this change makes other particles: reset the scene instead");
+    static const char *const other = "this change makes other particles: reset the scene instead";
+    if (def->dim != sim->def.dim || def->n_blocks != sim->def.n_blocks || !same_obstacles(def, &sim->def))
+        return sph_fail(err, SPH_ERR_SCENE, "%s", other);
     sph_sim *next;
     sph_error_code c = sph_sim_create_shared(def, sim->threads, sim->backend_share, &next, err);
     if (c) return c;
+    if (next->n != sim->n) { /* counted in the simulation's frame, as the particles were placed */
+        sph_sim_destroy(next);
+        return sph_fail(err, SPH_ERR_SCENE, "%s", other);
+    }
     sph_sim_sync(sim, SPH_SYNC_ALL); /* the particles below are read from the host copy */
     uint32_t n = sim->n;
     memcpy(next->P.id, sim->P.id, (size_t)n * sizeof *next->P.id);

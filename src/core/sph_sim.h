@@ -232,6 +232,11 @@ struct sph_sim {
     int threads;
     sph_backend *backend; /* NULL: the passes run here, on P and S */
     void *backend_share;  /* what the backend was made to share (sph_sim_create_shared); reconfigure keeps it */
+    /* Far coordinates: positions (P.pos, P.pred) and sim->def's domain and
+     * blocks are relative to the domain's point nearest 0 (0 if it contains
+     * 0), so a box at x = 1e4 m runs exactly as one at 0. Output adds this
+     * back (sph_sim_abs). */
+    double origin[3];     /* [m] absolute position of the simulation frame's zero */
 };
 
 /* threads <= 0: one per core; at most SPH_MAX_THREADS. */
@@ -320,6 +325,14 @@ void sph_watchdog_check(sph_sim *sim, int pass);
 /* After a complete step: total energy against its value at step 0 (pass: the
  * step's last pass, named in the report). */
 void sph_watchdog_energy(sph_sim *sim, int pass);
+
+/* Absolute coordinate along axis d of a position x of the simulation frame. */
+static inline double sph_sim_abs(const sph_sim *sim, int d, float x)
+{
+    return sim->origin[d] + (double)x;
+}
+/* Whether the frame is shifted (output then needs more digits than a float). */
+#define sph_sim_shifted(sim) ((sim)->origin[0] != 0 || (sim)->origin[1] != 0 || (sim)->origin[2] != 0)
 
 /* Monotonic clock [ms]. */
 double sph_now_ms(void);

@@ -35,7 +35,7 @@ static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int
     for (int d = 0; d < dim; d++) {
         if (sim->period[d] > 0) continue; /* no walls on a periodic axis */
         const float x = sim->P.pred[d][i];
-        const float ds[2] = {x - sim->def.domain_min[d], sim->def.domain_max[d] - x};
+        const float ds[2] = {x - (float)sim->def.domain_min[d], (float)sim->def.domain_max[d] - x};
         for (int side = 0; side < 2; side++) {
             float area, share = sph_kernel_wall_lat(k, ds[side], &area);
             if (share == 0.0f && area == 0.0f) continue; /* beyond reach */

@@ -114,8 +114,11 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put(&t, "#define PERIODIC %d\n", sph_sim_periodic(sim));
     put_vec3(&t, "PER", sim->period);
     put_vec3(&t, "INV_PER", sim->inv_period);
-    put_vec3(&t, "DOM_MIN", sim->def.domain_min);
-    put_vec3(&t, "DOM_MAX", sim->def.domain_max);
+    /* the domain as the particles see it: relative to sim->origin (sph_sim_create), in float */
+    float lo[3], hi[3];
+    for (int d = 0; d < 3; d++) lo[d] = (float)sim->def.domain_min[d], hi[d] = (float)sim->def.domain_max[d];
+    put_vec3(&t, "DOM_MIN", lo);
+    put_vec3(&t, "DOM_MAX", hi);
     put(&t, "#define HAS_GRAVITY %d\n", (def->effects & SPH_EFFECT(GRAVITY)) != 0);
     put_vec3(&t, "GRAVITY", sim->def.gravity);
     put(&t, "#define WALL_VOLUME %d\n#define WALL_CORNER %d\n", sph_sim_wall_volume(sim), SPH_WALL_CORNER);

@@ -20,6 +20,24 @@ static void put_float(FILE *f, float x)
     put_be32(f, v);
 }
 
+static void put_double(FILE *f, double x)
+{
+    uint64_t v;
+    memcpy(&v, &x, sizeof v);
+    put_be32(f, (uint32_t)(v >> 32));
+    put_be32(f, (uint32_t)v);
+}
+
+/* A position field, absolute (sim->origin added), in double: at x = 1e5 m a
+ * float would keep 8 mm. Used only when the simulation frame is shifted, so
+ * a scene at the origin writes the same float file as before. */
+static void put_position(FILE *f, const sph_sim *sim, const sph_field *fd)
+{
+    for (uint32_t i = 0; i < sim->n; i++)
+        for (int c = 0; c < 3; c++) put_double(f, c < fd->ncomp && fd->c[c] ? sph_sim_abs(sim, c, fd->c[c][i]) : 0.0);
+    fputc('\n', f);
+}
+
 /* Components of a field, padded to 3 for vectors (VTK vectors are 3D). */
 static void put_field(FILE *f, const sph_sim *sim, const sph_field *fd, int ncomp)
 {
@@ -37,10 +55,14 @@ bool sph_vtk_write(const sph_sim *sim, const char *path, char *err, size_t n)
     fprintf(f, "# vtk DataFile Version 3.0\n");
     fprintf(f, "sphlab %.60s %dD step %llu t %.9g s\n", sim->def.name[0] ? sim->def.name : "scene", sim->dim,
             (unsigned long long)sim->step, sim->t);
-    fprintf(f, "BINARY\nDATASET POLYDATA\nPOINTS %u float\n", np);
+    const bool far = sph_sim_shifted(sim);
+    fprintf(f, "BINARY\nDATASET POLYDATA\nPOINTS %u %s\n", np, far ? "double" : "float");
     sph_field pos;
     sph_sim_field(sim, SPH_FIELD_POS, &pos);
-    put_field(f, sim, &pos, 3);
+    if (far)
+        put_position(f, sim, &pos);
+    else
+        put_field(f, sim, &pos, 3);
     fprintf(f, "VERTICES %u %llu\n", np, 2ull * np);
     for (uint32_t i = 0; i < np; i++) {
         put_be32(f, 1);
@@ -55,7 +77,10 @@ bool sph_vtk_write(const sph_sim *sim, const char *path, char *err, size_t n)
         sph_field fd;
         if (id == SPH_FIELD_POS || !sph_sim_field(sim, (sph_field_id)id, &fd)) continue;
         bool vec = fd.ncomp > 1 || fd.c[1];
-        if (vec) {
+        if (vec && far && id == SPH_FIELD_PRED) { /* a position too */
+            fprintf(f, "VECTORS %s double\n", fd.name);
+            put_position(f, sim, &fd);
+        } else if (vec) {
             fprintf(f, "VECTORS %s float\n", fd.name);
             put_field(f, sim, &fd, 3);
         } else {

@@ -111,8 +111,18 @@ int sph_inspect_lines(const sph_sim *sim, uint32_t i, char lines[][128], int max
 #define INSPECT(...) \
     if (k < max_lines) snprintf(lines[k++], 128, __VA_ARGS__)
     INSPECT("particle %u (index %u)", P->id[i], i);
-    vec_text(buf, sizeof buf, P->pos, dim, i);
-    INSPECT("x  %s m", buf);
+    if (sph_sim_shifted(sim)) { /* the absolute position, not the simulation frame's (sim->origin) */
+        double x[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) x[d] = sph_sim_abs(sim, d, P->pos[d][i]);
+        if (dim == 3) {
+            INSPECT("x  (%.10g, %.10g, %.10g) m", x[0], x[1], x[2]);
+        } else {
+            INSPECT("x  (%.10g, %.10g) m", x[0], x[1]);
+        }
+    } else {
+        vec_text(buf, sizeof buf, P->pos, dim, i);
+        INSPECT("x  %s m", buf);
+    }
     vec_text(buf, sizeof buf, P->vel, dim, i);
     INSPECT("v  %s m/s", buf);
     int32_t c[3];

@@ -235,7 +235,8 @@ static void build_grid(builder *b, const sph_sim *sim, const sph_overlay_opts *o
 {
     sph_overlay *ov = b->ov;
     const sph_cells g = cells_of(sim);
-    const float *lo = sim->def.domain_min, *hi = sim->def.domain_max;
+    float lo[3], hi[3]; /* the domain in the particles' frame (sim->origin: the domain's point nearest 0) */
+    for (int d = 0; d < 3; d++) lo[d] = (float)sim->def.domain_min[d], hi[d] = (float)sim->def.domain_max[d];
     if (o->px_per_m > 0 && fminf(g.size[0], g.size[1]) * o->px_per_m < 3.0f) {
         note(ov, "grid hidden: cells are under 3 px");
         return;

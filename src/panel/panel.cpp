@@ -168,6 +168,14 @@ static bool key_widget(const sph_key *k, void *base, int dim)
         std::memcpy(field, v, sizeof v);
         break;
     }
+    case SPH_KEY_POINT: { // a position kept in double (exact far from 0)
+        double v[3];
+        std::memcpy(v, field, sizeof v);
+        ImGui::InputScalarN(label, ImGuiDataType_Double, v, dim, nullptr, nullptr, "%.6g");
+        done = ImGui::IsItemDeactivatedAfterEdit();
+        std::memcpy(field, v, sizeof v);
+        break;
+    }
     case SPH_KEY_CHOICE:
     case SPH_KEY_KERNEL: {
         int v;

@@ -9,6 +9,7 @@
  *   brute: every pair, O(N^2): the reference the others are tested against.
  * The stencil's cells have distinct hashes (tests/test_search.c checks the
  * primes), so no entry is visited twice. Every variant gives the same sets. */
+#include "sph_memory.h"
 #include "sph_search.h"
 
 #include <stdio.h>
@@ -33,6 +34,9 @@ static void describe(const sph_scene_def *def, char *out, int n)
     snprintf(out, (size_t)n, "%s", about[def->search]);
 }
 
+/* Why lists can outgrow the estimate that validation checked. */
+#define SPH_LISTS_WHY "more neighbours than on the lattice, which the estimate of `sphlab check` assumes"
+
 typedef struct list {
     uint32_t *buf;
     size_t len, cap;
@@ -44,8 +48,9 @@ static void list_grow(list *l, size_t need)
     while (cap < need) cap *= 2;
     uint32_t *b = realloc(l->buf, cap * sizeof *b);
     if (!b) {
-        fprintf(stderr, "sphlab: out of memory for neighbour lists (%zu entries)\n", cap);
-        exit(3);
+        char size[32];
+        sph_memory_fail("a thread's neighbour list could not grow to %s (%s)",
+                        sph_memory_text((double)cap * sizeof *b, size, sizeof size), SPH_LISTS_WHY);
     }
     l->buf = b;
     l->cap = cap;
@@ -352,16 +357,15 @@ static void run(sph_sim *sim)
             base[0] = 0;
             for (int k = 0; k < nt; k++) base[k + 1] += base[k];
             for (int k = nt + 1; k <= T; k++) base[k] = base[nt];
-            if (base[nt] > UINT32_MAX) {
-                fprintf(stderr, "sphlab: more than 2^32 neighbour pairs\n");
-                exit(3);
-            }
+            if (base[nt] > UINT32_MAX) /* row offsets are 32-bit */
+                sph_memory_fail("%.3g neighbour pairs, more than the lists' 2^32", (double)base[nt]);
             if (base[nt] > S->nbr_cap) {
                 size_t cap = base[nt] + base[nt] / 4 + 1024;
                 uint32_t *b = realloc(S->nbr, cap * sizeof *b);
                 if (!b) {
-                    fprintf(stderr, "sphlab: out of memory for %zu neighbour pairs\n", base[nt]);
-                    exit(3);
+                    char size[32];
+                    sph_memory_fail("the neighbour lists could not grow to %s (%s)",
+                                    sph_memory_text((double)cap * sizeof *b, size, sizeof size), SPH_LISTS_WHY);
                 }
                 S->nbr = b;
                 S->nbr_cap = cap;

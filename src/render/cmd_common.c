@@ -143,7 +143,10 @@ bool view_opts_apply(const view_opts *o, const char *cmd, const sph_sim *sim, sp
     }
     if (o->n_center)
         for (int d = 0; d < 3; d++)
-            v->orbit.pan[d] = d < sim->dim ? o->center[d] - 0.5f * (sim->def.domain_min[d] + sim->def.domain_max[d]) : 0.0f;
+            /* --center is absolute; the camera works in the simulation's frame (sim->origin) */
+            v->orbit.pan[d] = d < sim->dim ? (float)(o->center[d] - sim->origin[d]) -
+                                                 0.5f * ((float)sim->def.domain_min[d] + (float)sim->def.domain_max[d])
+                                           : 0.0f;
     if (o->has_range) {
         v->fixed_range = true;
         v->range[0] = o->range[0];

@@ -81,7 +81,7 @@ int cmd_render(int argc, char **argv)
     if (made != SPH_ERR_OK) {
         fprintf(stderr, "sphlab: %s\n", serr.msg);
         sph_renderer_destroy(r);
-        return 1;
+        return app_error_status(serr.code);
     }
     sph_view view;
     if (!view_opts_apply(&vo, "render", sim, &view)) {

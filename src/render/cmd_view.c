@@ -210,7 +210,9 @@ static void save_scene(viewer *w, const char *path)
 /* Zooms by factor towards the world point at (camera.c). */
 static void zoom_at(viewer *w, float factor, const float at[3])
 {
-    sph_orbit_zoom_at(&w->v.orbit, w->def.domain_min, w->def.domain_max, at, factor);
+    float lo[3], hi[3]; /* the domain in the simulation's frame, as the renderer fits it */
+    for (int d = 0; d < 3; d++) lo[d] = (float)w->sim->def.domain_min[d], hi[d] = (float)w->sim->def.domain_max[d];
+    sph_orbit_zoom_at(&w->v.orbit, lo, hi, at, factor);
 }
 
 static void cycle_field(viewer *w, int dir)
@@ -363,7 +365,7 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
             o->yaw += 10.0f * dx;
             o->pitch = fmaxf(-89.0f, fminf(89.0f, o->pitch + 10.0f * dy));
         } else {
-            float span = (w->def.domain_max[0] - w->def.domain_min[0]) / o->zoom;
+            float span = (float)(w->def.domain_max[0] - w->def.domain_min[0]) / o->zoom;
             o->pan[0] += 0.1f * span * dx;
             o->pan[1] += 0.1f * span * dy;
         }
@@ -379,7 +381,7 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
         int32_t i = sim_index_of_id(w->sim, w->sel_id);
         for (int d = 0; d < 3; d++)
             at[d] = i >= 0 && d < w->sim->dim ? w->sim->P.pos[d][i]
-                                              : 0.5f * (w->def.domain_min[d] + w->def.domain_max[d]) + o->pan[d];
+                                              : 0.5f * (float)(w->sim->def.domain_min[d] + w->sim->def.domain_max[d]) + o->pan[d];
         zoom_at(w, k == SDLK_MINUS || k == SDLK_KP_MINUS ? 1.0f / 1.25f : 1.25f, at);
         break;
     }
@@ -401,7 +403,8 @@ static void press_char(viewer *w, char c)
 static void mouse_world(viewer *w, float x, float y, float out[3])
 {
     float px[2] = {x, y}, on[3];
-    for (int d = 0; d < 3; d++) on[d] = 0.5f * (w->def.domain_min[d] + w->def.domain_max[d]);
+    /* the camera works in the simulation's frame (sim->origin) */
+    for (int d = 0; d < 3; d++) on[d] = 0.5f * ((float)w->sim->def.domain_min[d] + (float)w->sim->def.domain_max[d]);
     if (w->sim->dim == 3) on[2] = w->v.slice_z;
     sph_camera_unproject(sph_renderer_camera(w->r), px, on, out);
 }

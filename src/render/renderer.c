@@ -460,7 +460,9 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     const float fs = r->font.px[SPH_TEXT_SMALL];
     int rc[4], legend_w;
     const bool strip = hud_layout(r, sim, L, v->side_px, rc, &legend_w);
-    sph_camera_fit(&r->cam, sim->dim, sim->def.domain_min, sim->def.domain_max, &v->orbit, r->w, r->h, rc);
+    float dom_lo[3], dom_hi[3];
+    for (int d = 0; d < 3; d++) dom_lo[d] = (float)sim->def.domain_min[d], dom_hi[d] = (float)sim->def.domain_max[d];
+    sph_camera_fit(&r->cam, sim->dim, dom_lo, dom_hi, &v->orbit, r->w, r->h, rc);
 
     /* overlays (GL-free) */
     sph_overlay_opts oo = {.layers = L, .selected = v->selected, .slice_z = v->slice_z, .px_per_m = r->cam.px_per_m};
@@ -522,7 +524,8 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     clip_to_view(r, true);
 
     /* canvas under: the domain */
-    const float *dl = sim->def.domain_min, *dh = sim->def.domain_max;
+    float dl[3], dh[3]; /* the domain in the particles' frame (sim->origin: the domain's point nearest 0) */
+    for (int d = 0; d < 3; d++) dl[d] = (float)sim->def.domain_min[d], dh[d] = (float)sim->def.domain_max[d];
     if (sim->dim == 2) {
         float a[2], b[2];
         float p0[3] = {dl[0], dl[1], 0}, p1[3] = {dh[0], dh[1], 0};

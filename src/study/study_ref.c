@@ -66,14 +66,14 @@ static bool is_tank(const sph_scene_def *def)
         const sph_block_def *k = &def->blocks[b];
         for (int d = 0; d < def->dim; d++) {
             if (d == 1) continue;
-            float tol = 1e-4f * (def->domain_max[d] - def->domain_min[d]);
-            if (fabsf(k->min[d] - def->domain_min[d]) > tol || fabsf(k->max[d] - def->domain_max[d]) > tol)
+            double tol = 1e-4 * (def->domain_max[d] - def->domain_min[d]);
+            if (fabs(k->min[d] - def->domain_min[d]) > tol || fabs(k->max[d] - def->domain_max[d]) > tol)
                 return false;
         }
     }
-    float lowest = INFINITY;
-    for (int b = 0; b < def->n_blocks; b++) lowest = fminf(lowest, def->blocks[b].min[1]);
-    return fabsf(lowest - def->domain_min[1]) <= 1e-4f * (def->domain_max[1] - def->domain_min[1]);
+    double lowest = INFINITY;
+    for (int b = 0; b < def->n_blocks; b++) lowest = fmin(lowest, def->blocks[b].min[1]);
+    return fabs(lowest - def->domain_min[1]) <= 1e-4 * (def->domain_max[1] - def->domain_min[1]);
 }
 
 int study_metric_guess(const sph_scene_def *def)
