@@ -57,7 +57,8 @@ const app_opt app_options[] = {
     /* run's outputs */
     {"--stats", NULL, "FILE.csv",
      "one row per step: step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed,\n"
-     "then the milliseconds of each pass in the pipeline",
+     "then the milliseconds of each pass in the pipeline; with a hash table, its health:\n"
+     "hash_keys,hash_load,hash_occupied,hash_colliding,hash_longest_run,hash_candidates,hash_share",
      RUN, STRING(stats)},
     {"--dump", NULL, "FILE.csv", "final particles: id,x,y,z,vx,vy,vz,rho,p, then every other field the scene computes", RUN,
      STRING(dump)},

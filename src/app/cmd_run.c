@@ -6,6 +6,7 @@
 
 #include "app.h"
 #include "../io/vtk.h"
+#include "sph_hash_health.h"
 
 static const app_cmd_spec spec = {
     .name = "run",
@@ -22,6 +23,10 @@ void app_stats_header(FILE *f, const sph_sim *sim)
     fprintf(f, "step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed");
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (sim->in_pipeline[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
+    sph_hash_health hh;
+    sph_sim_hash_health(sim, false, &hh);
+    if (hh.has_table) /* the figures of docs/performance.md's "Hash health" */
+        fprintf(f, ",hash_keys,hash_load,hash_occupied,hash_colliding,hash_longest_run,hash_candidates,hash_share");
     fprintf(f, "\n");
 }
 
@@ -33,6 +38,11 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
             s.rho_min, s.rho_mean, s.rho_max, s.max_speed);
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (sim->in_pipeline[p]) fprintf(f, ",%.6f", sim->timing[p].last_ms);
+    sph_hash_health hh;
+    sph_sim_hash_health(sim, false, &hh);
+    if (hh.has_table)
+        fprintf(f, ",%u,%.6g,%u,%u,%u,%.6g,%.6g", hh.table_size, hh.load_factor, hh.occupied, hh.colliding,
+                hh.longest_run, hh.candidates, hh.share);
     fprintf(f, "\n");
 }
 

@@ -53,6 +53,9 @@ struct sph_renderer {
     sph_overlay ov;
     float radius_px;
     int strip[4], legend[4];
+    /* when the HUD was drawn, for its frames/s: the last SPH_STEP_WINDOW draws, a ring */
+    double hud_drawn_ms[SPH_STEP_WINDOW]; /* [ms] sph_now_ms() */
+    uint64_t hud_draws;
 };
 
 /* ---- the canvas (canvas.c): triangles in pixels, batched, drawn with one
