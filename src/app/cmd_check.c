@@ -32,12 +32,13 @@ void app_print_hash_health(FILE *f, const sph_sim *sim)
     fprintf(f, "hash health (%s positions; docs/performance.md defines the figures):\n",
             sim->timing[SPH_PASS_HASH].calls ? "predicted" : "initial");
     fprintf(f, "  table size         %u keys\n", hh.table_size);
-    fprintf(f, "  load factor        %.3f (%u particles / %u keys)\n", hh.load_factor, hh.particles, hh.table_size);
+    /* no "N particles" here: the first line's particle count is what scripts read */
+    fprintf(f, "  load factor        %.3f (particles / keys = %u / %u)\n", hh.load_factor, hh.particles, hh.table_size);
     fprintf(f, "  occupied keys      %u (%.1f %% of the keys)\n", hh.occupied,
             hh.table_size ? 100.0 * hh.occupied / hh.table_size : 0.0);
     fprintf(f, "  colliding keys     %u (%.1f %% of the occupied: particles of several cells)\n", hh.colliding,
             hh.occupied ? 100.0 * hh.colliding / hh.occupied : 0.0);
-    fprintf(f, "  longest run        %u particles\n", hh.longest_run);
+    fprintf(f, "  longest run        %u (the most particles on one key)\n", hh.longest_run);
     fprintf(f, "  candidates         %.2f per particle (entries read in the 3^%d cell walk)\n", hh.candidates, sim->dim);
     fprintf(f, "  true neighbours    %.2f per particle (%.1f %% of the candidates are within h)\n", hh.neighbours,
             100 * hh.share);
