@@ -38,8 +38,8 @@ static void health_cell(const sph_cells *g, int dim, float *const x[3], uint32_t
     for (int d = 0; d < dim; d++) c[d] = sph_cells_coord(g, d, x[d][i]);
 }
 
-/* Calls visit(key, hash, ctx) for each cell of the 3^dim stencil around c,
- * skipping those past the edge of a bounded axis, as the neighbours pass does. */
+/* The hashes and keys of the 3^dim stencil's cells around c, without those
+ * past the edge of a bounded axis, as the neighbours pass walks them. */
 typedef struct stencil {
     int n;
     uint32_t key[27], hash[27];

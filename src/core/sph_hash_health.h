@@ -38,8 +38,10 @@ typedef struct sph_hash_health {
 } sph_hash_health;
 
 /* The figures for the particles' predicted positions (what the last hash
- * pass saw; the current positions before the first step). Costs O(N + keys)
- * with one pass over the stencils of the occupied cells; the true neighbours
+ * pass saw; the current positions before the first step). Costs O(N + keys):
+ * one pass over the particles, one over the keys, and a stencil of 3^dim
+ * keys each time the particle order enters a new cell (about 1.5 ms at
+ * 62,500 particles, docs/performance.md). The true neighbours
  * come from the neighbour lists when the CPU built them, else, with
  * count_neighbours, from a distance test over every candidate (the cost of a
  * neighbour search). Returns false only when out of memory (out says why). */
