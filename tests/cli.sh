@@ -58,6 +58,21 @@ for scene in lessons/scenes/*.ini; do
     fi
 done
 
+# Hash health: check prints its rows, --stats has its columns; no table with the dense grid.
+scene=lessons/scenes/dam-break-2d.ini
+sph check "$scene" > "$tmp/hh.txt" 2>&1
+for row in "table size" "load factor" "occupied keys" "colliding keys" "longest run" "candidates" "true neighbours"; do
+    grep -q "^  $row  " "$tmp/hh.txt" && ok || { bad "check $scene: no hash health row '$row'"; cat "$tmp/hh.txt"; }
+done
+sph check "$scene" --set search.method=grid | grep -q '^hash health: no hash table (search = grid' && ok || bad "check with search.method=grid: want 'no hash table'"
+if sph run "$scene" --steps 2 --quiet --stats "$tmp/hh.csv" 2> "$tmp/err.txt"; then
+    head -1 "$tmp/hh.csv" | grep -q ',hash_keys,hash_load,hash_occupied,hash_colliding,hash_longest_run,hash_candidates,hash_share$' && ok || bad "--stats: no hash health columns"
+    # a row's last value, the share of true neighbours, lies in (0, 1)
+    tail -1 "$tmp/hh.csv" | awk -F, '{ exit !($NF > 0 && $NF < 1) }' && ok || bad "--stats: hash_share not in (0, 1): $(tail -1 "$tmp/hh.csv")"
+else
+    bad "run $scene --stats"; cat "$tmp/err.txt"
+fi
+
 # Refusals of the GL backend that come before any context: no EGL needed.
 scene=lessons/scenes/dam-break-2d.ini
 sph run "$scene" --backend vulkan --steps 1 > "$tmp/gl.txt" 2>&1

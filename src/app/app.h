@@ -50,6 +50,8 @@ void app_out_abort(app_out *o);  /* closes and removes the temporary */
 
 
 void app_print_pipeline(FILE *f, const sph_sim *sim);
+/* Hash health of the scene as created: table size, load, collisions, candidates (see sph_hash_health.h). */
+void app_print_hash_health(FILE *f, const sph_sim *sim);
 /* What `sphlab check` prints about a scene: its size, effects and pipeline. */
 void app_check_report(FILE *f, const char *path, const sph_sim *sim);
 

@@ -4,6 +4,7 @@
 #include "app.h"
 #include "sph_obstacles.h"
 #include "../io/io.h"
+#include "sph_hash_health.h"
 
 void app_print_pipeline(FILE *f, const sph_sim *sim)
 {
@@ -21,6 +22,28 @@ void app_print_pipeline(FILE *f, const sph_sim *sim)
         if (!skipped++) fprintf(f, "left out:\n");
         fprintf(f, "      %-15s %s\n", sph_passes[p]->name, sph_passes[p]->skip_reason(&sim->def));
     }
+}
+
+void app_print_hash_health(FILE *f, const sph_sim *sim)
+{
+    sph_hash_health hh;
+    if (!sph_sim_hash_health(sim, true, &hh) || !hh.has_table) {
+        fprintf(f, "hash health: %s\n", hh.why);
+        return;
+    }
+    fprintf(f, "hash health (%s positions; docs/performance.md defines the figures):\n",
+            sim->timing[SPH_PASS_HASH].calls ? "predicted" : "initial");
+    fprintf(f, "  table size         %u keys\n", hh.table_size);
+    /* no "N particles" here: the first line's particle count is what scripts read */
+    fprintf(f, "  load factor        %.3f (particles / keys = %u / %u)\n", hh.load_factor, hh.particles, hh.table_size);
+    fprintf(f, "  occupied keys      %u (%.1f %% of the keys)\n", hh.occupied,
+            hh.table_size ? 100.0 * hh.occupied / hh.table_size : 0.0);
+    fprintf(f, "  colliding keys     %u (%.1f %% of the occupied: particles of several cells)\n", hh.colliding,
+            hh.occupied ? 100.0 * hh.colliding / hh.occupied : 0.0);
+    fprintf(f, "  longest run        %u (the most particles on one key)\n", hh.longest_run);
+    fprintf(f, "  candidates         %.2f per particle (entries read in the 3^%d cell walk)\n", hh.candidates, sim->dim);
+    fprintf(f, "  true neighbours    %.2f per particle (%.1f %% of the candidates are within h)\n", hh.neighbours,
+            100 * hh.share);
 }
 
 void app_check_report(FILE *f, const char *path, const sph_sim *sim)
@@ -51,6 +74,7 @@ void app_check_report(FILE *f, const char *path, const sph_sim *sim)
     char items[400], lb[32];
     fprintf(f, "memory: %s; limit %s (%s)\n", sph_memory_list(&e, items, sizeof items),
             sph_memory_text(lim.bytes, lb, sizeof lb), lim.source);
+    app_print_hash_health(f, sim);
     fprintf(f, "ok\n");
 }
 
@@ -59,7 +83,9 @@ static const app_cmd_spec spec = {
     .cmd = APP_CMD(check),
     .synopsis = "usage: sphlab check SCENE.ini [--set section.key=value ...] [--save-scene FILE.ini]\n"
                 "Validates the scene and prints the passes it runs, in order, with their variants,\n"
-                "and the passes left out with the reason.\n",
+                "and the passes left out with the reason; then the hash table's health at the initial\n"
+                "positions (size, load, occupied and colliding keys, longest run, candidates per particle\n"
+                "and the share within h), or why there is none.\n",
     .max_pos = 1,
     .extra_pos = "more than one scene file",
 };

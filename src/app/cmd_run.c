@@ -7,6 +7,7 @@
 #include "app.h"
 #include "../io/vtk.h"
 #include "sph_obstacles.h"
+#include "sph_hash_health.h"
 
 static const app_cmd_spec spec = {
     .name = "run",
@@ -27,6 +28,10 @@ void app_stats_header(FILE *f, const sph_sim *sim)
         for (int d = 0; d < sim->dim; d++) fprintf(f, ",obstacle_%s_f%c", sim->def.obstacles[k].name, "xyz"[d]);
     if (sim->def.pressure_solver != SPH_PSOLVER_EOS) /* the pressure solver's step: iterations, error reached */
         fprintf(f, ",iterations,density_error,div_iterations,divergence_error,capped");
+    sph_hash_health hh;
+    sph_sim_hash_health(sim, false, &hh);
+    if (hh.has_table) /* the figures of docs/performance.md's "Hash health" */
+        fprintf(f, ",hash_keys,hash_load,hash_occupied,hash_colliding,hash_longest_run,hash_candidates,hash_share");
     fprintf(f, "\n");
 }
 
@@ -47,6 +52,11 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
     if (sim->def.pressure_solver != SPH_PSOLVER_EOS)
         fprintf(f, ",%d,%.6g,%d,%.6g,%llu", sim->solver.iterations, sim->solver.density_error,
                 sim->solver.div_iterations, sim->solver.divergence_error, (unsigned long long)sim->solver.capped);
+    sph_hash_health hh;
+    sph_sim_hash_health(sim, false, &hh);
+    if (hh.has_table)
+        fprintf(f, ",%u,%.6g,%u,%u,%u,%.6g,%.6g", hh.table_size, hh.load_factor, hh.occupied, hh.colliding,
+                hh.longest_run, hh.candidates, hh.share);
     fprintf(f, "\n");
 }
 

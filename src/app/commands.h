@@ -6,7 +6,7 @@
 
 #define SPH_COMMANDS(X)                                                          \
     X(run, "SCENE.ini", "simulate a scene; print per-pass timings and a summary") \
-    X(check, "SCENE.ini", "validate a scene and print the pipeline it resolves to") \
+    X(check, "SCENE.ini", "validate a scene and print the pipeline it resolves to and its hash health") \
     X(plot, "WHAT ...", "charts for a report: ms per pass, --stats series, kernels (PNG + PDF)") \
     X(keys, "", "list every scene key with its default, unit and meaning") \
     X(render, "SCENE.ini", "simulate headless and write PNG frames (and VTK files)") \

@@ -547,6 +547,7 @@ static void run_timed(sph_sim *sim, int p)
     sim->timing[p].calls++;
     sim->timing[p].total_ms += ms;
     sim->timing[p].last_ms = ms;
+    sim->step_ms_acc += ms;
     if (!sim->watchdog) return; /* its cost is not counted as the pass's */
     if (sim->backend)
         watchdog_backend(sim, p);
@@ -574,6 +575,8 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
         sim->t += sim->dt;
         sim->step++;
         next = 0;
+        sim->step_ms[sim->step_ms_count++ % SPH_STEP_WINDOW] = sim->step_ms_acc;
+        sim->step_ms_acc = 0;
         if (sim->step == 1) {
             sph_stats s;
             sph_sim_stats(sim, &s);
@@ -605,6 +608,18 @@ void sph_sim_step(sph_sim *sim)
 void sph_sim_reset_timings(sph_sim *sim)
 {
     memset(sim->timing, 0, sizeof sim->timing);
+    sim->step_ms_acc = 0;
+    sim->step_ms_count = 0;
+}
+
+double sph_sim_step_ms(const sph_sim *sim, int *steps)
+{
+    int k = sim->step_ms_count < SPH_STEP_WINDOW ? (int)sim->step_ms_count : SPH_STEP_WINDOW;
+    if (steps) *steps = k;
+    if (!k) return NAN;
+    double sum = 0;
+    for (int i = 0; i < k; i++) sum += sim->step_ms[i];
+    return sum / k;
 }
 
 /* Internal energy per unit mass that the equation of state stores at density

@@ -112,6 +112,8 @@ typedef struct sph_alarm {
     char what[200];    /* e.g. "not finite", "speed 812 m/s above the bound 300 m/s" */
 } sph_alarm;
 
+#define SPH_STEP_WINDOW 60 /* steps in the ms-per-step window */
+
 typedef struct sph_pass_timing {
     uint64_t calls;
     double total_ms; /* [ms] monotonic clock, summed over calls */
@@ -210,6 +212,12 @@ struct sph_sim {
     bool in_pipeline[SPH_PASS_COUNT]; /* the scene needs the pass */
     bool enabled[SPH_PASS_COUNT];     /* switched on (a window toggle); only meaningful if in the pipeline */
     sph_pass_timing timing[SPH_PASS_COUNT];
+    /* The last SPH_STEP_WINDOW complete steps' times, each the sum of its
+     * passes' times (the watchdog's checks left out), in a ring: the HUD's
+     * ms per step is their mean (sph_sim_step_ms). */
+    double step_ms_acc;                  /* [ms] passes of the step under way, so far */
+    double step_ms[SPH_STEP_WINDOW];     /* [ms] step k is at k % SPH_STEP_WINDOW */
+    uint64_t step_ms_count;              /* steps recorded since creation or sph_sim_reset_timings */
     int next_pass;        /* next pass of the current step, for stepping pass by pass */
     /* Watchdog: after every pass, the fields it wrote are checked. */
     bool watchdog;        /* on by default */
@@ -296,6 +304,9 @@ const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n);
  * run starts rather than found out after hours; NULL if not. */
 const char *sph_sim_length_warning(const sph_sim *sim, double until, char *buf, size_t n);
 void sph_sim_reset_timings(sph_sim *sim);
+/* [ms] mean time per step over the last min(SPH_STEP_WINDOW, steps run)
+ * complete steps, NaN before the first; *steps (if not NULL) gets that count. */
+double sph_sim_step_ms(const sph_sim *sim, int *steps);
 
 /* Why the time step has its value now, in words: fixed, the cap [time] dt,
  * the floor dt_min, or the CFL condition that binds. */

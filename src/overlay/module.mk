@@ -29,3 +29,5 @@ check-clang-overlay:
 
 # The registry's tests check that every colour name a field or pass gives exists.
 $(BUILD)/tests/test_fields.o: CORE_CFLAGS += -Isrc/overlay
+# The hash health tests read the HUD's rows.
+$(BUILD)/tests/test_hash_health.o: CORE_CFLAGS += -Isrc/overlay

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "overlay_internal.h"
+#include "sph_hash_health.h"
 #include "sph_search.h"
 
 /* ---- HUD ----------------------------------------------------------------- */
@@ -74,7 +75,31 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
     } else {
         HUD_LINE("passes: %d of %d on; off:%s", on, total, off);
     }
-    if (info && info->steps_per_s >= 0) HUD_LINE("%.0f steps/s", info->steps_per_s);
+    if (info && info->steps_per_s >= 0) { /* times change from run to run: shown only when asked for */
+        int window = 0;
+        double ms = sph_sim_step_ms(sim, &window);
+        char fps[32] = "";
+        if (info->frames_per_s > 0) snprintf(fps, sizeof fps, "   %.0f frames/s", info->frames_per_s);
+        if (ms == ms) {
+            HUD_LINE("%.3g ms/step (mean of last %d)   %.0f steps/s%s", ms, window, info->steps_per_s, fps);
+        } else {
+            HUD_LINE("%.0f steps/s%s", info->steps_per_s, fps);
+        }
+    }
+    sph_hash_health hh;
+    sph_sim_hash_health(sim, false, &hh);
+    if (!hh.has_table) {
+        if (sim->in_pipeline[SPH_PASS_NEIGHBOURS]) HUD_LINE("%s", hh.why);
+    } else {
+        HUD_LINE("hash: %u keys, load %.2f, %u occupied, %u colliding (%.0f %%), longest run %u", hh.table_size,
+                 hh.load_factor, hh.occupied, hh.colliding, hh.occupied ? 100.0 * hh.colliding / hh.occupied : 0.0,
+                 hh.longest_run);
+        if (hh.share == hh.share) {
+            HUD_LINE("search: %.1f candidates per particle, %.0f %% within h", hh.candidates, 100 * hh.share);
+        } else {
+            HUD_LINE("search: %.1f candidates per particle", hh.candidates);
+        }
+    }
     if (info && info->last_pass >= 0 && info->last_pass < SPH_PASS_COUNT) {
         const sph_pass *p = sph_passes[info->last_pass];
         char wrote[64]; /* a HUD line holds about this much */

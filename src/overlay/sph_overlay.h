@@ -190,13 +190,18 @@ float sph_grid_size(const sph_sim *sim, int d);
 double sph_density_error(const sph_sim *sim);
 
 typedef struct sph_hud_info {
-    double steps_per_s;  /* measured by the caller; < 0: not shown */
+    double steps_per_s;  /* measured by the caller; < 0: not shown, nor the ms per step */
     bool paused;
     int last_pass;       /* pass run last when stepping pass by pass; -1 none */
     const char *message; /* a line for the user (screenshot saved, variant changed), or NULL */
+    double frames_per_s; /* frames drawn per second, measured by the renderer; <= 0: not shown */
 } sph_hud_info;
 
-/* The HUD's text lines (without timings). Returns the number of lines. */
+/* The HUD's text lines (without timings). Returns the number of lines.
+ * With steps_per_s >= 0, a line of ms per step (the mean over the last
+ * SPH_STEP_WINDOW steps), steps/s and frames/s; with a hash table, two lines
+ * of hash health (sph_hash_health.h), recomputed at each call (about a
+ * millisecond at 60k particles, see docs/performance.md). */
 int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128], int max_lines);
 
 /* The inspector's lines for particle i: id, position, cell, hash, key,

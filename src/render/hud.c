@@ -43,6 +43,17 @@ void hud_notes(sph_renderer *r, const int rc[4])
 
 /* ---- HUD, panel, legend ------------------------------------------------------ */
 
+/* Records this draw and returns the draws per second over the last
+ * SPH_STEP_WINDOW of them (0 until there are two). */
+static double hud_frames_per_s(sph_renderer *r)
+{
+    double now = sph_now_ms();
+    uint64_t k = r->hud_draws < SPH_STEP_WINDOW ? r->hud_draws : SPH_STEP_WINDOW; /* draws before this one */
+    double oldest = k ? r->hud_drawn_ms[(r->hud_draws - k) % SPH_STEP_WINDOW] : now;
+    r->hud_drawn_ms[r->hud_draws++ % SPH_STEP_WINDOW] = now;
+    return now > oldest ? 1e3 * (double)k / (now - oldest) : 0;
+}
+
 void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
 {
     const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
@@ -52,6 +63,7 @@ void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
     if (hud) {
         sph_hud_info info = v->hud;
         if (!timings) info.steps_per_s = -1; /* changes from run to run: only with the timings */
+        info.frames_per_s = hud_frames_per_s(r);
         nl = sph_hud_lines(sim, &info, lines, 10);
     }
     int bars = 0;

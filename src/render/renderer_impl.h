@@ -55,6 +55,9 @@ struct sph_renderer {
     int strip[4], legend[4];
     int side[4];     /* [px] the side column (HUD, timings, text panel); width 0: none */
     float side_used; /* [px] height of the column the HUD and text panel took, from its top */
+    /* when the HUD was drawn, for its frames/s: the last SPH_STEP_WINDOW draws, a ring */
+    double hud_drawn_ms[SPH_STEP_WINDOW]; /* [ms] sph_now_ms() */
+    uint64_t hud_draws;
 };
 
 /* ---- the canvas (canvas.c): triangles in pixels, batched, drawn with one
