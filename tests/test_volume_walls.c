@@ -148,3 +148,22 @@ Test(volume_walls, full_box_without_gravity_stays_at_rest)
     cr_assert_eq(fails, 0);
 }
 
+
+/* Far beyond 16 spacings per h the tables are the integral's (summing the
+ * lattice there costs (h/s)^dim per point); at 16 they agree within 6e-4. */
+Test(volume_walls, fine_lattice_tables_are_the_integral)
+{
+    for (int dim = 2; dim <= 3; dim++) {
+        sph_kernel k = sph_kernel_make(SPH_KERNEL_CUBIC, dim, 1.0f);
+        sph_kernel fine = k;
+        sph_kernel_wall_lattice(&fine, 1.0f / 300.0f);
+        cr_expect_eq(fine.wall_lat_full, 1.0f, "%dD", dim);
+        for (int i = 0; i <= SPH_WALL_TABLE; i++)
+            cr_expect_eq(fine.wall_lat_psi[i], k.wall_psi[i], "%dD, point %d", dim, i);
+        sph_kernel at16 = k;
+        sph_kernel_wall_lattice(&at16, 1.0f / SPH_WALL_LATTICE_MAX);
+        for (int i = 0; i <= SPH_WALL_TABLE; i++)
+            cr_expect_leq(fabsf(at16.wall_lat_psi[i] / at16.wall_lat_full - k.wall_psi[i]), 6e-4f, "%dD, point %d", dim,
+                          i);
+    }
+}

@@ -76,6 +76,8 @@ sph_kernel sph_kernel_make(sph_kernel_kind kind, int dim, float h);
 /* Fills the lattice tables (one wall, two walls) for the fluid's spacing [m];
  * spacing <= 0 makes them from the integral's (the corner share psi1 psi2). */
 void sph_kernel_wall_lattice(sph_kernel *k, float spacing);
+/* Spacings per h beyond which the lattice tables are the integral's (sph_kernel_wall_lattice). */
+#define SPH_WALL_LATTICE_MAX 16
 
 /* The per-pair functions are forced inline so that a pass's loop, which
  * calls them with a loop-invariant kind, gets them inlined (gcc -O2 keeps
