@@ -25,8 +25,9 @@ void sph_wall_particles_place(sph_sim *sim, uint32_t first);
  * beyond both), exact for a lattice at a wall and in a 2D corner. The 3D
  * vertex term H_uvw is estimated as sqrt(H_uv H_uw H_vw / H_full), exact for
  * a kernel that factorises along the axes. If grad is not NULL it receives
- * the gradient of H [1/m] with respect to the particle's position. */
-static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad[3])
+ * the gradient of H [1/m] with respect to the particle's position. At a
+ * position pos [m] (the pressure solvers ask at predicted positions). */
+static inline float sph_wall_hidden_at(const sph_sim *sim, const sph_kernel *k, const float pos[3], float grad[3])
 {
     const int dim = sim->dim;
     float dist[6], sgn[6], g[3] = {0, 0, 0}; /* per wall within reach: distance [m], d dist / dx */
@@ -34,7 +35,7 @@ static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int
     float hidden = 0.0f;
     for (int d = 0; d < dim; d++) {
         if (sim->period[d] > 0) continue; /* no walls on a periodic axis */
-        const float x = sim->P.pred[d][i];
+        const float x = pos[d];
         const float ds[2] = {x - (float)sim->def.domain_min[d], (float)sim->def.domain_max[d] - x};
         for (int side = 0; side < 2; side++) {
             float area, share = sph_kernel_wall_lat(k, ds[side], &area);
@@ -71,6 +72,14 @@ static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int
     if (grad)
         for (int d = 0; d < dim; d++) grad[d] = g[d];
     return hidden;
+}
+
+/* The same at particle i's position of the step (pred: where the lists were made). */
+static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int i, float grad[3])
+{
+    float pos[3] = {0.0f, 0.0f, 0.0f};
+    for (int d = 0; d < sim->dim; d++) pos[d] = sim->P.pred[d][i];
+    return sph_wall_hidden_at(sim, k, pos, grad);
 }
 
 #endif

@@ -26,9 +26,20 @@
 #include <stdio.h>
 
 /* The share of the last step's kappa a solve starts from. 0: the warm start
- * is off. With 0.5 the 2D dam break of tests/test_solvers.c blew up at its
- * second step (dt = 0.5 ms): the kappa that had stopped the first step's
- * wall kick (see docs/accuracy.md) pushed again. */
+ * is off. Why: correct() only adds (a particle's kappa grows while its
+ * predicted density is above rho_r and never shrinks), so a start that
+ * overestimates this step's pressure is applied whole, and nothing in the
+ * solve can take it back: the error it measures only sees compressions.
+ * Measured on the 2D dam break of tests/test_solvers.c (dt = 0.5 ms, 300
+ * steps): share 0 ends with 511 J of kinetic energy (PCISPH: 516 J), 6.9
+ * iterations per step; 0.5 with 646 J (+26 %, energy the stale pressure
+ * put in) and 4.2 iterations; 1 (Bender & Koschier 2017, Algorithm 3's
+ * sums) stops the watchdog at step 50 with every solve converged. Letting
+ * correct() also subtract (kappa = max(kappa + excess alpha / dt^2, 0), a
+ * projected Jacobi) diverges within 7 steps even from 0. Enabling it needs
+ * a solve that can lower kappa and converges; kappa [m^2/s^2] holds 1/dt^2
+ * too, so with a varying dt the start must also be scaled by
+ * (dt_last / dt)^2. */
 #define SPH_DFSPH_WARM 0.0f
 
 static const char *skip_reason(const sph_scene_def *def)
