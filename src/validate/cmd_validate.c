@@ -33,7 +33,8 @@ const val_problem val_problems[] = {
     {"couette", "start-up Couette flow: the top wall moves at U from t = 0",
      "series solution of the same diffusion problem", "velocity profile error <= 2 % of U at every sampled time",
      "particles across", {10, 20, 40}, 10, 4, 400, val_run_couette},
-    {"obstacle", "flow past an obstacle (to come: the scene format has no obstacles yet)", "-", "-", "-", {0, 0, 0},
+    {"obstacle", "a dam break hitting an obstacle, the force on it over time (to come; meanwhile `run --stats` "
+                 "writes the force of any [obstacle NAME])", "-", "-", "-", {0, 0, 0},
      0, 0, 0, NULL},
 };
 const int val_problem_count = (int)(sizeof val_problems / sizeof val_problems[0]);
