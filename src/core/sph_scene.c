@@ -42,9 +42,9 @@ static const group *section_group(const char *section)
 {
     for (int g = 0; g < N_GROUPS; g++) {
         size_t n = strlen(groups[g].kind);
+        if (strncmp(section, groups[g].kind, n) != 0) continue; /* before reading section[n]: it may be shorter */
         char c = section[n];
-        if (strncmp(section, groups[g].kind, n) == 0 && (c == '\0' || c == ' ' || c == '.' || c == '\t'))
-            return &groups[g];
+        if (c == '\0' || c == ' ' || c == '.' || c == '\t') return &groups[g];
     }
     return NULL;
 }
