@@ -114,8 +114,9 @@ static double periodic_clumping(const char *shifting, double jitter, int steps, 
     for (uint32_t i = 0; i < sim->n; i++) mean += sim->P.rho[i];
     mean /= sim->n;
     for (uint32_t i = 0; i < sim->n; i++) var += (sim->P.rho[i] - mean) * (sim->P.rho[i] - mean);
+    const double n = sim->n;
     sph_sim_destroy(sim);
-    return sqrt(var / sim->n) / mean;
+    return sqrt(var / n) / mean;
 }
 
 Test(hydro_accuracy, shifting_keeps_a_moving_lattice_a_lattice, .timeout = 60)
