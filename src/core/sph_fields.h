@@ -62,6 +62,8 @@
       "displacement of the particle shifting (shifting = lind): -D grad C, 0 at the free surface")             \
     X(SURFACE, surface, 1, "1", "1", DERIVED, SHIFTING, NONE, "", "surface",                                  \
       "1 where the particle is at the free surface (divergence of position below dim - 0.5), else 0")   \
+    X(DRIFT, drift, V, "m", "m", DERIVED, TRANSPORT, NONE, "", "drift",                                          \
+      "the transport velocity's extra displacement in this step (shifting = tvf): dt (dt/2) a_b")            \
     X(OBSTACLE, obstacle, 1, "1", "1", STATE, WALL_STATE, NONE, "", "obstacle",                                  \
       "the obstacle a wall particle belongs to: 1, 2, ... in the scene's order; 0 for the domain box and fluid")  \
     X(SLIP, slip, 1, "1", "1", STATE, WALL_STATE, NONE, "", "free-slip",                                        \

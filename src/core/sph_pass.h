@@ -33,6 +33,7 @@
     X(DFSPH, dfsph)        \
     X(INTEGRATE, integrate) \
     X(SHIFTING, shifting) \
+    X(TRANSPORT, transport) \
     X(WALLS, walls)
 
 typedef enum sph_pass_id {

@@ -57,7 +57,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_SHAPE_CHOICES(X) X(BOX, "box") X(CIRCLE, "circle")
 #define SPH_DMETHOD_CHOICES(X) X(SUMMATION, "summation") X(CONTINUITY, "continuity")
 #define SPH_DFORM_CHOICES(X) X(MOLTENI, "molteni") X(ANTUONO, "antuono")
-#define SPH_SHIFT_CHOICES(X) X(NONE, "none") X(LIND, "lind")
+#define SPH_SHIFT_CHOICES(X) X(NONE, "none") X(LIND, "lind") X(TVF, "tvf")
 #define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
 #define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
@@ -141,6 +141,7 @@ typedef struct sph_block_def {
     float spacing;     /* [m] lattice spacing; each particle carries rest_density * spacing^dim of mass */
     float velocity[3]; /* [m/s] initial velocity (uniform); amplitude U = velocity.x (taylor-green) */
     sph_velocity_field field; /* uniform, or the Taylor-Green vortex of the domain's size */
+    sph_onoff field_pressure; /* on: start with the field's pressure (taylor-green), carried by the masses */
     int line;          /* line of the [fluid ...] section header, for messages */
     sph_origin origin[8];
 } sph_block_def;

@@ -133,7 +133,9 @@ const sph_key sph_scene_keys[] = {
     {"physics", "shifting", SPH_KEY_CHOICE, S(shifting), 0, 0, 0, 0, CH(sph_shifting_names), "", "none",
      "particle shifting after each step: none; lind: every particle moves by -D grad C_i, C the particle "
      "concentration (Lind et al. 2012, J. Comput. Phys. 231:1499), D = shifting_coefficient h |v_i| dt; particles "
-     "at the free surface are not shifted; CPU only"},
+     "at the free surface are not shifted; tvf: every particle also drifts by dt (dt/2) a_b, a_b the acceleration of a "
+     "background pressure p_b = rest_density * stiffness (the transport velocity of Adami, Hu & Adams 2013, J. Comput. "
+     "Phys. 241:292, without its extra stress term), for flows that fill their domain (no free surface); CPU only"},
     {"physics", "shifting_coefficient", SPH_KEY_FLOAT, S(shifting_coefficient), 0, 100, 0, 0, NULL, 0, "", "2",
      "A of shifting = lind's D = A h |v_i| dt (2 in Skillen et al. 2013, who scaled Lind's D with the step)"},
     {"physics", "pressure_solver", SPH_KEY_CHOICE, S(pressure_solver), 0, 0, 0, 0, CH(sph_pressure_solver_names),
@@ -201,6 +203,10 @@ const sph_key sph_scene_keys[] = {
     {"fluid", "field", SPH_KEY_CHOICE, B(field), 0, 0, 0, 0, CH(sph_velocity_field_names), "", "uniform",
      "initial velocity field: uniform, or the Taylor-Green vortex u = U sin(kx) cos(ky), v = -U cos(kx) sin(ky), "
      "k = 2 pi / L with L the domain's x length (it decays as exp(-2 nu k^2 t))"},
+    {"fluid", "field_pressure", SPH_KEY_CHOICE, B(field_pressure), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: the block starts with the pressure of its field, p = -rho0 U^2 (cos 2kx + cos 2ky) / 4 for taylor-green "
+     "(the exact solution's), as the density the equation of state gives for it, carried by the masses "
+     "m = rho(p) spacing^dim; off: every particle at rest_density (p = 0 at t = 0)"},
 
 #define O(field) (int)offsetof(sph_obstacle_def, field)
     {"obstacle", "shape", SPH_KEY_CHOICE, O(shape), 0, 0, 0, 0, CH(sph_shape_names), "", "box",

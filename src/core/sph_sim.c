@@ -118,6 +118,16 @@ static float rng_symmetric(uint64_t *s) /* uniform in [-1, 1) */
     return (float)((double)(rng_next(s) >> 11) * (2.0 / 9007199254740992.0) - 1.0);
 }
 
+/* The density the equation of state gives for pressure p [Pa]: its inverse,
+ * so a block started with a pressure field has it from the first density sum. */
+static double rest_density_at(const sph_scene_def *def, double p)
+{
+    const double rho0 = def->rest_density, k = def->stiffness;
+    if (!(def->effects & SPH_EFFECT(PRESSURE)) || k <= 0) return rho0;
+    if (def->eos == SPH_EOS_TAIT) return rho0 * pow(1.0 + def->tait_gamma * p / (k * rho0), 1.0 / def->tait_gamma);
+    return rho0 + p / k;
+}
+
 static void place_particles(sph_sim *sim)
 {
     const sph_scene_def *def = &sim->def;
@@ -160,6 +170,10 @@ static void place_particles(sph_sim *sim)
                         P->vel[0][i] = (float)(U * sin(k * px) * cos(k * py));
                         P->vel[1][i] = (float)(-U * cos(k * px) * sin(k * py));
                         if (sim->dim == 3) P->vel[2][i] = 0.0f;
+                        if (blk->field_pressure == SPH_ON) {
+                            double p = -0.25 * def->rest_density * U * U * (cos(2 * k * px) + cos(2 * k * py));
+                            P->mass[i] = (float)(rest_density_at(def, p) * (sim->dim == 3 ? s * s * s : s * s));
+                        }
                     }
                 }
     }

@@ -104,6 +104,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [physics] shifting = %s is not implemented by the GL backend yet (its shifting pass "
                         "runs on the CPU; accepted there: none)",
                         def->file, sph_shifting_names[def->shifting]);
+    if (sim->in_pipeline[SPH_PASS_TRANSPORT])
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] shifting = tvf is not implemented by the GL backend yet (its transport pass, "
+                        "the drift of the background pressure, runs on the CPU; accepted there: none)",
+                        def->file);
     if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)))
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] pressure_solver = %s is not implemented by the GL backend yet (its iterations "

@@ -40,7 +40,7 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    if (def->shifting == SPH_SHIFT_NONE) return "[physics] shifting = none";
+    if (def->shifting != SPH_SHIFT_LIND) return "[physics] shifting is not lind";
     return sph_scene_needs_neighbours(def) ? NULL : "no effect of the scene needs density (the neighbour search)";
 }
 
