@@ -255,6 +255,7 @@ void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass)
                 (unsigned)pass < SPH_PASS_COUNT ? sph_passes[pass]->name : "unknown");
         abort();
     }
+    gpu_timer_begin(g, sim, (int)pass);
     if (row->run) {
         row->run(g, sim);
     } else {
@@ -264,5 +265,9 @@ void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass)
         gpu_set_u(g, pass, U_rows, g->reordered && sim->S.cells.dense);
         gpu_dispatch(g, g->n);
     }
-    if (g->pass_sync) g->gl.Finish();
+    gpu_timer_end(g);
+    if (g->pass_sync && !g->timer.on) { /* without timer queries: the host clock, after the device */
+        g->gl.Finish();
+        g->finishes++;
+    }
 }
