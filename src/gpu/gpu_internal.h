@@ -39,7 +39,8 @@ extern const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT]; /* 
 /* Programs: one per pass that has a shader of its own (program number = pass
  * number), then the helpers several passes share (shaders/gpu_NAME.comp). */
 #define GPU_HELPERS(X) \
-    X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range)
+    X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range) \
+    X(bitonic_local)
 enum {
 #define GPU_H_ENUM(name) H_##name,
     GPU_HELPERS(GPU_H_ENUM)
