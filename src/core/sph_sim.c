@@ -678,9 +678,15 @@ double sph_sim_energy_drift(const sph_sim *sim)
 void sph_sim_stats(const sph_sim *sim, sph_stats *out)
 {
     const sph_particles *P = &sim->P;
-    sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_POS) | SPH_SYNC_FIELD(SPH_FIELD_VEL) | SPH_SYNC_FIELD(SPH_FIELD_MASS) |
-                          SPH_SYNC_FIELD(SPH_FIELD_RHO) | SPH_SYNC_FIELD(SPH_FIELD_P) |
-                          SPH_SYNC_FIELD(SPH_FIELD_FIXED));
+    const sph_mask reads = SPH_SYNC_FIELD(SPH_FIELD_POS) | SPH_SYNC_FIELD(SPH_FIELD_VEL) |
+                           SPH_SYNC_FIELD(SPH_FIELD_MASS) | SPH_SYNC_FIELD(SPH_FIELD_RHO) |
+                           SPH_SYNC_FIELD(SPH_FIELD_P) | SPH_SYNC_FIELD(SPH_FIELD_FIXED);
+    /* a backend reduces on the device rather than download five fields;
+     * a fresh host copy is summed here (in double) as on the CPU */
+    if (sim->backend && sim->backend->stats && (sim->backend->stale & reads) &&
+        sim->backend->stats(sim->backend, sim, out))
+        return;
+    sph_sim_sync(sim, reads);
     memset(out, 0, sizeof *out);
     out->n = sim->n;
     double rmin = INFINITY, rmax = -INFINITY, rsum = 0;
@@ -708,6 +714,9 @@ void sph_sim_stats(const sph_sim *sim, sph_stats *out)
         }
     }
     out->max_speed = sqrt(out->max_speed);
+    if (P->rho)
+        for (uint32_t i = 0; i < sim->n; i++)
+            if (P->rho[i] > out->rho_max_all) out->rho_max_all = P->rho[i];
     if (P->rho && n_fluid) {
         out->rho_min = rmin;
         out->rho_max = rmax;

@@ -128,6 +128,8 @@ typedef struct sph_stats {
     double momentum[3]; /* [kg m/s] total momentum */
     double rho_min, rho_mean, rho_max; /* [kg/m^dim] 0 if density is not computed */
     double max_speed; /* [m/s] */
+    double rho_max_all; /* [kg/m^dim] the largest density of any particle, walls' included (the HUD's
+                           density error); 0 if density is not computed */
 } sph_stats;
 
 /* A compute backend: runs the passes on data kept elsewhere (the GL backend,
@@ -159,6 +161,10 @@ struct sph_backend {
      * reports what the device has measured so far; wait: all of it. */
     bool device_times;
     void (*collect_times)(sph_backend *b, sph_sim *sim, bool wait);
+    /* Optional: sph_sim_stats reduced on the device, so that only a few
+     * numbers are read back; called when the host copy of the fields it
+     * reads is stale. false: not done (the fields are downloaded). */
+    bool (*stats)(sph_backend *b, const sph_sim *sim, sph_stats *out);
 };
 
 /* What sph_sim_sync can refresh: the bits of sph_fields.h, one per particle

@@ -73,6 +73,7 @@ static void destroy(sph_backend *b)
             if (g->levels[l]) g->gl.DeleteBuffers(1, &g->levels[l]);
         if (g->range) g->gl.DeleteBuffers(1, &g->range);
         gpu_timer_free(g);
+        gpu_stats_free(g);
         sph_glctx_destroy(g->ctx);
     }
     free(g);
@@ -272,6 +273,7 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, void *share, sph_backend **o
     g->base.download = download;
     g->base.upload = upload;
     g->base.destroy = destroy;
+    g->base.stats = gpu_stats;
     g->n = sim->n;
     g->dim = sim->dim;
     g->table = sim->S.table_size ? sim->S.table_size : 1;

@@ -40,7 +40,7 @@ extern const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT]; /* 
  * number), then the helpers several passes share (shaders/gpu_NAME.comp). */
 #define GPU_HELPERS(X) \
     X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range) \
-    X(bitonic_local)
+    X(bitonic_local) X(stats) X(stats_sum)
 enum {
 #define GPU_H_ENUM(name) H_##name,
     GPU_HELPERS(GPU_H_ENUM)
@@ -104,6 +104,7 @@ typedef struct gpu {
     uint64_t downloaded;      /* bytes copied to the host: sph_sim_sync, range reads */
     gpu_timer timer;          /* pass times from timer queries (gpu_timing.c) */
     uint64_t finishes;        /* glFinish calls made by the passes (a debug counter for the tests) */
+    GLuint stats_rows, stats_out; /* the statistics' per-group rows and their sum (gpu_stats.c) */
 } gpu;
 
 /* ---- the table of passes (gpu_passes.c) ----------------------------------
@@ -142,6 +143,12 @@ void gpu_timer_free(gpu *g);
 /* Around each pass's dispatches. */
 void gpu_timer_begin(gpu *g, sph_sim *sim, int pass);
 void gpu_timer_end(gpu *g);
+
+/* ---- statistics (gpu_stats.c) ---------------------------------------------- */
+
+/* sph_sim_stats on the device (sph_backend.stats); false if it cannot. */
+bool gpu_stats(sph_backend *b, const sph_sim *sim, sph_stats *out);
+void gpu_stats_free(gpu *g);
 
 /* ---- programs (gpu_program.c) -------------------------------------------- */
 

@@ -238,6 +238,7 @@ void gpu_needed_programs(const sph_sim *sim, bool need[PROG_TOTAL])
 {
     memset(need, 0, PROG_TOTAL * sizeof *need);
     need[PROG_H(range)] = true; /* the window's colour scale */
+    need[PROG_H(stats)] = need[PROG_H(stats_sum)] = true; /* the HUD's and --stats' figures (gpu_stats.c) */
     need[SPH_PASS_INTEGRATE] = true;
     for (int p = 0; p < SPH_PASS_COUNT; p++) {
         if (!sim->in_pipeline[p]) continue;

@@ -453,8 +453,8 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     r->drew_direct = direct;
     if (!direct || (L & HOST_LAYERS))
         sph_sim_sync(sim, SPH_SYNC_ALL);
-    else if (L & SPH_OV_BIT(HUD))
-        sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_RHO)); /* the density error; sph_sim_stats syncs the rest */
+    /* else the HUD's density error and energies are reduced on the device
+     * (sph_sim_stats, sph_backend.stats): a few floats, no field */
     make_current(r);
     if (direct && !make_direct(r, err, n)) return false;
     const float fs = r->font.px[SPH_TEXT_SMALL];
