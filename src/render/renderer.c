@@ -601,6 +601,10 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
             gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)sim->n * sizeof(inst)), r->inst, GL_STREAM_DRAW);
         }
         gl->DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)sim->n);
+        if (direct) { /* the vertex array lets go of the backend's buffers: a reset's deleted ones are freed at once */
+            gl->BindBuffer(GL_ARRAY_BUFFER, 0);
+            for (GLuint k = 1; k <= 6; k++) gl->VertexAttribPointer(k, 1, GL_FLOAT, GL_FALSE, 0, NULL);
+        }
         gl->Disable(GL_DEPTH_TEST);
     }
 
