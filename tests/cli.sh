@@ -122,6 +122,9 @@ if [ "$probe" -ne 0 ] && grep -Eq 'EGL: no device|no EGL_MESA_platform_surfacele
 else
     if sphe "$sw" run "$scene" --backend gl --steps 20 --dump "$tmp/gl.csv" > "$tmp/gl.txt" 2>&1; then
         grep -q 'backend gl: .*OpenGL' "$tmp/gl.txt" && ok || { bad "run --backend gl: no device line"; cat "$tmp/gl.txt"; }
+        # the pass times' method is named (llvmpipe has timer queries) and the table counts every step
+        grep -q '^pass times *timer queries on the device' "$tmp/gl.txt" && grep -Eq '^density +20 ' "$tmp/gl.txt" && ok ||
+            { bad "run --backend gl: pass times not from timer queries, or steps missing from the table"; cat "$tmp/gl.txt"; }
         sph run "$scene" --steps 20 --quiet --dump "$tmp/cpu.csv"
         # same particles, positions within 1e-5 m after 20 steps (measured: 2e-7 m)
         if awk -F, 'NR == FNR { x[FNR] = $2; y[FNR] = $3; next }

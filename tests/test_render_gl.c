@@ -183,7 +183,13 @@ Test(render_gl, overlays_read_back_only_what_they_show)
     v.overlays = SPH_OV_BIT(HUD);
     before = sph_gpu_downloaded_bytes(p.gl);
     frame(p.r_gl, p.gl, &v, a);
-    cr_expect_gt(sph_gpu_downloaded_bytes(p.gl) - before, 0);
+    /* the density error and energies reduced on the device (48 bytes each
+     * call); the hash health's lines still read the positions and predicted
+     * positions (sph_sim_hash_health): no other field */
+    const uint64_t hud = sph_gpu_downloaded_bytes(p.gl) - before;
+    const uint64_t fields = 2 * (uint64_t)p.gl->dim * p.gl->n * sizeof(float);
+    cr_expect(hud > fields && hud - fields <= 4 * 48, "the HUD's frame downloaded %llu bytes (positions: %llu)",
+              (unsigned long long)hud, (unsigned long long)fields);
     v.overlays = 0;
     v.field = SPH_COLOR_KEY;
     sph_sim_step(p.gl);
@@ -309,5 +315,51 @@ Test(render_gl, picking_names_the_particle_under_the_cursor)
         hits++;
     }
     cr_assert_gt(hits, 3);
+    free_pair(&p);
+}
+
+/* The window's reset (r) replaces the GL simulation by a new one in the same
+ * context, with new buffers (here of another scene: other N and dimension),
+ * and destroys the old one: the very next frame draws the new buffers (the
+ * direct draw's vertex array is pointed at them every frame), as the CPU
+ * twin of the new scene is drawn. */
+Test(render_gl, a_reset_draws_the_new_buffers_at_once)
+{
+    pair p = make_pair(scene_2d);
+    sph_view v = sph_view_default(p.gl);
+    v.field = SPH_COLOR_SPEED;
+    v.overlays = 0;
+    uint8_t *a = malloc(W * H * 3), *b = malloc(W * H * 3);
+    cr_assert(a && b);
+    for (int s = 0; s < 3; s++) sph_sim_step(p.gl);
+    frame(p.r_gl, p.gl, &v, a);
+    cr_expect(sph_renderer_drew_direct(p.r_gl));
+    /* the reset: the new simulation first, in the same context, then the old one goes */
+    sph_scene_def def = test_scene(scene_3d);
+    def.backend = SPH_BACKEND_GL;
+    sph_error e;
+    sph_sim *fresh;
+    cr_assert_eq(sph_sim_create_shared(&def, 1, sph_renderer_context(p.r_gl), &fresh, &e), SPH_ERR_OK, "%s", e.msg);
+    sph_sim_destroy(p.gl);
+    p.gl = fresh;
+    def.backend = SPH_BACKEND_CPU;
+    sph_sim_destroy(p.cpu);
+    cr_assert_eq(sph_sim_create(&def, 1, &p.cpu, &e), SPH_ERR_OK, "%s", e.msg);
+    for (int s = 0; s < 2; s++) {
+        sph_sim_step(p.gl);
+        sph_sim_step(p.cpu);
+    }
+    v = sph_view_default(p.gl);
+    v.field = SPH_COLOR_SPEED;
+    v.overlays = 0;
+    frame(p.r_gl, p.gl, &v, a);
+    cr_expect(sph_renderer_drew_direct(p.r_gl), "the new simulation is drawn from its buffers");
+    frame(p.r_cpu, p.cpu, &v, b);
+    size_t drawn = particle_pixels(b), off = differing(a, b);
+    cr_expect_gt(drawn, (size_t)W * H / 50, "only %zu particle pixels", drawn);
+    cr_expect_leq(off, (size_t)W * H * 3 / 200, "the frame after the reset: %zu channel values differ from the CPU's",
+                  off);
+    free(a);
+    free(b);
     free_pair(&p);
 }

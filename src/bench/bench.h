@@ -92,8 +92,9 @@ typedef struct bench_plan {
     int steps;         /* steps per repeat */
     double budget_ms;  /* stop repeating once this much was spent (at least one repeat) */
     double decide_fps; /* > 0: stop after one repeat if clearly above (x1.5) or below (/3) it */
-    bool pass_times;   /* true per-pass times: a GL level then waits for each pass (glFinish), which
-                          costs it a little; false: passes are only queued, steps/s is the device's */
+    bool pass_times;   /* true per-pass times: a GL level with timer queries has them at no cost; without
+                          them it waits for each pass (glFinish), which costs it a little; false: then
+                          passes are only queued, steps/s is the device's */
 } bench_plan;
 
 typedef struct bench_meas {
@@ -107,6 +108,7 @@ typedef struct bench_meas {
     double create_ms;               /* making the simulation (not timed in steps/s) */
     double others;                  /* cores other processes kept busy meanwhile (NAN if unknown) */
     int attempts;                   /* measurements made (bench_measure_retry) */
+    const char *timing;             /* a backend's way of timing passes (sph_backend.timing); NULL on the CPU */
 } bench_meas;
 
 /* Makes the simulation of size k, runs one warm-up step, then times

@@ -73,6 +73,7 @@ typedef struct ladder_meta {
     bool gl_ran, gl_is_gpu, gl_target_met; /* a GL level ran; on a GPU (not llvmpipe); 1,000,000 reached */
     bool gl_target_evaluated;              /* 3D, 60 steps/s, a GL level on a GPU */
     char gl_device[256]; /* the GL levels' device, or why none could be made */
+    const char *gl_timing; /* how the GL levels' pass times were measured (sph_backend.timing), or NULL */
     bool all_pass;
 } ladder_meta;
 

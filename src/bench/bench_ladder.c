@@ -231,6 +231,7 @@ int bench_ladder_measure(const bench_opts *o, bench_ladder *lad)
             r->check_ok = false;
         } else {
             fill_rates(r);
+            if (bench_level_gl(L) && r->at.timing) meta.gl_timing = r->at.timing;
         }
         bench_cpu_now(&c1);
         r->others = bench_cpu_others(&c0, &c1);

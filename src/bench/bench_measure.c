@@ -24,6 +24,7 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
     if (sim->backend) sph_gpu_set_pass_sync(sim, plan->pass_times);
     out->n = sim->n;
     out->threads = sim->threads;
+    out->timing = sim->backend ? sim->backend->timing : NULL;
 
     const int R = plan->repeats > 0 ? plan->repeats : 1, S = plan->steps > 0 ? plan->steps : 1;
     double *rate = malloc((size_t)R * sizeof *rate);
@@ -36,6 +37,7 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
     double w0 = sph_now_ms();
     if (ok) sph_sim_step(sim);
     double warm_ms = sph_now_ms() - w0;
+    sph_sim_collect_times(sim);
     int r = 0, steps = 0;
     bool decided = false;
     if (ok && plan->decide_fps > 0 && warm_ms > 6 * 1000.0 / plan->decide_fps) {
@@ -52,6 +54,7 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
             double a = sph_now_ms();
             sph_sim_step(sim);
             double ms = sph_now_ms() - a;
+            sph_sim_collect_times(sim); /* a GL level's timer queries: this step's pass times, after its time */
             total += ms;
             step_ms[steps] = ms;
             for (int p = 0; p < SPH_PASS_COUNT; p++) pass_ms[(size_t)p * R * S + steps] = sim->timing[p].last_ms;

@@ -239,6 +239,8 @@ static cJSON *ladder_json(const bench_opts *o, const level_result *res, const la
     ok &= json_target(root, "target", 60000, o, res, m->best, m->target_evaluated, m->target_met);
     json_ok(&ok, m->gl_device[0] ? cJSON_AddStringToObject(root, "gl_device", m->gl_device)
                                  : cJSON_AddNullToObject(root, "gl_device"));
+    json_ok(&ok, m->gl_timing ? cJSON_AddStringToObject(root, "gl_pass_timing", m->gl_timing)
+                              : cJSON_AddNullToObject(root, "gl_pass_timing"));
     ok &= json_target(root, "gl_target", 1000000, o, res, m->gl_best, m->gl_target_evaluated, m->gl_target_met);
     json_ok(&ok, cJSON_AddBoolToObject(root, "all_checks_pass", m->all_pass));
     cJSON *levels = json_ok(&ok, cJSON_AddArrayToObject(root, "levels"));
@@ -270,9 +272,11 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
         fprintf(out, "other processes kept %.2f of the %d cores busy on average while it ran; one core's clock %.2f GHz\n"
                "at the start, %.2f at the end (lower when the host is busy)\n",
                meta.others, bench_levels_cores(), meta.ghz0, meta.ghz1);
-        if (meta.gl_ran)
+        if (meta.gl_ran) {
             fprintf(out, "GL levels (G*): %s%s\n", meta.gl_device,
                    meta.gl_is_gpu ? "" : " (software rendering on this CPU: a correctness device, not a GPU)");
+            if (meta.gl_timing) fprintf(out, "GL pass times: %s\n", meta.gl_timing);
+        }
         else if (gl_state < 0)
             fprintf(out, "GL levels (G*) skipped: no OpenGL 4.3 device: %s\n", meta.gl_device);
         double worst = 0;

@@ -550,6 +550,13 @@ static void watchdog_backend(sph_sim *sim, int p)
 
 static void run_timed(sph_sim *sim, int p)
 {
+    if (sim->backend && sim->backend->device_times) { /* its times come later (sph_sim_record_step_times) */
+        sim->backend->run(sim->backend, sim, (sph_pass_id)p);
+        sim->backend->stale |= pass_stale_bits(p);
+        sim->timing[p].calls++;
+        if (sim->watchdog) watchdog_backend(sim, p);
+        return;
+    }
     double t0 = sph_now_ms();
     if (sim->backend) {
         sim->backend->run(sim->backend, sim, (sph_pass_id)p);
@@ -582,14 +589,15 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
     double before = p < SPH_PASS_COUNT ? sim->timing[p].last_ms : 0.0;
     sim->pass_again = false;
     if (p < SPH_PASS_COUNT) run_timed(sim, p);
-    if (again && p < SPH_PASS_COUNT) sim->timing[p].last_ms += before;
+    const bool device_times = sim->backend && sim->backend->device_times;
+    if (again && p < SPH_PASS_COUNT && !device_times) sim->timing[p].last_ms += before;
     int next = sim->pass_again && p < SPH_PASS_COUNT ? p : p + 1; /* an iterative pass asks for another call */
     while (next < SPH_PASS_COUNT && !(sim->in_pipeline[next] && sim->enabled[next])) next++;
     if (next >= SPH_PASS_COUNT) { /* that was the step's last pass */
         sim->t += sim->dt;
         sim->step++;
         next = 0;
-        sim->step_ms[sim->step_ms_count++ % SPH_STEP_WINDOW] = sim->step_ms_acc;
+        if (!device_times) sim->step_ms[sim->step_ms_count++ % SPH_STEP_WINDOW] = sim->step_ms_acc;
         sim->step_ms_acc = 0;
         if (sim->step == 1) {
             sph_stats s;
@@ -624,6 +632,23 @@ void sph_sim_reset_timings(sph_sim *sim)
     memset(sim->timing, 0, sizeof sim->timing);
     sim->step_ms_acc = 0;
     sim->step_ms_count = 0;
+}
+
+void sph_sim_record_step_times(sph_sim *sim, const double ms[SPH_PASS_COUNT])
+{
+    double sum = 0;
+    for (int p = 0; p < SPH_PASS_COUNT; p++) {
+        if (!(ms[p] >= 0)) continue;
+        sim->timing[p].total_ms += ms[p];
+        sim->timing[p].last_ms = ms[p];
+        sum += ms[p];
+    }
+    sim->step_ms[sim->step_ms_count++ % SPH_STEP_WINDOW] = sum;
+}
+
+void sph_sim_collect_times(sph_sim *sim)
+{
+    if (sim->backend && sim->backend->collect_times) sim->backend->collect_times(sim->backend, sim, true);
 }
 
 double sph_sim_step_ms(const sph_sim *sim, int *steps)
@@ -667,9 +692,15 @@ double sph_sim_energy_drift(const sph_sim *sim)
 void sph_sim_stats(const sph_sim *sim, sph_stats *out)
 {
     const sph_particles *P = &sim->P;
-    sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_POS) | SPH_SYNC_FIELD(SPH_FIELD_VEL) | SPH_SYNC_FIELD(SPH_FIELD_MASS) |
-                          SPH_SYNC_FIELD(SPH_FIELD_RHO) | SPH_SYNC_FIELD(SPH_FIELD_P) |
-                          SPH_SYNC_FIELD(SPH_FIELD_FIXED));
+    const sph_mask reads = SPH_SYNC_FIELD(SPH_FIELD_POS) | SPH_SYNC_FIELD(SPH_FIELD_VEL) |
+                           SPH_SYNC_FIELD(SPH_FIELD_MASS) | SPH_SYNC_FIELD(SPH_FIELD_RHO) |
+                           SPH_SYNC_FIELD(SPH_FIELD_P) | SPH_SYNC_FIELD(SPH_FIELD_FIXED);
+    /* a backend reduces on the device rather than download five fields;
+     * a fresh host copy is summed here (in double) as on the CPU */
+    if (sim->backend && sim->backend->stats && (sim->backend->stale & reads) &&
+        sim->backend->stats(sim->backend, sim, out))
+        return;
+    sph_sim_sync(sim, reads);
     memset(out, 0, sizeof *out);
     out->n = sim->n;
     double rmin = INFINITY, rmax = -INFINITY, rsum = 0;
@@ -697,6 +728,9 @@ void sph_sim_stats(const sph_sim *sim, sph_stats *out)
         }
     }
     out->max_speed = sqrt(out->max_speed);
+    if (P->rho)
+        for (uint32_t i = 0; i < sim->n; i++)
+            if (P->rho[i] > out->rho_max_all) out->rho_max_all = P->rho[i];
     if (P->rho && n_fluid) {
         out->rho_min = rmin;
         out->rho_max = rmax;

@@ -128,6 +128,8 @@ typedef struct sph_stats {
     double momentum[3]; /* [kg m/s] total momentum */
     double rho_min, rho_mean, rho_max; /* [kg/m^dim] 0 if density is not computed */
     double max_speed; /* [m/s] */
+    double rho_max_all; /* [kg/m^dim] the largest density of any particle, walls' included (the HUD's
+                           density error); 0 if density is not computed */
 } sph_stats;
 
 /* A compute backend: runs the passes on data kept elsewhere (the GL backend,
@@ -149,6 +151,20 @@ struct sph_backend {
     /* Sends every particle field of sim->P to the device. */
     void (*upload)(sph_backend *b, sph_sim *sim);
     void (*destroy)(sph_backend *b);
+    /* How the passes' times are measured, for the timing table, e.g. "timer
+     * queries on the device"; NULL: the host clock around run(). */
+    const char *timing;
+    /* Set by a backend that times the passes on the device (timer queries,
+     * read back a step or so later so that nothing waits): run() then only
+     * counts calls, and the backend reports each complete step's times
+     * through sph_sim_record_step_times. collect_times (NULL: none pending)
+     * reports what the device has measured so far; wait: all of it. */
+    bool device_times;
+    void (*collect_times)(sph_backend *b, sph_sim *sim, bool wait);
+    /* Optional: sph_sim_stats reduced on the device, so that only a few
+     * numbers are read back; called when the host copy of the fields it
+     * reads is stale. false: not done (the fields are downloaded). */
+    bool (*stats)(sph_backend *b, const sph_sim *sim, sph_stats *out);
 };
 
 /* What sph_sim_sync can refresh: the bits of sph_fields.h, one per particle
@@ -307,6 +323,13 @@ void sph_sim_reset_timings(sph_sim *sim);
 /* [ms] mean time per step over the last min(SPH_STEP_WINDOW, steps run)
  * complete steps, NaN before the first; *steps (if not NULL) gets that count. */
 double sph_sim_step_ms(const sph_sim *sim, int *steps);
+/* A backend's device-measured times of one complete step [ms], per pass
+ * (negative: the pass did not run): filed as run() on the host clock files
+ * them (total_ms, last_ms, the step window). calls are counted when run. */
+void sph_sim_record_step_times(sph_sim *sim, const double ms[SPH_PASS_COUNT]);
+/* Waits for the times a backend still owes (sph_backend.device_times), so
+ * that a timing table read next counts every step run; nothing otherwise. */
+void sph_sim_collect_times(sph_sim *sim);
 
 /* Why the time step has its value now, in words: fixed, the cap [time] dt,
  * the floor dt_min, or the CFL condition that binds. */

@@ -100,7 +100,8 @@ typedef struct sph_gl {
 } sph_gl;
 
 /* What the GL compute backend (src/gpu/) needs beyond the renderer's table:
- * OpenGL 4.3 compute and buffer calls. A table of its own, so the OSMesa
+ * OpenGL 4.3 compute and buffer calls, and the timer queries (core since
+ * 3.3) that time its passes. A table of its own, so the OSMesa
  * loader (3.3) never asks for them. */
 #define SPH_GL_COMPUTE_FUNCS(X)                                                                          \
     X(void, DispatchCompute, (GLuint x, GLuint y, GLuint z))                                             \
@@ -109,7 +110,13 @@ typedef struct sph_gl {
     X(void, BufferSubData, (GLenum target, GLintptr off, GLsizeiptr size, const void *data))             \
     X(void, GetBufferSubData, (GLenum target, GLintptr off, GLsizeiptr size, void *data))                \
     X(void, Uniform1ui, (GLint loc, GLuint v))                                                           \
-    X(void, GetIntegeri_v, (GLenum name, GLuint index, GLint *v))
+    X(void, GetIntegeri_v, (GLenum name, GLuint index, GLint *v))                                        \
+    X(void, GenQueries, (GLsizei n, GLuint *q))                                                          \
+    X(void, DeleteQueries, (GLsizei n, const GLuint *q))                                                 \
+    X(void, QueryCounter, (GLuint q, GLenum target))                                                     \
+    X(void, GetQueryiv, (GLenum target, GLenum name, GLint *v))                                          \
+    X(void, GetQueryObjectiv, (GLuint q, GLenum name, GLint *v))                                         \
+    X(void, GetQueryObjectui64v, (GLuint q, GLenum name, GLuint64 *v))
 
 typedef struct sph_gl_compute {
 #define SPH_GL_MEMBER(ret, name, params) ret (*name) params;

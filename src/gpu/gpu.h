@@ -32,11 +32,21 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, void *share, sph_backend **o
  * ("GL_RENDERER, OpenGL GL_VERSION") in device; false with the reason in device. */
 bool sph_gpu_probe(char *device, size_t n);
 
-/* Per-pass timing waits for each pass to finish on the device (glFinish), so
- * that the timing table is true; off, passes are only queued and the step's
- * time lands in the integrate pass, which reads back the CFL maxima. On by
- * default; a benchmark of whole steps may switch it off. */
+/* Per-pass times come from timer queries where the context has them
+ * (GL_TIMESTAMP before and after each pass, read back a step or more later:
+ * nothing waits; sph_backend.timing says which method runs). Without them,
+ * or with the queries off, each pass waits for the device (glFinish) so that
+ * the host clock's table is true; with pass_sync off too, passes are only
+ * queued and the step's time lands in the integrate pass, which reads back
+ * the CFL maxima. pass_sync is on by default; a benchmark of whole steps may
+ * switch it off. */
 void sph_gpu_set_pass_sync(sph_sim *sim, bool on);
+/* Timer queries on (the default where the context has them) or off; returns
+ * whether they are on now (false: not on the GL backend, or none). */
+bool sph_gpu_set_timer_queries(sph_sim *sim, bool on);
+/* glFinish calls the passes have made since creation (a debug counter: 0
+ * with timer queries on). 0 if sim is not on the GL backend. */
+uint64_t sph_gpu_finish_count(const sph_sim *sim);
 
 /* ---- drawing from the device's buffers ------------------------------------
  * A window or renderer that draws in the simulation's own context reads the

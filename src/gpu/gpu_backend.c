@@ -72,6 +72,8 @@ static void destroy(sph_backend *b)
         for (int l = 0; l < MAX_SCAN_LEVELS; l++)
             if (g->levels[l]) g->gl.DeleteBuffers(1, &g->levels[l]);
         if (g->range) g->gl.DeleteBuffers(1, &g->range);
+        gpu_timer_free(g);
+        gpu_stats_free(g);
         sph_glctx_destroy(g->ctx);
     }
     free(g);
@@ -276,6 +278,7 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, void *share, sph_backend **o
     g->base.download = download;
     g->base.upload = upload;
     g->base.destroy = destroy;
+    g->base.stats = gpu_stats;
     g->n = sim->n;
     g->dim = sim->dim;
     g->table = sim->S.table_size ? sim->S.table_size : 1;
@@ -293,6 +296,7 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, void *share, sph_backend **o
     }
     g->fields = (sph_gl_fields){.ctx = g->ctx ? g->ctx : g->share, .buffer = fields_buffer, .range = fields_range};
     device_name(&g->gl, g->base.device, sizeof g->base.device);
+    gpu_timer_init(g);
     GLint max_block = 0;
     g->gl.GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if ((double)g->n * sizeof(sph_entry) > (double)(unsigned)max_block) {
@@ -329,6 +333,20 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, void *share, sph_backend **o
 void sph_gpu_set_pass_sync(sph_sim *sim, bool on)
 {
     if (sim->backend && sim->backend->run == gpu_run_pass) ((gpu *)sim->backend)->pass_sync = on;
+}
+
+bool sph_gpu_set_timer_queries(sph_sim *sim, bool on)
+{
+    if (!sim->backend || sim->backend->run != gpu_run_pass) return false;
+    gpu *g = (gpu *)sim->backend;
+    gpu_current(g);
+    gpu_timer_enable(g, sim, on);
+    return g->timer.on;
+}
+
+uint64_t sph_gpu_finish_count(const sph_sim *sim)
+{
+    return sim->backend && sim->backend->run == gpu_run_pass ? ((const gpu *)sim->backend)->finishes : 0;
 }
 
 static gpu *gpu_of(const sph_sim *sim)

@@ -39,7 +39,8 @@ extern const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT]; /* 
 /* Programs: one per pass that has a shader of its own (program number = pass
  * number), then the helpers several passes share (shaders/gpu_NAME.comp). */
 #define GPU_HELPERS(X) \
-    X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range)
+    X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range) \
+    X(bitonic_local) X(stats) X(stats_sum)
 enum {
 #define GPU_H_ENUM(name) H_##name,
     GPU_HELPERS(GPU_H_ENUM)
@@ -63,6 +64,26 @@ enum {
 /* floats of the density kernel's volume-wall tables, the B_WALL buffer (gpu_backend.c) */
 #define GPU_WALL_FLOATS (2 * (SPH_WALL_TABLE + 1) + 2 * (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1))
 
+/* Timer queries (gpu_timing.c): per step, a GL_TIMESTAMP before and after
+ * each pass; a ring of steps read back when the device has them. */
+#define GPU_TIMER_FRAMES 4   /* steps the device may be behind before timing waits */
+#define GPU_TIMER_ENTRIES 48 /* timed pass calls per step (an iterative pass calls several) */
+typedef struct gpu_timer_frame {
+    uint64_t step;                          /* the step it times (sim->step while it ran) */
+    int count;                              /* pass calls timed */
+    signed char pass[GPU_TIMER_ENTRIES];    /* each call's pass */
+    GLuint q[2 * GPU_TIMER_ENTRIES];        /* before and after each call */
+} gpu_timer_frame;
+typedef struct gpu_timer {
+    bool available;  /* the context counts GL_TIMESTAMP */
+    bool on;         /* pass times from the queries (else glFinish and the host clock) */
+    bool open;       /* frame[(head + pending) % FRAMES] is being recorded */
+    bool recording;  /* a pass's first timestamp is queued, its second not yet */
+    int head;        /* the oldest pending frame */
+    int pending;     /* frames complete but not read back */
+    gpu_timer_frame frame[GPU_TIMER_FRAMES];
+} gpu_timer;
+
 typedef struct gpu {
     sph_backend base;     /* first: the core's table */
     sph_glctx *ctx;       /* its own context; NULL when it runs in a shared one */
@@ -81,6 +102,9 @@ typedef struct gpu {
     bool pass_sync;           /* glFinish after each pass, so per-pass timings are true */
     GLuint range;             /* a field's min and max, as ordered keys (sph_gpu_field_range) */
     uint64_t downloaded;      /* bytes copied to the host: sph_sim_sync, range reads */
+    gpu_timer timer;          /* pass times from timer queries (gpu_timing.c) */
+    uint64_t finishes;        /* glFinish calls made by the passes (a debug counter for the tests) */
+    GLuint stats_rows, stats_out; /* the statistics' per-group rows and their sum (gpu_stats.c) */
 } gpu;
 
 /* ---- the table of passes (gpu_passes.c) ----------------------------------
@@ -106,6 +130,25 @@ extern const char *const gpu_common_source, *const gpu_walk_source;
 void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass);
 /* Which programs the scene's pipeline uses. */
 void gpu_needed_programs(const sph_sim *sim, bool need[PROG_TOTAL]);
+
+/* ---- pass times (gpu_timing.c) --------------------------------------------- */
+
+/* Whether the context has timer queries; if so makes them and turns them on.
+ * Sets base.collect_times and base.timing either way. */
+bool gpu_timer_init(gpu *g);
+/* Turns the queries on or off (off: glFinish per pass); sim non-NULL: what
+ * is pending is read first. */
+void gpu_timer_enable(gpu *g, sph_sim *sim, bool on);
+void gpu_timer_free(gpu *g);
+/* Around each pass's dispatches. */
+void gpu_timer_begin(gpu *g, sph_sim *sim, int pass);
+void gpu_timer_end(gpu *g);
+
+/* ---- statistics (gpu_stats.c) ---------------------------------------------- */
+
+/* sph_sim_stats on the device (sph_backend.stats); false if it cannot. */
+bool gpu_stats(sph_backend *b, const sph_sim *sim, sph_stats *out);
+void gpu_stats_free(gpu *g);
 
 /* ---- programs (gpu_program.c) -------------------------------------------- */
 

@@ -55,18 +55,32 @@ static void scan(gpu *g, GLuint b, uint32_t count, int level)
     gpu_dispatch(g, count);
 }
 
+/* The seed's bitonic network over the next power of two P. Steps whose
+ * stride fits a work group (w <= WG) run in shared memory, all of a block's
+ * in one dispatch (gpu_bitonic_local.comp): the stages w0 <= WG whole, and
+ * the short tail of every longer stage; only the long steps (w > WG) are one
+ * dispatch each (gpu_bitonic.comp). log2(P / 2WG) (log2(P / 2WG) + 1) / 2 +
+ * log2(P / 2WG) + 1 dispatches instead of log2(P) (log2(P) + 1) / 2. */
 static void sort_bitonic(gpu *g)
 {
     uint32_t P = 1;
     while (P < g->n) P <<= 1;
-    gpu_use(g, PROG_H(bitonic));
-    gpu_set_u(g, PROG_H(bitonic), U_count, P / 2);
-    for (uint32_t w0 = 1; w0 < P; w0 <<= 1)
-        for (uint32_t w = w0; w >= 1; w >>= 1) {
+    const uint32_t pairs = P / 2 > WG ? P / 2 : WG; /* a block of 2 WG, padded, at the least */
+    gpu_use(g, PROG_H(bitonic_local));
+    gpu_set_u(g, PROG_H(bitonic_local), U_w, 0);
+    gpu_dispatch(g, pairs);
+    for (uint32_t w0 = 2 * WG; w0 < P; w0 <<= 1) {
+        gpu_use(g, PROG_H(bitonic));
+        gpu_set_u(g, PROG_H(bitonic), U_count, P / 2);
+        for (uint32_t w = w0; w > WG; w >>= 1) {
             gpu_set_u(g, PROG_H(bitonic), U_w, w);
             gpu_set_u(g, PROG_H(bitonic), U_flip, w == w0);
             gpu_dispatch(g, P / 2);
         }
+        gpu_use(g, PROG_H(bitonic_local));
+        gpu_set_u(g, PROG_H(bitonic_local), U_w, w0);
+        gpu_dispatch(g, P / 2);
+    }
 }
 
 /* Counting sort with a prefix sum: histogram of keys, inclusive scan (each
@@ -112,7 +126,7 @@ static void run_sort(gpu *g, sph_sim *sim)
 
 static unsigned sort_helpers(const sph_scene_def *def)
 {
-    if (def->sort == SPH_SORT_BITONIC) return HELPER_BIT(bitonic);
+    if (def->sort == SPH_SORT_BITONIC) return HELPER_BIT(bitonic) | HELPER_BIT(bitonic_local);
     return HELPER_BIT(fill) | HELPER_BIT(histogram) | HELPER_BIT(scan_block) | HELPER_BIT(scan_add) |
            HELPER_BIT(scatter) | HELPER_BIT(rank);
 }
@@ -224,6 +238,7 @@ void gpu_needed_programs(const sph_sim *sim, bool need[PROG_TOTAL])
 {
     memset(need, 0, PROG_TOTAL * sizeof *need);
     need[PROG_H(range)] = true; /* the window's colour scale */
+    need[PROG_H(stats)] = need[PROG_H(stats_sum)] = true; /* the HUD's and --stats' figures (gpu_stats.c) */
     need[SPH_PASS_INTEGRATE] = true;
     for (int p = 0; p < SPH_PASS_COUNT; p++) {
         if (!sim->in_pipeline[p]) continue;
@@ -255,6 +270,7 @@ void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass)
                 (unsigned)pass < SPH_PASS_COUNT ? sph_passes[pass]->name : "unknown");
         abort();
     }
+    gpu_timer_begin(g, sim, (int)pass);
     if (row->run) {
         row->run(g, sim);
     } else {
@@ -264,5 +280,9 @@ void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass)
         gpu_set_u(g, pass, U_rows, g->reordered && sim->S.cells.dense);
         gpu_dispatch(g, g->n);
     }
-    if (g->pass_sync) g->gl.Finish();
+    gpu_timer_end(g);
+    if (g->pass_sync && !g->timer.on) { /* without timer queries: the host clock, after the device */
+        g->gl.Finish();
+        g->finishes++;
+    }
 }

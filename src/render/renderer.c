@@ -453,8 +453,8 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     r->drew_direct = direct;
     if (!direct || (L & HOST_LAYERS))
         sph_sim_sync(sim, SPH_SYNC_ALL);
-    else if (L & SPH_OV_BIT(HUD))
-        sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_RHO)); /* the density error; sph_sim_stats syncs the rest */
+    /* else the HUD's density error and energies are reduced on the device
+     * (sph_sim_stats, sph_backend.stats): a few floats, no field */
     make_current(r);
     if (direct && !make_direct(r, err, n)) return false;
     const float fs = r->font.px[SPH_TEXT_SMALL];
@@ -601,6 +601,10 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
             gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)sim->n * sizeof(inst)), r->inst, GL_STREAM_DRAW);
         }
         gl->DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)sim->n);
+        if (direct) { /* the vertex array lets go of the backend's buffers: a reset's deleted ones are freed at once */
+            gl->BindBuffer(GL_ARRAY_BUFFER, 0);
+            for (GLuint k = 1; k <= 6; k++) gl->VertexAttribPointer(k, 1, GL_FLOAT, GL_FALSE, 0, NULL);
+        }
         gl->Disable(GL_DEPTH_TEST);
     }
 
