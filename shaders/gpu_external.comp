@@ -1,7 +1,8 @@
-// uses: POS VEL PRED
+// uses: POS VEL PRED FIXED
 // Pass external (src/passes/external.c): v = damp v + gscale g dt, then
 // pred = x + v dt. u_gscale and u_damp are the start-up ramps' factors for
-// this step (src/core/sph_start.h), 1 when the scene has none.
+// this step (src/core/sph_start.h), 1 when the scene has none. Wall
+// particles (wall_model = particles) get no gravity: they stand still.
 layout(local_size_x = WG) in;
 uniform float u_dt;
 uniform float u_gscale;
@@ -17,6 +18,9 @@ void main()
         v *= u_damp;
 #if HAS_GRAVITY
         float gdt = GRAVITY[d] * u_gscale * u_dt;
+#if HAS_FIXED
+        if (fixed_[i] != 0.0) gdt = 0.0;
+#endif
         if (gdt != 0.0) {
             v += gdt;
             changed = true;

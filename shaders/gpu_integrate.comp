@@ -1,10 +1,12 @@
-// uses: POS VEL ACCELERATIONS REDUCE
+// uses: POS VEL ACCELERATIONS REDUCE FIXED
 // Pass integrate (src/passes/integrate.c): symplectic Euler with the sum of
 // every acceleration field (ACC_SUM, written by the host), periodic wrap,
 // and the largest |v|^2 and |a|^2 for the CFL step: reduced per group in
 // shared memory, then one atomicMax per group on the float bits (non-negative
 // floats order as their bits do; a NaN's bits exceed every finite value's, so
-// a NaN shows up in the maximum, as the watchdog needs).
+// a NaN shows up in the maximum, as the watchdog needs). Wall particles
+// (wall_model = particles) never move and count in neither maximum; only the
+// periodic wrap applies to them, as on the CPU.
 layout(local_size_x = WG) in;
 uniform float u_dt;
 shared uint sv[WG], sa[WG];
@@ -12,7 +14,16 @@ void main()
 {
     uint i = gid(), l = gl_LocalInvocationID.x;
     float v2 = 0.0, a2 = 0.0;
-    if (i < N) {
+    bool wall = false;
+#if HAS_FIXED
+    wall = i < N && fixed_[i] != 0.0;
+#endif
+    if (wall) {
+        for (int d = 0; d < DIM; d++) {
+            uint k = uint(d) * N + i;
+            if (PER[d] > 0.0) pos_[k] = wrap_coord(pos_[k], DOM_MIN[d], PER[d], INV_PER[d]);
+        }
+    } else if (i < N) {
         for (int d = 0; d < DIM; d++) {
             uint k = uint(d) * N + i;
             float a = ACC_SUM(k); // every acceleration field, as the CPU sums them

@@ -1,6 +1,7 @@
-// uses: PRED MASS RHO VOL P PRHO2 ACC_P ENTRIES START WALL
+// uses: PRED MASS RHO VOL P PRHO2 ACC_P ENTRIES START WALL FIXED
 // Pass pressure_force (src/passes/pressure_force.c): symmetric or shared form,
 // coincident pairs pushed apart along x (repulsion only), walls push back.
+// Wall particles (wall_model = particles) get no acceleration: they never move.
 layout(local_size_x = WG) in;
 vec3 acc;
 float pi_over, p_i, rho_i;
@@ -27,6 +28,12 @@ void main()
 {
     uint i = gid();
     if (i >= N) return;
+#if HAS_FIXED
+    if (fixed_[i] != 0.0) {
+        for (int d = 0; d < DIM; d++) acc_p_[uint(d) * N + i] = 0.0;
+        return;
+    }
+#endif
     vec3 xi = PRED3(i);
     acc = vec3(0.0);
     pi_over = p_rho2_[i];

@@ -1,7 +1,9 @@
-// uses: PRED VEL MASS VOL RHO ACC_V ENTRIES START
+// uses: PRED VEL MASS VOL RHO ACC_V ENTRIES START VEL_VISC FIXED
 // Pass viscosity (src/passes/viscosity.c): reads vel, writes acc_v only. The
 // seed's shader added the result to the velocity buffer it was still reading
 // for other particles, so its result depended on the order threads ran in.
+// With wall particles the neighbours' velocities are vel_visc (the wall_state
+// pass: the fluid's own, a no-slip wall's mirrored) and walls get none.
 #if VFORM != VFORM_LAPLACIAN && VFORM != VFORM_SMOOTHING && VFORM != VFORM_MORRIS && VFORM != VFORM_ARTIFICIAL
 #error "a viscosity form this shader does not implement"
 #endif
@@ -31,7 +33,11 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
     float coef = vol_[j] * kernel_w(KV, SIG_V, r);
 #endif
 #if VFORM != VFORM_ARTIFICIAL
+#if HAS_VEL_VISC
+    vec3 vj = LOAD3(vel_visc_, j);
+#else
     vec3 vj = VEL3(j);
+#endif
     for (int d = 0; d < DIM; d++) acc[d] += coef * (vj[d] - vi[d]);
 #endif
 }
@@ -40,6 +46,12 @@ void main()
 {
     uint i = gid();
     if (i >= N) return;
+#if HAS_FIXED
+    if (fixed_[i] != 0.0) {
+        for (int d = 0; d < DIM; d++) acc_v_[uint(d) * N + i] = 0.0;
+        return;
+    }
+#endif
     acc = vec3(0.0);
     vi = VEL3(i);
     rho_i = rho_[i];

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "gpu.h"
+#include "sph_obstacles.h"
 #include "sph_search.h"
 #include "test_util.h"
 
@@ -87,6 +88,7 @@ static void copy_state(sph_sim *g, const sph_sim *c)
     g->t = c->t; /* the start-up ramps depend on it */
     g->max_speed = c->max_speed;
     g->max_acc = c->max_acc;
+    g->rho_carried = c->rho_carried; /* density_method = continuity: carried since the start */
     sph_sim_upload(g);
 }
 
@@ -172,6 +174,7 @@ static void lockstep(sph_sim *c, sph_sim *g)
         case SPH_PASS_DENSITY:
             expect_field(c, g, SPH_FIELD_RHO, TOL_DENSITY, name);
             expect_field(c, g, SPH_FIELD_VOL, TOL_DENSITY, name);
+            if (c->P.rho_c) expect_field(c, g, SPH_FIELD_RHO_C, TOL_DENSITY, name);
             break;
         case SPH_PASS_PRESSURE:
             expect_field(c, g, SPH_FIELD_P, TOL_PRESSURE, name);
@@ -308,6 +311,86 @@ Test(gl_backend, passes_match_cpu_periodic_brute)
 {
     const char *sets[] = {"domain.periodic=x", "search.method=brute"};
     lockstep_steps(scene_2d, sets, 2, 1);
+}
+
+/* Wall particles (Adami et al. 2012): the wall_state pass, the walls' zero
+ * accelerations, their place in the external, integrate and walls passes,
+ * a free-slip floor among no-slip walls. */
+Test(gl_backend, passes_match_cpu_wall_particles)
+{
+    const char *sets[] = {"domain.wall_model=particles", "domain.wall_slip_ymin=free", "physics.eos=tait"};
+    lockstep_steps(scene_2d, sets, 3, 2);
+    lockstep_steps(scene_3d, sets, 2, 1);
+}
+
+/* density_method = continuity with Molteni's diffusion, with Antuono's and
+ * wall particles (the density_gradient pass, a wall's density from
+ * wall_state), and with volume walls (the hidden share's rate). */
+Test(gl_backend, passes_match_cpu_continuity)
+{
+    const char *molteni[] = {"physics.density_method=continuity", "physics.delta=0.1"};
+    lockstep_steps(scene_2d, molteni, 2, 2);
+    const char *antuono[] = {"physics.density_method=continuity", "physics.delta_form=antuono",
+                             "domain.wall_model=particles"};
+    lockstep_steps(scene_2d, antuono, 3, 2);
+    lockstep_steps(scene_3d, antuono, 3, 1);
+    const char *volume[] = {"physics.density_method=continuity", "domain.wall_model=volume", "domain.periodic=x"};
+    lockstep_steps(scene_2d, volume, 3, 1);
+}
+
+/* shifting = lind: the surface marks exactly, the shift within TOL_FORCE. */
+Test(gl_backend, passes_match_cpu_shifting)
+{
+    const char *sets[] = {"physics.shifting=lind", "domain.wall_model=particles"};
+    lockstep_steps(scene_2d, sets, 2, 2);
+    lockstep_steps(scene_3d, sets, 1, 1);
+}
+
+/* Obstacles (wall particles of their own, one free-slip) in separate runs:
+ * positions, and the fluid's force on each obstacle (the --stats columns,
+ * computed on the host from the synchronised state). */
+Test(gl_backend, obstacles_match_cpu)
+{
+    need_gl();
+    const char *ini =
+        "[scene]\nname=gl obstacles\ndimension=2\neffects=gravity pressure viscosity walls\njitter=0.2\n"
+        "[domain]\nmin=-0.3 -0.2\nmax=0.3 0.4\nwall_model=particles\n"
+        "[physics]\nnegative_pressure=clamp\nviscosity=0.005\n"
+        "[kernels]\nh=0.04\n[time]\ndt=0.001\ncfl=0.4\n"
+        "[fluid a]\nmin=-0.3 -0.2\nmax=0.0 0.1\nspacing=0.02\nvelocity=0.5 0\n"
+        "[obstacle b]\nmin=-0.1 -0.2\nmax=0.0 -0.1\nslip=free\n"
+        "[obstacle c]\nshape=circle\ncentre=-0.2 0.0\nradius=0.05\n";
+    const char *sets[] = {"physics.density_method=continuity", "physics.delta_form=antuono", "physics.shifting=lind"};
+    sph_sim *c = make(ini, sets, 3, false), *g = make(ini, sets, 3, true);
+    cr_assert_eq(c->def.n_obstacles, 2);
+    for (int s = 0; s < 40; s++) {
+        sph_sim_step(c);
+        sph_sim_step(g);
+    }
+    cr_assert(!g->alarm.raised && !c->alarm.raised, "the watchdog stopped a run");
+    sph_sim_sync(g, SPH_SYNC_ALL);
+    uint32_t *where = malloc(c->n * sizeof *where);
+    cr_assert_not_null(where);
+    for (uint32_t i = 0; i < g->n; i++) where[g->P.id[i]] = i;
+    double err = 0;
+    for (uint32_t i = 0; i < c->n; i++)
+        for (int d = 0; d < c->dim; d++) err = fmax(err, fabs((double)g->P.pos[d][where[c->P.id[i]]] - c->P.pos[d][i]));
+    free(where);
+    double fc[2][3], fg[2][3], ferr = 0, fbig = 0;
+    cr_assert_eq(sph_obstacle_forces(c, fc), 2);
+    cr_assert_eq(sph_obstacle_forces(g, fg), 2);
+    for (int k = 0; k < 2; k++)
+        for (int d = 0; d < 2; d++) {
+            ferr = fmax(ferr, fabs(fg[k][d] - fc[k][d]));
+            fbig = fmax(fbig, fabs(fc[k][d]));
+        }
+    if (getenv("SPH_TEST_VERBOSE"))
+        fprintf(stderr, "obstacles, 40 steps: positions differ by %.3g m, forces by %.3g of %.4g N/m\n", err, ferr,
+                fbig);
+    cr_expect(err <= TOL_POS_RUN, "positions after 40 steps differ by %.3g m (tolerance %g m)", err, TOL_POS_RUN);
+    cr_expect(fbig > 0 && ferr <= 1e-3 * fbig, "obstacle forces differ by %.3g N/m of %.4g", ferr, fbig);
+    sph_sim_destroy(g);
+    sph_sim_destroy(c);
 }
 
 /* Every value of every choice and kernel key either runs on GL and matches

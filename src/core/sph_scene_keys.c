@@ -66,7 +66,7 @@ const sph_key sph_scene_keys[] = {
      "near a wall miss none of their support and a lattice's first row reads its interior's density; reflect: only the seed's damped "
      "reflection (particles near walls lack neighbours and sink into them); particles: layers of fixed wall "
      "particles outside the box, on the fluid's lattice, whose pressure is extrapolated from the fluid (Adami, Hu "
-     "& Adams 2012; CPU only)"},
+     "& Adams 2012)"},
     {"domain", "wall_slip", SPH_KEY_CHOICE, S(wall_slip), 0, 0, 0, 0, CH(sph_wall_slip_names), "", "no",
      "with wall_model = particles: no: no-slip walls (the wall particles' velocity in the viscous term mirrors the "
      "fluid's); free: free-slip (they take the fluid's velocity, no shear at the wall)"},
@@ -128,14 +128,13 @@ const sph_key sph_scene_keys[] = {
     {"physics", "delta_form", SPH_KEY_CHOICE, S(delta_form), 0, 0, 0, 0, CH(sph_delta_form_names), "", "molteni",
      "the density diffusion term of delta: molteni: psi_ij as above (Molteni & Colagrossi 2009); antuono: psi_ij "
      "minus the renormalised density gradients <grad rho>^L_i + <grad rho>^L_j (Antuono et al. 2010, Comput. Phys. "
-     "Commun. 181:532), which vanishes for a hydrostatic (linear) density, so a column at rest does not drift; "
-     "CPU only"},
+     "Commun. 181:532), which vanishes for a hydrostatic (linear) density, so a column at rest does not drift"},
     {"physics", "shifting", SPH_KEY_CHOICE, S(shifting), 0, 0, 0, 0, CH(sph_shifting_names), "", "none",
      "particle shifting after each step: none; lind: every particle moves by -D grad C_i, C the particle "
      "concentration (Lind et al. 2012, J. Comput. Phys. 231:1499), D = shifting_coefficient h |v_i| dt; particles "
      "at the free surface are not shifted; tvf: every particle also drifts by dt (dt/2) a_b, a_b the acceleration of a "
      "background pressure p_b = rest_density * stiffness (the transport velocity of Adami, Hu & Adams 2013, J. Comput. "
-     "Phys. 241:292, without its extra stress term), for flows that fill their domain (no free surface); CPU only"},
+     "Phys. 241:292, without its extra stress term), for flows that fill their domain (no free surface); tvf is CPU only"},
     {"physics", "shifting_coefficient", SPH_KEY_FLOAT, S(shifting_coefficient), 0, 100, 0, 0, NULL, 0, "", "2",
      "A of shifting = lind's D = A h |v_i| dt (2 in Skillen et al. 2013, who scaled Lind's D with the step)"},
     {"physics", "pressure_solver", SPH_KEY_CHOICE, S(pressure_solver), 0, 0, 0, 0, CH(sph_pressure_solver_names),

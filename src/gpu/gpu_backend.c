@@ -85,27 +85,6 @@ static void destroy(sph_backend *b)
 static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
 {
     const sph_scene_def *def = &sim->def;
-    /* named by its key before the generic refusal below */
-    if (def->n_obstacles)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s:%d: [obstacle %s]: obstacles are not implemented by the GL backend yet (they are made of "
-                        "wall particles, whose wall_state pass and force run on the CPU; use [compute] backend = cpu)",
-                        def->file, def->obstacles[0].line, def->obstacles[0].name);
-    if (sim->in_pipeline[SPH_PASS_WALL_STATE])
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [domain] wall_model = particles is not implemented by the GL backend yet (its wall "
-                        "particles and the wall_state pass run on the CPU; accepted there: volume, reflect)",
-                        def->file);
-    if (sim->in_pipeline[SPH_PASS_DENSITY_RATE])
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] density_method = continuity is not implemented by the GL backend yet (its "
-                        "density_rate pass and the carried density run on the CPU; accepted there: summation)",
-                        def->file);
-    if (sim->in_pipeline[SPH_PASS_SHIFTING])
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] shifting = %s is not implemented by the GL backend yet (its shifting pass "
-                        "runs on the CPU; accepted there: none)",
-                        def->file, sph_shifting_names[def->shifting]);
     if (sim->in_pipeline[SPH_PASS_TRANSPORT])
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] shifting = tvf is not implemented by the GL backend yet (its transport pass, "

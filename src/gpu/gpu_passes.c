@@ -215,6 +215,58 @@ static void run_integrate(gpu *g, sph_sim *sim)
     sim->max_acc = sqrtf(a2) + sqrtf(g2);
 }
 
+/* A pass that walks the neighbours, with dispatches of its own: its program,
+ * told whether the particles are in cell order (as gpu_run_pass does). */
+static void use_walk(gpu *g, sph_sim *sim, int p)
+{
+    gpu_use(g, p);
+    gpu_set_u(g, p, U_rows, g->reordered && sim->S.cells.dense);
+}
+
+/* density_method = continuity: the sum at the start, which rho_c takes,
+ * then rho_c += dt drho (density.c: the host's flag says which). */
+static void run_density(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_DENSITY;
+    const bool carried = sim->rho_carried && g->buf[SPH_FIELD_RHO_C];
+    use_walk(g, sim, p);
+    gpu_set_u(g, p, U_count, carried);
+    gpu_set_f(g, p, U_dt, sim->dt);
+    gpu_dispatch(g, g->n);
+    if (!carried && sim->P.rho_c) sim->rho_carried = sim->dt > 0.0f; /* as density.c's start_carrying */
+}
+
+static void run_density_rate(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_DENSITY_RATE;
+    use_walk(g, sim, p);
+    gpu_set_u(g, p, U_count, sim->rho_carried);
+    /* delta h_s c [m^2/s], as density_rate.c computes it */
+    gpu_set_f(g, p, U_value, sim->def.delta * 0.5f * sim->def.h * sqrtf(sim->def.stiffness));
+    gpu_dispatch(g, g->n);
+}
+
+static void run_density_gradient(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_DENSITY_GRADIENT;
+    use_walk(g, sim, p);
+    gpu_set_u(g, p, U_count, sim->rho_carried);
+    gpu_dispatch(g, g->n);
+}
+
+/* Two sweeps of one program: the free-surface marks, then the shift, which
+ * reads the marks of the particle's neighbours (shifting.c). */
+static void run_shifting(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_SHIFTING;
+    use_walk(g, sim, p);
+    gpu_set_f(g, p, U_value, sim->def.shifting_coefficient * sim->def.h * sim->dt); /* A h dt [m s] */
+    gpu_set_u(g, p, U_count, 0);
+    gpu_dispatch(g, g->n);
+    gpu_set_u(g, p, U_count, 1);
+    gpu_dispatch(g, g->n);
+}
+
 /* ---- the table ------------------------------------------------------------- */
 
 const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
@@ -224,13 +276,17 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_REORDER] = {.run = run_reorder, .helpers = reorder_helpers},
     [SPH_PASS_OFFSETS] = {.source = shader_gpu_offsets_comp, .run = run_offsets, .helpers = offsets_helpers},
     [SPH_PASS_NEIGHBOURS] = {.run = run_neighbours},
-    [SPH_PASS_DENSITY] = {.source = shader_gpu_density_comp},
+    [SPH_PASS_DENSITY_GRADIENT] = {.source = shader_gpu_density_gradient_comp, .run = run_density_gradient},
+    [SPH_PASS_DENSITY_RATE] = {.source = shader_gpu_density_rate_comp, .run = run_density_rate},
+    [SPH_PASS_DENSITY] = {.source = shader_gpu_density_comp, .run = run_density},
     [SPH_PASS_PRESSURE] = {.source = shader_gpu_pressure_comp},
+    [SPH_PASS_WALL_STATE] = {.source = shader_gpu_wall_state_comp},
     [SPH_PASS_PRESSURE_FORCE] = {.source = shader_gpu_pressure_force_comp},
     [SPH_PASS_VISCOSITY] = {.source = shader_gpu_viscosity_comp},
     [SPH_PASS_COHESION] = {.source = shader_gpu_cohesion_comp},
     [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
     [SPH_PASS_INTEGRATE] = {.source = shader_gpu_integrate_comp, .run = run_integrate},
+    [SPH_PASS_SHIFTING] = {.source = shader_gpu_shifting_comp, .run = run_shifting},
     [SPH_PASS_WALLS] = {.source = shader_gpu_walls_comp},
 };
 

@@ -1,0 +1,68 @@
+// uses: PRED VEL MASS RHO_C DRHO GRAD_RHO FIXED ENTRIES START WALL
+// Pass density_rate (src/passes/density_rate.c), density_method =
+// continuity with density diffusion (Molteni & Colagrossi 2009, Comput.
+// Phys. Commun. 180, 861):
+//   drho_i/dt = sum_j m_j (v_i - v_j) . grad W_ij + delta h_s c sum_j psi_ij . grad W_ij V_j,
+//   psi_ij = 2 (rho_j - rho_i) x_ji / r^2 [- (<grad rho>^L_i + <grad rho>^L_j), Antuono et al. 2010, eq. 9],
+// density kernel, carried densities rho_c, coincident pairs left out; wall
+// particles enter the velocity term only and get drho = 0; with volume
+// walls, rho0 grad(hidden share) . v_i is added. u_count = 0 at the start
+// (nothing carried yet): drho = 0. u_value = delta h_s c [m^2/s].
+layout(local_size_x = WG) in;
+uniform uint u_count;
+uniform float u_value;
+float sum, rho_i;
+vec3 vi, gi;
+void sph_pair(uint i, uint j, vec3 dx, float r2)
+{
+    if (r2 < R_MIN * R_MIN) return;
+    vec3 vj = VEL3(j);
+    float vx = 0.0;
+    for (int d = 0; d < DIM; d++) vx += (vi[d] - vj[d]) * dx[d];
+    float r = sqrt(r2);
+    float dw_over_r = kernel_dw(KD, SIG_D, r) / r;
+    float t = mass_[j] * vx * dw_over_r;
+#if HAS_FIXED
+    bool wall_j = fixed_[j] != 0.0;
+#else
+    bool wall_j = false;
+#endif
+    if (u_value != 0.0 && !wall_j) {
+        float psi = -2.0 * (rho_c_[j] - rho_i);
+#if HAS_GRAD_RHO
+        for (int d = 0; d < DIM; d++) psi -= (gi[d] + grad_rho_[uint(d) * N + j]) * dx[d];
+#endif
+        t += u_value * psi * dw_over_r * mass_[j] / rho_c_[j];
+    }
+    sum += t;
+}
+#include_walk
+void main()
+{
+    uint i = gid();
+    if (i >= N) return;
+    bool wall = false;
+#if HAS_FIXED
+    wall = fixed_[i] != 0.0;
+#endif
+    if (u_count == 0u || wall) {
+        drho_[i] = 0.0;
+        return;
+    }
+    vec3 xi = PRED3(i);
+    vi = VEL3(i);
+    rho_i = rho_c_[i];
+    gi = vec3(0.0);
+#if HAS_GRAD_RHO
+    for (int d = 0; d < DIM; d++) gi[d] = grad_rho_[uint(d) * N + i];
+#endif
+    sum = 0.0;
+    sph_walk(i, xi);
+    float rate = sum;
+#if WALL_VOLUME
+    vec3 g;
+    wall_hidden(xi, g);
+    for (int d = 0; d < DIM; d++) rate += RHO0 * g[d] * vi[d];
+#endif
+    drho_[i] = rate;
+}
