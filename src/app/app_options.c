@@ -131,7 +131,7 @@ const app_opt app_options[] = {
      "  kernel          one kernel for density, pressure and viscosity",
      STUDY, LIST(vary)},
     {"--out", NULL, "DIR", "where to write (made if missing)", STUDY, STRING(out)},
-    {"--metric", NULL, "NAME", "density | density-surface | hydrostatic | taylor-green\n(default: guessed from the scene)",
+    {"--metric", NULL, "NAME", "density | density-surface | hydrostatic | taylor-green | compression\n(default: guessed from the scene)",
      STUDY, STRING(metric)},
     {"--repeats", NULL, "N", "runs per combination; the time is their median (default 3)", STUDY,
      INT(repeats, 1, 100)},
