@@ -54,9 +54,9 @@ int study_metric_guess(const sph_scene_def *def);
 /* Whether the metric applies to the scene; if not, a sentence in why. */
 bool study_metric_check(study_metric m, const sph_scene_def *def, char *why, size_t n);
 
-#define STUDY_MAX_EXTRA 4
+#define STUDY_MAX_EXTRA 5
 
-/* Names of a metric's extra figures (CSV columns after the error). */
+/* Names of a metric's extra figures (CSV columns after the error); returns their count. */
 int study_metric_extras(study_metric m, const char *names[STUDY_MAX_EXTRA]);
 
 typedef struct study_result {

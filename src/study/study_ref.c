@@ -47,14 +47,16 @@ int study_metric_extras(study_metric m, const char *names[STUDY_MAX_EXTRA])
     static const char *const surface[] = {"interior_error", "surface_max", "surface_ratio", "surface_ratio_exact"};
     static const char *const hydro[] = {"particle_rms", "scatter", "depth", "layers"};
     static const char *const tg[] = {"rate_fit", "rate_exact", "rate_error_signed", "mode_rate_error"};
-    static const char *const comp[] = {"mean_error", "steps_per_sim_s", "iterations_per_step", "ms_per_sim_s"};
+    static const char *const comp[] = {"mean_error", "step_max_mean", "steps_per_sim_s", "iterations_per_step",
+                                       "ms_per_sim_s"};
     const char *const *src = m == STUDY_METRIC_DENSITY           ? density
                              : m == STUDY_METRIC_DENSITY_SURFACE ? surface
                              : m == STUDY_METRIC_HYDROSTATIC     ? hydro
                              : m == STUDY_METRIC_COMPRESSION     ? comp
                                                                  : tg;
-    for (int i = 0; i < STUDY_MAX_EXTRA; i++) names[i] = src[i];
-    return STUDY_MAX_EXTRA;
+    const int n = m == STUDY_METRIC_COMPRESSION ? 5 : 4;
+    for (int i = 0; i < STUDY_MAX_EXTRA; i++) names[i] = i < n ? src[i] : NULL;
+    return n;
 }
 
 static bool has_tg_block(const sph_scene_def *def)
@@ -138,7 +140,7 @@ bool study_metric_check(study_metric m, const sph_scene_def *def, char *why, siz
 
 void study_result_timed(study_metric m, study_result *r)
 {
-    if (m == STUDY_METRIC_COMPRESSION) r->extra[3] = r->t_end > 0 ? r->wall_ms / r->t_end : NAN;
+    if (m == STUDY_METRIC_COMPRESSION) r->extra[4] = r->t_end > 0 ? r->wall_ms / r->t_end : NAN;
 }
 
 /* ---- what a metric records during a run ----------------------------------- */
@@ -173,6 +175,7 @@ typedef struct probe {
     long samples;
     /* compression: over the steps */
     double comp_max;     /* [1] largest rho/rho_held - 1 */
+    double comp_max_dt;  /* [s] sum of dt x the step's largest compression */
     double comp_mean_dt; /* [s] sum of dt x the step's mean compression */
     double comp_t;       /* [s] sum of dt */
     double iterations;   /* [1] pressure-solver iterations, both solves */
@@ -249,6 +252,7 @@ static void compression_sample(probe *pr, const sph_sim *sim)
     if (!cnt) return;
     pr->comp_max = fmax(pr->comp_max, mx);
     pr->comp_mean_dt += sim->dt * (sum / (double)cnt);
+    pr->comp_max_dt += sim->dt * fmax(mx, 0.0);
     pr->comp_t += sim->dt;
     if (sim->def.pressure_solver != SPH_PSOLVER_EOS)
         pr->iterations += sim->solver.iterations + sim->solver.div_iterations;
@@ -496,8 +500,9 @@ bool study_run(const sph_scene_def *def, study_metric m, long steps, double unti
         if (pr.comp_t > 0 && sim->step > 0) {
             out->error = pr.comp_max;
             out->extra[0] = pr.comp_mean_dt / pr.comp_t;
-            out->extra[1] = sim->t > 0 ? (double)sim->step / sim->t : NAN;
-            out->extra[2] = sim->def.pressure_solver != SPH_PSOLVER_EOS ? pr.iterations / (double)sim->step : 0;
+            out->extra[1] = pr.comp_max_dt / pr.comp_t;
+            out->extra[2] = sim->t > 0 ? (double)sim->step / sim->t : NAN;
+            out->extra[3] = sim->def.pressure_solver != SPH_PSOLVER_EOS ? pr.iterations / (double)sim->step : 0;
             study_result_timed(m, out);
             if (sim->solver.capped)
                 snprintf(out->note, sizeof out->note, "%llu pressure solve%s stopped at solver_max_iterations",
