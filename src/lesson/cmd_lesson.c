@@ -47,7 +47,7 @@ const lesson sph_lessons[] = {
      "--paused --color speed --overlay hud,timings,legend", lx_lesson9},
     {10, "10-boundaries", "Boundary handling", "intermediate",
      "the truncated support at a wall; reflect, volume and wall particles: the wall row, a tank, a dam break",
-     "--paused --color density --overlay neighbours,hud,legend", lx_lesson10},
+     "--paused --color density --overlay neighbours,hud,legend --select 15", lx_lesson10},
     {11, "11-incompressible", "How incompressible, at what cost?", "advanced",
      "the equation of state at three stiffnesses against PCISPH and DFSPH: density error and time per simulated second",
      "--paused --color density --overlay hud,timings,legend", lx_lesson11},

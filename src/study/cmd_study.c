@@ -69,7 +69,7 @@ static const char *error_label(study_metric m)
     case STUDY_METRIC_DENSITY: return "interior density error, RMS of #gr/#gr#d0#u - 1 [-]";
     case STUDY_METRIC_DENSITY_SURFACE: return "free-surface density error, RMS [-]";
     case STUDY_METRIC_HYDROSTATIC: return "pressure profile error, RMS / #gr#d0#u g H [-]";
-    case STUDY_METRIC_COMPRESSION: return "largest compression #gr/#gr#dheld#u - 1 over the run [-]";
+    case STUDY_METRIC_COMPRESSION: return "each step's largest #gr/#gr#dheld#u - 1, time mean [-]";
     default: return "decay rate error |#gl/#gl#dexact#u - 1| [-]";
     }
 }

@@ -31,7 +31,7 @@
       "pressure profile error, RMS over depth layers of (p - rho0 g (H - y)) / (rho0 g H)")            \
     X(TAYLOR_GREEN, "taylor-green", "relative error of the decay rate of E_kin fitted over the run, |rate/(4 nu k^2) - 1|") \
     X(COMPRESSION, "compression",                                                                      \
-      "largest compression over the run, max of rho/rho_held - 1 over steps and fluid particles (rho_held: rho0 " \
+      "each step's largest compression max(rho/rho_held - 1) over the fluid, averaged over time (rho_held: rho0 " \
       "for the equation of state, the lattice's rest sum for pcisph and dfsph)")
 
 typedef enum study_metric {
