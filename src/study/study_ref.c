@@ -233,8 +233,9 @@ static bool probe_begin(probe *pr, study_metric m, const sph_sim *sim, char *why
 /* The compression of the step just taken: its density (the density pass's,
  * at the step's start) against the density the pressure holds at rest,
  * rho0 for the equation of state, the initial lattice's sum for the solvers
- * (docs/accuracy.md, section 7). Particles below it (the free surface's
- * deficiency) count as 0 in the mean: it measures compression only. */
+ * (docs/accuracy.md, "Incompressible pressure solvers"). Particles below
+ * it (the free surface's deficiency) count as 0 in the mean: it measures
+ * compression only. */
 static void compression_sample(probe *pr, const sph_sim *sim)
 {
     const sph_particles *P = &sim->P;
