@@ -202,8 +202,9 @@ Test(lesson, templates_agree)
 {
     static const char *const slugs[] = {"01-kernel-estimation", "02-density-summation", "03-pressure-gradient",
                                         "04-viscosity",         "05-spatial-hash",      "06-sorting-offsets",
-                                        "07-full-simulation",   "08-optimisation-ladder", "09-accuracy"};
-    for (int i = 0; i < 9; i++) {
+                                        "07-full-simulation",   "08-optimisation-ladder", "09-accuracy",
+                                        "10-boundaries",        "11-incompressible"};
+    for (int i = 0; i < 11; i++) {
         char path[256];
         snprintf(path, sizeof path, "lessons/%s/report.md", slugs[i]);
         char *en = read_all(path);
@@ -257,8 +258,9 @@ Test(lesson, list)
     cr_assert(rc == 0, "exit %d: %s", rc, out);
     const char *titles[] = {"Kernel estimation",     "Density summation", "The pressure gradient",
                             "The viscosity Laplacian", "The spatial hash",  "Sorting and offsets",
-                            "The full simulation",   "The optimisation ladder", "What accuracy costs"};
-    for (int i = 0; i < 9; i++) {
+                            "The full simulation",   "The optimisation ladder", "What accuracy costs",
+                            "Boundary handling",     "How incompressible, at what cost?"};
+    for (int i = 0; i < 11; i++) {
         char line[64];
         snprintf(line, sizeof line, "\n%-3d %s", i + 1, titles[i]);
         cr_expect(strstr(out, line), "--list lacks '%s':\n%s", line + 1, out);
@@ -268,8 +270,8 @@ Test(lesson, list)
 Test(lesson, bad_arguments)
 {
     cr_expect(test_sphlab("lesson 0", out, sizeof out) == 2, "lesson 0: %s", out);
-    cr_expect(strstr(out, "1 to 9"), "lesson 0 does not say the range: %s", out);
-    cr_expect(test_sphlab("lesson 10", out, sizeof out) == 2, "lesson 10: %s", out);
+    cr_expect(strstr(out, "1 to 11"), "lesson 0 does not say the range: %s", out);
+    cr_expect(test_sphlab("lesson 12", out, sizeof out) == 2, "lesson 12: %s", out);
     cr_expect(test_sphlab("lesson abc", out, sizeof out) == 2, "lesson abc: %s", out);
     cr_expect(test_sphlab("lesson", out, sizeof out) == 2, "lesson alone: %s", out);
     cr_expect(test_sphlab("lesson 3 --export", out, sizeof out) == 2, "--export without a directory: %s", out);
@@ -308,6 +310,23 @@ Test(lesson, window_offscreen)
     cr_assert(rc == 0, "exit %d: %s", rc, out);
     check_png(dir, "shot.png", 1100, 760);
     remove_dir(dir);
+}
+
+/* The new lessons' first frame opens in the window without error (their
+ * scenes run wall particles and the equation of state's dam break). */
+Test(lesson, window_opens_lessons_10_and_11)
+{
+    if (!has_command("view")) cr_skip_test("no view command in this build");
+    setenv("SDL_VIDEODRIVER", "offscreen", 1);
+    for (int num = 10; num <= 11; num++) {
+        const char *dir = temp_dir();
+        char args[256];
+        snprintf(args, sizeof args, "lesson %d --frames 1 --threads 1 --screenshot %s/shot.png", num, dir);
+        int rc = test_sphlab(args, out, sizeof out);
+        cr_assert(rc == 0, "lesson %d: exit %d: %s", num, rc, out);
+        check_png(dir, "shot.png", 0, 0);
+        remove_dir(dir);
+    }
 }
 
 Test(lesson, unwritable_output)
@@ -537,5 +556,67 @@ Test(lesson, export_9_accuracy)
     }
     check_png(dir, "accuracy.png", 0, 0);
     check_pdf(dir, "accuracy.pdf");
+    remove_dir(dir);
+}
+
+/* Lesson 10: the three wall models side by side. The wall row of a block at
+ * rest reads the interior's density with volume walls and wall particles,
+ * and less without (reflect: the truncated support); the tank's and the dam
+ * break's CSV have a row for every model. */
+Test(lesson, export_10_boundaries)
+{
+    const char *dir = export_lesson(10);
+    char *text = check_report(dir, 10, "Boundary handling");
+    cr_expect(strstr(text, "| reflect |") && strstr(text, "| volume |") && strstr(text, "| particles |"),
+              "the report does not compare the three models");
+    free(text);
+    csv c;
+    check_csv(dir, "wall-row-density.csv", "wall_model,row,y,rho,rho_over_rho0", 30, &c);
+    double first[3] = {NAN, NAN, NAN};
+    for (int i = 1; i < c.nlines; i++)
+        if (field(c.line[i], 1) == 0) {
+            int m = strncmp(c.line[i], "reflect,", 8) == 0 ? 0 : strncmp(c.line[i], "volume,", 7) == 0 ? 1 : 2;
+            first[m] = field(c.line[i], 4);
+        }
+    cr_expect(first[0] < 0.95, "reflect: the wall row reads %g rho0, not less than the interior", first[0]);
+    cr_expect(fabs(first[1] - 1) < 0.02 && fabs(first[2] - 1) < 0.02, "volume %g, particles %g: not rho0", first[1],
+              first[2]);
+    free(c.text);
+    check_png(dir, "wall-row-density.png", 1000, 650);
+    check_pdf(dir, "wall-row-density.pdf");
+    check_csv(dir, "hydrostatic-pressure.csv", "wall_model,rank,y,p,p_exact", 20, NULL);
+    check_png(dir, "hydrostatic-pressure.png", 1000, 650);
+    check_pdf(dir, "hydrostatic-pressure.pdf");
+    check_csv(dir, "dam-front.csv", "wall_model,t,front_x", 6, NULL);
+    check_png(dir, "dam-front.png", 1000, 650);
+    check_pdf(dir, "dam-front.pdf");
+    remove_dir(dir);
+}
+
+/* Lesson 11: one row per setting, the solvers iterate and the equation of
+ * state does not, and the chart. */
+Test(lesson, export_11_incompressible)
+{
+    if (!has_command("study")) cr_skip_test("no study command in this build");
+    const char *dir = export_lesson(11);
+    free(check_report(dir, 11, "How incompressible, at what cost?"));
+    csv c;
+    check_csv(dir, "solvers.csv", "combo,physics.pressure_solver+physics.stiffness+physics.solver_tolerance,", 3, &c);
+    int it = -1, nf = 1;
+    for (char *p = c.line[0]; *p; p++) nf += *p == ',';
+    char head[1024];
+    snprintf(head, sizeof head, "%s", c.line[0]);
+    int k = 0;
+    for (char *tok = strtok(head, ","); tok; tok = strtok(NULL, ","), k++)
+        if (strcmp(tok, "iterations_per_step") == 0) it = k;
+    cr_assert(it > 0 && it < nf, "no iterations_per_step column: %s", c.line[0]);
+    for (int i = 1; i < c.nlines; i++) {
+        bool eos = strstr(c.line[i], ",eos+") != NULL;
+        double v = field(c.line[i], it);
+        cr_expect(eos ? v == 0 : v >= 1, "%s: %g iterations per step", c.line[i], v);
+    }
+    free(c.text);
+    check_png(dir, "solvers.png", 0, 0);
+    check_pdf(dir, "solvers.pdf");
     remove_dir(dir);
 }

@@ -288,6 +288,85 @@ Test(study, plan_parses_knobs_and_combinations)
     cr_assert(strstr(why, "bogus"), "%s", why);
 }
 
+/* A linked knob sets several scene keys together, value by value; its parts
+ * must match its keys, and only scene keys can be linked. */
+Test(study, plan_linked_knob)
+{
+    study_plan p;
+    memset(&p, 0, sizeof p);
+    char why[512];
+    cr_assert(study_plan_add(&p, "physics.pressure_solver+physics.stiffness=eos+100,pcisph+400", why, sizeof why), "%s",
+              why);
+    cr_assert_eq(study_plan_count(&p), 2, "a linked knob is a list, not a product");
+    sph_scene_def d = test_scene(TANK_INI);
+    cr_assert(study_plan_apply(&p, 1, &d, why, sizeof why), "%s", why);
+    cr_assert(d.pressure_solver == SPH_PSOLVER_PCISPH && d.stiffness == 400.0f, "solver %d, stiffness %g",
+              (int)d.pressure_solver, d.stiffness);
+    cr_assert(study_plan_apply(&p, 0, &d, why, sizeof why), "%s", why);
+    cr_assert(d.pressure_solver == SPH_PSOLVER_EOS && d.stiffness == 100.0f);
+    const char *bad[] = {"physics.pressure_solver+physics.stiffness=eos", "physics.stiffness+kernel=1+cubic",
+                         "physics.stiffness+=1+2"};
+    for (int i = 0; i < 3; i++) {
+        study_plan q;
+        memset(&q, 0, sizeof q);
+        cr_assert_not(study_plan_add(&q, bad[i], why, sizeof why), "'%s' accepted", bad[i]);
+        cr_assert(strstr(why, "--vary"), "no message for '%s': %s", bad[i], why);
+    }
+}
+
+/* The compression metric on a small dam break, varying one of the pressure
+ * solver's keys: one row per solver, the iterations counted only for the
+ * iterated solver, every figure finite. */
+Test(study, command_varies_pressure_solver)
+{
+    const char *scene = test_write_temp("[scene]\neffects = gravity pressure viscosity walls\n[domain]\nmax = 1 0.6\n"
+                                        "[fluid c]\nmin = 0 0\nmax = 0.3 0.3\nspacing = 0.03\n[kernels]\nh = 0.06\n"
+                                        "[time]\ndt = 0.002\n",
+                                        ".ini");
+    char dir[] = "/tmp/sphlab-study-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    char args[1024], out[16384];
+    snprintf(args, sizeof args,
+             "study %s --metric compression --vary physics.pressure_solver=eos,pcisph --out %s --repeats 1 "
+             "--steps 20 --threads 1 --quiet",
+             scene, dir);
+    int rc = test_sphlab(args, out, sizeof out);
+    cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
+    char path[1100], line[4096];
+    snprintf(path, sizeof path, "%s/study.csv", dir);
+    FILE *f = fopen(path, "r");
+    cr_assert(f, "no %s", path);
+    cr_assert(fgets(line, sizeof line, f));
+    cr_assert(strstr(line, "physics.pressure_solver,") &&
+                  strstr(line, ",error,") && strstr(line, "run_max,mean_error,steps_per_sim_s,iterations_per_step,ms_per_sim_s"),
+              "header: %s", line);
+    for (int row = 0; row < 2; row++) {
+        cr_assert(fgets(line, sizeof line, f), "row %d missing", row + 1);
+        double v[32];
+        int nv = 0;
+        const char *p = strchr(line, ',') + 1;
+        p = strchr(p, ',') + 1; /* after combo and the solver's name */
+        for (char *end; nv < 32; p = end + 1) {
+            v[nv] = strtod(p, &end);
+            cr_assert(end != p && isfinite(v[nv]), "row %d: not a finite number at %s", row + 1, p);
+            nv++;
+            if (*end != ',') break;
+        }
+        /* particles, steps, t_end, error (the steps' largest, time mean), ms_per_step, total_s, pareto, stopped,
+         * the run's largest, the mean, steps/s, iterations, ms/s */
+        cr_assert_eq(nv, 13, "row %d: %s", row + 1, line);
+        cr_assert(v[9] >= 0 && v[9] <= v[3] && v[3] <= v[8] && v[8] < 0.5, "row %d: steps' largest %g, run's %g, "
+                  "mean %g", row + 1, v[3], v[8], v[9]);
+        cr_assert_float_eq(v[10], v[1] / v[2], 1e-6 * v[10], "steps per simulated second");
+        cr_assert_float_eq(v[12], v[5] * 1e3 / v[2], 1e-6 * v[12], "ms per simulated second: the median run / t_end");
+        if (row == 0) cr_assert_eq(v[11], 0, "the equation of state iterates nothing: %g", v[11]);
+        else cr_assert_gt(v[11], 1, "pcisph: %g iterations per step", v[11]);
+    }
+    fclose(f);
+    snprintf(args, sizeof args, "rm -rf %s", dir);
+    cr_assert_eq(system(args), 0);
+}
+
 /* Checks a front: no point on it is dominated, every point off it is. */
 static void check_front(const double *t, const double *e, int n, const bool *front)
 {

@@ -128,10 +128,12 @@ const app_opt app_options[] = {
      "(fluid.spacing, kernels.h, kernels.density, time.cfl, time.dt,\n"
      "physics.stiffness, physics.accumulate, ...), or\n"
      "  h_over_spacing  kernels.h = value x the (finest) fluid spacing\n"
-     "  kernel          one kernel for density, pressure and viscosity",
+     "  kernel          one kernel for density, pressure and viscosity\n"
+     "or scene keys linked by '+', their values too, set together:\n"
+     "  physics.pressure_solver+physics.solver_tolerance=eos+0.01,pcisph+0.001",
      STUDY, LIST(vary)},
     {"--out", NULL, "DIR", "where to write (made if missing)", STUDY, STRING(out)},
-    {"--metric", NULL, "NAME", "density | density-surface | hydrostatic | taylor-green\n(default: guessed from the scene)",
+    {"--metric", NULL, "NAME", "density | density-surface | hydrostatic | taylor-green | compression\n(default: guessed from the scene)",
      STUDY, STRING(metric)},
     {"--repeats", NULL, "N", "runs per combination; the time is their median (default 3)", STUDY,
      INT(repeats, 1, 100)},

@@ -45,6 +45,12 @@ const lesson sph_lessons[] = {
     {9, "09-accuracy", "What accuracy costs", "advanced",
      "error against time: resolution, h, kernel; the cheapest run for a given error",
      "--paused --color speed --overlay hud,timings,legend", lx_lesson9},
+    {10, "10-boundaries", "Boundary handling", "intermediate",
+     "the truncated support at a wall; reflect, volume and wall particles: the wall row, a tank, a dam break",
+     "--paused --color density --overlay neighbours,hud,legend --select 15", lx_lesson10},
+    {11, "11-incompressible", "How incompressible, at what cost?", "advanced",
+     "the equation of state at three stiffnesses against PCISPH and DFSPH: density error and time per simulated second",
+     "--paused --color density --overlay hud,timings,legend", lx_lesson11},
 };
 const int sph_lesson_count = (int)(sizeof sph_lessons / sizeof sph_lessons[0]);
 

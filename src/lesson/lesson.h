@@ -32,7 +32,7 @@
  *                     the bitonic network step by step)
  *   lesson_steps.h    what each lesson exports: lesson_util.c (shared),
  *                     lesson_density.c (1, 2), lesson_forces.c (3, 4),
- *                     lesson_search.c (5, 6), lesson_perf.c (7 to 9) */
+ *                     lesson_search.c (5, 6), lesson_perf.c (7 to 9), lesson_walls.c (10, 11) */
 #ifndef SPH_LESSON_H
 #define SPH_LESSON_H
 

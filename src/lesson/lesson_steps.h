@@ -4,6 +4,7 @@
  *   lesson_forces.c   3 the pressure gradient, 4 the viscosity Laplacian
  *   lesson_search.c   5 the spatial hash, 6 sorting and offsets
  *   lesson_perf.c     7 the full simulation, 8 the optimisation ladder, 9 what accuracy costs
+ *   lesson_walls.c    10 boundary handling, 11 how incompressible, at what cost
  * Their prose is in the lesson folders' report templates (lesson_report.c). */
 #ifndef SPH_LESSON_STEPS_H
 #define SPH_LESSON_STEPS_H
@@ -49,5 +50,7 @@ int lx_lesson6(lx *x);
 int lx_lesson7(lx *x);
 int lx_lesson8(lx *x);
 int lx_lesson9(lx *x);
+int lx_lesson10(lx *x);
+int lx_lesson11(lx *x);
 
 #endif

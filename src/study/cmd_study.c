@@ -69,6 +69,7 @@ static const char *error_label(study_metric m)
     case STUDY_METRIC_DENSITY: return "interior density error, RMS of #gr/#gr#d0#u - 1 [-]";
     case STUDY_METRIC_DENSITY_SURFACE: return "free-surface density error, RMS [-]";
     case STUDY_METRIC_HYDROSTATIC: return "pressure profile error, RMS / #gr#d0#u g H [-]";
+    case STUDY_METRIC_COMPRESSION: return "each step's largest #gr/#gr#dheld#u - 1, time mean [-]";
     default: return "decay rate error |#gl/#gl#dexact#u - 1| [-]";
     }
 }
@@ -153,9 +154,9 @@ int study_cmd_run(const study_cmd *cmd)
     }
     int metric = -1;
     if (metric_name && (metric = study_metric_find(metric_name)) < 0) {
-        fprintf(stderr, "sphlab study: --metric '%s': unknown (accepted: density, density-surface, hydrostatic, "
-                        "taylor-green)\n",
-                metric_name);
+        fprintf(stderr, "sphlab study: --metric '%s': unknown (accepted:", metric_name);
+        for (int m = 0; m < STUDY_METRIC_COUNT; m++) fprintf(stderr, "%s %s", m ? "," : "", study_metric_names[m]);
+        fprintf(stderr, ")\n");
         return 2;
     }
     long combos = study_plan_count(&plan);
@@ -227,6 +228,7 @@ int study_cmd_run(const study_cmd *cmd)
         if (code) break;
         double med = study_median(walls, row->r.stopped ? 1 : (int)repeats);
         row->r.wall_ms = med;
+        study_result_timed((study_metric)metric, &row->r);
         row->total_s = med / 1e3;
         row->ms_per_step = row->r.steps ? med / (double)row->r.steps : NAN;
         if (row->r.stopped) {

@@ -29,7 +29,10 @@
       "free-surface density error, RMS of (rho - rho0 (1 - psi(d)))/rho0 over particles within h of one face") \
     X(HYDROSTATIC, "hydrostatic",                                                                      \
       "pressure profile error, RMS over depth layers of (p - rho0 g (H - y)) / (rho0 g H)")            \
-    X(TAYLOR_GREEN, "taylor-green", "relative error of the decay rate of E_kin fitted over the run, |rate/(4 nu k^2) - 1|")
+    X(TAYLOR_GREEN, "taylor-green", "relative error of the decay rate of E_kin fitted over the run, |rate/(4 nu k^2) - 1|") \
+    X(COMPRESSION, "compression",                                                                      \
+      "each step's largest compression max(rho/rho_held - 1) over the fluid, averaged over time (rho_held: rho0 " \
+      "for the equation of state, the lattice's rest sum for pcisph and dfsph)")
 
 typedef enum study_metric {
 #define STUDY_METRIC_ENUM(id, name, about) STUDY_METRIC_##id,
@@ -51,9 +54,9 @@ int study_metric_guess(const sph_scene_def *def);
 /* Whether the metric applies to the scene; if not, a sentence in why. */
 bool study_metric_check(study_metric m, const sph_scene_def *def, char *why, size_t n);
 
-#define STUDY_MAX_EXTRA 4
+#define STUDY_MAX_EXTRA 5
 
-/* Names of a metric's extra figures (CSV columns after the error). */
+/* Names of a metric's extra figures (CSV columns after the error); returns their count. */
 int study_metric_extras(study_metric m, const char *names[STUDY_MAX_EXTRA]);
 
 typedef struct study_result {
@@ -66,6 +69,11 @@ typedef struct study_result {
     bool stopped;                  /* the watchdog stopped the run */
     char note[512];                /* why it stopped, or a remark on the measurement */
 } study_result;
+
+/* Fills the extras that depend on the run's wall time, once the study has
+ * replaced r->wall_ms by the median of its repeats (compression: ms per
+ * simulated second). */
+void study_result_timed(study_metric m, study_result *r);
 
 /* Called during a run, at most every few steps; done is the fraction of the run. */
 typedef void (*study_progress_fn)(void *ctx, const sph_sim *sim, double done);
@@ -153,7 +161,9 @@ double study_kernel_m2(sph_kernel_kind kind, int dim, double h);
 
 /* One --vary KEY=V1,V2,...: a scene key (section.key, as for --set), or a
  * derived knob: h_over_spacing (kernels.h = value x the finest spacing) or
- * kernel (kernels.density, .pressure and .viscosity all set to one kernel). */
+ * kernel (kernels.density, .pressure and .viscosity all set to one kernel),
+ * or a linked knob, scene keys joined by '+' whose values are joined by '+'
+ * too (KEY1+KEY2=A1+B1,A2+B2: the keys change together, not as a product). */
 typedef struct study_knob {
     char key[96];
     int n;

@@ -9,6 +9,10 @@
  *   hydrostatic      a tank (walls, gravity) that settles: p = rho0 g (H - y),
  *                    H the depth the fluid's mass gives.
  *   taylor-green     the periodic vortex: E_kin decays as exp(-4 nu k^2 t).
+ *   compression      any flow with pressure (a dam break): how far the
+ *                    density rises above the density the pressure holds
+ *                    at rest (each step's largest, averaged over time),
+ *                    and what the pressure solve costs per simulated second.
  *
  * The time of a run is the time spent in sph_sim_step; the observation the
  * metric makes after each step is not counted. */
@@ -43,12 +47,16 @@ int study_metric_extras(study_metric m, const char *names[STUDY_MAX_EXTRA])
     static const char *const surface[] = {"interior_error", "surface_max", "surface_ratio", "surface_ratio_exact"};
     static const char *const hydro[] = {"particle_rms", "scatter", "depth", "layers"};
     static const char *const tg[] = {"rate_fit", "rate_exact", "rate_error_signed", "mode_rate_error"};
+    static const char *const comp[] = {"run_max", "mean_error", "steps_per_sim_s", "iterations_per_step",
+                                       "ms_per_sim_s"};
     const char *const *src = m == STUDY_METRIC_DENSITY           ? density
                              : m == STUDY_METRIC_DENSITY_SURFACE ? surface
                              : m == STUDY_METRIC_HYDROSTATIC     ? hydro
+                             : m == STUDY_METRIC_COMPRESSION     ? comp
                                                                  : tg;
-    for (int i = 0; i < STUDY_MAX_EXTRA; i++) names[i] = src[i];
-    return STUDY_MAX_EXTRA;
+    const int n = m == STUDY_METRIC_COMPRESSION ? 5 : 4;
+    for (int i = 0; i < STUDY_MAX_EXTRA; i++) names[i] = i < n ? src[i] : NULL;
+    return n;
 }
 
 static bool has_tg_block(const sph_scene_def *def)
@@ -121,9 +129,18 @@ bool study_metric_check(study_metric m, const sph_scene_def *def, char *why, siz
             snprintf(why, n, "the taylor-green metric needs a free vortex: no gravity, walls or interaction effect");
         break;
     }
+    case STUDY_METRIC_COMPRESSION:
+        if (!(e & SPH_EFFECT(PRESSURE)))
+            snprintf(why, n, "the compression metric needs pressure: list pressure in [scene] effects");
+        break;
     default: snprintf(why, n, "unknown metric"); break;
     }
     return why[0] == '\0';
+}
+
+void study_result_timed(study_metric m, study_result *r)
+{
+    if (m == STUDY_METRIC_COMPRESSION) r->extra[4] = r->t_end > 0 ? r->wall_ms / r->t_end : NAN;
 }
 
 /* ---- what a metric records during a run ----------------------------------- */
@@ -156,6 +173,12 @@ typedef struct probe {
     /* hydrostatic: sums over the window, per particle id */
     double *sum_p, *sum_x[3];
     long samples;
+    /* compression: over the steps */
+    double comp_max;     /* [1] largest rho/rho_held - 1 */
+    double comp_max_dt;  /* [s] sum of dt x the step's largest compression */
+    double comp_mean_dt; /* [s] sum of dt x the step's mean compression */
+    double comp_t;       /* [s] sum of dt */
+    double iterations;   /* [1] pressure-solver iterations, both solves */
 } probe;
 
 static void probe_free(probe *pr)
@@ -207,10 +230,41 @@ static bool probe_begin(probe *pr, study_metric m, const sph_sim *sim, char *why
     return true;
 }
 
+/* The compression of the step just taken: its density (the density pass's,
+ * at the step's start) against the density the pressure holds at rest,
+ * rho0 for the equation of state, the initial lattice's sum for the solvers
+ * (docs/accuracy.md, "Incompressible pressure solvers"). Particles below
+ * it (the free surface's deficiency) count as 0 in the mean: it measures
+ * compression only. */
+static void compression_sample(probe *pr, const sph_sim *sim)
+{
+    const sph_particles *P = &sim->P;
+    double held = sim->def.rest_density;
+    if (sim->def.pressure_solver != SPH_PSOLVER_EOS && sim->solver.rho_rest > 0) held = sim->solver.rho_rest;
+    double mx = -INFINITY, sum = 0;
+    long cnt = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (sph_is_wall(P, i)) continue;
+        double e = P->rho[i] / held - 1.0;
+        mx = fmax(mx, e);
+        sum += fmax(e, 0.0);
+        cnt++;
+    }
+    if (!cnt) return;
+    pr->comp_max = fmax(pr->comp_max, mx);
+    pr->comp_mean_dt += sim->dt * (sum / (double)cnt);
+    pr->comp_max_dt += sim->dt * fmax(mx, 0.0);
+    pr->comp_t += sim->dt;
+    if (sim->def.pressure_solver != SPH_PSOLVER_EOS)
+        pr->iterations += sim->solver.iterations + sim->solver.div_iterations;
+}
+
 /* After each step; done: the fraction of the run completed. */
 static void probe_step(probe *pr, const sph_sim *sim, double done)
 {
-    if (pr->m == STUDY_METRIC_TAYLOR_GREEN) {
+    if (pr->m == STUDY_METRIC_COMPRESSION) {
+        compression_sample(pr, sim);
+    } else if (pr->m == STUDY_METRIC_TAYLOR_GREEN) {
         tg_sample(pr, sim);
     } else if (pr->m == STUDY_METRIC_HYDROSTATIC && done > 0.5) {
         /* the measurement window: the second half of the run */
@@ -443,6 +497,22 @@ bool study_run(const sph_scene_def *def, study_metric m, long steps, double unti
             measure_density(sim, m, out);
     } else if (m == STUDY_METRIC_HYDROSTATIC) {
         measure_hydrostatic(sim, &pr, out);
+    } else if (m == STUDY_METRIC_COMPRESSION) {
+        if (pr.comp_t > 0 && sim->step > 0) {
+            /* the error: each step's largest compression, averaged over time (the run's largest, extra 0,
+             * is one particle at one impact) */
+            out->error = pr.comp_max_dt / pr.comp_t;
+            out->extra[0] = pr.comp_max;
+            out->extra[1] = pr.comp_mean_dt / pr.comp_t;
+            out->extra[2] = sim->t > 0 ? (double)sim->step / sim->t : NAN;
+            out->extra[3] = sim->def.pressure_solver != SPH_PSOLVER_EOS ? pr.iterations / (double)sim->step : 0;
+            study_result_timed(m, out);
+            if (sim->solver.capped)
+                snprintf(out->note, sizeof out->note, "%llu pressure solve%s stopped at solver_max_iterations",
+                         (unsigned long long)sim->solver.capped, sim->solver.capped == 1 ? "" : "s");
+        } else {
+            snprintf(out->note, sizeof out->note, "no step ran");
+        }
     } else {
         measure_taylor_green(sim, &pr, out);
     }

@@ -12,6 +12,31 @@ static bool is_derived(const char *key)
     return strcmp(key, "h_over_spacing") == 0 || strcmp(key, "kernel") == 0;
 }
 
+/* Parts of a '+'-joined key or value: a linked knob sets several scene keys
+ * together (KEY1+KEY2=A1+B1,A2+B2), so that a study can list settings that
+ * are not a product (the equation of state at three stiffnesses, a solver
+ * at two tolerances). */
+static int count_parts(const char *s)
+{
+    int n = 1;
+    for (; *s; s++) n += *s == '+';
+    return n;
+}
+
+/* Part i of a '+'-joined text into out. */
+static void part_of(const char *s, int i, char *out, size_t n)
+{
+    for (; i > 0 && s; i--) {
+        s = strchr(s, '+');
+        if (s) s++;
+    }
+    if (!s) s = "";
+    size_t len = strcspn(s, "+");
+    if (len >= n) len = n - 1;
+    memcpy(out, s, len);
+    out[len] = '\0';
+}
+
 bool study_plan_add(study_plan *p, const char *arg, char *why, size_t n)
 {
     const char *eq = strchr(arg, '=');
@@ -36,6 +61,16 @@ bool study_plan_add(study_plan *p, const char *arg, char *why, size_t n)
     }
     memcpy(k->key, ks, kl);
     k->key[kl] = '\0';
+    const int parts = count_parts(k->key);
+    for (int i = 0; i < parts && parts > 1; i++) {
+        char one[96];
+        part_of(k->key, i, one, sizeof one);
+        if (!one[0] || is_derived(one) || !strchr(one, '.')) {
+            snprintf(why, n, "--vary %s: a linked knob joins scene keys (section.key) by '+'; '%s' is not one", k->key,
+                     one);
+            return false;
+        }
+    }
     if (!is_derived(k->key) && !strchr(k->key, '.')) {
         snprintf(why, n,
                  "--vary %s: unknown knob (accepted: a scene key as section.key, e.g. kernels.h, fluid.spacing, "
@@ -70,6 +105,11 @@ bool study_plan_add(study_plan *p, const char *arg, char *why, size_t n)
         }
         memcpy(k->value[k->n], v, len);
         k->value[k->n][len] = '\0';
+        if (parts > 1 && count_parts(k->value[k->n]) != parts) {
+            snprintf(why, n, "--vary %s: value '%s' has %d part%s joined by '+', the knob %d keys", k->key,
+                     k->value[k->n], count_parts(k->value[k->n]), count_parts(k->value[k->n]) == 1 ? "" : "s", parts);
+            return false;
+        }
         for (int i = 0; i < k->n; i++)
             if (strcmp(k->value[i], k->value[k->n]) == 0) {
                 snprintf(why, n, "--vary %s: value '%s' given twice", k->key, k->value[i]);
@@ -118,11 +158,16 @@ bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why
     for (int k = 0; k < p->n_knobs; k++) {
         const study_knob *kn = &p->knob[k];
         if (is_derived(kn->key)) continue;
-        char assign[200];
-        snprintf(assign, sizeof assign, "%s=%s", kn->key, kn->value[idx[k]]);
-        if (sph_scene_set(def, assign, &err) != SPH_ERR_OK) {
-            core_message(why, n, kn->key, kn->value[idx[k]], &err);
-            return false;
+        for (int part = 0, parts = count_parts(kn->key); part < parts; part++) {
+            char key[96], value[64], assign[200];
+            part_of(kn->key, part, key, sizeof key);
+            if (parts > 1) part_of(kn->value[idx[k]], part, value, sizeof value);
+            else snprintf(value, sizeof value, "%s", kn->value[idx[k]]);
+            snprintf(assign, sizeof assign, "%s=%s", key, value);
+            if (sph_scene_set(def, assign, &err) != SPH_ERR_OK) {
+                core_message(why, n, key, value, &err);
+                return false;
+            }
         }
     }
     for (int k = 0; k < p->n_knobs; k++) {
