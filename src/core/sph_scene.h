@@ -56,7 +56,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_SIDE_SLIP_CHOICES(X) X(SAME, "same") X(NO, "no") X(FREE, "free")
 #define SPH_SHAPE_CHOICES(X) X(BOX, "box") X(CIRCLE, "circle")
 #define SPH_DMETHOD_CHOICES(X) X(SUMMATION, "summation") X(CONTINUITY, "continuity")
-#define SPH_DFORM_CHOICES(X) X(MOLTENI, "molteni") X(ANTUONO, "antuono")
+#define SPH_DFORM_CHOICES(X) X(MOLTENI, "molteni") X(ANTUONO, "antuono") X(FOURTAKAS, "fourtakas")
 #define SPH_SHIFT_CHOICES(X) X(NONE, "none") X(LIND, "lind")
 #define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
 #define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")

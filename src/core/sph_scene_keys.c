@@ -129,7 +129,9 @@ const sph_key sph_scene_keys[] = {
      "the density diffusion term of delta: molteni: psi_ij as above (Molteni & Colagrossi 2009); antuono: psi_ij "
      "minus the renormalised density gradients <grad rho>^L_i + <grad rho>^L_j (Antuono et al. 2010, Comput. Phys. "
      "Commun. 181:532), which vanishes for a hydrostatic (linear) density, so a column at rest does not drift; "
-     "CPU only"},
+     "fourtakas: rho_j - rho_i minus the hydrostatic density difference of the pair, the equation of state's density "
+     "at p = rho0 g . (x_j - x_i) minus rho0 (Fourtakas et al. 2019, Comput. Fluids 190:346), zero for a column at "
+     "rest with no gradient to estimate, walls or free surface alike; CPU only"},
     {"physics", "shifting", SPH_KEY_CHOICE, S(shifting), 0, 0, 0, 0, CH(sph_shifting_names), "", "none",
      "particle shifting after each step: none; lind: every particle moves by -D grad C_i, C the particle "
      "concentration (Lind et al. 2012, J. Comput. Phys. 231:1499), D = shifting_coefficient h |v_i| dt; particles "
