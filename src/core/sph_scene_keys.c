@@ -20,6 +20,7 @@ const char *const sph_side_slip_names[SPH_SIDE_SLIP_COUNT] = {SPH_SIDE_SLIP_CHOI
 const char *const sph_shape_names[SPH_SHAPE_COUNT] = {SPH_SHAPE_CHOICES(NAMES)};
 const char *const sph_axis_names[3] = {"x", "y", "z"};
 const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICES(NAMES)};
+const char *const sph_initial_pressure_names[SPH_INITP_COUNT] = {SPH_INITP_CHOICES(NAMES)};
 const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
 const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
 const char *const sph_backend_names[SPH_BACKEND_COUNT] = {SPH_BACKEND_CHOICES(NAMES)};
@@ -203,6 +204,12 @@ const sph_key sph_scene_keys[] = {
     {"fluid", "field", SPH_KEY_CHOICE, B(field), 0, 0, 0, 0, CH(sph_velocity_field_names), "", "uniform",
      "initial velocity field: uniform, or the Taylor-Green vortex u = U sin(kx) cos(ky), v = -U cos(kx) sin(ky), "
      "k = 2 pi / L with L the domain's x length (it decays as exp(-2 nu k^2 t))"},
+    {"fluid", "initial_pressure", SPH_KEY_CHOICE, B(initial_pressure), 0, 0, 0, 0, CH(sph_initial_pressure_names), "",
+     "none",
+     "none: the block starts at rest density, without pressure; hydrostatic: at the pressure rho0 |g| d of its "
+     "depth d below the block's top, each particle's mass rho(p) spacing^dim with rho(p) the equation of state "
+     "solved for the density (Colagrossi & Landrini 2003; Adami et al. 2012), so the summed or carried density "
+     "starts there; needs gravity, and no gravity_ramp"},
 
 #define O(field) (int)offsetof(sph_obstacle_def, field)
     {"obstacle", "shape", SPH_KEY_CHOICE, O(shape), 0, 0, 0, 0, CH(sph_shape_names), "", "box",
