@@ -104,6 +104,8 @@ grep -q "; 150 fluid nodes of the blocks fall inside obstacles and are not creat
 sph run "$oscene" --steps 2 --quiet --stats "$tmp/ob.csv" > "$tmp/ob.txt" 2>&1 && head -1 "$tmp/ob.csv" | grep -q ',obstacle_box_fx,obstacle_box_fy,obstacle_cylinder_fx,obstacle_cylinder_fy' && ok || { bad "stats: obstacle force columns"; cat "$tmp/ob.txt"; head -1 "$tmp/ob.csv"; }
 sph run scenes/validate/taylor-green.ini --backend gl --steps 1 > "$tmp/tvf.txt" 2>&1
 [ $? -eq 1 ] && grep -q "shifting = tvf is not implemented by the GL backend yet (its transport pass" "$tmp/tvf.txt" && ok || { bad "gl with shifting = tvf: want exit 1 and the reason"; cat "$tmp/tvf.txt"; }
+sph run scenes/validate/hydrostatic.ini --backend gl --steps 1 --set physics.delta_form=fourtakas > "$tmp/fk.txt" 2>&1
+[ $? -eq 1 ] && grep -q "delta_form = fourtakas is not implemented by the GL backend" "$tmp/fk.txt" && ok || { bad "gl with delta_form = fourtakas: want exit 1 and the reason"; cat "$tmp/fk.txt"; }
 sph check "$oscene" --set domain.wall_model=volume > "$tmp/ob.txt" 2>&1
 [ $? -eq 1 ] && grep -q "dam-break-obstacle.ini:25: \[obstacle box\] needs wall particles.*wall_model = particles (it is volume)" "$tmp/ob.txt" && ok || { bad "obstacle without wall particles: want exit 1 and the reason"; cat "$tmp/ob.txt"; }
 

@@ -270,6 +270,24 @@ Test(scene, block_outside_the_domain)
                "outside the domain");
 }
 
+Test(scene, initial_pressure_hydrostatic_needs_gravity_without_a_ramp)
+{
+    sph_scene_def def;
+    sph_error err;
+    cr_assert_eq(lib_load(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\ninitial_pressure = hydrostatic\n", &def, &err),
+                 SPH_ERR_OK, "%s", err.msg);
+    cr_assert_eq(def.blocks[1].initial_pressure, SPH_INITP_HYDROSTATIC);
+    cr_assert_eq(def.blocks[0].initial_pressure, SPH_INITP_NONE, "the default");
+    EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\ninitial_pressure = hydrostatic\n[physics]\n"
+                     "gravity_ramp = 0.3\n",
+               SPH_ERR_SCENE, "x.ini:10", "fluid b", "initial_pressure = hydrostatic", "gravity_ramp");
+    EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\ninitial_pressure = hydrostatic\n[physics]\n"
+                     "gravity = 0 0\n",
+               SPH_ERR_SCENE, "x.ini:10", "fluid b", "no gravity");
+    EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\ninitial_pressure = lithostatic\n", SPH_ERR_PARSE,
+               "x.ini:13", "initial_pressure", "hydrostatic");
+}
+
 Test(scene, block_thinner_than_one_spacing_has_no_particles)
 {
     EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.51 0.8\n", SPH_ERR_SCENE, "x.ini:10", "fluid b",

@@ -45,6 +45,31 @@ Test(validate, curve_interpolates_inside_and_is_nan_outside)
 
 /* ---- exact solutions -------------------------------------------------------- */
 
+/* The column at rest of a weakly compressible fluid: the floor carries the
+ * weight, the linear equation of state has the closed form, the mass is
+ * rho0 H0 per unit area, and the incompressible column is the limit. */
+Test(validate, hydrostatic_column_of_the_equation_of_state)
+{
+    const double rho0 = 1000, g = 9.81, H0 = 0.3, k = 400;
+    const val_eos lin = {rho0, k, 0}, tait = {rho0, k, 7}, stiff = {rho0, 1e9, 0};
+    cr_assert_float_eq(val_hydrostatic_p(&lin, g, H0, 0), rho0 * g * H0, 1e-9);
+    double mass = 0, dy = H0 / 20000; /* the column's mass up to where p = 0 (its top, below H0) */
+    for (double y = 0.5 * dy; val_hydrostatic_p(&lin, g, H0, y) > 0; y += dy)
+        mass += (rho0 + val_hydrostatic_p(&lin, g, H0, y) / k) * dy;
+    cr_assert_float_eq(mass, rho0 * H0, 1e-3 * rho0 * H0, "mass %g, want %g", mass, rho0 * H0);
+    for (double y = 0; y <= H0; y += 0.05) {
+        double exact = k * rho0 * ((1 + g * H0 / k) * exp(-g * y / k) - 1);
+        cr_assert_float_eq(val_hydrostatic_p(&lin, g, H0, y), exact, 1e-8 * rho0 * g * H0, "linear, y = %g", y);
+        cr_assert_float_eq(val_hydrostatic_p(&stiff, g, H0, y), rho0 * g * (H0 - y), 1e-5 * rho0 * g * H0);
+        /* the compressed column's pressure lies below rho0 g (H0 - y), by
+         * at most g H0 / 2k of rho0 g H0 (at the top): 0.37 % here */
+        double lo = rho0 * g * (H0 - y) - (g * H0 / (2 * k)) * rho0 * g * H0 * 1.01;
+        cr_assert(val_hydrostatic_p(&lin, g, H0, y) <= rho0 * g * (H0 - y) + 1e-9 && val_hydrostatic_p(&lin, g, H0, y) >= lo,
+                  "y = %g", y);
+        cr_assert(fabs(val_hydrostatic_p(&tait, g, H0, y) - exact) < 2e-3 * rho0 * g * H0, "Tait near linear, y = %g", y);
+    }
+}
+
 Test(validate, poiseuille_series_tends_to_the_parabola_and_starts_at_rest)
 {
     const double F = 2e-4, nu = 1e-6, L = 1e-3, umax = F * L * L / (8 * nu);

@@ -836,6 +836,18 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                 return block_error(err, def, b, "%s:%d: [fluid %s]: no particles: %s", what);
             }
         }
+        if (blk->initial_pressure == SPH_INITP_HYDROSTATIC) {
+            double g2 = 0;
+            for (int a = 0; a < dim; a++) g2 += (double)def->gravity[a] * def->gravity[a];
+            const char *why = !(def->effects & SPH_EFFECT(GRAVITY)) || g2 == 0 ? "the scene has no gravity"
+                              : !(def->effects & SPH_EFFECT(PRESSURE))         ? "the scene has no pressure effect"
+                              : def->gravity_ramp > 0 ? "[physics] gravity_ramp starts from no gravity, so the "
+                                                        "column would not be at rest (use one or the other)"
+                                                      : NULL;
+            if (why)
+                return block_error(err, def, b, "%s:%d: [fluid %s]: initial_pressure = hydrostatic: %s (accepted: none)",
+                                   why);
+        }
     }
     sph_error_code oc = sph_obstacles_validate(def, err); /* sph_obstacles.c */
     if (oc) return oc;

@@ -56,9 +56,10 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_SIDE_SLIP_CHOICES(X) X(SAME, "same") X(NO, "no") X(FREE, "free")
 #define SPH_SHAPE_CHOICES(X) X(BOX, "box") X(CIRCLE, "circle")
 #define SPH_DMETHOD_CHOICES(X) X(SUMMATION, "summation") X(CONTINUITY, "continuity")
-#define SPH_DFORM_CHOICES(X) X(MOLTENI, "molteni") X(ANTUONO, "antuono")
+#define SPH_DFORM_CHOICES(X) X(MOLTENI, "molteni") X(ANTUONO, "antuono") X(FOURTAKAS, "fourtakas")
 #define SPH_SHIFT_CHOICES(X) X(NONE, "none") X(LIND, "lind") X(TVF, "tvf")
 #define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
+#define SPH_INITP_CHOICES(X) X(NONE, "none") X(HYDROSTATIC, "hydrostatic")
 #define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
 #define SPH_BACKEND_CHOICES(X) X(CPU, "cpu") X(GL, "gl")
@@ -80,6 +81,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_DFORM(id, name) SPH_DFORM_##id,
 #define SPH_CHOICE_ITEM_SPH_SHIFT(id, name) SPH_SHIFT_##id,
 #define SPH_CHOICE_ITEM_SPH_VFIELD(id, name) SPH_VFIELD_##id,
+#define SPH_CHOICE_ITEM_SPH_INITP(id, name) SPH_INITP_##id,
 #define SPH_CHOICE_ITEM_SPH_ACC(id, name) SPH_ACC_##id,
 #define SPH_CHOICE_ITEM_SPH_ONOFF(id, name) SPH_##id,
 #define SPH_CHOICE_ITEM_SPH_BACKEND(id, name) SPH_BACKEND_##id,
@@ -98,6 +100,7 @@ SPH_DECLARE_CHOICES(sph_density_method, SPH_DMETHOD, SPH_DMETHOD_CHOICES)
 SPH_DECLARE_CHOICES(sph_delta_form, SPH_DFORM, SPH_DFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_shifting, SPH_SHIFT, SPH_SHIFT_CHOICES)
 SPH_DECLARE_CHOICES(sph_velocity_field, SPH_VFIELD, SPH_FIELD_CHOICES)
+SPH_DECLARE_CHOICES(sph_initial_pressure, SPH_INITP, SPH_INITP_CHOICES)
 SPH_DECLARE_CHOICES(sph_accumulate, SPH_ACC, SPH_ACC_CHOICES)
 SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
 SPH_DECLARE_CHOICES(sph_backend_kind, SPH_BACKEND, SPH_BACKEND_CHOICES)
@@ -118,6 +121,7 @@ extern const char *const sph_delta_form_names[SPH_DFORM_COUNT];
 extern const char *const sph_shifting_names[SPH_SHIFT_COUNT];
 extern const char *const sph_axis_names[3];
 extern const char *const sph_velocity_field_names[SPH_VFIELD_COUNT];
+extern const char *const sph_initial_pressure_names[SPH_INITP_COUNT];
 extern const char *const sph_accumulate_names[SPH_ACC_COUNT];
 extern const char *const sph_onoff_names[SPH_ONOFF_COUNT];
 extern const char *const sph_backend_names[SPH_BACKEND_COUNT];
@@ -142,6 +146,8 @@ typedef struct sph_block_def {
     float velocity[3]; /* [m/s] initial velocity (uniform); amplitude U = velocity.x (taylor-green) */
     sph_velocity_field field; /* uniform, or the Taylor-Green vortex of the domain's size */
     sph_onoff field_pressure; /* on: start with the field's pressure (taylor-green), carried by the masses */
+    sph_initial_pressure initial_pressure; /* none (rho0 everywhere), or hydrostatic: each particle's mass holds
+                                            * the equation of state's density at rho0 g (its depth in the block) */
     int line;          /* line of the [fluid ...] section header, for messages */
     sph_origin origin[8];
 } sph_block_def;

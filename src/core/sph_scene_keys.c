@@ -20,6 +20,7 @@ const char *const sph_side_slip_names[SPH_SIDE_SLIP_COUNT] = {SPH_SIDE_SLIP_CHOI
 const char *const sph_shape_names[SPH_SHAPE_COUNT] = {SPH_SHAPE_CHOICES(NAMES)};
 const char *const sph_axis_names[3] = {"x", "y", "z"};
 const char *const sph_velocity_field_names[SPH_VFIELD_COUNT] = {SPH_FIELD_CHOICES(NAMES)};
+const char *const sph_initial_pressure_names[SPH_INITP_COUNT] = {SPH_INITP_CHOICES(NAMES)};
 const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)};
 const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
 const char *const sph_backend_names[SPH_BACKEND_COUNT] = {SPH_BACKEND_CHOICES(NAMES)};
@@ -128,7 +129,10 @@ const sph_key sph_scene_keys[] = {
     {"physics", "delta_form", SPH_KEY_CHOICE, S(delta_form), 0, 0, 0, 0, CH(sph_delta_form_names), "", "molteni",
      "the density diffusion term of delta: molteni: psi_ij as above (Molteni & Colagrossi 2009); antuono: psi_ij "
      "minus the renormalised density gradients <grad rho>^L_i + <grad rho>^L_j (Antuono et al. 2010, Comput. Phys. "
-     "Commun. 181:532), which vanishes for a hydrostatic (linear) density, so a column at rest does not drift"},
+     "Commun. 181:532), which vanishes for a hydrostatic (linear) density, so a column at rest does not drift; "
+     "fourtakas: rho_j - rho_i minus the hydrostatic density difference of the pair, the equation of state's density "
+     "at p = rho0 g . (x_j - x_i) minus rho0 (Fourtakas et al. 2019, Comput. Fluids 190:346), zero for a column at "
+     "rest with no gradient to estimate, walls or free surface alike; fourtakas is CPU only"},
     {"physics", "shifting", SPH_KEY_CHOICE, S(shifting), 0, 0, 0, 0, CH(sph_shifting_names), "", "none",
      "particle shifting after each step: none; lind: every particle moves by -D grad C_i, C the particle "
      "concentration (Lind et al. 2012, J. Comput. Phys. 231:1499), D = shifting_coefficient h |v_i| dt; particles "
@@ -206,6 +210,12 @@ const sph_key sph_scene_keys[] = {
      "on: the block starts with the pressure of its field, p = -rho0 U^2 (cos 2kx + cos 2ky) / 4 for taylor-green "
      "(the exact solution's), as the density the equation of state gives for it, carried by the masses "
      "m = rho(p) spacing^dim; off: every particle at rest_density (p = 0 at t = 0)"},
+    {"fluid", "initial_pressure", SPH_KEY_CHOICE, B(initial_pressure), 0, 0, 0, 0, CH(sph_initial_pressure_names), "",
+     "none",
+     "none: the block starts at rest density, without pressure; hydrostatic: at the pressure rho0 |g| d of its "
+     "depth d below the block's top, each particle's mass rho(p) spacing^dim with rho(p) the equation of state "
+     "solved for the density (Colagrossi & Landrini 2003; Adami et al. 2012), so the summed or carried density "
+     "starts there; needs gravity, and no gravity_ramp"},
 
 #define O(field) (int)offsetof(sph_obstacle_def, field)
     {"obstacle", "shape", SPH_KEY_CHOICE, O(shape), 0, 0, 0, 0, CH(sph_shape_names), "", "box",

@@ -128,6 +128,29 @@ static double rest_density_at(const sph_scene_def *def, double p)
     return rho0 + p / k;
 }
 
+/* [1] rho / rho0 of a block with initial_pressure = hydrostatic at the
+ * lattice node x [m]: the equation of state solved for the density at
+ * p = rho0 |g| d, d the node's depth below the block's highest point along
+ * g (its top face when g is along an axis). The particle's mass carries
+ * that density (rho spacing^dim), so the summed density, and the carried
+ * one that starts from it, start at the hydrostatic pressure, whichever
+ * density_method; the lattice stays as it is. */
+static double hydrostatic_share(const sph_scene_def *def, const sph_block_def *blk, const double x[3])
+{
+    double g2 = 0, top = -INFINITY, height = 0;
+    for (int d = 0; d < def->dim; d++) g2 += (double)def->gravity[d] * def->gravity[d];
+    const double gn = sqrt(g2);
+    if (!(gn > 0)) return 1.0;
+    for (int c = 0; c < (1 << def->dim); c++) { /* the block's corners: the highest against g */
+        double up = 0;
+        for (int d = 0; d < def->dim; d++) up -= def->gravity[d] / gn * ((c >> d) & 1 ? blk->max[d] : blk->min[d]);
+        top = fmax(top, up);
+    }
+    for (int d = 0; d < def->dim; d++) height -= def->gravity[d] / gn * x[d];
+    const double p = def->rest_density * gn * fmax(top - height, 0.0); /* [Pa] */
+    return rest_density_at(def, p) / def->rest_density;
+}
+
 static void place_particles(sph_sim *sim)
 {
     const sph_scene_def *def = &sim->def;
@@ -153,6 +176,11 @@ static void place_particles(sph_sim *sim)
                     }
                     P->id[i] = i;
                     P->mass[i] = mass;
+                    if (blk->initial_pressure == SPH_INITP_HYDROSTATIC) {
+                        double at[3] = {0, 0, 0};
+                        for (int d = 0; d < sim->dim; d++) at[d] = blk->min[d] + ((float)node[d] + 0.5f) * s;
+                        P->mass[i] = (float)(mass * hydrostatic_share(def, blk, at));
+                    }
                     for (int d = 0; d < sim->dim; d++) {
                         float jit = def->jitter > 0 ? def->jitter * s * rng_symmetric(&rng) : 0.0f;
                         float v = (float)blk->min[d] + ((float)node[d] + 0.5f) * s + jit;

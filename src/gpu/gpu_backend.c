@@ -90,6 +90,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [physics] shifting = tvf is not implemented by the GL backend yet (its transport pass, "
                         "the drift of the background pressure, runs on the CPU; accepted there: none)",
                         def->file);
+    if (sim->in_pipeline[SPH_PASS_DENSITY_RATE] && def->delta > 0 && def->delta_form == SPH_DFORM_FOURTAKAS)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] delta_form = fourtakas is not implemented by the GL backend yet (its "
+                        "hydrostatic correction runs on the CPU; accepted there: molteni, antuono)",
+                        def->file);
     if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)))
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] pressure_solver = %s is not implemented by the GL backend yet (its iterations "

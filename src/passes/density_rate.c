@@ -36,7 +36,17 @@
  * For a linear density (a hydrostatic column) the two parts cancel pair by
  * pair, so the term is zero; Molteni's alone is not zero where the kernel is
  * cut off (the free surface), and moves density upwards: the column drifts.
- The wall particles enter the gradients (passes/density_gradient.c) but
+ * With delta_form = fourtakas (Fourtakas, Dominguez, Vacondio & Rogers 2019,
+ * Comput. Fluids 190:346-361, eq. 14-15; DualSPHysics' "DDT 2") the pair's
+ * hydrostatic density difference is taken out instead:
+ *   psi_ij = 2 ((rho_j - rho_i) - rho^H_ji) x_ji / |x_ji|^2,
+ *   rho^H_ji = EOS^-1(rho0 g . (x_j - x_i)) - rho0,
+ * the density the equation of state gives j's depth below i (g the step's
+ * gravity, ramped as the fluid's). For a column at rest the term is zero
+ * pair by pair, without a gradient estimate, so a truncated support (the
+ * free surface, the wall particles, which stay out of the flux) does not
+ * drive it; what it diffuses is the dynamic part of the density.
+ * The wall particles enter the gradients (passes/density_gradient.c) but
  * not the flux: a flux to a wall particle, whose density wall_state ties to
  * the fluid's pressure, is a source of mass that feeds itself (tried: the
  * wall row gained 200 % of rho0 g H in a second).
@@ -49,6 +59,7 @@
  * fluid's pressure, not carried, so only fluid pairs diffuse (as DualSPHysics
  * does too). */
 #include "sph_search.h"
+#include "sph_start.h"
 #include "sph_walls.h"
 
 #include <math.h>
@@ -64,13 +75,28 @@ static const char *skip_reason(const sph_scene_def *def)
 static void describe(const sph_scene_def *def, char *out, int n)
 {
     snprintf(out, (size_t)n, "continuity equation with density diffusion delta = %g (%s)%s", def->delta,
-             def->delta_form == SPH_DFORM_ANTUONO ? "Antuono et al. 2010" : "Molteni & Colagrossi 2009",
+             def->delta_form == SPH_DFORM_ANTUONO     ? "Antuono et al. 2010"
+             : def->delta_form == SPH_DFORM_FOURTAKAS ? "Fourtakas et al. 2019"
+                                                      : "Molteni & Colagrossi 2009",
              sph_scene_wall_volume(def) ? ", walls' hidden share moved by v" : "");
 }
 
-/* The rate for one particle; dim and dbl are constants (SPH_SPECIALISE_P). */
-static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffusion, int i, const int dim,
-                            const bool dbl, const bool periodic)
+/* Fourtakas et al. 2019's hydrostatic density difference rho^H_ji [kg/m^dim]
+ * for the pressure difference ph = rho0 g . (x_j - x_i) [Pa]. */
+static inline float hydro_density(const sph_scene_def *def, float ph)
+{
+    if (def->eos == SPH_EOS_TAIT) {
+        const float B = def->stiffness * def->rest_density / def->tait_gamma;
+        return def->rest_density * (powf(fmaxf(1.0f + ph / B, 1e-3f), 1.0f / def->tait_gamma) - 1.0f);
+    }
+    return ph / def->stiffness;
+}
+
+/* The rate for one particle; dim and dbl are constants (SPH_SPECIALISE_P).
+ * g0: rho0 times the step's gravity [kg/(m^dim s^2)], with delta_form =
+ * fourtakas (else NULL). */
+static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffusion, const float *g0, int i,
+                            const int dim, const bool dbl, const bool periodic)
 {
     sph_particles *P = (sph_particles *)&sim->P;
     const sph_search_data *S = &sim->S;
@@ -106,6 +132,11 @@ static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffu
             float psi = -2.0f * (P->rho_c[j] - rho_i); /* psi_ij . x_ij, Molteni's part */
             if (antuono)                               /* Antuono's: - (grad_i + grad_j) . x_ij */
                 for (int d = 0; d < dim; d++) psi -= (P->grad_rho[d][i] + P->grad_rho[d][j]) * dx[d];
+            if (g0) { /* Fourtakas's: + 2 rho^H_ji, at p = rho0 g . x_ji = -rho0 g . x_ij */
+                float ph = 0.0f;
+                for (int d = 0; d < dim; d++) ph -= g0[d] * dx[d];
+                psi += 2.0f * hydro_density(&sim->def, ph);
+            }
             t += diffusion * psi * dw_over_r * P->mass[j] / P->rho_c[j];
         }
         if (dbl) sd += t;
@@ -133,8 +164,15 @@ static void run(sph_sim *sim)
         return;
     }
     const float diffusion = sim->def.delta * 0.5f * sim->def.h * sqrtf(sim->def.stiffness); /* delta h_s c [m^2/s] */
+    float g0[3] = {0, 0, 0}; /* rho0 g of the step, for delta_form = fourtakas */
+    const bool fourtakas = sim->def.delta_form == SPH_DFORM_FOURTAKAS;
+    if (fourtakas && (sim->def.effects & SPH_EFFECT(GRAVITY))) {
+        const float gs = sph_start_gravity_scale(sim);
+        for (int d = 0; d < dim; d++) g0[d] = sim->def.rest_density * sim->def.gravity[d] * gs;
+    }
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, rate_one, sim, &k, diffusion, i);
+    for (int i = 0; i < n; i++)
+        SPH_SPECIALISE_P(dim, dbl, periodic, rate_one, sim, &k, diffusion, fourtakas ? g0 : NULL, i);
 }
 
 const sph_pass sph_pass_density_rate = {

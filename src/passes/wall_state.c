@@ -3,8 +3,9 @@
  * Phys. 231, 7057-7075), eq. 27-28. For each wall particle w, from the fluid
  * particles f in its support:
  *   p_w   = (sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf) / sum_f W_wf
- *           (r_wf = x_w - x_f; the box stands still, a_w = 0): the fluid's
- *           pressure extrapolated into the wall with the hydrostatic gradient,
+ *           (r_wf = x_w - x_f; the box stands still, a_w = 0; g the gravity
+ *           of the step, ramped as the fluid's during gravity_ramp): the
+ *           fluid's pressure extrapolated into the wall with the hydrostatic gradient,
  *   rho_w = the equation of state solved for the density at p_w,
  *   v~_w  = sum_f v_f W_wf / sum_f W_wf, and the velocity the viscous term
  *           sees, vel_visc = 2 v_w - v~_w (no-slip: the velocity mirrored
@@ -16,6 +17,7 @@
  * writes them for wall particles only, so no particle reads a value written
  * in the same sweep. */
 #include "sph_search.h"
+#include "sph_start.h"
 #include "sph_walls.h"
 
 #include <math.h>
@@ -51,14 +53,14 @@ static float eos_density(const sph_scene_def *def, float p)
     return fmaxf(rho0 + p / k, 1e-3f * rho0);
 }
 
-static inline void wall_one(sph_sim *sim, int w, const int dim, const bool periodic)
+/* gscale: the share of g of the step under way (gravity_ramp; 0 without gravity) */
+static inline void wall_one(sph_sim *sim, int w, const int dim, const bool periodic, const float gscale)
 {
     sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
     const sph_scene_def *def = &sim->def;
     const sph_kernel *k = &sim->k_density;
     const float *per = sim->period, *iper = sim->inv_period;
-    const bool gravity = def->effects & SPH_EFFECT(GRAVITY);
     double sw = 0, sp = 0, srr[3] = {0, 0, 0}, sv[3] = {0, 0, 0};
     for (uint32_t e = S->nbr_start[w]; e < S->nbr_start[w + 1]; e++) {
         uint32_t f = S->nbr[e];
@@ -80,7 +82,7 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
     float p = 0.0f, vt[3] = {0, 0, 0};
     if (sw > 0) {
         double q = sp;
-        for (int d = 0; d < dim; d++) q += (gravity ? (double)def->gravity[d] : 0.0) * srr[d];
+        for (int d = 0; d < dim; d++) q += (double)def->gravity[d] * gscale * srr[d];
         p = (float)(q / sw);
         for (int d = 0; d < dim; d++) vt[d] = (float)(sv[d] / sw);
     }
@@ -99,14 +101,18 @@ static void run(sph_sim *sim)
     sph_particles *P = &sim->P;
     const int n = (int)sim->n, dim = sim->dim;
     const bool periodic = sph_sim_periodic(sim);
+    /* the gravity the fluid feels in this step: during gravity_ramp only a
+     * share of g (sph_start.h), so the wall's hydrostatic term matches the
+     * fluid's weight; the full g there pushed the first rows up */
+    const float gscale = (sim->def.effects & SPH_EFFECT(GRAVITY)) ? sph_start_gravity_scale(sim) : 0.0f;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         if (!sph_is_wall(P, i)) {
             for (int d = 0; d < dim; d++) P->vel_visc[d][i] = P->vel[d][i];
         } else if (periodic) {
-            wall_one(sim, i, dim, true);
+            wall_one(sim, i, dim, true, gscale);
         } else {
-            wall_one(sim, i, dim, false);
+            wall_one(sim, i, dim, false, gscale);
         }
     }
 }

@@ -2,10 +2,17 @@
  * (scenes/validate/hydrostatic.ini). After settling (t >= T_SETTLE), in
  * single frames (no time average), the pressure of every fluid particle
  * within one spacing of the centre line x = W/2, the row next to the floor
- * included, is compared with p = rho0 g (H - y), H the depth the fluid's
- * mass gives (rho0 H W = mass); and the largest fluid speed is followed over
- * time. Targets: |p - p_exact| <= 1 % of rho0 g H in every frame; max speed
- * < 1 % of sqrt(g H). */
+ * included, is compared with the exact pressure of the column at rest of
+ * the fluid the scene defines (val_hydrostatic_p: dp/dy = -rho(p) g with the
+ * scene's equation of state, the floor carrying the weight rho0 g H, H the
+ * depth the fluid's mass gives at rho0, rho0 H W = mass); and the largest
+ * fluid speed is followed over time. The weakly compressible column stands
+ * lower than H and its pressure lies below rho0 g (H - y) by up to
+ * g H / 2c^2 of rho0 g H (0.37 % at c = 20 m/s, H = 0.3 m): that part is
+ * the model's chosen compressibility, not the discretisation's error, so
+ * the verdict compares with the exact column of the same fluid; the figure
+ * against rho0 g (H - y) is printed beside it. Targets: |p - p_exact| <= 1 %
+ * of rho0 g H in every frame; max speed < 1 % of sqrt(g H). */
 #include <math.h>
 #include <string.h>
 
@@ -19,6 +26,8 @@ typedef struct hyd_obs {
     double t_end, next_frame, H, rho0, g, s;
     int frames;
     double worst_p;                 /* [1] largest |p - p_exact| / (rho0 g H) over the frames */
+    double worst_inc;               /* [1] the same against rho0 g (H - y), the incompressible column */
+    val_eos eos;
     double worst_speed;             /* [m/s] after settling */
     val_series speed;               /* max speed [m/s] against t */
     val_series prof_y, prof_p;      /* the last frame's centre line: y [m], p / (rho0 g H) */
@@ -37,6 +46,7 @@ static void observe(void *vctx, const sph_sim *sim)
         o->H = mass / (def->rest_density * ((double)def->domain_max[0] - def->domain_min[0]));
         o->rho0 = def->rest_density;
         o->g = -def->gravity[1];
+        o->eos = (val_eos){def->rest_density, def->stiffness, def->eos == SPH_EOS_TAIT ? def->tait_gamma : 0.0};
     }
     double vmax = 0;
     for (uint32_t i = 0; i < sim->n; i++) {
@@ -55,8 +65,9 @@ static void observe(void *vctx, const sph_sim *sim)
     for (uint32_t i = 0; i < sim->n; i++) {
         if (sph_is_wall(P, i) || fabs(P->pos[0][i] - xc) > o->s) continue;
         double y = P->pos[1][i] - def->domain_min[1];
-        double e = (P->p[i] - o->rho0 * o->g * (o->H - y)) / scale;
+        double e = (P->p[i] - val_hydrostatic_p(&o->eos, o->g, o->H, y)) / scale;
         o->worst_p = fmax(o->worst_p, fabs(e));
+        o->worst_inc = fmax(o->worst_inc, fabs(P->p[i] - o->rho0 * o->g * (o->H - y)) / scale);
         o->oom |= !val_series_add(&o->prof_y, y, P->p[i] / scale);
         (void)val_series_add(&o->prof_p, y, e);
     }
@@ -94,7 +105,7 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
                 fprintf(f, "0,%d,%.6f,%.6g,0\n", c->res[r], o->speed.x[i], o->speed.y[i]);
             for (size_t i = 0; i < o->prof_y.n; i++)
                 fprintf(f, "1,%d,%.6f,%.6g,%.6g\n", c->res[r], o->prof_y.x[i], o->prof_y.y[i],
-                        (o->H - o->prof_y.x[i]) / o->H);
+                        val_hydrostatic_p(&o->eos, o->g, o->H, o->prof_y.x[i]) / (o->rho0 * o->g * o->H));
         }
         ok = val_csv_close(c, f, "hydrostatic.csv");
     }
@@ -104,8 +115,8 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
         const hyd_obs *o = &obs[r];
         double sp = o->worst_speed / sqrt(o->g * o->H);
         pass &= o->worst_p <= 0.01 && sp < 0.01;
-        val_append(trend, sizeof trend, "%sR=%d p %.2f%% speed %.2f%%", r ? ", " : "", c->res[r], 100 * o->worst_p,
-                   100 * sp);
+        val_append(trend, sizeof trend, "%sR=%d p %.2f%% (against rho0 g (H - y): %.2f%%) speed %.2f%%", r ? ", " : "",
+                   c->res[r], 100 * o->worst_p, 100 * o->worst_inc, 100 * sp);
     }
     /* the chart: the last frame's pressure error on the centre line against depth, and the speed over time */
     val_series err_y[VAL_MAX_RES], err_t[VAL_MAX_RES];
@@ -120,7 +131,7 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
         ch.xlo = 0;
         ch.xhi = 1;
         ch.np = 2;
-        snprintf(ch.p[0].ylabel, sizeof ch.p[0].ylabel, "(p - #gr#d0#ug(H-y)) / #gr#d0#ugH [-]");
+        snprintf(ch.p[0].ylabel, sizeof ch.p[0].ylabel, "(p - p#dexact#u) / #gr#d0#ugH [-]");
         snprintf(ch.p[1].ylabel, sizeof ch.p[1].ylabel, "max speed / sqrt(gH) [-]");
         ch.p[0].zero_line = true;
         for (int r = 0; r < done && r < PLOT_MAX_SERIES; r++) {
@@ -150,7 +161,7 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
         val_series_free(&err_y[r]), val_series_free(&err_t[r]);
     }
     return val_verdict(c, p, ok, pass,
-                       "worst centre-line |p - rho0 g (H - y)| / rho0 g H in %d single frames after t = %g s, the "
+                       "worst centre-line |p - p_exact| / rho0 g H (p_exact: the column of the scene's equation of state) in %d single frames after t = %g s, the "
                        "row at the floor included, and max speed / sqrt(g H) after it: %s (target: <= 1 %%, < 1 %%)",
                        FRAMES, T_SETTLE, trend);
 }

@@ -66,6 +66,22 @@ double val_couette(double y, double t, double U, double nu, double L, int terms)
 double val_tg_decay(double nu, double L, double t); /* exp(b t) [1] */
 void val_tg_velocity(double x, double y, double t, double U, double nu, double L, double v[2]);
 
+/* The equation of state of a weakly compressible fluid: p = k (rho - rho0)
+ * (linear, tait_gamma = 0) or p = (k rho0 / gamma) ((rho/rho0)^gamma - 1)
+ * (Tait, gamma = tait_gamma > 0); k [m^2/s^2] = c^2, rho0 [kg/m^dim]. */
+typedef struct val_eos {
+    double rho0, k, tait_gamma;
+} val_eos;
+
+/* Pressure [Pa] at height y [m] above the floor of a column at rest of that
+ * weakly compressible fluid, under gravity g [m/s^2], whose mass equals
+ * rho0 H0 per unit floor area: dp/dy = -rho(p) g with p(0) = rho0 g H0
+ * (the floor carries the whole weight), integrated numerically. With the
+ * linear equation of state it is k rho0 ((1 + g H0/k) exp(-g y/k) - 1);
+ * as k grows, rho0 g (H0 - y). The compressed column stands lower than H0
+ * (by about g H0^2 / 2k). */
+double val_hydrostatic_p(const val_eos *e, double g, double H0, double y);
+
 /* Observed order of convergence between two resolutions: log(e1/e2) / log(r2/r1). */
 double val_order(double r1, double e1, double r2, double e2);
 

@@ -42,6 +42,29 @@ double val_curve_at(const val_curve *c, double x)
     return c->y[c->n - 1];
 }
 
+/* The density the equation of state gives pressure p (validate.h). */
+static double eos_rho(const val_eos *e, double p)
+{
+    if (e->tait_gamma > 0) return e->rho0 * pow(1.0 + p * e->tait_gamma / (e->k * e->rho0), 1.0 / e->tait_gamma);
+    return e->rho0 + p / e->k;
+}
+
+double val_hydrostatic_p(const val_eos *e, double g, double H0, double y)
+{
+    /* dp/dy = -rho(p) g from the floor, where the column's whole weight
+     * rho0 g H0 rests: classic RK4 in steps of at most H0 / 1000 */
+    double p = e->rho0 * g * H0;
+    int n = (int)ceil(fabs(y) / (H0 / 1000.0));
+    if (n < 1) return p;
+    double dy = y / n;
+    for (int i = 0; i < n; i++) {
+        double k1 = -g * eos_rho(e, p), k2 = -g * eos_rho(e, p + 0.5 * dy * k1);
+        double k3 = -g * eos_rho(e, p + 0.5 * dy * k2), k4 = -g * eos_rho(e, p + dy * k3);
+        p += dy / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    return p;
+}
+
 double val_poiseuille_steady(double y, double F, double nu, double L)
 {
     return F / (2.0 * nu) * y * (L - y);
