@@ -495,6 +495,10 @@ sph_error_code sph_sim_clone(const sph_sim *sim, const sph_scene_def *def, int t
             memcpy(fresh, moved, (size_t)n * sizeof(float));
         }
     }
+    /* pred: where the carried particles are (the new one's start-up wrote the
+     * placement's), until its first step predicts them; the overlays read it */
+    if (next->P.pred[0])
+        for (int d = 0; d < sim->dim; d++) memcpy(next->P.pred[d], next->P.pos[d], (size_t)n * sizeof(float));
     next->t = sim->t;
     next->step = sim->step;
     next->rho_carried = sim->rho_carried && sim->P.rho_c && next->P.rho_c; /* else summed again */
