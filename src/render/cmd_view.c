@@ -22,6 +22,7 @@
 #include "io.h"
 #include "layout.h"
 #include "panel.h"
+#include "view_ladder.h"
 
 /* The key bindings, written once: the help panel, `--help` and
  * docs/rendering.md list them from here. */
@@ -33,11 +34,21 @@
     X("tab", "parameter panel: show / hide")                                  \
     X("w", "write the scene (as the panel's Save scene as)")                  \
     X("f", "fit the domain to the view")                                      \
-    X("F1..F12", "switch pass 1..12 on or off (order of the pipeline)")       \
+    X("F1..F12", "switch pass 1..12 on or off (numbered as `sphlab check`)") \
     X("k / shift+k", "cycle the density / pressure kernel")                   \
-    X("o", "cycle the sort: bitonic, counting, qsort")                        \
+    X("o", "cycle the sort: bitonic, counting, qsort, none")                  \
     X("m", "cycle the search: hash, grid, brute")                             \
     X("s", "cycle the pressure solver: eos, pcisph, dfsph")                   \
+    /* the ladder, validate mode, N and the pass list (view_ladder.c) */      \
+    X("l / shift+l", "next / previous level of the ladder (L0..L7, G0..G3)")  \
+    X("e", "switch the reorder by cell on / off")                             \
+    X("u", "switch the vector loops on / off")                                \
+    X("t", "threads: 1 / one per core")                                       \
+    X("b", "backend: cpu / gl (GL 4.3 compute)")                              \
+    X("a / shift+a", "validate: run L0 (shift: L2) alongside, show the differences") \
+    X("] / [", "twice / half as many particles (the scene filled again)")     \
+    X("n / shift+n", "choose the next / previous pass (numbers as `sphlab check`)") \
+    X("d", "switch the chosen pass on / off")                                 \
     X("1..9", "overlays: grid keys collisions neighbours forces index hud timings legend") \
     X("c / shift+c", "next / previous colour field")                          \
     X("z / x", "3D: slice down / up by h")                                    \
@@ -106,6 +117,10 @@ typedef struct viewer {
     bool params_open;
     char save_path[1024]; /* where Save scene as and the key w write */
     float cursor[2];      /* [px] the mouse in the frame, or -1 when outside the window */
+    /* the ladder (view_ladder.h): live speed per level, validate, the chosen pass */
+    view_ladder ladder;
+    int pass_cursor;      /* the pass the keys n and d act on, or -1 */
+    char ladder_lines[8][128];
 } viewer;
 
 static void say(viewer *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -258,13 +273,16 @@ static void screenshot(viewer *w, const char *path)
 
 static void toggle_pass(viewer *w, int p)
 {
-    if (p >= SPH_PASS_COUNT) return;
+    if (p < 0 || p >= SPH_PASS_COUNT) {
+        say(w, "no such pass in this scene's pipeline (`sphlab check` lists them)");
+        return;
+    }
     if (!w->sim->in_pipeline[p]) {
         say(w, "pass %s is not in this scene's pipeline", sph_passes[p]->name);
         return;
     }
     w->sim->enabled[p] = !w->sim->enabled[p];
-    say(w, "pass %s %s", sph_passes[p]->name, w->sim->enabled[p] ? "on" : "off");
+    say(w, "pass %d %s %s", view_pass_number(w->sim, p), sph_passes[p]->name, w->sim->enabled[p] ? "on" : "off");
 }
 
 static void step_pass(viewer *w)
@@ -287,6 +305,88 @@ static void step_pass(viewer *w)
         f >= 0 ? sph_color_field_names[f] : "", strip ? "; index strip on" : "");
 }
 
+/* ---- the ladder, validate mode and N (keys l e u t b a ] [) ---- */
+
+/* The state carried into a simulation of def on `threads` threads (0: one
+ * per core): a level or thread switch keeps the particles where they are. */
+static bool switch_sim(viewer *w, const sph_scene_def *def, int threads, const char *what)
+{
+    sph_scene_def next = *def;
+    sph_error err;
+    if (sph_scene_validate(&next, &err) != SPH_ERR_OK) {
+        say(w, "%s: %s", what, err.msg);
+        return false;
+    }
+    sph_sim *fresh = NULL;
+    if (sph_sim_clone(w->sim, &next, threads, &fresh, &err) != SPH_ERR_OK) {
+        /* a GL level where no OpenGL 4.3 device can be made: refused, the running one kept */
+        say(w, "%s: %s", what, err.msg);
+        return false;
+    }
+    sph_sim_destroy(w->sim);
+    w->sim = fresh;
+    w->def = next;
+    w->threads = threads;
+    if (sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
+    int lv = view_ladder_level(w->sim);
+    say(w, "%s: at level %s (%s), %d thread%s, %s", what, lv >= 0 ? sph_levels[lv].name : "none",
+        lv >= 0 ? sph_levels[lv].about : "a mix of ingredients", w->sim->threads, w->sim->threads == 1 ? "" : "s",
+        sph_backend_names[w->def.backend]);
+    return true;
+}
+
+static void next_level(viewer *w, int dir)
+{
+    int lv = view_ladder_level(w->sim);
+    for (int s = 1; s <= sph_level_count; s++) {
+        int l = ((lv < 0 ? (dir > 0 ? -1 : 0) : lv) + dir * s + 2 * sph_level_count) % sph_level_count;
+        const sph_level *L = &sph_levels[l];
+        sph_scene_def def = w->def;
+        sph_error err;
+        if (sph_level_apply(L, &def, &err) != SPH_ERR_OK) {
+            say(w, "level %s: %s", L->name, err.msg);
+            return;
+        }
+        if (switch_sim(w, &def, L->threads, "level")) return;
+        if (!sph_level_gl(L)) return; /* a CPU level that failed: said why */
+        /* a GL level without a device: the message stays, the next level is tried */
+    }
+}
+
+static void validate(viewer *w, const char *ref)
+{
+    const int r = sph_level_find(ref);
+    sph_error err;
+    double t0 = sph_now_ms();
+    if (r < 0 || sph_sim_validate(w->sim, &sph_levels[r], 5, &w->ladder.val, &err) != SPH_ERR_OK) {
+        say(w, "validate: %s", r < 0 ? "no reference level" : err.msg);
+        return;
+    }
+    w->ladder.validated = true;
+    w->ladder.val_step = w->sim->step;
+    snprintf(w->ladder.val_ref, sizeof w->ladder.val_ref, "%s", ref);
+    w->v.overlays |= SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS);
+    char text[256];
+    sph_compare_text(&w->ladder.val, ref, text, sizeof text);
+    say(w, "%s (%.0f ms)", text, sph_now_ms() - t0);
+}
+
+static void rescale(viewer *w, bool more)
+{
+    const float f = powf(2.0f, (more ? -1.0f : 1.0f) / (float)w->def.dim);
+    sph_scene_def next;
+    char why[512];
+    if (!view_scene_rescaled(&w->def, f, &next, why, sizeof why)) {
+        say(w, "%s particles: %s", more ? "more" : "fewer", why);
+        return;
+    }
+    const int threads = w->threads;
+    w->ladder.validated = false; /* for other particles */
+    if (restart(w, &next, more ? "more particles" : "fewer particles"))
+        say(w, "%u particles: spacing and h x %.3f, the scene starts again from t = 0 (%d thread%s kept)", w->sim->n,
+            (double)f, threads <= 0 ? w->sim->threads : threads, w->sim->threads == 1 ? "" : "s");
+}
+
 static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
 {
     const bool shift = mod & KMOD_SHIFT;
@@ -301,7 +401,7 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
         return;
     }
     if (k >= SDLK_F1 && k <= SDLK_F12) {
-        toggle_pass(w, (int)(k - SDLK_F1));
+        toggle_pass(w, view_pass_of_number(w->sim, (int)(k - SDLK_F1) + 1));
         return;
     }
     switch (k) {
@@ -353,6 +453,31 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
         set_variant(w, a);
         break;
     }
+    case SDLK_l: next_level(w, shift ? -1 : 1); break;
+    case SDLK_e: set_variant(w, w->def.reorder == SPH_ON ? "search.reorder=off" : "search.reorder=on"); break;
+    case SDLK_u: set_variant(w, w->def.vector == SPH_ON ? "search.vector=off" : "search.vector=on"); break;
+    case SDLK_t: {
+        sph_scene_def def = w->def;
+        switch_sim(w, &def, w->sim->threads == 1 ? 0 : 1, "threads");
+        break;
+    }
+    case SDLK_b: {
+        sph_scene_def def = w->def;
+        def.backend = def.backend == SPH_BACKEND_GL ? SPH_BACKEND_CPU : SPH_BACKEND_GL;
+        switch_sim(w, &def, w->sim->threads, "backend");
+        break;
+    }
+    case SDLK_a: validate(w, shift ? "L2" : "L0"); break;
+    case SDLK_RIGHTBRACKET:
+    case SDLK_LEFTBRACKET: rescale(w, k == SDLK_RIGHTBRACKET); break;
+    case SDLK_n:
+        w->pass_cursor = view_pass_next(w->sim, w->pass_cursor, shift ? -1 : 1);
+        if (w->pass_cursor >= 0)
+            say(w, "pass %d %s chosen (d switches it)", view_pass_number(w->sim, w->pass_cursor),
+                sph_passes[w->pass_cursor]->name);
+        w->v.overlays |= SPH_OV_BIT(TIMINGS); /* the numbered list */
+        break;
+    case SDLK_d: toggle_pass(w, w->pass_cursor); break;
     case SDLK_c: cycle_field(w, shift ? -1 : 1); break;
     case SDLK_z: w->v.slice_z -= h; say(w, "slice z = %.4g m", w->v.slice_z); break;
     case SDLK_x: w->v.slice_z += h; say(w, "slice z = %.4g m", w->v.slice_z); break;
@@ -551,6 +676,7 @@ int cmd_view(int argc, char **argv)
     w.threads = (int)threads;
     w.scripted = frames > 0;
     w.last_pass = -1;
+    w.pass_cursor = -1;
     w.paused = start_paused;
     if (!app_load_scene(&so, &w.def)) return 1;
     w.start = w.def;
@@ -701,6 +827,10 @@ int cmd_view(int argc, char **argv)
         w.v.hud.paused = w.paused;
         w.v.hud.last_pass = w.last_pass;
         w.v.hud.message = now < w.msg_until ? w.msg : NULL;
+        view_ladder_record(&w.ladder, w.sim);
+        w.v.hud.n_extra = view_ladder_lines(&w.ladder, w.sim, w.ladder_lines, 8);
+        w.v.hud.extra = (const char(*)[128])w.ladder_lines;
+        w.v.hud.pass_cursor = w.pass_cursor + 1;
         w.v.selected = sim_index_of_id(w.sim, w.sel_id);
         fill_panel(&w);
         /* the HUD, timings, text panel and parameter panel sit in a column beside the view */
@@ -757,6 +887,9 @@ int cmd_view(int argc, char **argv)
                 : direct_all ? "in the window's context, particles drawn from its buffers"
                              : "in the window's context, some frames copied through the host (colour field or overlays)",
                 per_frame);
+    /* the last frame's inspector, for the scripted tests (a lesson's first frame) */
+    if (w.scripted && !w.help)
+        for (int k = 0; k < w.v.panel_lines; k++) fprintf(stderr, "sphlab view: inspector: %s\n", w.panel[k]);
     rc = 0;
     if (shot) {
         w.msg[0] = '\0';
