@@ -177,7 +177,9 @@ typedef struct sph_overlay {
 bool sph_overlay_build(const sph_sim *sim, const sph_overlay_opts *o, sph_overlay *ov);
 void sph_overlay_free(sph_overlay *ov);
 
-/* Cell of particle i as the hash pass sees it (from pred if allocated, else pos). */
+/* Cell of particle i as the hash pass sees it: from pred once the external
+ * pass of this state wrote it (after the first pass of the first step), else
+ * from pos (at step 0 the search sees pos: pred = pos + v dt, dt = 0). */
 void sph_overlay_cell_of(const sph_sim *sim, uint32_t i, int32_t c[3]);
 /* Cell borders along axis d are at sph_grid_origin(sim, d) + k sph_grid_size(sim, d):
  * the search's cells (sim->S.cells), a hair above h wide. */

@@ -307,68 +307,56 @@ static void step_pass(viewer *w)
 
 /* ---- the ladder, validate mode and N (keys l e u t b a ] [) ---- */
 
-/* The state carried into a simulation of def on `threads` threads (0: one
- * per core): a level or thread switch keeps the particles where they are. */
-static bool switch_sim(viewer *w, const sph_scene_def *def, int threads, const char *what)
+/* After a switch (view_ladder.c): the colour field, and the message said. */
+static void switched(viewer *w, bool ok, const char *msg)
 {
-    sph_scene_def next = *def;
-    sph_error err;
-    if (sph_scene_validate(&next, &err) != SPH_ERR_OK) {
-        say(w, "%s: %s", what, err.msg);
-        return false;
-    }
-    sph_sim *fresh = NULL;
-    if (sph_sim_clone(w->sim, &next, threads, &fresh, &err) != SPH_ERR_OK) {
-        /* a GL level where no OpenGL 4.3 device can be made: refused, the running one kept */
-        say(w, "%s: %s", what, err.msg);
-        return false;
-    }
-    sph_sim_destroy(w->sim);
-    w->sim = fresh;
-    w->def = next;
-    w->threads = threads;
-    if (sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
-    int lv = view_ladder_level(w->sim);
-    say(w, "%s: at level %s (%s), %d thread%s, %s", what, lv >= 0 ? sph_levels[lv].name : "none",
-        lv >= 0 ? sph_levels[lv].about : "a mix of ingredients", w->sim->threads, w->sim->threads == 1 ? "" : "s",
-        sph_backend_names[w->def.backend]);
-    return true;
+    if (ok && sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
+    say(w, "%s", msg);
+}
+
+static void switch_sim(viewer *w, const sph_scene_def *def, int threads, const char *what)
+{
+    char msg[200];
+    bool ok = view_switch(&w->sim, &w->def, &w->threads, def, threads, what, msg, sizeof msg);
+    switched(w, ok, msg);
+}
+
+static void go_level(viewer *w, int l)
+{
+    char msg[200];
+    bool ok = view_go_level(&w->sim, &w->def, &w->threads, l, msg, sizeof msg);
+    switched(w, ok, msg);
 }
 
 static void next_level(viewer *w, int dir)
 {
-    int lv = view_ladder_level(w->sim);
-    for (int s = 1; s <= sph_level_count; s++) {
-        int l = ((lv < 0 ? (dir > 0 ? -1 : 0) : lv) + dir * s + 2 * sph_level_count) % sph_level_count;
-        const sph_level *L = &sph_levels[l];
-        sph_scene_def def = w->def;
-        sph_error err;
-        if (sph_level_apply(L, &def, &err) != SPH_ERR_OK) {
-            say(w, "level %s: %s", L->name, err.msg);
-            return;
-        }
-        if (switch_sim(w, &def, L->threads, "level")) return;
-        if (!sph_level_gl(L)) return; /* a CPU level that failed: said why */
-        /* a GL level without a device: the message stays, the next level is tried */
-    }
+    char msg[200];
+    bool ok = view_next_level(&w->sim, &w->def, &w->threads, dir, msg, sizeof msg);
+    switched(w, ok, msg);
 }
 
 static void validate(viewer *w, const char *ref)
 {
-    const int r = sph_level_find(ref);
-    sph_error err;
-    double t0 = sph_now_ms();
-    if (r < 0 || sph_sim_validate(w->sim, &sph_levels[r], 5, &w->ladder.val, &err) != SPH_ERR_OK) {
-        say(w, "validate: %s", r < 0 ? "no reference level" : err.msg);
-        return;
+    char msg[300];
+    if (view_validate(&w->ladder, w->sim, ref, msg, sizeof msg)) w->v.overlays |= SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS);
+    say(w, "%s", msg);
+}
+
+/* The panel's ladder section: the levels, and the passes of the pipeline in check's order. */
+static void fill_panel_ladder(viewer *w, sph_panel_ladder *pl)
+{
+    memset(pl, 0, sizeof *pl);
+    pl->level = view_ladder_level(w->sim);
+    for (int l = 0; l < sph_level_count && pl->n_levels < SPH_PANEL_ROWS; l++, pl->n_levels++) {
+        pl->level_name[l] = sph_levels[l].name;
+        pl->level_about[l] = sph_levels[l].about;
     }
-    w->ladder.validated = true;
-    w->ladder.val_step = w->sim->step;
-    snprintf(w->ladder.val_ref, sizeof w->ladder.val_ref, "%s", ref);
-    w->v.overlays |= SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS);
-    char text[256];
-    sph_compare_text(&w->ladder.val, ref, text, sizeof text);
-    say(w, "%s (%.0f ms)", text, sph_now_ms() - t0);
+    for (int p = 0; p < SPH_PASS_COUNT && pl->n_passes < SPH_PANEL_ROWS; p++)
+        if (w->sim->in_pipeline[p]) {
+            pl->pass_name[pl->n_passes] = sph_passes[p]->name;
+            pl->pass_on[pl->n_passes++] = w->sim->enabled[p];
+        }
+    pl->particles = w->sim->n;
 }
 
 static void rescale(viewer *w, bool more)
@@ -867,10 +855,19 @@ int cmd_view(int argc, char **argv)
             sph_renderer_side_free(w.r, side);
             for (int k = 0; k < 4; k++) side[k] = (int)((float)side[k] / scale); /* drawable pixels to window units */
             sph_panel_out po;
+            sph_panel_ladder pl;
+            fill_panel_ladder(&w, &pl);
+            sph_panel_set_ladder(w.params, &pl);
             sph_panel_frame(w.params, &w.def, side, now < w.msg_until ? w.msg : "", &po);
             sph_panel_draw(w.params);
+            sph_panel_set_ladder(w.params, NULL);
             if (po.set[0]) apply_change(&w, po.set);
             if (po.save[0]) save_scene(&w, po.save);
+            /* the ladder section: one change a frame, as the keys make it */
+            if (po.level >= 0) go_level(&w, po.level);
+            if (po.pass >= 0) toggle_pass(&w, view_pass_of_number(w.sim, po.pass + 1));
+            if (po.particles) rescale(&w, po.particles > 0);
+            if (po.validate) validate(&w, po.validate == 2 ? "L2" : "L0");
         }
         sph_renderer_present(w.r, dw, dh);
         SDL_GL_SwapWindow(win);

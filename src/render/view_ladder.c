@@ -97,6 +97,76 @@ int view_ladder_lines(const view_ladder *l, const sph_sim *sim, char lines[][128
     return k;
 }
 
+bool view_switch(sph_sim **sim, sph_scene_def *def, int *threads, const sph_scene_def *next, int next_threads,
+                 const char *what, char *msg, size_t n)
+{
+    sph_scene_def d = *next;
+    sph_error err;
+    sph_sim *fresh = NULL;
+    if (sph_scene_validate(&d, &err) != SPH_ERR_OK || sph_sim_clone(*sim, &d, next_threads, &fresh, &err) != SPH_ERR_OK) {
+        snprintf(msg, n, "%s: %s", what, err.msg);
+        return false;
+    }
+    sph_sim_destroy(*sim);
+    *sim = fresh;
+    *def = d;
+    *threads = next_threads;
+    const int lv = view_ladder_level(fresh);
+    snprintf(msg, n, "%s: at level %s (%s), %d thread%s, %s", what, lv >= 0 ? sph_levels[lv].name : "none",
+             lv >= 0 ? sph_levels[lv].about : "a mix of ingredients", fresh->threads, fresh->threads == 1 ? "" : "s",
+             sph_backend_names[d.backend]);
+    return true;
+}
+
+bool view_go_level(sph_sim **sim, sph_scene_def *def, int *threads, int level, char *msg, size_t n)
+{
+    const sph_level *L = &sph_levels[level];
+    sph_scene_def d = *def;
+    sph_error err;
+    if (sph_level_apply(L, &d, &err) != SPH_ERR_OK) {
+        snprintf(msg, n, "level %s: %s", L->name, err.msg);
+        return false;
+    }
+    return view_switch(sim, def, threads, &d, L->threads, "level", msg, n);
+}
+
+bool view_next_level(sph_sim **sim, sph_scene_def *def, int *threads, int dir, char *msg, size_t n)
+{
+    const int lv = view_ladder_level(*sim);
+    char first[256] = "";
+    for (int s = 1; s <= sph_level_count; s++) {
+        const int l = ((lv < 0 ? (dir > 0 ? -1 : 0) : lv) + dir * s + 2 * sph_level_count) % sph_level_count;
+        if (view_go_level(sim, def, threads, l, msg, n)) {
+            if (first[0]) { /* say why the GL levels were passed over */
+                size_t len = strlen(msg);
+                snprintf(msg + len, n - len, " (passed over: %.150s)", first);
+            }
+            return true;
+        }
+        if (!sph_level_gl(&sph_levels[l])) return false; /* a CPU level refused: said why */
+        if (!first[0]) snprintf(first, sizeof first, "%s", msg);
+    }
+    return false;
+}
+
+bool view_validate(view_ladder *l, const sph_sim *sim, const char *ref, char *msg, size_t n)
+{
+    const int r = sph_level_find(ref);
+    sph_error err;
+    const double t0 = sph_now_ms();
+    if (r < 0 || sph_sim_validate(sim, &sph_levels[r], 5, &l->val, &err) != SPH_ERR_OK) {
+        snprintf(msg, n, "validate: %s", r < 0 ? "no such reference level" : err.msg);
+        return false;
+    }
+    l->validated = true;
+    l->val_step = sim->step;
+    snprintf(l->val_ref, sizeof l->val_ref, "%s", ref);
+    char text[256];
+    sph_compare_text(&l->val, ref, text, sizeof text);
+    snprintf(msg, n, "%s (%.0f ms)", text, sph_now_ms() - t0);
+    return true;
+}
+
 bool view_scene_rescaled(const sph_scene_def *def, float factor, sph_scene_def *out, char *why, size_t n)
 {
     *out = *def;

@@ -38,6 +38,22 @@ int view_ladder_lines(const view_ladder *l, const sph_sim *sim, char lines[][128
  * times factor, so N changes by factor^-dim and h / spacing is kept. False
  * with the reason if the scene it makes is refused. */
 bool view_scene_rescaled(const sph_scene_def *def, float factor, sph_scene_def *out, char *why, size_t n);
+/* The running simulation *sim (of *def, on *threads threads, 0: one per
+ * core) carried into a simulation of next on next_threads: the particles,
+ * velocities and time kept (sph_sim_clone), so a level or thread switch
+ * goes on where the flow is. On failure (a GL level where no OpenGL 4.3
+ * device can be made, a scene refused) nothing changes. The message (to
+ * show) in msg either way; true if switched. */
+bool view_switch(sph_sim **sim, sph_scene_def *def, int *threads, const sph_scene_def *next, int next_threads,
+                 const char *what, char *msg, size_t n);
+/* The level's keys and threads applied to the running simulation. */
+bool view_go_level(sph_sim **sim, sph_scene_def *def, int *threads, int level, char *msg, size_t n);
+/* The next (dir = 1) or previous (-1) level; a GL level that cannot be made is passed over (its reason kept). */
+bool view_next_level(sph_sim **sim, sph_scene_def *def, int *threads, int dir, char *msg, size_t n);
+/* Validate mode: sim against the reference level named ref for 5 steps from
+ * its state (sph_sim_validate); the result kept in l. The message in msg. */
+bool view_validate(view_ladder *l, const sph_sim *sim, const char *ref, char *msg, size_t n);
+
 /* Pass numbers as `sphlab check` prints them: 1 for the first pass in the
  * pipeline. 0 for a pass not in it; the pass of number k, or -1. */
 int view_pass_number(const sph_sim *sim, int pass);
