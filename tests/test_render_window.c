@@ -220,3 +220,45 @@ Test(render_window, key_labels_carry_their_cells_size)
     sph_overlay_free(&ov);
     sph_sim_destroy(sim);
 }
+
+/* Speed-ups of levels not visited here come from the last bench ladder CSV,
+ * said as such; a level measured live wins over it. */
+Test(render_window, speedups_from_the_bench_csv_when_not_visited)
+{
+    const char *csv = test_write_temp(
+        "level,description,backend,threads,max_n,capped,steps_per_s_at_max,speedup,n_at,ms_per_step,pairs_per_step\n"
+        "L0,brute,cpu,1,,0,,,5000,40,1\n"
+        "L2,seed,cpu,1,20000,0,61,,5000,4,1\n"
+        "L3,counting sort,cpu,1,25000,0,60,1.2,5000,2,1\n",
+        ".csv");
+    view_ladder l;
+    memset(&l, 0, sizeof l);
+    cr_assert(view_ladder_load_csv(&l, csv));
+    const int l0 = sph_level_find("L0"), l2 = sph_level_find("L2"), l3 = sph_level_find("L3");
+    cr_expect_eq(l.csv_ms[l0], 40.0, "an empty max_n does not shift the columns");
+    cr_expect_eq(l.csv_ms[l3], 2.0);
+    cr_expect_eq(l.csv_n[l3], 5000.0);
+    sph_scene_def def = test_scene(scene_2d);
+    sph_error err;
+    cr_assert_eq(sph_level_apply(&sph_levels[l3], &def, &err), SPH_ERR_OK);
+    sph_sim *sim = NULL;
+    cr_assert_eq(sph_sim_create(&def, 1, &sim, &err), SPH_ERR_OK);
+    for (int s = 0; s < 3; s++) sph_sim_step(sim);
+    char lines[8][128];
+    int n = view_ladder_lines(&l, sim, lines, 8);
+    bool found = false;
+    for (int k = 0; k < n; k++)
+        if (strstr(lines[k], "x2 vs L2 (bench CSV, N=5000)") && strstr(lines[k], "x20 vs L0 (bench CSV")) found = true;
+    cr_expect(found, "no CSV speed-ups in: %s | %s | %s", lines[0], n > 2 ? lines[2] : "", n > 3 ? lines[3] : "");
+    /* L2 measured live: that one is live, L0 still from the CSV */
+    l.ms[l2] = 1000.0;
+    n = view_ladder_lines(&l, sim, lines, 8);
+    found = false;
+    for (int k = 0; k < n; k++)
+        if (strstr(lines[k], "vs L2,") && !strstr(lines[k], "vs L2 (bench") && strstr(lines[k], "vs L0 (bench CSV"))
+            found = true;
+    cr_expect(found, "live L2 not preferred: %s", n > 2 ? lines[2] : "");
+    cr_expect_not(view_ladder_load_csv(&l, "/nonexistent/ladder-2d.csv"));
+    sph_sim_destroy(sim);
+    remove(csv);
+}

@@ -739,6 +739,13 @@ int cmd_view(int argc, char **argv)
     if (!chose) w.v.overlays |= SPH_OV_BIT(TIMINGS);
     w.user_field = w.v.field;
     w.sel_id = vo.select_id;
+    /* the last `sphlab bench ladder` CSV (its own directory, or `make bench`'s), for levels not visited here */
+    for (int k = 0; k < 2 && !w.ladder.csv_path[0]; k++) {
+        char csv[64];
+        snprintf(csv, sizeof csv, "%sladder-%dd.csv", k ? "build/bench/" : "", w.sim->dim);
+        if (view_ladder_load_csv(&w.ladder, csv))
+            say(&w, "speed-ups of levels not visited here: from %s (the bench's scene and N)", csv);
+    }
     w.cursor[0] = w.cursor[1] = -1;
     /* Save scene as: --save-scene, else NAME-saved.ini in the current directory (as the screenshots) */
     if (opt.save_scene) {

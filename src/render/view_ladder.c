@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
 #include <omp.h>
@@ -41,9 +42,56 @@ static int level_below(int lv)
     return sph_levels[lv - 1].name[0] == sph_levels[lv].name[0] ? lv - 1 : -1;
 }
 
+bool view_ladder_load_csv(view_ladder *l, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return false;
+    char line[4096];
+    int c_level = -1, c_n = -1, c_ms = -1;
+    double ms[VIEW_LEVELS_MAX] = {0}, at[VIEW_LEVELS_MAX] = {0};
+    bool any = false;
+    for (int row = 0; fgets(line, sizeof line, f); row++) {
+        line[strcspn(line, "\r\n")] = '\0';
+        char *lvname = NULL, *next = line;
+        double n = NAN, m = NAN;
+        int col = 0;
+        /* fields split at each comma, empty ones kept (a figure not measured is left empty) */
+        for (char *tok = line; next; tok = next, col++) {
+            next = strchr(tok, ',');
+            if (next) *next++ = '\0';
+            if (row == 0) {
+                if (strcmp(tok, "level") == 0) c_level = col;
+                if (strcmp(tok, "n_at") == 0) c_n = col;
+                if (strcmp(tok, "ms_per_step") == 0) c_ms = col;
+                continue;
+            }
+            if (col == c_level) lvname = tok;
+            if (col == c_n && *tok) n = strtod(tok, NULL);
+            if (col == c_ms && *tok) m = strtod(tok, NULL);
+        }
+        if (row == 0 && (c_level < 0 || c_n < 0 || c_ms < 0)) break;
+        const int lv = lvname ? sph_level_find(lvname) : -1;
+        if (row > 0 && lv >= 0 && lv < VIEW_LEVELS_MAX && n > 0 && m > 0) {
+            ms[lv] = m, at[lv] = n;
+            any = true;
+        }
+    }
+    fclose(f);
+    if (!any) return false;
+    memcpy(l->csv_ms, ms, sizeof ms);
+    memcpy(l->csv_n, at, sizeof at);
+    snprintf(l->csv_path, sizeof l->csv_path, "%s", path);
+    return true;
+}
+
 static void speedup_text(const view_ladder *l, int lv, int ref, double ms, char *out, size_t n)
 {
-    if (ref < 0) {
+    if (ref >= 0 && ref < VIEW_LEVELS_MAX && !(l->ms[ref] > 0) && l->csv_ms[ref] > 0 && l->csv_ms[lv] > 0 &&
+        l->csv_n[ref] == l->csv_n[lv]) {
+        /* not visited here: the bench's ratio, at its N */
+        snprintf(out, n, "x%.3g vs %.8s (bench CSV, N=%.0f)", l->csv_ms[ref] / l->csv_ms[lv], sph_levels[ref].name,
+                 l->csv_n[lv]);
+    } else if (ref < 0) {
         snprintf(out, n, "-");
     } else if (ref >= VIEW_LEVELS_MAX || !(l->ms[ref] > 0)) {
         snprintf(out, n, "%.8s not visited", sph_levels[ref].name);
@@ -75,11 +123,11 @@ int view_ladder_lines(const view_ladder *l, const sph_sim *sim, char lines[][128
     int window = 0;
     const double ms = sph_sim_step_ms(sim, &window);
     if (ms > 0 && lv >= 0) {
-        char below[32], base[32];
+        char below[48], base[48];
         const int l0 = sph_levels[lv].name[0] == 'G' ? sph_level_find("L0") : 0;
         speedup_text(l, lv, level_below(lv), ms, below, sizeof below);
         speedup_text(l, lv, l0, ms, base, sizeof base);
-        LADDER_LINE("speed-up (live, N = %u): %.31s, %.31s", sim->n, below, base);
+        LADDER_LINE("speed-up (live at N = %u): %.47s, %.47s", sim->n, below, base);
     }
     if (ms > 0 && sim->n) {
         /* the cost per particle-step taken as constant: N_60 = (1000/60 ms) / (ms / N) */

@@ -23,7 +23,17 @@ typedef struct view_ladder {
     sph_compare_result val;
     char val_ref[8];            /* the reference level's name */
     uint64_t val_step;          /* the step it was taken at */
+    /* the last `sphlab bench ladder` CSV of this dimension, if one was found:
+     * each level's ms per step at the bench's own N (its scene, not this one) */
+    double csv_ms[VIEW_LEVELS_MAX]; /* [ms] 0: not in it */
+    double csv_n[VIEW_LEVELS_MAX];  /* [1] the N it was measured at */
+    char csv_path[256];             /* "" if none */
 } view_ladder;
+
+/* Reads the ladder CSV at path (`sphlab bench ladder` writes ladder-2d.csv
+ * and ladder-3d.csv): the columns level, n_at and ms_per_step. False (and
+ * nothing kept) if it cannot be read or lacks them. */
+bool view_ladder_load_csv(view_ladder *l, const char *path);
 
 /* The level sim is at (its keys and threads), or -1. */
 int view_ladder_level(const sph_sim *sim);
