@@ -293,7 +293,9 @@ static void build_keys(builder *b, const sph_sim *sim, const sph_overlay_opts *o
     const float h = sim->def.h;
     bool keys = o->layers & SPH_OV_BIT(KEYS), coll = o->layers & SPH_OV_BIT(COLLISIONS);
     bool labels = keys;
-    if (keys && o->px_per_m > 0) {
+    /* 2D: one scale for the whole view; 3D: the renderer holds each label to
+     * its own cell as the perspective draws it (sph_ov_label.fit) */
+    if (keys && o->px_per_m > 0 && sim->dim == 2) {
         /* a label needs about 7 px per digit at the small size */
         int dg = digits(sim->S.table_size ? sim->S.table_size - 1 : 0);
         if (h * o->px_per_m < 7.0f * (float)dg + 2.0f) {
