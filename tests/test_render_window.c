@@ -262,3 +262,50 @@ Test(render_window, speedups_from_the_bench_csv_when_not_visited)
     sph_sim_destroy(sim);
     remove(csv);
 }
+
+/* A switch carries the state into a new simulation (sph_sim_reconfigure,
+ * sph_sim_clone) whose start-up predicted the placement's positions: the
+ * selection is drawn where the particle is now, not where it was placed. */
+Test(render_window, selection_follows_a_carried_state)
+{
+    sph_sim *sim = test_sim(scene_2d, 1);
+    for (int s = 0; s < 200; s++) sph_sim_step(sim); /* the block has fallen and spread */
+    sph_scene_def def = sim->def;
+    sph_error err;
+    cr_assert_eq(sph_scene_set(&def, "search.sort=qsort", &err), SPH_ERR_OK);
+    cr_assert_eq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    int moved = 0;
+    for (uint32_t i = 0; i < sim->n; i += 7) {
+        sph_overlay ov;
+        memset(&ov, 0, sizeof ov);
+        sph_overlay_opts o = {.layers = SPH_OV_BIT(NEIGHBOURS), .selected = (int32_t)i};
+        cr_assert(sph_overlay_build(sim, &o, &ov));
+        for (int d = 0; d < 2; d++) {
+            int32_t want = sph_cells_coord(&sim->S.cells, d, sim->P.pos[d][i]);
+            cr_expect_eq(ov.sel_cell[d], want, "particle %u: cell[%d] %d drawn, %d where it is", i, d, ov.sel_cell[d],
+                         want);
+        }
+        sph_overlay_free(&ov);
+        moved++;
+    }
+    cr_expect_gt(moved, 10);
+    sph_sim_destroy(sim);
+}
+
+/* Validate refuses brute force where it would freeze the window, and says what to use. */
+Test(render_window, validate_refuses_brute_force_at_large_n)
+{
+    sph_sim *sim = test_sim("[scene]\ndimension = 2\neffects = density\n[domain]\nmin = 0 0\nmax = 3.2 3.2\n"
+                            "[fluid a]\nmin = 0 0\nmax = 3 3\nspacing = 0.02\n[kernels]\nh = 0.04\n",
+                            1);
+    cr_assert_gt(sim->n, VIEW_VALIDATE_BRUTE_MAX);
+    view_ladder l;
+    memset(&l, 0, sizeof l);
+    char msg[300];
+    cr_expect_not(view_validate(&l, sim, "L0", msg, sizeof msg));
+    cr_expect(strstr(msg, "shift+a") && strstr(msg, "brute force"), "%s", msg);
+    cr_expect_not(l.validated);
+    cr_expect_not(view_validate(&l, sim, "L9", msg, sizeof msg));
+    cr_expect(strstr(msg, "no such reference level"), "%s", msg);
+    sph_sim_destroy(sim);
+}

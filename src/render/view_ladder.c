@@ -202,6 +202,12 @@ bool view_validate(view_ladder *l, const sph_sim *sim, const char *ref, char *ms
     const int r = sph_level_find(ref);
     sph_error err;
     const double t0 = sph_now_ms();
+    if (r >= 0 && strstr(sph_levels[r].sets, "search.method=brute") && sim->n > VIEW_VALIDATE_BRUTE_MAX) {
+        /* brute force on one thread is O(N^2): seconds of a frozen window per step at this N */
+        snprintf(msg, n, "validate: %s (brute force) at N = %u would freeze the window; shift+a validates against L2",
+                 ref, sim->n);
+        return false;
+    }
     if (r < 0 || sph_sim_validate(sim, &sph_levels[r], 5, &l->val, &err) != SPH_ERR_OK) {
         snprintf(msg, n, "validate: %s", r < 0 ? "no such reference level" : err.msg);
         return false;

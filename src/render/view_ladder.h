@@ -15,6 +15,9 @@
 #include "sph_sim.h"
 
 enum { VIEW_LEVELS_MAX = 32, VIEW_MEASURE_STEPS = 30 };
+/* Above this many particles validate refuses a brute-force reference: 6
+ * steps of N^2 / 2 pairs on one thread (about 1e8 pairs/s) take seconds. */
+#define VIEW_VALIDATE_BRUTE_MAX 20000u
 
 typedef struct view_ladder {
     double ms[VIEW_LEVELS_MAX]; /* [ms] mean step time measured live at each level, at n; 0: not visited */
