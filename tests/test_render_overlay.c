@@ -45,12 +45,13 @@ Test(render_overlay, grid_has_a_line_at_every_cell_border)
         cr_expect(fabsf(k - roundf(k)) < 1e-4f, "vertical line at x = %g is not a cell border", l->a[0]);
         cr_expect_eq(l->a[0], l->b[0]);
         /* a particle just right of the line is in cell k, just left in cell k - 1 */
-        sim->P.pred[0][0] = l->a[0] + 1e-4f;
-        sim->P.pred[1][0] = 0.01f;
+        /* (at step 0 the search would see pos, pred = pos: both are set) */
+        sim->P.pred[0][0] = sim->P.pos[0][0] = l->a[0] + 1e-4f;
+        sim->P.pred[1][0] = sim->P.pos[1][0] = 0.01f;
         int32_t c[3];
         sph_overlay_cell_of(sim, 0, c);
         cr_expect_eq(c[0], (int32_t)roundf(k));
-        sim->P.pred[0][0] = l->a[0] - 1e-4f;
+        sim->P.pred[0][0] = sim->P.pos[0][0] = l->a[0] - 1e-4f;
         sph_overlay_cell_of(sim, 0, c);
         cr_expect_eq(c[0], (int32_t)roundf(k) - 1);
     }

@@ -21,20 +21,17 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "sph_levels.h"
 #include "sph_sim.h"
 
 /* ---- the ladder ------------------------------------------------------------ */
 
-/* One level: what it adds, the scene overrides that select it, its threads. */
-typedef struct bench_level {
-    const char *name;  /* short name, e.g. "L3" */
-    const char *about; /* what it is, in a few words (no commas: it goes into CSV files) */
-    const char *sets;  /* scene overrides "section.key=value", separated by spaces */
-    int threads;       /* 1, or 0: one per core */
-} bench_level;
-
-extern const bench_level bench_levels[];
-extern const int bench_level_count;
+/* One level: what it adds, the scene overrides that select it, its threads.
+ * The table lives in the core (src/core/sph_levels.h), where the window
+ * reads it too; the bench's names stand for the core's. */
+typedef sph_level bench_level;
+#define bench_levels sph_levels
+#define bench_level_count sph_level_count
 enum { BENCH_MAX_LEVELS = 32 };
 
 /* Reference levels of the checks: brute force where it is affordable, the
@@ -42,11 +39,11 @@ enum { BENCH_MAX_LEVELS = 32 };
 #define BENCH_REF_SMALL "L0"
 #define BENCH_REF_LARGE "L2"
 /* Index of the level named `name` in bench_levels[], or -1. */
-int bench_level_find(const char *name);
+static inline int bench_level_find(const char *name) { return sph_level_find(name); }
 int bench_levels_cores(void); /* what threads = 0 means */
 /* The level runs on the GL backend ([compute] backend = gl): measured only
  * where an OpenGL 4.3 context can be made, and named by its device. */
-bool bench_level_gl(const bench_level *L);
+static inline bool bench_level_gl(const bench_level *L) { return sph_level_gl(L); }
 
 /* Overrides from the command line (--set [LEVEL:]section.key=value). */
 enum { BENCH_MAX_SETS = 32 };

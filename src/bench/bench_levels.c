@@ -11,43 +11,8 @@
 
 #include "bench.h"
 
-/* The ladder, one line per level. Each line names every search key it
- * relies on, so a level does not change when a default does. To add a
- * level, add a line (any scene key, `sphlab keys` lists them). */
-const bench_level bench_levels[] = {
-    {"L0", "brute force O(N^2) on 1 thread", "search.method=brute search.reorder=off search.vector=off", 1},
-    {"L1", "spatial hash unsorted (linked lists)",
-     "search.method=hash search.sort=none search.reorder=off search.vector=off", 1},
-    {"L2", "hash + bitonic sort + offsets (the seed)",
-     "search.method=hash search.sort=bitonic search.reorder=off search.vector=off", 1},
-    {"L3", "counting sort", "search.method=hash search.sort=counting search.reorder=off search.vector=off", 1},
-    {"L4", "particle data reordered by cell", "search.method=hash search.sort=counting search.reorder=on search.vector=off",
-     1},
-    {"L5", "OpenMP on all cores", "search.method=hash search.sort=counting search.reorder=on search.vector=off", 0},
-    {"L6", "vectorised inner loops (AVX-512)",
-     "search.method=hash search.sort=counting search.reorder=on search.vector=on", 0},
-    {"L7", "dense grid: a stencil row is one run",
-     "search.method=grid search.sort=counting search.reorder=on search.vector=on", 0},
-    /* The seed's GPU steps: the passes as GLSL compute shaders (src/gpu/), on
-     * whatever OpenGL 4.3 device EGL gives (llvmpipe without a GPU). */
-    {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0},
-    {"G1", "GLSL: hash + bitonic sort (the seed)",
-     "compute.backend=gl search.method=hash search.sort=bitonic search.reorder=off", 0},
-    {"G2", "GLSL: counting sort + reorder",
-     "compute.backend=gl search.method=hash search.sort=counting search.reorder=on", 0},
-    {"G3", "GLSL: dense grid: stencil rows",
-     "compute.backend=gl search.method=grid search.sort=counting search.reorder=on", 0},
-};
-const int bench_level_count = (int)(sizeof bench_levels / sizeof bench_levels[0]);
-
-int bench_level_find(const char *name)
-{
-    for (int i = 0; i < bench_level_count; i++)
-        if (strcmp(bench_levels[i].name, name) == 0) return i;
-    return -1;
-}
-
-bool bench_level_gl(const bench_level *L) { return strstr(L->sets, "compute.backend=gl") != NULL; }
+/* The level table is the core's (src/core/sph_levels.c): the window
+ * switches between the same levels. */
 
 int bench_levels_cores(void)
 {
@@ -154,7 +119,10 @@ bool bench_scene_def(const bench_config *cfg, const bench_level *L, int k, bool 
         snprintf(why, n, "%s", err.msg);
         return false;
     }
-    if (L && !apply_sets(def, L->sets, why, n)) return false;
+    if (L && sph_level_apply(L, def, &err) != SPH_ERR_OK) {
+        snprintf(why, n, "%s", err.msg);
+        return false;
+    }
     for (int i = 0; i < cfg->n_sets; i++) {
         if (cfg->set_level[i] && (!L || strcmp(cfg->set_level[i], L->name) != 0)) continue;
         if (!apply_sets(def, cfg->set[i], why, n)) return false;

@@ -504,13 +504,14 @@ static bool same_obstacles(const sph_scene_def *a, const sph_scene_def *b)
     return true;
 }
 
-sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err)
+sph_error_code sph_sim_clone(const sph_sim *sim, const sph_scene_def *def, int threads, sph_sim **out,
+                             sph_error *err)
 {
     static const char *const other = "this change makes other particles: reset the scene instead";
     if (def->dim != sim->def.dim || def->n_blocks != sim->def.n_blocks || !same_obstacles(def, &sim->def))
         return sph_fail(err, SPH_ERR_SCENE, "%s", other);
     sph_sim *next;
-    sph_error_code c = sph_sim_create_shared(def, sim->threads, sim->backend_share, &next, err);
+    sph_error_code c = sph_sim_create_shared(def, threads, sim->backend_share, &next, err);
     if (c) return c;
     if (next->n != sim->n) { /* counted in the simulation's frame, as the particles were placed */
         sph_sim_destroy(next);
@@ -536,6 +537,10 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
             memcpy(fresh, moved, (size_t)n * sizeof(float));
         }
     }
+    /* pred: where the carried particles are (the new one's start-up wrote the
+     * placement's), until its first step predicts them; the overlays read it */
+    if (next->P.pred[0])
+        for (int d = 0; d < sim->dim; d++) memcpy(next->P.pred[d], next->P.pos[d], (size_t)n * sizeof(float));
     next->t = sim->t;
     next->step = sim->step;
     next->rho_carried = sim->rho_carried && sim->P.rho_c && next->P.rho_c; /* else summed again */
@@ -550,6 +555,15 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
     memcpy(next->enabled, sim->enabled, sizeof next->enabled);
     next->dt = sph_time_step_choose(next);
     sph_sim_upload(next);
+    *out = next;
+    return SPH_ERR_OK;
+}
+
+sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err)
+{
+    sph_sim *next;
+    sph_error_code c = sph_sim_clone(sim, def, sim->threads, &next, err);
+    if (c) return c;
     /* swap contents so the caller's pointer stays valid */
     sph_sim tmp = *sim;
     *sim = *next;

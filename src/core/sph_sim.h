@@ -283,6 +283,12 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim);
  * masses), time and step over. `def` must make the same particles (same
  * dimension and blocks); pass toggles are kept. On error sim is unchanged. */
 sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_error *err);
+/* The same as a new simulation beside sim, which is left as it was: the
+ * state carried over into one made for `def` on `threads` threads (the
+ * window's level switch, which may change the thread count, and the
+ * validate mode's reference run). */
+sph_error_code sph_sim_clone(const sph_sim *sim, const sph_scene_def *def, int threads, sph_sim **out,
+                             sph_error *err);
 
 /* With a backend: downloads the parts of `what` (SPH_SYNC_* bits) whose host
  * copy is stale; nothing to do on the CPU. Only the host copy changes (a cache

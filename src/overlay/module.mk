@@ -31,3 +31,5 @@ check-clang-overlay:
 $(BUILD)/tests/test_fields.o: CORE_CFLAGS += -Isrc/overlay
 # The hash health tests read the HUD's rows.
 $(BUILD)/tests/test_hash_health.o: CORE_CFLAGS += -Isrc/overlay
+# and are rebuilt when the overlay's header changes (sph_hud_info's layout, for one)
+$(BUILD)/tests/test_hash_health.o $(BUILD)/tests/test_fields.o: src/overlay/*.h

@@ -90,6 +90,7 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
         } else {
             HUD_LINE("%.0f steps/s%s", info->steps_per_s, fps);
         }
+        for (int x = 0; x < info->n_extra && info->extra; x++) HUD_LINE("%s", info->extra[x]);
     }
     sph_hash_health hh;
     sph_sim_hash_health(sim, false, &hh);

@@ -118,6 +118,7 @@ static void add_label(builder *b, float x, float y, float z, uint32_t rgba, sph_
     l->size = (uint8_t)size;
     l->align = (uint8_t)align;
     l->space = (uint8_t)sp;
+    l->fit[0] = l->fit[1] = 0;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(l->text, sizeof l->text, fmt, ap);
@@ -155,10 +156,24 @@ float sph_grid_size(const sph_sim *sim, int d)
     return cells_of(sim).size[d];
 }
 
+/* Where the search sees the particles: the predicted positions once this
+ * state's external pass has written them (from the second pass of the
+ * first step on), else the positions. Before any pass of the first step
+ * pred holds what nothing of this step wrote (zeros of a fresh array, a
+ * device buffer never filled, the placement before a carried state), and
+ * the selection was drawn at cell (0,0) with "hash 0 key 0": at that point
+ * the search would see pos anyway (pred = pos + v dt, and no step ran). */
+static float *const *search_pos(const sph_sim *sim)
+{
+    const bool written = sim->P.pred[0] && sim->in_pipeline[SPH_PASS_EXTERNAL] &&
+                         (sim->step > 0 || sim->next_pass > SPH_PASS_EXTERNAL);
+    return written ? sim->P.pred : sim->P.pos;
+}
+
 void sph_overlay_cell_of(const sph_sim *sim, uint32_t i, int32_t c[3])
 {
     const sph_cells g = cells_of(sim);
-    float *const *x = sim->P.pred[0] ? sim->P.pred : sim->P.pos;
+    float *const *x = search_pos(sim);
     c[0] = c[1] = c[2] = 0;
     for (int d = 0; d < sim->dim; d++) c[d] = sph_cells_coord(&g, d, x[d][i]);
 }
@@ -278,7 +293,9 @@ static void build_keys(builder *b, const sph_sim *sim, const sph_overlay_opts *o
     const float h = sim->def.h;
     bool keys = o->layers & SPH_OV_BIT(KEYS), coll = o->layers & SPH_OV_BIT(COLLISIONS);
     bool labels = keys;
-    if (keys && o->px_per_m > 0) {
+    /* 2D: one scale for the whole view; 3D: the renderer holds each label to
+     * its own cell as the perspective draws it (sph_ov_label.fit) */
+    if (keys && o->px_per_m > 0 && sim->dim == 2) {
         /* a label needs about 7 px per digit at the small size */
         int dg = digits(sim->S.table_size ? sim->S.table_size - 1 : 0);
         if (h * o->px_per_m < 7.0f * (float)dg + 2.0f) {
@@ -293,16 +310,22 @@ static void build_keys(builder *b, const sph_sim *sim, const sph_overlay_opts *o
         cell_rect(sim, c->c, r);
         if (coll && c->collides)
             add_box(b, r[0], r[1], r[2], r[3], z, SPH_RGBA(230, 40, 40, 90), SPH_RGBA(255, 60, 60, 255), SPH_SPACE_WORLD);
-        if (labels)
+        if (labels) {
+            const int at = ov->n_labels;
             add_label(b, 0.5f * (r[0] + r[2]), 0.5f * (r[1] + r[3]), z,
                       c->collides && coll ? SPH_RGBA(255, 200, 200, 255) : SPH_RGBA(255, 255, 255, 255),
                       SPH_TEXT_SMALL, SPH_ALIGN_CENTER, SPH_SPACE_WORLD, "%u", c->key);
+            if (ov->n_labels > at) { /* the renderer draws it only where the cell holds it */
+                ov->labels[at].fit[0] = r[2] - r[0];
+                ov->labels[at].fit[1] = r[3] - r[1];
+            }
+        }
     }
 }
 
 static void particle_pos(const sph_sim *sim, uint32_t i, float x[3], bool predicted)
 {
-    float *const *p = predicted && sim->P.pred[0] ? sim->P.pred : sim->P.pos;
+    float *const *p = predicted ? search_pos(sim) : sim->P.pos;
     x[0] = x[1] = x[2] = 0;
     for (int d = 0; d < sim->dim; d++) x[d] = p[d][i];
 }

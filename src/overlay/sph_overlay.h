@@ -124,6 +124,8 @@ typedef struct sph_ov_label {
     char text[24];
     uint32_t rgba;
     uint8_t space, size, align;
+    float fit[2];    /* [m] the box (width, height) around pos the label must fit in, as the view shows it
+                        (a cell: 3D skips a key label whose cell is drawn narrower than its text); 0: always */
 } sph_ov_label;
 
 /* An occupied cell, as the hash pass filed it. */
@@ -175,7 +177,9 @@ typedef struct sph_overlay {
 bool sph_overlay_build(const sph_sim *sim, const sph_overlay_opts *o, sph_overlay *ov);
 void sph_overlay_free(sph_overlay *ov);
 
-/* Cell of particle i as the hash pass sees it (from pred if allocated, else pos). */
+/* Cell of particle i as the hash pass sees it: from pred once the external
+ * pass of this state wrote it (after the first pass of the first step), else
+ * from pos (at step 0 the search sees pos: pred = pos + v dt, dt = 0). */
 void sph_overlay_cell_of(const sph_sim *sim, uint32_t i, int32_t c[3]);
 /* Cell borders along axis d are at sph_grid_origin(sim, d) + k sph_grid_size(sim, d):
  * the search's cells (sim->S.cells), a hair above h wide. */
@@ -195,6 +199,9 @@ typedef struct sph_hud_info {
     int last_pass;       /* pass run last when stepping pass by pass; -1 none */
     const char *message; /* a line for the user (screenshot saved, variant changed), or NULL */
     double frames_per_s; /* frames drawn per second, measured by the renderer; <= 0: not shown */
+    const char (*extra)[128]; /* the window's ladder lines, after the ms per step (with it only) */
+    int n_extra;
+    int pass_cursor;     /* the pass chosen in the window, + 1 (0: none): marked in the timings list */
 } sph_hud_info;
 
 /* The HUD's text lines (without timings). Returns the number of lines.

@@ -24,7 +24,43 @@ struct sph_panel {
     ImGuiContext *ctx;
     bool sdl_ok, gl_ok;
     char save_path[1024];
+    const sph_panel_ladder *ladder;
 };
+
+extern "C" void sph_panel_set_ladder(sph_panel *p, const sph_panel_ladder *ladder)
+{
+    p->ladder = ladder;
+}
+
+// The ladder and the passes: a level list, N, validate, the passes by number.
+static void ladder_widgets(const sph_panel_ladder *l, sph_panel_out *out)
+{
+    const char *now = l->level >= 0 && l->level < l->n_levels ? l->level_name[l->level] : "none";
+    if (ImGui::BeginCombo("level", now)) {
+        for (int k = 0; k < l->n_levels; k++) {
+            char row[128];
+            std::snprintf(row, sizeof row, "%s  %s", l->level_name[k], l->level_about[k]);
+            if (ImGui::Selectable(row, k == l->level) && k != l->level) out->level = k;
+        }
+        ImGui::EndCombo();
+    }
+    ImGui::Text("%u particles", l->particles);
+    ImGui::SameLine();
+    if (ImGui::Button("x2")) out->particles = 1;
+    ImGui::SameLine();
+    if (ImGui::Button("/2")) out->particles = -1;
+    if (ImGui::Button("validate vs L0")) out->validate = 1;
+    ImGui::SameLine();
+    if (ImGui::Button("vs L2")) out->validate = 2;
+    ImGui::TextUnformatted("passes (numbers as sphlab check's)");
+    for (int k = 0; k < l->n_passes; k++) {
+        char row[64];
+        std::snprintf(row, sizeof row, "%2d %s", k + 1, l->pass_name[k]);
+        bool on = l->pass_on[k];
+        if (k % 2) ImGui::SameLine(ImGui::GetFontSize() * 11.0f);
+        if (ImGui::Checkbox(row, &on)) out->pass = k;
+    }
+}
 
 extern "C" sph_panel *sph_panel_create(SDL_Window *win, void *gl_context, const char *save_path, char *err, size_t n)
 {
@@ -247,6 +283,8 @@ extern "C" void sph_panel_frame(sph_panel *p, const sph_scene_def *def, const in
                                 sph_panel_out *out)
 {
     out->set[0] = out->save[0] = '\0';
+    out->level = out->pass = -1;
+    out->particles = out->validate = 0;
     ImGui::SetCurrentContext(p->ctx);
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplSDL2_NewFrame();
@@ -263,6 +301,11 @@ extern "C" void sph_panel_frame(sph_panel *p, const sph_scene_def *def, const in
             std::snprintf(out->save, sizeof out->save, "%s", p->save_path);
         if (message && *message) ImGui::TextWrapped("%s", message);
         ImGui::Separator();
+        if (p->ladder && ImGui::CollapsingHeader("ladder and passes", ImGuiTreeNodeFlags_DefaultOpen)) {
+            ImGui::PushID("ladder");
+            ladder_widgets(p->ladder, out);
+            ImGui::PopID();
+        }
         sph_scene_def edit = *def; // the widgets edit a copy: the window applies a finished edit
         for (int i = 0; i < sph_scene_key_count; i++) {
             if (!first_of_section(i)) continue;

@@ -28,7 +28,28 @@ typedef struct sph_panel sph_panel;
 typedef struct sph_panel_out {
     char set[320];   /* "section.key=value" (fluid keys: "fluid NAME.key=value") */
     char save[1024]; /* save the scene to this path */
+    /* the ladder section (sph_panel_set_ladder) */
+    int level;       /* the row of the level chosen, -1: none */
+    int pass;        /* the pass row switched (its number - 1), -1: none */
+    int particles;   /* +1: twice as many, -1: half as many, 0: no change */
+    int validate;    /* 1: validate against the first level (L0), 2: against the third (L2), 0: no */
 } sph_panel_out;
+
+/* The ladder section's rows, made by the window each frame: the levels of
+ * the optimisation ladder and the passes of the pipeline in their order
+ * (row k is the pass `sphlab check` numbers k + 1). The strings are the
+ * caller's and must live until the frame is built. */
+enum { SPH_PANEL_ROWS = 40 };
+typedef struct sph_panel_ladder {
+    int n_levels, level; /* the current level's row, -1: none of them */
+    const char *level_name[SPH_PANEL_ROWS], *level_about[SPH_PANEL_ROWS];
+    int n_passes;
+    const char *pass_name[SPH_PANEL_ROWS];
+    bool pass_on[SPH_PANEL_ROWS];
+    unsigned particles;  /* [1] the particle count now */
+} sph_panel_ladder;
+/* The section the next frames show (NULL: none); the panel keeps the pointer. */
+void sph_panel_set_ladder(sph_panel *p, const sph_panel_ladder *ladder);
 
 /* Makes the panel's ImGui context in the window's current OpenGL (3.3 core
  * or later) context. save_path: the "Save scene as…" field's first value.

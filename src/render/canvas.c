@@ -3,6 +3,7 @@
  * flush with the font atlas as texture (a white texel for solid fills). */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "renderer_impl.h"
 
@@ -152,6 +153,23 @@ static float scale_at(const sph_renderer *r, const float x[3])
     return sqrtf((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]));
 }
 
+/* 3D: the label's box (a cell on the slice, seen in perspective and at an
+ * angle) is drawn wide and tall enough for its text. 2D keeps its one test
+ * for all labels (the overlay builder's, from the view's scale). */
+static bool label_fits(const sph_renderer *r, const sph_ov_label *l)
+{
+    float e[4][3], px[4][2];
+    for (int k = 0; k < 4; k++) memcpy(e[k], l->pos, sizeof e[k]);
+    e[0][0] -= 0.5f * l->fit[0], e[1][0] += 0.5f * l->fit[0]; /* left and right edges' middles */
+    e[2][1] -= 0.5f * l->fit[1], e[3][1] += 0.5f * l->fit[1]; /* bottom and top */
+    for (int k = 0; k < 4; k++)
+        if (!sph_camera_project(&r->cam, e[k], px[k], NULL)) return false;
+    const float w = hypotf(px[1][0] - px[0][0], px[1][1] - px[0][1]);
+    const float h = hypotf(px[3][0] - px[2][0], px[3][1] - px[2][1]);
+    /* the text's extent across the cell: its width along the cell's x edge, its height along y */
+    return w >= sph_font_width(&r->font, l->size, l->text) + 2.0f && h >= r->font.px[l->size];
+}
+
 /* The world's primitives are clipped to the view by the caller (scissor). */
 void canvas_overlay(sph_renderer *r, sph_space space)
 {
@@ -198,6 +216,7 @@ void canvas_overlay(sph_renderer *r, sph_space space)
         if (l->space != space) continue;
         float p[2];
         if (!to_px(r, l->pos, (sph_space)l->space, p)) continue;
+        if (r->cam.dim == 3 && l->fit[0] > 0 && !label_fits(r, l)) continue;
         canvas_text_at(r, l->size, p[0], p[1], (sph_align)l->align, l->rgba, l->text, l->space == SPH_SPACE_WORLD);
     }
 }

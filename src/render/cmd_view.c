@@ -22,6 +22,7 @@
 #include "io.h"
 #include "layout.h"
 #include "panel.h"
+#include "view_ladder.h"
 
 /* The key bindings, written once: the help panel, `--help` and
  * docs/rendering.md list them from here. */
@@ -33,11 +34,21 @@
     X("tab", "parameter panel: show / hide")                                  \
     X("w", "write the scene (as the panel's Save scene as)")                  \
     X("f", "fit the domain to the view")                                      \
-    X("F1..F12", "switch pass 1..12 on or off (order of the pipeline)")       \
+    X("F1..F12", "switch pass 1..12 on or off (numbered as `sphlab check`)") \
     X("k / shift+k", "cycle the density / pressure kernel")                   \
-    X("o", "cycle the sort: bitonic, counting, qsort")                        \
+    X("o", "cycle the sort: bitonic, counting, qsort, none")                  \
     X("m", "cycle the search: hash, grid, brute")                             \
     X("s", "cycle the pressure solver: eos, pcisph, dfsph")                   \
+    /* the ladder, validate mode, N and the pass list (view_ladder.c) */      \
+    X("l / shift+l", "next / previous level of the ladder (L0..L7, G0..G3)")  \
+    X("e", "switch the reorder by cell on / off")                             \
+    X("u", "switch the vector loops on / off")                                \
+    X("t", "threads: 1 / one per core")                                       \
+    X("b", "backend: cpu / gl (GL 4.3 compute)")                              \
+    X("a / shift+a", "validate: run L0 (shift: L2) alongside, show the differences") \
+    X("] / [", "twice / half as many particles (the scene filled again)")     \
+    X("n / shift+n", "choose the next / previous pass (numbers as `sphlab check`)") \
+    X("d", "switch the chosen pass on / off")                                 \
     X("1..9", "overlays: grid keys collisions neighbours forces index hud timings legend") \
     X("c / shift+c", "next / previous colour field")                          \
     X("z / x", "3D: slice down / up by h")                                    \
@@ -106,6 +117,10 @@ typedef struct viewer {
     bool params_open;
     char save_path[1024]; /* where Save scene as and the key w write */
     float cursor[2];      /* [px] the mouse in the frame, or -1 when outside the window */
+    /* the ladder (view_ladder.h): live speed per level, validate, the chosen pass */
+    view_ladder ladder;
+    int pass_cursor;      /* the pass the keys n and d act on, or -1 */
+    char ladder_lines[8][128];
 } viewer;
 
 static void say(viewer *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -258,13 +273,16 @@ static void screenshot(viewer *w, const char *path)
 
 static void toggle_pass(viewer *w, int p)
 {
-    if (p >= SPH_PASS_COUNT) return;
+    if (p < 0 || p >= SPH_PASS_COUNT) {
+        say(w, "no such pass in this scene's pipeline (`sphlab check` lists them)");
+        return;
+    }
     if (!w->sim->in_pipeline[p]) {
         say(w, "pass %s is not in this scene's pipeline", sph_passes[p]->name);
         return;
     }
     w->sim->enabled[p] = !w->sim->enabled[p];
-    say(w, "pass %s %s", sph_passes[p]->name, w->sim->enabled[p] ? "on" : "off");
+    say(w, "pass %d %s %s", view_pass_number(w->sim, p), sph_passes[p]->name, w->sim->enabled[p] ? "on" : "off");
 }
 
 static void step_pass(viewer *w)
@@ -287,6 +305,76 @@ static void step_pass(viewer *w)
         f >= 0 ? sph_color_field_names[f] : "", strip ? "; index strip on" : "");
 }
 
+/* ---- the ladder, validate mode and N (keys l e u t b a ] [) ---- */
+
+/* After a switch (view_ladder.c): the colour field, and the message said. */
+static void switched(viewer *w, bool ok, const char *msg)
+{
+    if (ok && sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
+    say(w, "%s", msg);
+}
+
+static void switch_sim(viewer *w, const sph_scene_def *def, int threads, const char *what)
+{
+    char msg[200];
+    bool ok = view_switch(&w->sim, &w->def, &w->threads, def, threads, what, msg, sizeof msg);
+    switched(w, ok, msg);
+}
+
+static void go_level(viewer *w, int l)
+{
+    char msg[200];
+    bool ok = view_go_level(&w->sim, &w->def, &w->threads, l, msg, sizeof msg);
+    switched(w, ok, msg);
+}
+
+static void next_level(viewer *w, int dir)
+{
+    char msg[200];
+    bool ok = view_next_level(&w->sim, &w->def, &w->threads, dir, msg, sizeof msg);
+    switched(w, ok, msg);
+}
+
+static void validate(viewer *w, const char *ref)
+{
+    char msg[300];
+    if (view_validate(&w->ladder, w->sim, ref, msg, sizeof msg)) w->v.overlays |= SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS);
+    say(w, "%s", msg);
+}
+
+/* The panel's ladder section: the levels, and the passes of the pipeline in check's order. */
+static void fill_panel_ladder(viewer *w, sph_panel_ladder *pl)
+{
+    memset(pl, 0, sizeof *pl);
+    pl->level = view_ladder_level(w->sim);
+    for (int l = 0; l < sph_level_count && pl->n_levels < SPH_PANEL_ROWS; l++, pl->n_levels++) {
+        pl->level_name[l] = sph_levels[l].name;
+        pl->level_about[l] = sph_levels[l].about;
+    }
+    for (int p = 0; p < SPH_PASS_COUNT && pl->n_passes < SPH_PANEL_ROWS; p++)
+        if (w->sim->in_pipeline[p]) {
+            pl->pass_name[pl->n_passes] = sph_passes[p]->name;
+            pl->pass_on[pl->n_passes++] = w->sim->enabled[p];
+        }
+    pl->particles = w->sim->n;
+}
+
+static void rescale(viewer *w, bool more)
+{
+    const float f = powf(2.0f, (more ? -1.0f : 1.0f) / (float)w->def.dim);
+    sph_scene_def next;
+    char why[512];
+    if (!view_scene_rescaled(&w->def, f, &next, why, sizeof why)) {
+        say(w, "%s particles: %s", more ? "more" : "fewer", why);
+        return;
+    }
+    const int threads = w->threads;
+    w->ladder.validated = false; /* for other particles */
+    if (restart(w, &next, more ? "more particles" : "fewer particles"))
+        say(w, "%u particles: spacing and h x %.3f, the scene starts again from t = 0 (%d thread%s kept)", w->sim->n,
+            (double)f, threads <= 0 ? w->sim->threads : threads, w->sim->threads == 1 ? "" : "s");
+}
+
 static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
 {
     const bool shift = mod & KMOD_SHIFT;
@@ -301,7 +389,7 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
         return;
     }
     if (k >= SDLK_F1 && k <= SDLK_F12) {
-        toggle_pass(w, (int)(k - SDLK_F1));
+        toggle_pass(w, view_pass_of_number(w->sim, (int)(k - SDLK_F1) + 1));
         return;
     }
     switch (k) {
@@ -353,6 +441,31 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
         set_variant(w, a);
         break;
     }
+    case SDLK_l: next_level(w, shift ? -1 : 1); break;
+    case SDLK_e: set_variant(w, w->def.reorder == SPH_ON ? "search.reorder=off" : "search.reorder=on"); break;
+    case SDLK_u: set_variant(w, w->def.vector == SPH_ON ? "search.vector=off" : "search.vector=on"); break;
+    case SDLK_t: {
+        sph_scene_def def = w->def;
+        switch_sim(w, &def, w->sim->threads == 1 ? 0 : 1, "threads");
+        break;
+    }
+    case SDLK_b: {
+        sph_scene_def def = w->def;
+        def.backend = def.backend == SPH_BACKEND_GL ? SPH_BACKEND_CPU : SPH_BACKEND_GL;
+        switch_sim(w, &def, w->sim->threads, "backend");
+        break;
+    }
+    case SDLK_a: validate(w, shift ? "L2" : "L0"); break;
+    case SDLK_RIGHTBRACKET:
+    case SDLK_LEFTBRACKET: rescale(w, k == SDLK_RIGHTBRACKET); break;
+    case SDLK_n:
+        w->pass_cursor = view_pass_next(w->sim, w->pass_cursor, shift ? -1 : 1);
+        if (w->pass_cursor >= 0)
+            say(w, "pass %d %s chosen (d switches it)", view_pass_number(w->sim, w->pass_cursor),
+                sph_passes[w->pass_cursor]->name);
+        w->v.overlays |= SPH_OV_BIT(TIMINGS); /* the numbered list */
+        break;
+    case SDLK_d: toggle_pass(w, w->pass_cursor); break;
     case SDLK_c: cycle_field(w, shift ? -1 : 1); break;
     case SDLK_z: w->v.slice_z -= h; say(w, "slice z = %.4g m", w->v.slice_z); break;
     case SDLK_x: w->v.slice_z += h; say(w, "slice z = %.4g m", w->v.slice_z); break;
@@ -551,6 +664,7 @@ int cmd_view(int argc, char **argv)
     w.threads = (int)threads;
     w.scripted = frames > 0;
     w.last_pass = -1;
+    w.pass_cursor = -1;
     w.paused = start_paused;
     if (!app_load_scene(&so, &w.def)) return 1;
     w.start = w.def;
@@ -625,6 +739,13 @@ int cmd_view(int argc, char **argv)
     if (!chose) w.v.overlays |= SPH_OV_BIT(TIMINGS);
     w.user_field = w.v.field;
     w.sel_id = vo.select_id;
+    /* the last `sphlab bench ladder` CSV (its own directory, or `make bench`'s), for levels not visited here */
+    for (int k = 0; k < 2 && !w.ladder.csv_path[0]; k++) {
+        char csv[64];
+        snprintf(csv, sizeof csv, "%sladder-%dd.csv", k ? "build/bench/" : "", w.sim->dim);
+        if (view_ladder_load_csv(&w.ladder, csv))
+            say(&w, "speed-ups of levels not visited here: from %s (the bench's scene and N)", csv);
+    }
     w.cursor[0] = w.cursor[1] = -1;
     /* Save scene as: --save-scene, else NAME-saved.ini in the current directory (as the screenshots) */
     if (opt.save_scene) {
@@ -701,6 +822,10 @@ int cmd_view(int argc, char **argv)
         w.v.hud.paused = w.paused;
         w.v.hud.last_pass = w.last_pass;
         w.v.hud.message = now < w.msg_until ? w.msg : NULL;
+        view_ladder_record(&w.ladder, w.sim);
+        w.v.hud.n_extra = view_ladder_lines(&w.ladder, w.sim, w.ladder_lines, 8);
+        w.v.hud.extra = (const char(*)[128])w.ladder_lines;
+        w.v.hud.pass_cursor = w.pass_cursor + 1;
         w.v.selected = sim_index_of_id(w.sim, w.sel_id);
         fill_panel(&w);
         /* the HUD, timings, text panel and parameter panel sit in a column beside the view */
@@ -737,10 +862,19 @@ int cmd_view(int argc, char **argv)
             sph_renderer_side_free(w.r, side);
             for (int k = 0; k < 4; k++) side[k] = (int)((float)side[k] / scale); /* drawable pixels to window units */
             sph_panel_out po;
+            sph_panel_ladder pl;
+            fill_panel_ladder(&w, &pl);
+            sph_panel_set_ladder(w.params, &pl);
             sph_panel_frame(w.params, &w.def, side, now < w.msg_until ? w.msg : "", &po);
             sph_panel_draw(w.params);
+            sph_panel_set_ladder(w.params, NULL);
             if (po.set[0]) apply_change(&w, po.set);
             if (po.save[0]) save_scene(&w, po.save);
+            /* the ladder section: one change a frame, as the keys make it */
+            if (po.level >= 0) go_level(&w, po.level);
+            if (po.pass >= 0) toggle_pass(&w, view_pass_of_number(w.sim, po.pass + 1));
+            if (po.particles) rescale(&w, po.particles > 0);
+            if (po.validate) validate(&w, po.validate == 2 ? "L2" : "L0");
         }
         sph_renderer_present(w.r, dw, dh);
         SDL_GL_SwapWindow(win);
@@ -757,6 +891,9 @@ int cmd_view(int argc, char **argv)
                 : direct_all ? "in the window's context, particles drawn from its buffers"
                              : "in the window's context, some frames copied through the host (colour field or overlays)",
                 per_frame);
+    /* the last frame's inspector, for the scripted tests (a lesson's first frame) */
+    if (w.scripted && !w.help)
+        for (int k = 0; k < w.v.panel_lines; k++) fprintf(stderr, "sphlab view: inspector: %s\n", w.panel[k]);
     rc = 0;
     if (shot) {
         w.msg[0] = '\0';

@@ -58,13 +58,13 @@ void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
 {
     const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
     const bool timings = v->overlays & SPH_OV_BIT(TIMINGS), hud = v->overlays & SPH_OV_BIT(HUD);
-    char lines[10][128];
+    char lines[16][128];
     int nl = 0;
     if (hud) {
         sph_hud_info info = v->hud;
         if (!timings) info.steps_per_s = -1; /* changes from run to run: only with the timings */
         info.frames_per_s = hud_frames_per_s(r);
-        nl = sph_hud_lines(sim, &info, lines, 10);
+        nl = sph_hud_lines(sim, &info, lines, 16);
     }
     int bars = 0;
     double mx = 0;
@@ -81,7 +81,7 @@ void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
     const int tsz = side ? SPH_TEXT_SMALL : SPH_TEXT_NORMAL;
     const float ft = r->font.px[tsz];
     for (int i = 0; i < nl; i++) w = fmaxf(w, sph_font_width(&r->font, tsz, lines[i]));
-    const float name_w = sph_font_width(&r->font, SPH_TEXT_SMALL, "pressure_force  "), bar_w = 6.0f * fn;
+    const float name_w = sph_font_width(&r->font, SPH_TEXT_SMALL, ">18 density_gradient "), bar_w = 6.0f * fn;
     const float ms_w = sph_font_width(&r->font, SPH_TEXT_SMALL, " 00.000 ms");
     if (bars) w = fmaxf(w, name_w + bar_w + ms_w);
     /* in the side column when there is one (the window), else over the view's top-left corner */
@@ -93,11 +93,16 @@ void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
     float y = y0 + 4;
     for (int i = 0; i < nl; i++, y += ft * 1.2f) canvas_text(r, tsz, x0 + 6, y, SPH_RGBA(235, 235, 240, 255), lines[i]);
     if (bars) y += 0.3f * fn;
+    int number = 0;
     for (int p = 0; p < SPH_PASS_COUNT && bars; p++) {
         if (!sim->in_pipeline[p]) continue;
         bool on = sim->enabled[p];
         uint32_t col = on ? SPH_RGBA(220, 220, 225, 255) : SPH_RGBA(120, 120, 125, 255);
-        canvas_text(r, SPH_TEXT_SMALL, x0 + 6, y, col, sph_passes[p]->name);
+        /* numbered as `sphlab check` numbers them; the window's chosen pass marked */
+        char name[40];
+        snprintf(name, sizeof name, "%s%d %s", v->hud.pass_cursor == p + 1 ? ">" : "", ++number, sph_passes[p]->name);
+        if (v->hud.pass_cursor == p + 1) col = SPH_RGBA(255, 220, 90, 255);
+        canvas_text(r, SPH_TEXT_SMALL, x0 + 6, y, col, name);
         double ms = sim->timing[p].last_ms;
         float bw = mx > 0 ? (float)(ms / mx) * bar_w : 0;
         float bx = x0 + 6 + name_w;

@@ -16,7 +16,7 @@ RENDER_LIBS   := $(shell pkg-config --libs $(RENDER_PKGS) 2>/dev/null || echo -l
 # xvfb are not needed: the window test uses SDL's offscreen video driver.
 DEB_PKGS += libstb-dev libsdl2-dev fonts-dejavu-core
 
-RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font renderer canvas hud layout)
+RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font renderer canvas hud layout view_ladder)
 RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view)
 
 MOD_OBJ       += $(RENDER_LIB_OBJ) $(RENDER_CMD_OBJ)

@@ -1,0 +1,74 @@
+/* The ladder's levels (sph_levels.h): the table `sphlab bench` measures and
+ * the window switches between. */
+#include "sph_levels.h"
+
+#include <stdio.h>
+#include <string.h>
+
+/* The ladder, one line per level. Each line names every search key it
+ * relies on, so a level does not change when a default does. To add a
+ * level, add a line (any scene key, `sphlab keys` lists them). */
+const sph_level sph_levels[] = {
+    {"L0", "brute force O(N^2) on 1 thread", "search.method=brute search.reorder=off search.vector=off", 1},
+    {"L1", "spatial hash unsorted (linked lists)",
+     "search.method=hash search.sort=none search.reorder=off search.vector=off", 1},
+    {"L2", "hash + bitonic sort + offsets (the seed)",
+     "search.method=hash search.sort=bitonic search.reorder=off search.vector=off", 1},
+    {"L3", "counting sort", "search.method=hash search.sort=counting search.reorder=off search.vector=off", 1},
+    {"L4", "particle data reordered by cell", "search.method=hash search.sort=counting search.reorder=on search.vector=off",
+     1},
+    {"L5", "OpenMP on all cores", "search.method=hash search.sort=counting search.reorder=on search.vector=off", 0},
+    {"L6", "vectorised inner loops (AVX-512)",
+     "search.method=hash search.sort=counting search.reorder=on search.vector=on", 0},
+    {"L7", "dense grid: a stencil row is one run",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on", 0},
+    /* The seed's GPU steps: the passes as GLSL compute shaders (src/gpu/), on
+     * whatever OpenGL 4.3 device EGL gives (llvmpipe without a GPU). */
+    {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0},
+    {"G1", "GLSL: hash + bitonic sort (the seed)",
+     "compute.backend=gl search.method=hash search.sort=bitonic search.reorder=off", 0},
+    {"G2", "GLSL: counting sort + reorder",
+     "compute.backend=gl search.method=hash search.sort=counting search.reorder=on", 0},
+    {"G3", "GLSL: dense grid: stencil rows",
+     "compute.backend=gl search.method=grid search.sort=counting search.reorder=on", 0},
+};
+const int sph_level_count = (int)(sizeof sph_levels / sizeof sph_levels[0]);
+
+int sph_level_find(const char *name)
+{
+    for (int i = 0; i < sph_level_count; i++)
+        if (strcmp(sph_levels[i].name, name) == 0) return i;
+    return -1;
+}
+
+bool sph_level_gl(const sph_level *L) { return strstr(L->sets, "compute.backend=gl") != NULL; }
+
+sph_error_code sph_level_apply(const sph_level *L, sph_scene_def *def, sph_error *err)
+{
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", L->sets);
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
+        sph_error_code c = sph_scene_set(def, tok, err);
+        if (c != SPH_ERR_OK) return c;
+    }
+    /* a CPU level runs on the CPU whatever the scene said */
+    if (!sph_level_gl(L)) def->backend = SPH_BACKEND_CPU;
+    return SPH_ERR_OK;
+}
+
+int sph_level_of(const sph_scene_def *def, int threads, int cores)
+{
+    const bool one = threads == 1 || (threads <= 0 && cores == 1);
+    for (int i = 0; i < sph_level_count; i++) {
+        const sph_level *L = &sph_levels[i];
+        if ((L->threads == 1) != one) continue;
+        sph_scene_def at = *def;
+        sph_error err;
+        if (sph_level_apply(L, &at, &err) != SPH_ERR_OK) continue;
+        if (at.search == def->search && at.sort == def->sort && at.reorder == def->reorder &&
+            at.vector == def->vector && at.backend == def->backend)
+            return i;
+    }
+    return -1;
+}
