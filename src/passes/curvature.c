@@ -3,18 +3,18 @@
  *
  *   a_i = -gamma sum_j K_ij (n_i - n_j),   K_ij = 2 rho0 / (rho_i + rho_j)
  *
- * with the normals of the normals pass (pointing out of the fluid). On a
- * circle of radius R, n_i - n_j for a neighbour at angle theta has the radial
- * part |n| (1 - cos theta) > 0 outwards, so the term pulls the surface in, the
- * more the more it is curved; on a flat surface of equal normals it vanishes.
- * It is zero inside, where n ~ 0. Each pair's terms are equal and opposite
- * for equal masses (K_ij is symmetric), so momentum is conserved. The
- * cohesion term (eq. 1-2) is the cohesion pass, with the same gamma
- * (surface_tension_coefficient). As in the paper, gamma multiplies a
- * dimensionless difference here, so this term reads gamma as m/s^2 where
- * the cohesion term reads it as m^4/(kg s^2): the share of the two terms
- * depends on rho0 and the units (docs/accuracy.md, the drop). Wall particles
- * get none. */
+ * with the normals of the normals pass (eq. 3, pointing into the fluid,
+ * ~0 inside). It vanishes where neighbours' normals are equal (inside, and
+ * along a flat surface); a surface particle, whose n is larger than its
+ * inner neighbours', is pushed out along -n_i and they in, which
+ * counteracts the cohesion term's crowding of the surface layer. Each pair's
+ * terms are equal and opposite for equal masses (K_ij is symmetric), so
+ * momentum is conserved. The cohesion term (eq. 1-2) is the cohesion pass,
+ * with the same gamma (surface_tension_coefficient). As in the paper, gamma
+ * multiplies a dimensionless difference here, so this term reads gamma as
+ * m/s^2 where the cohesion term reads it as m^4/(kg s^2): the share of the
+ * two terms depends on rho0 and the units (docs/accuracy.md, the drop).
+ * Wall particles get none. */
 #include "sph_search.h"
 #include "sph_walls.h"
 

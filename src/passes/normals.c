@@ -2,16 +2,21 @@
  * (Akinci, Akinci & Teschner 2013, "Versatile surface tension and adhesion
  * for SPH fluids", ACM TOG 32(6), eq. 3):
  *
- *   n_i = h sum_j (m_j / rho_j) grad_j W_ij = -h sum_j V_j W'(r) x_ij / r,   x_ij = x_i - x_j
+ *   n_i = h sum_j (m_j / rho_j) grad_i W_ij = h sum_j V_j W'(r) x_ij / r,   x_ij = x_i - x_j
  *
- * the gradient of the colour field (1 in the fluid, 0 outside) times -h, so
- * it points out of the fluid. Inside a full neighbourhood the terms cancel
+ * h times the gradient of the colour field (1 in the fluid, 0 outside), so
+ * it points into the fluid. Inside a full neighbourhood the terms cancel
  * (n ~ 0); at a flat surface |n| is h times the kernel's integral over the
  * plane, of order 1 whatever the resolution: that is why Akinci scale it by
- * h. Its sign makes the curvature term -gamma (n_i - n_j) pull a convex
- * surface in (curvature.c). The kernel is the density's, so the colour field
- * is the one the density sum sees. Wall particles are left out of the sum and
- * get n = 0: the model's adhesion to walls is not implemented. */
+ * h. The sign is the paper's (and SPlisHSPlasH's, which sums the same
+ * gradient): with the curvature term -gamma (n_i - n_j) it pushes a surface
+ * particle out from the particles below it, against the cohesion term's
+ * crowding of the surface layer. The opposite sign (pointing out) made a 2D
+ * drop of R = 10 spacings fly apart within 1.5 s of its damping ending (R/20:
+ * the watchdog stopped it), where this sign keeps it round
+ * (docs/accuracy.md, the drop). The kernel is the density's, so the colour
+ * field is the one the density sum sees. Wall particles are left out of the
+ * sum and get n = 0: the model's adhesion to walls is not implemented. */
 #include "sph_search.h"
 #include "sph_walls.h"
 
@@ -53,7 +58,7 @@ static inline void normal_one(const sph_sim *sim, const sph_kernel *k, int i, co
         }
         if (!(r2 > 0)) continue; /* coincident: no direction */
         float r = sqrtf(r2);
-        float c = -P->vol[j] * sph_kernel_dw(k, r) / r;
+        float c = P->vol[j] * sph_kernel_dw(k, r) / r;
         for (int d = 0; d < dim; d++) {
             if (dbl) nd[d] += c * dx[d];
             else nf[d] += c * dx[d];
