@@ -38,7 +38,7 @@
 
 #include "validate_run.h"
 
-#define KICK 0.01     /* the kick's surface speed, share of sqrt(p_in / rho) */
+#define KICK 0.05     /* the kick's surface speed, share of sqrt(p_in / rho) */
 #define RUN_TIME 3.0  /* [s] time the oscillation is followed, at R = 0.1 m (scaled with R^1.5, as the period) */
 #define TARGET 0.05
 #define PI 3.14159265358979323846
