@@ -45,6 +45,13 @@
       "viscous acceleration")                                                                                    \
     X(ACC_C, acc_c, V, "m/s^2", "m/s^2", ACCELERATION, COHESION, NONE, "cohesion-acc", "a cohesion",            \
       "cohesion acceleration (surface tension)")                                                                 \
+    X(NORMAL, normal, V, "1", "1", DERIVED, NORMALS, NONE, "normal", "normal",                                   \
+      "surface normal h sum_j m_j/rho_j grad_i W_ij (Akinci 2013 eq. 3, pointing into the fluid): ~0 inside, " \
+      "of order 1 at a surface")                                                                                    \
+    X(ACC_K, acc_k, V, "m/s^2", "m/s^2", ACCELERATION, CURVATURE, NONE, "curvature-acc", "a curvature",         \
+      "curvature acceleration of surface_tension = akinci, -gamma sum_j K_ij (n_i - n_j)")                     \
+    X(ACC_X, acc_x, V, "m/s^2", "m/s^2", ACCELERATION, XSPH, NONE, "xsph-acc", "a xsph",                        \
+      "XSPH velocity smoothing as an acceleration, (eps / dt) sum_j m_j / rho_ij (v_j - v_i) W_ij")            \
     X(ACC_I, acc_i, V, "m/s^2", "m/s^2", ACCELERATION, INTERACTION, NONE, "", "a mouse", "interaction acceleration") \
     X(MASS, mass, 1, "kg", "kg/m", STATE, NONE, NONE, "", "", "mass")                                           \
     X(FIXED, fixed, 1, "1", "1", STATE, WALL_STATE, NONE, "", "wall", "1 for a fixed wall particle, 0 for fluid") \

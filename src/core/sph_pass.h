@@ -28,6 +28,9 @@
     X(PRESSURE_FORCE, pressure_force) \
     X(VISCOSITY, viscosity) \
     X(COHESION, cohesion)  \
+    X(NORMALS, normals)    \
+    X(CURVATURE, curvature) \
+    X(XSPH, xsph)          \
     X(INTERACTION, interaction) \
     X(PCISPH, pcisph)      \
     X(DFSPH, dfsph)        \

@@ -875,5 +875,12 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                         origin_text(def, def->origin[key_index("physics", "pressure_solver")].line, loc, sizeof loc),
                         sph_pressure_solver_names[def->pressure_solver]);
     }
+    if (def->surface_tension == SPH_STENSION_AKINCI && (def->effects & SPH_EFFECT(COHESION))) {
+        char loc[300];
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] surface_tension = akinci with the effect cohesion: akinci includes the cohesion "
+                        "term (with gamma = surface_tension_coefficient); list one of them",
+                        origin_text(def, def->origin[key_index("physics", "surface_tension")].line, loc, sizeof loc));
+    }
     return sph_scene_check_limits(def, err); /* precision, cells, memory (sph_scene_limits.c) */
 }

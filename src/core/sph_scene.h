@@ -15,7 +15,7 @@
 #include "sph_kernel.h"
 
 #define SPH_MAX_BLOCKS 32
-#define SPH_MAX_KEYS 64
+#define SPH_MAX_KEYS 96
 
 /* Effects a scene can ask for; each pulls in the passes it needs. The last
  * column says whether it needs each particle's density (and so the
@@ -64,6 +64,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
 #define SPH_BACKEND_CHOICES(X) X(CPU, "cpu") X(GL, "gl")
 #define SPH_PSOLVER_CHOICES(X) X(EOS, "eos") X(PCISPH, "pcisph") X(DFSPH, "dfsph")
+#define SPH_STENSION_CHOICES(X) X(NONE, "none") X(AKINCI, "akinci")
 
 #define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
     typedef enum type { LIST(SPH_CHOICE_ITEM_##PREFIX) PREFIX##_COUNT } type;
@@ -86,6 +87,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_ONOFF(id, name) SPH_##id,
 #define SPH_CHOICE_ITEM_SPH_BACKEND(id, name) SPH_BACKEND_##id,
 #define SPH_CHOICE_ITEM_SPH_PSOLVER(id, name) SPH_PSOLVER_##id,
+#define SPH_CHOICE_ITEM_SPH_STENSION(id, name) SPH_STENSION_##id,
 SPH_DECLARE_CHOICES(sph_eos, SPH_EOS, SPH_EOS_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_form, SPH_PFORM, SPH_PFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_viscosity_form, SPH_VFORM, SPH_VFORM_CHOICES)
@@ -105,6 +107,7 @@ SPH_DECLARE_CHOICES(sph_accumulate, SPH_ACC, SPH_ACC_CHOICES)
 SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
 SPH_DECLARE_CHOICES(sph_backend_kind, SPH_BACKEND, SPH_BACKEND_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_solver, SPH_PSOLVER, SPH_PSOLVER_CHOICES)
+SPH_DECLARE_CHOICES(sph_surface_tension, SPH_STENSION, SPH_STENSION_CHOICES)
 
 extern const char *const sph_eos_names[SPH_EOS_COUNT];
 extern const char *const sph_pressure_form_names[SPH_PFORM_COUNT];
@@ -126,6 +129,7 @@ extern const char *const sph_accumulate_names[SPH_ACC_COUNT];
 extern const char *const sph_onoff_names[SPH_ONOFF_COUNT];
 extern const char *const sph_backend_names[SPH_BACKEND_COUNT];
 extern const char *const sph_pressure_solver_names[SPH_PSOLVER_COUNT];
+extern const char *const sph_surface_tension_names[SPH_STENSION_COUNT];
 
 /* Where a value came from, for messages: the file's line, or 0 for the default. */
 typedef struct sph_origin {
@@ -216,6 +220,10 @@ typedef struct sph_scene_def {
     float solver_tolerance;     /* [1] pcisph, dfsph: largest relative density error a step may end with */
     int solver_max_iterations;  /* [1] pcisph, dfsph: iterations a solve may take at most */
     float divergence_tolerance; /* [1] dfsph: largest dt |D rho/Dt| / rho_rest the divergence solve may leave */
+    sph_surface_tension surface_tension; /* none, or Akinci 2013's cohesion plus curvature (passes normals, curvature) */
+    float surface_tension_coefficient;   /* [m^4/(kg s^2)] gamma of surface_tension = akinci (the cohesion pass's
+                                            gamma then; in 2D m^3/(kg s^2)) */
+    float xsph;                          /* [1] epsilon of XSPH velocity smoothing (Monaghan 1989); 0: none */
     sph_kernel_kind kernel_density, kernel_pressure, kernel_viscosity;
 
     float dt;           /* [s] time step when cfl = 0; the first step's bound otherwise */

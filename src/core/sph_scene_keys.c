@@ -25,6 +25,7 @@ const char *const sph_accumulate_names[SPH_ACC_COUNT] = {SPH_ACC_CHOICES(NAMES)}
 const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
 const char *const sph_backend_names[SPH_BACKEND_COUNT] = {SPH_BACKEND_CHOICES(NAMES)};
 const char *const sph_pressure_solver_names[SPH_PSOLVER_COUNT] = {SPH_PSOLVER_CHOICES(NAMES)};
+const char *const sph_surface_tension_names[SPH_STENSION_COUNT] = {SPH_STENSION_CHOICES(NAMES)};
 #undef NAMES
 #define EFFECT_NAME(id, name, about, needs) name,
 const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
@@ -154,6 +155,19 @@ const sph_key sph_scene_keys[] = {
     {"physics", "divergence_tolerance", SPH_KEY_FLOAT, S(divergence_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
      "dfsph: the largest dt |D rho/Dt| / rho_rest (the density change the flow makes in one step) the "
      "divergence-free solve may leave, where rho >= rho_rest"},
+    {"physics", "surface_tension", SPH_KEY_CHOICE, S(surface_tension), 0, 0, 0, 0, CH(sph_surface_tension_names), "",
+     "none",
+     "none; akinci: Akinci, Akinci & Teschner 2013 (ACM TOG 32(6)), the cohesion term (eq. 1-2, the cohesion pass) "
+     "plus the curvature term a_i = -gamma sum_j K_ij (n_i - n_j) (eq. 4-5) with the normals n_i = h sum_j m_j/rho_j "
+     "grad W (eq. 3, pointing into the fluid); gamma = surface_tension_coefficient; not with the effect cohesion; "
+     "CPU only"},
+    {"physics", "surface_tension_coefficient", SPH_KEY_FLOAT, S(surface_tension_coefficient), 0, 1e6, 0, 0, NULL, 0,
+     "m^4/(kg s^2)", "1",
+     "gamma of surface_tension = akinci (both terms; the paper's gamma, not a physical sigma: docs/accuracy.md "
+     "measures sigma from a drop's Laplace pressure)"},
+    {"physics", "xsph", SPH_KEY_FLOAT, S(xsph), 0, 1, 0, 0, NULL, 0, "", "0",
+     "epsilon of XSPH velocity smoothing (Monaghan 1989, J. Comput. Phys. 82:1): a_i = (epsilon / dt) sum_j m_j / "
+     "((rho_i + rho_j)/2) (v_j - v_i) W_ij, so a step moves v_i towards its neighbours' average; 0: none; CPU only"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "
@@ -231,3 +245,4 @@ const sph_key sph_scene_keys[] = {
 #undef O
 };
 const int sph_scene_key_count = (int)(sizeof sph_scene_keys / sizeof sph_scene_keys[0]);
+_Static_assert(sizeof sph_scene_keys / sizeof sph_scene_keys[0] <= SPH_MAX_KEYS, "raise SPH_MAX_KEYS (sph_scene_def.origin)");

@@ -20,7 +20,9 @@ const sph_pass *const sph_passes[SPH_PASS_COUNT] = {
 
 bool sph_scene_needs_density(const sph_scene_def *def)
 {
-    return (def->effects & SPH_EFFECTS_NEEDING_DENSITY) != 0;
+    /* surface tension and XSPH weigh neighbours by m_j / rho_j */
+    return (def->effects & SPH_EFFECTS_NEEDING_DENSITY) != 0 || def->surface_tension != SPH_STENSION_NONE ||
+           def->xsph > 0;
 }
 
 bool sph_scene_wall_volume(const sph_scene_def *def)

@@ -13,7 +13,11 @@
  * C(r) = sigma f(r / h) / h^(dim + 6) ... the paper's 3D constant is
  * sigma = 32 / pi; in 2D the paper gives none: sigma = 25280 / (627 pi) makes
  * the integral of C over the plane equal the 3D integral over space (79/336),
- * so one gamma means the same in both (docs/scene-format.md, tests/test_cohesion.c). */
+ * so one gamma means the same in both (docs/scene-format.md, tests/test_cohesion.c).
+ *
+ * The pass is also the cohesion term of [physics] surface_tension = akinci,
+ * whose curvature term is the curvature pass (normals.c, curvature.c); gamma
+ * is then surface_tension_coefficient (the scene refuses both at once). */
 #include "sph_search.h"
 
 #include <math.h>
@@ -21,12 +25,19 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    return (def->effects & SPH_EFFECT(COHESION)) ? NULL : "effects do not list cohesion";
+    if (def->surface_tension == SPH_STENSION_AKINCI) return NULL;
+    return (def->effects & SPH_EFFECT(COHESION)) ? NULL : "effects do not list cohesion and surface_tension is none";
+}
+
+static float sph_cohesion_gamma(const sph_scene_def *def)
+{
+    return def->surface_tension == SPH_STENSION_AKINCI ? def->surface_tension_coefficient : def->cohesion;
 }
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "Akinci 2013 cohesion, gamma %g m^4/(kg s^2)", def->cohesion);
+    snprintf(out, (size_t)n, "Akinci 2013 cohesion%s, gamma %g m^4/(kg s^2)",
+             def->surface_tension == SPH_STENSION_AKINCI ? " (surface_tension = akinci)" : "", sph_cohesion_gamma(def));
 }
 
 /* The spline's shape at q = r / h (Akinci 2013, eq. 2, with h = 1). */
@@ -74,7 +85,7 @@ static inline void cohesion_one(const sph_sim *sim, int i, const int dim, const 
             else af[d] += t;
         }
     }
-    const float gamma = sim->def.cohesion;
+    const float gamma = sph_cohesion_gamma(&sim->def);
     for (int d = 0; d < dim; d++) P->acc_c[d][i] = -gamma * (dbl ? (float)ad[d] : af[d]);
 }
 

@@ -7,7 +7,7 @@
 # build/validate/libvalidate.a, which the tests link; the problems and the
 # command (PLplot, through src/plot's output staging) go into the binary only.
 VALIDATE_LIB_SRC := validate_ref
-VALIDATE_CMD_SRC := cmd_validate validate_run val_dam_break val_hydrostatic val_taylor_green val_poiseuille val_couette val_channel val_obstacle
+VALIDATE_CMD_SRC := cmd_validate validate_run val_dam_break val_hydrostatic val_taylor_green val_poiseuille val_couette val_channel val_obstacle val_drop
 VALIDATE_PLOT_CFLAGS := $(shell pkg-config --cflags plplot 2>/dev/null || echo -I/usr/include/plplot)
 
 # PLplot and its cairo driver come with src/plot's packages.

@@ -10,7 +10,8 @@
  *                        resolution, the stepping loop, the outputs, the verdict
  *   cmd_validate.c       the command and the table of problems
  *   val_dam_break.c, val_hydrostatic.c, val_taylor_green.c,
- *   val_poiseuille.c, val_couette.c, val_obstacle.c   one problem each */
+ *   val_poiseuille.c, val_couette.c, val_obstacle.c,
+ *   val_drop.c   one problem each */
 #ifndef SPH_VALIDATE_H
 #define SPH_VALIDATE_H
 

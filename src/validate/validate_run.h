@@ -50,5 +50,7 @@ int val_run_taylor_green(const val_ctx *c, const val_problem *p);
 int val_run_poiseuille(const val_ctx *c, const val_problem *p);
 int val_run_couette(const val_ctx *c, const val_problem *p);
 int val_run_obstacle(const val_ctx *c, const val_problem *p);
+int val_run_drop(const val_ctx *c, const val_problem *p);
+int val_run_drop_3d(const val_ctx *c, const val_problem *p);
 
 #endif
