@@ -75,6 +75,10 @@ const app_opt app_options[] = {
      STRING(vtk)},
     {"--every", NULL, "K", "a frame (render) or a --vtk file every K steps, the first at step 0 (default 10)",
      RUN | RENDER, INT(every, 1, MANY)},
+    {"--video", NULL, "FILE", "also write the frames as a video: FILE.mp4 (H.264) or FILE.gif", RENDER, STRING(video)},
+    {"--video", NULL, "FILE", "where the record key v writes (.mp4 or .gif; default sphlab-NNNN.mp4)", VIEW,
+     STRING(video)},
+    {"--fps", NULL, "F", "frames a second of the video (default 25)", RENDER | VIEW, DOUBLE(fps, 1, 120)},
     {"--gl", NULL, "egl|osmesa", "GL context (default egl: EGL surfaceless; osmesa: Mesa's OSMesa)", RENDER,
      CHOICE(gl, "egl|osmesa")},
     /* what render and view draw */
@@ -82,8 +86,13 @@ const app_opt app_options[] = {
      SIZE(size, 64, 8192)},
     {"--color", "--colour", "FIELD",
      "colour by: density pressure speed key neighbours pressure-acc viscosity-acc", RENDER | VIEW, STRING(color)},
-    {"--range", NULL, "LO:HI", "fixed colour range (default: each frame's min and max)", RENDER | VIEW, STRING(range)},
-    {"--overlay", NULL, "NAME,...", "switch overlays on (repeatable; 'all', 'none'); default: hud,legend",
+    {"--range", NULL, "LO,HI",
+     "fixed colour range (LO:HI also); render: 'run' (default): one range for the whole\n"
+     "run, found by simulating it once before drawing; 'frame': each frame's own min and max\n"
+     "(the window's default)",
+     RENDER | VIEW, STRING(range)},
+    {"--overlay", NULL, "NAME,...", "switch overlays on (repeatable; 'all', 'none'); default: hud,legend;\n"
+     "render's 'all' leaves out timings (wall-clock: frames would differ run to run)",
      RENDER | VIEW, LIST(overlay)},
     {"--no-overlay", NULL, "NAME,...", "switch overlays off (repeatable)", RENDER | VIEW, LIST(no_overlay)},
     {"--select", NULL, "ID", "the particle the neighbours overlay and the index strip follow", RENDER | VIEW,

@@ -51,7 +51,8 @@ typedef struct app_opts {
     /* words, as given (a choice is checked against its accepted words) */
     const char *backend, *gl, *stats, *dump, *vtk, *out, *name, *only, *screenshot, *keys, *metric, *ycols, *xcol,
         *h_list, *n_list, *function, *kernel, *samples, *levels, *export_dir, *color, *range, *camera, *center,
-        *save_scene, *resolution;
+        *save_scene, *resolution,
+        *video;
     /* repeatable */
     app_list sets, vary, overlay, no_overlay;
     /* positional arguments, in order */

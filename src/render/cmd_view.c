@@ -22,6 +22,7 @@
 #include "io.h"
 #include "layout.h"
 #include "panel.h"
+#include "view_record.h"
 
 /* The key bindings, written once: the help panel, `--help` and
  * docs/rendering.md list them from here. */
@@ -48,6 +49,7 @@
     X("left / right drag", "pull / push the fluid")                           \
     X("middle drag", "3D: orbit")                                             \
     X("p", "screenshot PNG (what is on screen)")                              \
+    X("v", "record a video: start / stop (--video FILE; sphlab-NNNN.mp4)")   \
     X("h", "this list")                                                       \
     X("esc / q", "quit")
 
@@ -106,6 +108,7 @@ typedef struct viewer {
     bool params_open;
     char save_path[1024]; /* where Save scene as and the key w write */
     float cursor[2];      /* [px] the mouse in the frame, or -1 when outside the window */
+    view_rec rec; /* the record key: a video of what is on screen */
 } viewer;
 
 static void say(viewer *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -256,6 +259,13 @@ static void screenshot(viewer *w, const char *path)
     free(rgb);
 }
 
+static void record_toggle(viewer *w)
+{
+    char m[1200];
+    view_rec_toggle(&w->rec, w->r, m, sizeof m);
+    say(w, "%s", m);
+}
+
 static void toggle_pass(viewer *w, int p)
 {
     if (p >= SPH_PASS_COUNT) return;
@@ -386,6 +396,7 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
         break;
     }
     case SDLK_p: screenshot(w, NULL); break;
+    case SDLK_v: record_toggle(w); break;
     case SDLK_h: w->help = !w->help; break;
     default: break;
     }
@@ -550,6 +561,12 @@ int cmd_view(int argc, char **argv)
     memset(&w, 0, sizeof w);
     w.threads = (int)threads;
     w.scripted = frames > 0;
+    w.rec.path = opt.video;
+    w.rec.fps = opt.fps > 0 ? (int)lround(opt.fps) : 25;
+    if (opt.video && sph_video_format_of(opt.video) == SPH_VIDEO_NONE) {
+        fprintf(stderr, "sphlab view: --video '%s': unknown extension (accepted: %s)\n", opt.video, sph_video_extensions);
+        return 2;
+    }
     w.last_pass = -1;
     w.paused = start_paused;
     if (!app_load_scene(&so, &w.def)) return 1;
@@ -742,6 +759,7 @@ int cmd_view(int argc, char **argv)
             if (po.set[0]) apply_change(&w, po.set);
             if (po.save[0]) save_scene(&w, po.save);
         }
+        if (w.rec.video && !view_rec_frame(&w.rec, w.r, err, sizeof err)) say(&w, "%s", err);
         sph_renderer_present(w.r, dw, dh);
         SDL_GL_SwapWindow(win);
         direct_all &= sph_renderer_drew_direct(w.r);
@@ -758,12 +776,14 @@ int cmd_view(int argc, char **argv)
                              : "in the window's context, some frames copied through the host (colour field or overlays)",
                 per_frame);
     rc = 0;
+    if (w.rec.video) record_toggle(&w); /* quitting finishes the video */
     if (shot) {
         w.msg[0] = '\0';
         screenshot(&w, shot);
         if (strncmp(w.msg, "saved", 5) != 0) rc = 1;
     }
 out:
+    sph_video_abort(w.rec.video); /* an error stopped the window: no half video */
     /* the simulation first: a shared context must still be there */
     sph_sim_destroy(w.sim);
     if (w.params) { /* its GL objects live in the window's context */
