@@ -437,7 +437,7 @@ int app_opts_parse(const app_cmd_spec *spec, int argc, char **argv, app_opts *o)
                 fprintf(stderr, "sphlab %s: unknown option '%s'", cmd, a);
                 if (near) fprintf(stderr, " (did you mean %s?)", near);
                 fprintf(stderr, "\n");
-                app_opts_usage(spec, stderr);
+                app_opts_usage_error(spec, NULL);
                 return 2;
             } else {
                 if (spec->extra_pos)
@@ -458,6 +458,14 @@ static void opt_label(const app_opt *r, char *buf, size_t cap)
 {
     snprintf(buf, cap, "%s%s%s%s%s", r->name, r->alias ? ", " : "", r->alias ? r->alias : "", r->arg ? " " : "",
              r->arg ? r->arg : "");
+}
+
+void app_opts_usage_error(const app_cmd_spec *spec, const char *what)
+{
+    if (what) fprintf(stderr, "sphlab %s: %s\n", spec->name, what);
+    const char *nl = strchr(spec->synopsis, '\n');
+    fprintf(stderr, "%.*s\nsee `sphlab %s --help`\n", nl ? (int)(nl - spec->synopsis) : (int)strlen(spec->synopsis),
+            spec->synopsis, spec->name);
 }
 
 void app_opts_usage(const app_cmd_spec *spec, FILE *f)

@@ -333,7 +333,7 @@ int cmd_lesson(int argc, char **argv)
         return list();
     }
     if (!opt.n_pos) {
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "name a lesson (sphlab lesson --list names them)");
         return 2;
     }
     long num;

@@ -94,8 +94,7 @@ int cmd_render(int argc, char **argv)
         return 2;
     }
     if (!so.path || (!out && !video_path)) {
-        if (so.path) fprintf(stderr, "sphlab render: --out DIR (or --video FILE) is needed\n");
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, so.path ? "--out DIR (or --video FILE) is needed" : "no scene file");
         return 2;
     }
     if (steps >= 0 && until >= 0) {

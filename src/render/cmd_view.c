@@ -550,7 +550,7 @@ int cmd_view(int argc, char **argv)
     app_scene_opts so;
     if (!app_scene_from_opts(&so, &opt)) return 2; /* --backend after the --set options, so it wins */
     if (!so.path) {
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "no scene file");
         return 2;
     }
     if ((shot || *keys) && frames < 0) {
