@@ -173,6 +173,9 @@ const app_opt app_options[] = {
      "CSV) and DIR/report.md with the parameters and the measured numbers;\n"
      "the commands' outputs go to DIR/logs/",
      LESSON, PATH(export_dir)},
+    {"--format", NULL, "md|html",
+     "with --export: html also writes DIR/report.html (and report.fr.html), the figures\nshown in the page (default md: report.md only)",
+     LESSON, CHOICE(format, "md|html")},
     {"--quick", NULL, NULL, "with --export: fewer steps and variants (for tests: a few seconds a lesson)", LESSON,
      FLAG(quick)},
     {"--quiet", NULL, NULL, "with --export: do not print the commands as they run", LESSON, FLAG(quiet)},

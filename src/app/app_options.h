@@ -52,7 +52,7 @@ typedef struct app_opts {
     const char *backend, *gl, *stats, *dump, *vtk, *out, *name, *only, *screenshot, *keys, *metric, *ycols, *xcol,
         *h_list, *n_list, *function, *kernel, *samples, *levels, *export_dir, *color, *range, *camera, *center,
         *save_scene, *resolution,
-        *video;
+        *video, *format;
     /* repeatable */
     app_list sets, vary, overlay, no_overlay;
     /* positional arguments, in order */
