@@ -94,7 +94,7 @@ demo: deps
 	mkdir -p out/demo
 	./sphlab run $(DEMO_SCENE) --stats out/demo/stats.csv --dump out/demo/particles.csv
 	./sphlab plot passes out/demo/stats.csv --out out/demo
-	./sphlab plot series out/demo/stats.csv --y ekin,rho_max,max_speed --out out/demo
+	./sphlab plot series out/demo/stats.csv --y ekin,rho_max,max_speed --dim 2 --out out/demo
 	./sphlab render $(DEMO_SCENE) --out out/demo/frames --every 400 --steps 2400 --overlay grid --quiet
 	./sphlab lesson 7 --export out/demo/lesson-7
 	@echo "demo: figures and tables in out/demo/, the full-simulation lesson's report in out/demo/lesson-7/report.md"

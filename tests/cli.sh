@@ -228,6 +228,34 @@ printf '[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.2 0.2\n[ph
 sph check "$tmp/nu0.ini" 2>&1 | grep -q "warning: no viscosity with \[kernels\] density = poly6 and pressure = spiky" && ok ||
     bad "nu = 0 with poly6/spiky: no warning"
 
+# keys: each section once (a section whose keys sit in two runs of the table was printed twice)
+dup=$(sph keys | grep '^\[' | sort | uniq -d)
+[ -z "$dup" ] && ok || bad "sphlab keys prints a section more than once: $dup"
+
+# usage errors: the error on the first line, then a short hint, not the whole help; the nearest name for a typo
+sph rendr > "$tmp/u.txt" 2>&1; rc=$?
+{ [ "$rc" -eq 2 ] && head -1 "$tmp/u.txt" | grep -q "unknown command 'rendr' (did you mean render?)" &&
+    [ "$(wc -l < "$tmp/u.txt")" -le 3 ]; } && ok || { bad "unknown command: exit $rc"; cat "$tmp/u.txt"; }
+sph render lessons/scenes/drop-2d.ini --stesp 3 > "$tmp/u.txt" 2>&1; rc=$?
+{ [ "$rc" -eq 2 ] && head -1 "$tmp/u.txt" | grep -q "unknown option '--stesp' (did you mean --steps?)" &&
+    grep -q 'see `sphlab render --help`' "$tmp/u.txt" && [ "$(wc -l < "$tmp/u.txt")" -le 3 ]; } && ok ||
+    { bad "unknown option: exit $rc"; cat "$tmp/u.txt"; }
+sph run > "$tmp/u.txt" 2>&1; rc=$?
+{ [ "$rc" -eq 2 ] && head -1 "$tmp/u.txt" | grep -q "sphlab run: no scene file" && [ "$(wc -l < "$tmp/u.txt")" -le 3 ]; } &&
+    ok || { bad "run without a scene: exit $rc"; cat "$tmp/u.txt"; }
+printf '[serch]\nmethod = grid\n' > "$tmp/typo1.ini"
+sph check "$tmp/typo1.ini" 2>&1 | grep -q "unknown section \[serch\] (did you mean \[search\]?)" && ok ||
+    bad "a misspelt section: no nearest name"
+printf '[search]\nmethd = grid\n' > "$tmp/typo2.ini"
+sph check "$tmp/typo2.ini" 2>&1 | grep -q "unknown key 'methd' in \[search\] (did you mean 'method'?)" && ok ||
+    bad "a misspelt key: no nearest name"
+sph check --set search.reordr=off lessons/scenes/drop-2d.ini 2>&1 | grep -q "did you mean 'reorder'" && ok ||
+    bad "a misspelt --set key: no nearest name"
+# the GL levels are G0-G3 (bench ladder's table): the README and lesson 8 name them all
+for f in README.md lessons/08-optimisation-ladder/README.md; do
+    grep -q "G3" "$f" && ! grep -q "G0-G2\|G0, G1, G2 |" "$f" && ok || bad "$f: the GL levels are G0-G3"
+done
+
 # The hard cases: every verdict must be "pass" (they run headless, a few seconds), and
 # there are at least 40 of them, so a lost table row shows here.
 if sph hardcases --quick > "$tmp/hard.txt" 2>&1; then ok; else bad "hardcases"; cat "$tmp/hard.txt"; fi

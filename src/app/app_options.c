@@ -75,6 +75,10 @@ const app_opt app_options[] = {
      STRING(vtk)},
     {"--every", NULL, "K", "a frame (render) or a --vtk file every K steps, the first at step 0 (default 10)",
      RUN | RENDER, INT(every, 1, MANY)},
+    {"--video", NULL, "FILE", "also write the frames as a video: FILE.mp4 (H.264) or FILE.gif", RENDER, STRING(video)},
+    {"--video", NULL, "FILE", "where the record key v writes (.mp4 or .gif; default sphlab-NNNN.mp4)", VIEW,
+     STRING(video)},
+    {"--fps", NULL, "F", "frames a second of the video (default 25)", RENDER | VIEW, DOUBLE(fps, 1, 120)},
     {"--gl", NULL, "egl|osmesa", "GL context (default egl: EGL surfaceless; osmesa: Mesa's OSMesa)", RENDER,
      CHOICE(gl, "egl|osmesa")},
     /* what render and view draw */
@@ -82,8 +86,13 @@ const app_opt app_options[] = {
      SIZE(size, 64, 8192)},
     {"--color", "--colour", "FIELD",
      "colour by: density pressure speed key neighbours pressure-acc viscosity-acc", RENDER | VIEW, STRING(color)},
-    {"--range", NULL, "LO:HI", "fixed colour range (default: each frame's min and max)", RENDER | VIEW, STRING(range)},
-    {"--overlay", NULL, "NAME,...", "switch overlays on (repeatable; 'all', 'none'); default: hud,legend",
+    {"--range", NULL, "LO,HI",
+     "fixed colour range (LO:HI also); render: 'run' (default): one range for the whole\n"
+     "run, found by simulating it once before drawing; 'frame': each frame's own min and max\n"
+     "(the window's default)",
+     RENDER | VIEW, STRING(range)},
+    {"--overlay", NULL, "NAME,...", "switch overlays on (repeatable; 'all', 'none'); default: hud,legend;\n"
+     "render's 'all' leaves out timings (wall-clock: frames would differ run to run)",
      RENDER | VIEW, LIST(overlay)},
     {"--no-overlay", NULL, "NAME,...", "switch overlays off (repeatable)", RENDER | VIEW, LIST(no_overlay)},
     {"--select", NULL, "ID", "the particle the neighbours overlay and the index strip follow", RENDER | VIEW,
@@ -166,6 +175,9 @@ const app_opt app_options[] = {
      "CSV) and DIR/report.md with the parameters and the measured numbers;\n"
      "the commands' outputs go to DIR/logs/",
      LESSON, PATH(export_dir)},
+    {"--format", NULL, "md|html",
+     "with --export: html also writes DIR/report.html (and report.fr.html), the figures\nshown in the page (default md: report.md only)",
+     LESSON, CHOICE(format, "md|html")},
     {"--quick", NULL, NULL, "with --export: fewer steps and variants (for tests: a few seconds a lesson)", LESSON,
      FLAG(quick)},
     {"--quiet", NULL, NULL, "with --export: do not print the commands as they run", LESSON, FLAG(quiet)},
@@ -430,7 +442,7 @@ int app_opts_parse(const app_cmd_spec *spec, int argc, char **argv, app_opts *o)
                 fprintf(stderr, "sphlab %s: unknown option '%s'", cmd, a);
                 if (near) fprintf(stderr, " (did you mean %s?)", near);
                 fprintf(stderr, "\n");
-                app_opts_usage(spec, stderr);
+                app_opts_usage_error(spec, NULL);
                 return 2;
             } else {
                 if (spec->extra_pos)
@@ -451,6 +463,14 @@ static void opt_label(const app_opt *r, char *buf, size_t cap)
 {
     snprintf(buf, cap, "%s%s%s%s%s", r->name, r->alias ? ", " : "", r->alias ? r->alias : "", r->arg ? " " : "",
              r->arg ? r->arg : "");
+}
+
+void app_opts_usage_error(const app_cmd_spec *spec, const char *what)
+{
+    if (what) fprintf(stderr, "sphlab %s: %s\n", spec->name, what);
+    const char *nl = strchr(spec->synopsis, '\n');
+    fprintf(stderr, "%.*s\nsee `sphlab %s --help`\n", nl ? (int)(nl - spec->synopsis) : (int)strlen(spec->synopsis),
+            spec->synopsis, spec->name);
 }
 
 void app_opts_usage(const app_cmd_spec *spec, FILE *f)

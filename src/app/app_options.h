@@ -51,7 +51,8 @@ typedef struct app_opts {
     /* words, as given (a choice is checked against its accepted words) */
     const char *backend, *gl, *stats, *dump, *vtk, *out, *name, *only, *screenshot, *keys, *metric, *ycols, *xcol,
         *h_list, *n_list, *function, *kernel, *samples, *levels, *export_dir, *color, *range, *camera, *center,
-        *save_scene, *resolution;
+        *save_scene, *resolution,
+        *video, *format;
     /* repeatable */
     app_list sets, vary, overlay, no_overlay;
     /* positional arguments, in order */
@@ -110,10 +111,14 @@ void app_opts_init(app_opts *o);
 /* Parses argv[1..argc) (argv[0] is the command) for the command of `spec`
  * into *o. Returns -1 to go on; 0 after printing the help (--help, -h);
  * 2 on a command-line error, message printed ("sphlab CMD: ..."); an unknown
- * option names the closest known one and prints the usage to stderr. */
+ * option names the closest known one and a hint (app_opts_usage_error). */
 int app_opts_parse(const app_cmd_spec *spec, int argc, char **argv, app_opts *o);
 /* The command's help: synopsis, its options from the table, footer. */
 void app_opts_usage(const app_cmd_spec *spec, FILE *f);
+/* A usage error, short, on stderr: "sphlab CMD: WHAT" (if what), the
+ * synopsis's usage line, and "see `sphlab CMD --help`" -- not the whole help,
+ * which would bury the error. */
+void app_opts_usage_error(const app_cmd_spec *spec, const char *what);
 /* The known option of the command closest to `arg` (a typo's likely meaning), or NULL. */
 const char *app_opts_closest(unsigned cmd, const char *arg);
 /* Every command's options as a Markdown reference (docs/commands.md). */

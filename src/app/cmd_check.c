@@ -99,7 +99,7 @@ int cmd_check(int argc, char **argv)
     app_scene_opts o;
     if (!app_scene_from_opts(&o, &opt)) return 2;
     if (!o.path) {
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "no scene file");
         return 2;
     }
     sph_scene_def def;

@@ -163,7 +163,7 @@ int cmd_run(int argc, char **argv)
     const char *stats_path = opt.stats, *dump_path = opt.dump, *vtk_dir = opt.vtk;
     bool quiet = opt.quiet;
     if (!opt.n_pos) {
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "no scene file");
         return 2;
     }
     if (steps >= 0 && until >= 0) {

@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "../gpu/gpu.h"
 #include "app_threads.h"
+#include "sph_names.h"
 
 static void usage(FILE *f)
 {
@@ -26,16 +27,21 @@ int cmd_keys(int argc, char **argv)
 {
     (void)argc;
     (void)argv;
-    const char *last = "";
+    /* each section once, in the order it first appears: the table may hold
+     * a section's keys in more than one run (keys added at its end) */
     for (int i = 0; i < sph_scene_key_count; i++) {
-        const sph_key *k = &sph_scene_keys[i];
-        if (strcmp(k->section, last) != 0) {
-            printf("%s[%s%s]\n", i ? "\n" : "", k->section, strcmp(k->section, "fluid") == 0 ? " NAME" : "");
-            last = k->section;
+        const char *sec = sph_scene_keys[i].section;
+        bool seen = false;
+        for (int j = 0; j < i && !seen; j++) seen = strcmp(sph_scene_keys[j].section, sec) == 0;
+        if (seen) continue;
+        printf("%s[%s%s]\n", i ? "\n" : "", sec, strcmp(sec, "fluid") == 0 ? " NAME" : "");
+        for (int j = i; j < sph_scene_key_count; j++) {
+            const sph_key *k = &sph_scene_keys[j];
+            if (strcmp(k->section, sec) != 0) continue;
+            printf("  %-18s default %-34s %s%s%s\n", k->name, *k->def ? k->def : "(empty)",
+                   k->unit && *k->unit ? "[" : "", k->unit ? k->unit : "", k->unit && *k->unit ? "] " : "");
+            printf("  %-18s %s\n", "", k->help);
         }
-        printf("  %-18s default %-34s %s%s%s\n", k->name, *k->def ? k->def : "(empty)", k->unit && *k->unit ? "[" : "",
-               k->unit ? k->unit : "", k->unit && *k->unit ? "] " : "");
-        printf("  %-18s %s\n", "", k->help);
     }
     return 0;
 }
@@ -145,8 +151,7 @@ int main(int argc, char **argv)
         SPH_COMMANDS(SPH_COMMAND_HELP)
 #undef SPH_COMMAND_HELP
         if (what) {
-            fprintf(stderr, "sphlab help: unknown command '%s'\n", what);
-            usage(stderr);
+            fprintf(stderr, "sphlab help: unknown command '%s'\nsee `sphlab help` for the commands\n", what);
             return 2;
         }
         usage(stdout);
@@ -156,7 +161,23 @@ int main(int argc, char **argv)
     if (strcmp(cmd, #name) == 0) return cmd_##name(argc - 1, argv + 1);
     SPH_COMMANDS(SPH_COMMAND_RUN)
 #undef SPH_COMMAND_RUN
-    fprintf(stderr, "sphlab: unknown command '%s'\n", cmd);
-    usage(stderr);
+    /* the error first, the nearest command for a typo, and a hint, not the whole list */
+    static const char *const names[] = {
+#define SPH_COMMAND_NAME(name, args, about) #name,
+        SPH_COMMANDS(SPH_COMMAND_NAME)
+#undef SPH_COMMAND_NAME
+    };
+    const char *near = NULL;
+    int near_d = 1 << 30;
+    for (size_t k = 0; k < sizeof names / sizeof *names; k++) {
+        int d = sph_edit_distance(cmd, names[k]);
+        if (sph_name_near(cmd, names[k]) && d < near_d) {
+            near = names[k];
+            near_d = d;
+        }
+    }
+    fprintf(stderr, "sphlab: unknown command '%s'", cmd);
+    if (near) fprintf(stderr, " (did you mean %s?)", near);
+    fprintf(stderr, "\nsee `sphlab help` for the commands\n");
     return 2;
 }

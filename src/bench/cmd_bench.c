@@ -128,7 +128,7 @@ static int parse_args(int argc, char **argv, bench_opts *o)
     for (int i = 0; i < opt.sets.n; i++)
         if (!add_set(o, opt.sets.v[i])) return 2;
     if (!o->what) {
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "name a benchmark");
         return 2;
     }
     if (!parse_levels(o)) return 2;

@@ -2,6 +2,7 @@
 #include "sph_scene.h"
 #include "sph_obstacles.h"
 #include "sph_memory.h"
+#include "sph_names.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -306,7 +307,29 @@ static bool known_section(const char *section)
 
 static const char *section_list(void)
 {
-    return "scene, domain, physics, kernels, time, search, interaction, fluid NAME, obstacle NAME";
+    return "scene, domain, physics, kernels, time, search, interaction, compute, fluid NAME, obstacle NAME";
+}
+
+/* " (did you mean [search]?)" for a misspelt section (its first word), or "". */
+static const char *section_hint(const char *section, char *buf, size_t n)
+{
+    char word[64];
+    snprintf(word, sizeof word, "%.*s", (int)strcspn(section, " \t"), section);
+    const char *all[] = {"scene", "domain", "physics", "kernels", "time", "search", "interaction", "compute", "fluid",
+                         "obstacle"};
+    const char *near = NULL;
+    int near_d = 1 << 30;
+    for (size_t i = 0; i < sizeof all / sizeof *all; i++) {
+        int d = sph_edit_distance(word, all[i]);
+        if (sph_name_near(word, all[i]) && d < near_d) {
+            near = all[i];
+            near_d = d;
+        }
+    }
+    if (!near) return "";
+    snprintf(buf, n, " (did you mean [%s%s]?)", near,
+             strcmp(near, "fluid") == 0 || strcmp(near, "obstacle") == 0 ? " NAME" : "");
+    return buf;
 }
 
 /* Index of the key among its group's keys (origin slot of a record). */
@@ -332,9 +355,10 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
     where w = {file, line, section};
     char loc[320];
     where_text(&w, loc, sizeof loc);
+    char hint[96];
     if (!known_section(section))
-        return sph_fail(err, SPH_ERR_UNKNOWN_SECTION, "%s: unknown section [%.60s] (accepted: %s)", loc, section,
-                        section_list());
+        return sph_fail(err, SPH_ERR_UNKNOWN_SECTION, "%s: unknown section [%.60s]%s (accepted: %s)", loc, section,
+                        section_hint(section, hint, sizeof hint), section_list());
     int index;
     const sph_key *k = find_key(section, name, &index);
     if (!k) {
@@ -347,8 +371,19 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
             if (strcmp(c->section, g ? g->kind : section) == 0)
                 used += (size_t)snprintf(keys + used, sizeof keys - used, "%s%s", used ? ", " : "", c->name);
         }
-        return sph_fail(err, SPH_ERR_UNKNOWN_KEY, "%s: unknown key '%.60s' in [%.60s] (accepted: %s)", loc, name,
-                        section, keys);
+        /* the nearest key of the section, for a typo */
+        const char *near = NULL;
+        int near_d = 1 << 30;
+        for (int i = 0; i < sph_scene_key_count; i++) {
+            const sph_key *c = &sph_scene_keys[i];
+            int d = sph_edit_distance(name, c->name);
+            if (strcmp(c->section, g ? g->kind : section) == 0 && sph_name_near(name, c->name) && d < near_d) {
+                near = c->name;
+                near_d = d;
+            }
+        }
+        return sph_fail(err, SPH_ERR_UNKNOWN_KEY, "%s: unknown key '%.60s' in [%.60s]%s%s%s (accepted: %s)", loc, name,
+                        section, near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "", keys);
     }
     int ncomp;
     const group *g = section_group(section);
@@ -512,8 +547,9 @@ static char *ini_reader_fn(char *str, int num, void *stream)
         while (b > a && isspace((unsigned char)b[-1])) b--;
         snprintf(name, sizeof name, "%.*s", (int)(b - a), a);
         if (!known_section(name)) {
-            ctx->code = sph_fail(ctx->err, SPH_ERR_UNKNOWN_SECTION, "%s:%d: unknown section [%.60s] (accepted: %s)",
-                                 ctx->file, ctx->line, name, section_list());
+            char hint[96];
+            ctx->code = sph_fail(ctx->err, SPH_ERR_UNKNOWN_SECTION, "%s:%d: unknown section [%.60s]%s (accepted: %s)",
+                                 ctx->file, ctx->line, name, section_hint(name, hint, sizeof hint), section_list());
             return NULL;
         }
         if (is_fluid_section(name) && !fluid_header(ctx, name, str, num)) return NULL;

@@ -215,14 +215,16 @@ static void remove_tree(const char *path, int depth)
 static void loadavg(char *out, size_t cap)
 {
     snprintf(out, cap, "unknown");
-    FILE *f = fopen("/proc/loadavg", "r");
+    /* SPHLAB_LOADAVG_FILE: another file of the same form (the tests' busy and idle machines) */
+    const char *path = getenv("SPHLAB_LOADAVG_FILE");
+    FILE *f = fopen(path && *path ? path : "/proc/loadavg", "r");
     if (!f) return;
     double a, b, c;
     if (fscanf(f, "%lf %lf %lf", &a, &b, &c) == 3) snprintf(out, cap, "%.2f %.2f %.2f", a, b, c);
     fclose(f);
 }
 
-static int export_lesson(const lesson *L, const char *dir, bool quick, bool quiet)
+static int export_lesson(const lesson *L, const char *dir, bool quick, bool quiet, bool html)
 {
     static lx x; /* large: the figure list */
     memset(&x, 0, sizeof x);
@@ -252,6 +254,8 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
     unlink(report);
     snprintf(report, sizeof report, "%s/report.md", x.dir);
     unlink(report);
+    unlink(lx_out(&x, "report.html"));
+    unlink(lx_out(&x, "report.fr.html"));
 
     x.sink = x.mdf = open_memstream(&x.md, &x.md_len);
     if (!x.mdf) {
@@ -284,7 +288,29 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
     free(x.md);
     x.md = NULL;
     lx_block(&x, "figures");
-    for (int i = 0; i < x.nfig; i++) lx_md(&x, "- %s\n", x.figs[i]);
+    /* timings measured while others loaded the machine: the report says so
+     * beside the figures, not only the log (the 1-minute load average
+     * before the export: the export's own threads are not in it) */
+    double others = strtod(load0, NULL);
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    if (strcmp(load0, "unknown") != 0 && cores > 0 && others > 0.25 * (double)cores)
+        lx_md(&x, "> **The machine was busy**: load average %.2f on %ld cores before this export. Every timing below "
+                  "(milliseconds per pass, steps per second, speed-ups) ran beside that load and is slower and noisier "
+                  "than on an idle machine; export again when it is idle to compare.\n\n",
+              others, cores);
+    for (int i = 0; i < x.nfig; i++) {
+        lx_md(&x, "- %s\n", x.figs[i]);
+        /* a single PNG that exists is shown, with its caption as alt text */
+        char file[256];
+        const char *a = strchr(x.figs[i], '`'), *b = a ? strchr(a + 1, '`') : NULL;
+        if (!b) continue;
+        snprintf(file, sizeof file, "%.*s", (int)(b - a - 1), a + 1);
+        size_t fl = strlen(file);
+        const char *what = b[1] == ':' ? b + 3 : "";
+        if (fl > 4 && strcmp(file + fl - 4, ".png") == 0 && !strpbrk(file, ", ") &&
+            access(lx_out(&x, file), R_OK) == 0)
+            lx_md(&x, "\n  ![%s](%s)\n\n", what, file);
+    }
     lx_block(&x, "missing");
     for (int i = 0; i < x.nmissing; i++) lx_md(&x, "- %s\n", x.missing[i]);
     lx_block_end(&x);
@@ -309,6 +335,17 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
         if (lx_values_unused(&x, tmpl)) x.failed++;
         ok = app_out_commit(&out);
         made++;
+        if (ok && html) { /* the same text as a page beside it: report.html, report.fr.html */
+            char *md = lx_read_file(path), hpath[1210];
+            snprintf(hpath, sizeof hpath, "%.*s.html", (int)(strlen(path) - 3), path);
+            app_out h;
+            ok = md && app_out_open(&h, hpath);
+            if (ok) {
+                lx_html_write(md, L->title, h.f);
+                ok = app_out_commit(&h);
+            }
+            free(md);
+        }
     }
     lx_values_free(&x);
     remove_tree(x.scratch, 0);
@@ -318,8 +355,9 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
                 report, x.dir);
         return 1;
     }
-    printf("lesson %d (%s): %d files and %s in %s (%.1f s)\n", L->num, L->title, x.nfig,
-           made > 1 ? "report.md, report.fr.md" : "report.md", dir, secs);
+    printf("lesson %d (%s): %d files and %s%s in %s (%.1f s)\n", L->num, L->title, x.nfig,
+           made > 1 ? "report.md, report.fr.md" : "report.md",
+           !html ? "" : made > 1 ? ", report.html, report.fr.html" : ", report.html", dir, secs);
     for (int i = 0; i < x.nmissing; i++) printf("missing: %s\n", x.missing[i]);
     return 0;
 }
@@ -339,7 +377,7 @@ int cmd_lesson(int argc, char **argv)
         return list();
     }
     if (!opt.n_pos) {
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "name a lesson (sphlab lesson --list names them)");
         return 2;
     }
     long num;
@@ -355,7 +393,11 @@ int cmd_lesson(int argc, char **argv)
         fprintf(stderr, "sphlab lesson: unknown option '%s' with --export\n", opt.rest[0]);
         return 2;
     }
-    if (dir) return export_lesson(L, dir, quick, quiet);
+    if (opt.format && !dir) {
+        fprintf(stderr, "sphlab lesson: --format goes with --export DIR\n");
+        return 2;
+    }
+    if (dir) return export_lesson(L, dir, quick, quiet, opt.format && strcmp(opt.format, "html") == 0);
     if (quick || quiet) {
         fprintf(stderr, "sphlab lesson: --quick and --quiet go with --export DIR\n");
         return 2;

@@ -184,6 +184,8 @@ void lx_block_end(lx *x);
 /* Fills the template at tmpl_path into out; false (with a message on stderr)
  * if a placeholder has no value. Marks the values it uses. */
 bool lx_report_write(lx *x, const char *tmpl_path, FILE *out);
+/* The report's Markdown (the subset the templates use) as an HTML page (lesson_html.c). */
+void lx_html_write(const char *md, const char *title, FILE *out);
 /* Values the template just filled did not use (each named on stderr), then
  * clears the marks for the next template. */
 int lx_values_unused(lx *x, const char *what);

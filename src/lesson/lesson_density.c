@@ -125,7 +125,7 @@ int lx_lesson1(lx *x)
     if (f) fprintf(f, "h_over_spacing,h,neighbours,interior_mean,interior_rms_percent,surface_mean,surface_deficit_percent\n");
     lx_val(x, "rho0", "%g", rho0);
     lx_block(x, "density_table");
-    lx_md(x, "| h / s | h [m] | interior mean [kg/m^2] | interior rms error | top row mean [kg/m^2] | top row deficit |\n"
+    lx_md(x, "| h / spacing | h [m] | interior mean [kg/m^2] | interior rms error | top row mean [kg/m^2] | top row deficit |\n"
              "|---|---|---|---|---|---|\n");
     int good = 0;
     for (int k = 0; k < nhl; k++) {
@@ -259,7 +259,7 @@ int lx_lesson2(lx *x)
     lx_block(x, "points_table");
     lx_md(x, "| particle |");
     for (int m = 0; m < 2; m++)
-        for (int k = 0; k < nh; k++) lx_md(x, " %s, h = %g s |", models[m], hl[k]);
+        for (int k = 0; k < nh; k++) lx_md(x, " %s, h = %g spacings |", models[m], hl[k]);
     lx_md(x, "\n|---|");
     for (int i = 0; i < 2 * nh; i++) lx_md(x, "---|");
     lx_md(x, "\n");

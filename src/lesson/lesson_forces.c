@@ -323,7 +323,7 @@ int lx_lesson4(lx *x)
     lx_val(x, "length", "%g", L);
     lx_val(x, "rate", "%.4f", rate0);
     lx_block(x, "decay_table");
-    lx_md(x, "| viscosity form | h / s | steps | fitted rate [1/s] | analytic [1/s] | error |\n|---|---|---|---|---|---|\n");
+    lx_md(x, "| viscosity form | h / spacing | steps | fitted rate [1/s] | analytic [1/s] | error |\n|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "taylor-green.csv");
     if (f) fprintf(f, "run,t,ekin_over_ekin0,analytic\n");
     for (int r = 0; r < nr; r++) {
@@ -365,7 +365,7 @@ int lx_lesson4(lx *x)
         if (!ok[r]) continue;
         const double *t = tab[r].col[plot_table_find(&tab[r], "t")];
         plot_series *ps = &C.p[0].s[C.p[0].n++];
-        snprintf(ps->label, sizeof ps->label, "%s, h = %g s", runs[r].form, runs[r].h_over_s);
+        snprintf(ps->label, sizeof ps->label, "%s, h = %g spacings", runs[r].form, runs[r].h_over_s);
         ps->x = t;
         ps->y = ratio[r];
         ps->n = tab[r].nrows;

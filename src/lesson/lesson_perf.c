@@ -487,7 +487,7 @@ int lx_lesson9(lx *x)
             if (j != i && runs[j].wall_s <= runs[i].wall_s && runs[j].err < runs[i].err) runs[i].pareto = false;
     }
     lx_block(x, "runs_table");
-    lx_md(x, "| spacing [m] | h / s | sums | particles | steps | wall time [s] | fitted rate [1/s] | error | Pareto "
+    lx_md(x, "| spacing [m] | h / spacing | sums | particles | steps | wall time [s] | fitted rate [1/s] | error | Pareto "
              "front |\n|---|---|---|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "accuracy.csv");
     if (f) fprintf(f, "spacing,h_over_spacing,accumulate,particles,steps,wall_s,rate,analytic_rate,error_percent,pareto\n");

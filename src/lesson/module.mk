@@ -12,7 +12,7 @@
 # goal was set so far, so that a rule below never becomes it.
 LESSON_SAVED_GOAL := $(.DEFAULT_GOAL)
 
-LESSON_SRC    := cmd_lesson lesson_export lesson_lab lesson_report lesson_run lesson_util lesson_density lesson_forces lesson_search lesson_perf lesson_walls
+LESSON_SRC    := cmd_lesson lesson_export lesson_lab lesson_report lesson_run lesson_util lesson_density lesson_forces lesson_search lesson_perf lesson_walls lesson_html
 LESSON_CFLAGS := $(shell pkg-config --cflags plplot 2>/dev/null || echo -I/usr/include/plplot)
 LESSON_STB    := $(shell pkg-config --cflags stb 2>/dev/null || echo -I/usr/include/stb)
 MOD_OBJ       += $(LESSON_SRC:%=$(BUILD)/lesson/%.o)

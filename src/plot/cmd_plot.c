@@ -540,7 +540,7 @@ int plot_run(const plot_opts *opts)
 {
     const plot_opts o = *opts;
     if (!o.what) {
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "name a chart");
         return 2;
     }
     bool from_csv = strcmp(o.what, "passes") == 0 || strcmp(o.what, "series") == 0;

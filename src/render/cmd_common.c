@@ -20,7 +20,10 @@ bool overlay_list(const char *cmd, const char *list, unsigned *bits, bool *none)
     snprintf(buf, sizeof buf, "%s", list);
     for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
         if (strcmp(tok, "all") == 0) {
-            *bits |= (1u << SPH_OV_COUNT) - 1;
+            /* render promises the same bytes every run: wall-clock timings
+             * only when named (--overlay timings) */
+            unsigned clock = strcmp(cmd, "render") == 0 ? SPH_OV_BIT(TIMINGS) : 0;
+            *bits |= ((1u << SPH_OV_COUNT) - 1) & ~clock;
         } else if (strcmp(tok, "none") == 0) {
             if (none) *none = true;
         } else {
@@ -69,11 +72,22 @@ bool view_opts_take(view_opts *vo, const app_opts *o, const char *cmd)
         vo->color = o->color;
     }
     if (o->range) {
-        if (!parse_pair(o->range, &vo->range[0], &vo->range[1], NULL, ':') || !(vo->range[1] > vo->range[0])) {
-            fprintf(stderr, "sphlab %s: --range '%s': want LO:HI with LO < HI\n", cmd, o->range);
-            return false;
+        /* 'run' only where the whole run is known before the first frame (render) */
+        bool run_ok = strcmp(cmd, "render") == 0;
+        if (strcmp(o->range, "frame") == 0) {
+            vo->range_frame = true;
+        } else if (run_ok && strcmp(o->range, "run") == 0) {
+            vo->range_run = true;
+        } else {
+            float *r = vo->range;
+            bool pair = parse_pair(o->range, &r[0], &r[1], NULL, ',') || parse_pair(o->range, &r[0], &r[1], NULL, ':');
+            if (!pair || !isfinite(r[0]) || !isfinite(r[1]) || !(r[1] > r[0])) {
+                fprintf(stderr, "sphlab %s: --range '%s': want LO,HI (finite numbers, LO < HI), %sor 'frame'\n", cmd,
+                        o->range, run_ok ? "'run' " : "");
+                return false;
+            }
+            vo->has_range = true;
         }
-        vo->has_range = true;
     }
     for (int i = 0; i < o->overlay.n; i++)
         if (!overlay_list(cmd, o->overlay.v[i], &vo->ov_on, &vo->ov_none)) return false;

@@ -19,7 +19,9 @@ typedef struct view_opts {
     int n_center;
     float center[3];          /* --center X:Y[:Z] [m] */
     bool has_range;
-    float range[2];           /* --range LO:HI */
+    float range[2];           /* --range LO,HI (or LO:HI) [the field's unit] */
+    bool range_run;           /* --range run: one range over the whole run (render) */
+    bool range_frame;         /* --range frame: each frame's own min and max */
     int w, h;                 /* --size WxH */
 } view_opts;
 

@@ -23,6 +23,7 @@
 #include "layout.h"
 #include "panel.h"
 #include "view_ladder.h"
+#include "view_record.h"
 
 /* The key bindings, written once: the help panel, `--help` and
  * docs/rendering.md list them from here. */
@@ -59,6 +60,7 @@
     X("left / right drag", "pull / push the fluid")                           \
     X("middle drag", "3D: orbit")                                             \
     X("p", "screenshot PNG (what is on screen)")                              \
+    X("v", "record a video: start / stop (--video FILE; sphlab-NNNN.mp4)")   \
     X("h", "this list")                                                       \
     X("esc / q", "quit")
 
@@ -121,6 +123,7 @@ typedef struct viewer {
     view_ladder ladder;
     int pass_cursor;      /* the pass the keys n and d act on, or -1 */
     char ladder_lines[8][128];
+    view_rec rec; /* the record key: a video of what is on screen */
 } viewer;
 
 static void say(viewer *w, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -269,6 +272,13 @@ static void screenshot(viewer *w, const char *path)
     else
         say(w, "screenshot: %s", err);
     free(rgb);
+}
+
+static void record_toggle(viewer *w)
+{
+    char m[1200];
+    view_rec_toggle(&w->rec, w->r, m, sizeof m);
+    say(w, "%s", m);
 }
 
 static void toggle_pass(viewer *w, int p)
@@ -499,6 +509,7 @@ static void handle_key(viewer *w, SDL_Keycode k, Uint16 mod)
         break;
     }
     case SDLK_p: screenshot(w, NULL); break;
+    case SDLK_v: record_toggle(w); break;
     case SDLK_h: w->help = !w->help; break;
     default: break;
     }
@@ -652,7 +663,7 @@ int cmd_view(int argc, char **argv)
     app_scene_opts so;
     if (!app_scene_from_opts(&so, &opt)) return 2; /* --backend after the --set options, so it wins */
     if (!so.path) {
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "no scene file");
         return 2;
     }
     if ((shot || *keys) && frames < 0) {
@@ -663,6 +674,12 @@ int cmd_view(int argc, char **argv)
     memset(&w, 0, sizeof w);
     w.threads = (int)threads;
     w.scripted = frames > 0;
+    w.rec.path = opt.video;
+    w.rec.fps = opt.fps > 0 ? (int)lround(opt.fps) : 25;
+    if (opt.video && sph_video_format_of(opt.video) == SPH_VIDEO_NONE) {
+        fprintf(stderr, "sphlab view: --video '%s': unknown extension (accepted: %s)\n", opt.video, sph_video_extensions);
+        return 2;
+    }
     w.last_pass = -1;
     w.pass_cursor = -1;
     w.paused = start_paused;
@@ -876,6 +893,7 @@ int cmd_view(int argc, char **argv)
             if (po.particles) rescale(&w, po.particles > 0);
             if (po.validate) validate(&w, po.validate == 2 ? "L2" : "L0");
         }
+        if (w.rec.video && !view_rec_frame(&w.rec, w.r, err, sizeof err)) say(&w, "%s", err);
         sph_renderer_present(w.r, dw, dh);
         SDL_GL_SwapWindow(win);
         direct_all &= sph_renderer_drew_direct(w.r);
@@ -895,12 +913,14 @@ int cmd_view(int argc, char **argv)
     if (w.scripted && !w.help)
         for (int k = 0; k < w.v.panel_lines; k++) fprintf(stderr, "sphlab view: inspector: %s\n", w.panel[k]);
     rc = 0;
+    if (w.rec.video) record_toggle(&w); /* quitting finishes the video */
     if (shot) {
         w.msg[0] = '\0';
         screenshot(&w, shot);
         if (strncmp(w.msg, "saved", 5) != 0) rc = 1;
     }
 out:
+    sph_video_abort(w.rec.video); /* an error stopped the window: no half video */
     /* the simulation first: a shared context must still be there */
     sph_sim_destroy(w.sim);
     if (w.params) { /* its GL objects live in the window's context */

@@ -17,7 +17,7 @@ RENDER_LIBS   := $(shell pkg-config --libs $(RENDER_PKGS) 2>/dev/null || echo -l
 DEB_PKGS += libstb-dev libsdl2-dev fonts-dejavu-core
 
 RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font renderer canvas hud layout view_ladder)
-RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view)
+RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view view_record)
 
 MOD_OBJ       += $(RENDER_LIB_OBJ) $(RENDER_CMD_OBJ)
 MOD_LIBS      += $(RENDER_LIBS)

@@ -140,8 +140,7 @@ int study_cmd_run(const study_cmd *cmd)
     FILE *table = cmd->table;
     char why[1024];
     if (!o.path) {
-        fprintf(stderr, "sphlab study: no scene file\n");
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "no scene file");
         return 2;
     }
     if (!out) {

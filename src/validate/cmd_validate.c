@@ -135,8 +135,7 @@ int cmd_validate(int argc, char **argv)
     int rc = app_opts_parse(&spec, argc, argv, &o);
     if (rc >= 0) return rc;
     if (o.n_pos == 0) {
-        fprintf(stderr, "sphlab validate: name a problem (sphlab validate list names them)\n");
-        app_opts_usage(&spec, stderr);
+        app_opts_usage_error(&spec, "name a problem (sphlab validate list names them)");
         return VAL_USAGE;
     }
     const char *name = o.pos[0];
