@@ -37,6 +37,9 @@ const bench_level bench_levels[] = {
      "compute.backend=gl search.method=hash search.sort=counting search.reorder=on", 0},
     {"G3", "GLSL: dense grid: stencil rows",
      "compute.backend=gl search.method=grid search.sort=counting search.reorder=on", 0},
+    /* Past L7 (docs/performance.md, "Past L7"): fewer gathers per neighbour. */
+    {"L8", "L7 + pressure and viscosity in one walk",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on", 0},
 };
 const int bench_level_count = (int)(sizeof bench_levels / sizeof bench_levels[0]);
 

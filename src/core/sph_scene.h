@@ -15,7 +15,7 @@
 #include "sph_kernel.h"
 
 #define SPH_MAX_BLOCKS 32
-#define SPH_MAX_KEYS 64
+#define SPH_MAX_KEYS 96
 
 /* Effects a scene can ask for; each pulls in the passes it needs. The last
  * column says whether it needs each particle's density (and so the
@@ -223,6 +223,7 @@ typedef struct sph_scene_def {
     sph_onoff reorder;   /* store the particles in cell order after the sort (for memory locality) */
     sph_onoff vector;    /* use the CPU's vector instructions (AVX-512) in the inner loops where written */
     sph_backend_kind backend; /* where the passes run: the CPU, or GL compute shaders (src/gpu/) */
+    sph_onoff fuse_forces; /* pressure force and viscosity in one walk of the lists, where the forms allow */
     float jitter;        /* [1] random offset of each particle, in spacings */
     uint32_t seed;       /* [1] random seed of the jitter */
     float interaction_radius;   /* [m] reach of the push/pull around the point */

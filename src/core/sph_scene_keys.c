@@ -191,6 +191,10 @@ const sph_key sph_scene_keys[] = {
     {"compute", "backend", SPH_KEY_CHOICE, S(backend), 0, 0, 0, 0, CH(sph_backend_names), "", "cpu",
      "where the passes run: cpu (C with OpenMP), or gl (GLSL compute shaders, OpenGL 4.3 through EGL: the GPU, or "
      "Mesa's llvmpipe without one); sphlab run --backend overrides it"},
+    {"compute", "fuse_forces", SPH_KEY_CHOICE, S(fuse_forces), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: the pressure force and viscosity passes share one walk of each particle's neighbours (each neighbour's "
+     "data gathered once for both), where the vector loops run both (spiky pressure kernel, laplacian viscosity "
+     "form); otherwise, and off, the two passes walk the lists each"},
 
     {"fluid", "min", SPH_KEY_POINT, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_POINT, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},
@@ -216,3 +220,4 @@ const sph_key sph_scene_keys[] = {
 #undef O
 };
 const int sph_scene_key_count = (int)(sizeof sph_scene_keys / sizeof sph_scene_keys[0]);
+_Static_assert(sizeof sph_scene_keys / sizeof sph_scene_keys[0] <= SPH_MAX_KEYS, "SPH_MAX_KEYS: raise it");
