@@ -107,6 +107,8 @@ typedef struct bench_meas {
     double create_ms;               /* making the simulation (not timed in steps/s) */
     double others;                  /* cores other processes kept busy meanwhile (NAN if unknown) */
     int attempts;                   /* measurements made (bench_measure_retry) */
+    double peak_rss;                /* [B] the process's peak resident size so far (getrusage ru_maxrss),
+                                       taken after the timed steps: at a large N, this level's own */
 } bench_meas;
 
 /* Makes the simulation of size k, runs one warm-up step, then times
