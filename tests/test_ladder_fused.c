@@ -115,34 +115,6 @@ Test(ladder_fused, same_as_l7_3d)
     sph_sim_destroy(b);
 }
 
-/* L9: L8 with each neighbour's data read as one 64-byte record. */
-#define L9_KEYS "[compute]\nfuse_forces = on\npack_forces = on\n"
-
-Test(ladder_fused, l9_same_as_l7_2d)
-{
-    sph_sim *a = make(DAM_2D, ""), *b = make(DAM_2D, L9_KEYS);
-    compare(a, b, 40, "2D dam, L9");
-    sph_sim_destroy(a);
-    sph_sim_destroy(b);
-}
-
-Test(ladder_fused, l9_same_as_l7_3d)
-{
-    sph_sim *a = make(DAM_3D, ""), *b = make(DAM_3D, L9_KEYS);
-    compare(a, b, 40, "3D dam, L9");
-    sph_sim_destroy(a);
-    sph_sim_destroy(b);
-}
-
-Test(ladder_fused, l9_same_as_l7_wall_particles)
-{
-    sph_sim *a = make(DAM_2D, "[domain]\nwall_model = particles\n");
-    sph_sim *b = make(DAM_2D, "[domain]\nwall_model = particles\n" L9_KEYS);
-    compare(a, b, 40, "2D dam with wall particles, L9");
-    sph_sim_destroy(a);
-    sph_sim_destroy(b);
-}
-
 /* Wall particles: the viscosity reads their mirrored velocities (vel_visc). */
 Test(ladder_fused, same_as_l7_wall_particles)
 {

@@ -40,10 +40,6 @@ const bench_level bench_levels[] = {
     /* Past L7 (docs/performance.md, "Past L7"): fewer gathers per neighbour. */
     {"L8", "L7 + pressure and viscosity in one walk",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on", 0},
-    {"L9", "L8 + a neighbour's data as one 64-byte record",
-     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
-     "compute.pack_forces=on",
-     0},
 };
 const int bench_level_count = (int)(sizeof bench_levels / sizeof bench_levels[0]);
 

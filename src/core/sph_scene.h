@@ -224,7 +224,6 @@ typedef struct sph_scene_def {
     sph_onoff vector;    /* use the CPU's vector instructions (AVX-512) in the inner loops where written */
     sph_backend_kind backend; /* where the passes run: the CPU, or GL compute shaders (src/gpu/) */
     sph_onoff fuse_forces; /* pressure force and viscosity in one walk of the lists, where the forms allow */
-    sph_onoff pack_forces; /* with fuse_forces: each particle's data for that walk in one 64-byte record */
     float jitter;        /* [1] random offset of each particle, in spacings */
     uint32_t seed;       /* [1] random seed of the jitter */
     float interaction_radius;   /* [m] reach of the push/pull around the point */

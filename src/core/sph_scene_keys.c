@@ -195,10 +195,6 @@ const sph_key sph_scene_keys[] = {
      "on: the pressure force and viscosity passes share one walk of each particle's neighbours (each neighbour's "
      "data gathered once for both), where the vector loops run both (spiky pressure kernel, laplacian viscosity "
      "form); otherwise, and off, the two passes walk the lists each"},
-    {"compute", "pack_forces", SPH_KEY_CHOICE, S(pack_forces), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
-     "on (with fuse_forces = on): before the fused walk, each particle's position, velocity, volume, mass and "
-     "pressure terms are copied into one 64-byte record, and a block of 16 neighbours is read as 16 records "
-     "turned into 16 vectors instead of one gather per field (64 bytes more per particle); off: one gather per field"},
 
     {"fluid", "min", SPH_KEY_POINT, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_POINT, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},

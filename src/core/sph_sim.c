@@ -369,11 +369,6 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
         S->entries = alloc_zero(n, sizeof *S->entries, &ok);
         S->start = alloc_zero(S->table_size, sizeof *S->start, &ok);
         S->spos = alloc_zero(4 * (size_t)n, sizeof *S->spos, &ok);
-        if (def->fuse_forces == SPH_ON && def->pack_forces == SPH_ON) { /* 64-byte records on cache lines */
-            S->pack = aligned_alloc(64, 64 * (size_t)(n ? n : 1));
-            if (S->pack) memset(S->pack, 0, 64 * (size_t)(n ? n : 1));
-            else ok = false;
-        }
         if (def->sort == SPH_SORT_NONE) S->next = alloc_zero(n, sizeof *S->next, &ok);
         if (sim->in_pipeline[SPH_PASS_REORDER]) {
             S->cell_hash = alloc_zero(n, sizeof *S->cell_hash, &ok);
@@ -440,7 +435,6 @@ void sph_sim_destroy(sph_sim *sim)
     free(S->scratch);
     free(S->start);
     free(S->spos);
-    free(S->pack);
     free(S->cell_hash);
     free(S->next);
     free(S->spare_f);

@@ -77,7 +77,6 @@ typedef struct sph_search_data {
     uint32_t *start;      /* [table_size] offsets: first sorted entry of each key, or SPH_EMPTY */
     uint32_t *count;      /* [table_size + 1] counting sort's histogram */
     float *spos;          /* [4 n] [m] predicted positions in sorted order (x, y, z, 0), for the scan */
-    float *pack;          /* [16 n] [mixed] [compute] pack_forces: each particle's record for the fused force walk */
     bool reordered;       /* this step's reorder pass ran: particle e is sorted entry e */
     uint32_t *next;       /* [n] sort = none: next particle of the same key, or SPH_EMPTY */
     uint32_t *cell_hash;  /* [n] hash of each particle's cell, in particle order, after a reorder */

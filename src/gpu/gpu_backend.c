@@ -89,12 +89,12 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s:%d: [obstacle %s]: obstacles are not implemented by the GL backend yet (they are made of "
                         "wall particles, whose wall_state pass and force run on the CPU; use [compute] backend = cpu)",
                         def->file, def->obstacles[0].line, def->obstacles[0].name);
-    if (def->fuse_forces == SPH_ON || def->pack_forces == SPH_ON)
+    if (def->fuse_forces == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [compute] %s = on is not implemented by the GL backend (the fused walk is the "
+                        "%s: [compute] fuse_forces = on is not implemented by the GL backend (the fused walk is the "
                         "CPU's AVX-512 loop; its shaders run the pressure force and viscosity apart; accepted there: "
                         "off)",
-                        def->file, def->fuse_forces == SPH_ON ? "fuse_forces" : "pack_forces");
+                        def->file);
     if (sim->in_pipeline[SPH_PASS_WALL_STATE])
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [domain] wall_model = particles is not implemented by the GL backend yet (its wall "

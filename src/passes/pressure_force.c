@@ -151,11 +151,8 @@ static inline void pressure_one_avx512(const sph_sim *sim, const sph_kernel *k, 
  * and r = sqrt(r^2) taken once for both (9 gathers per block instead of 12
  * in the symmetric form). The arithmetic of each force is the separate
  * loops', operation for operation, so the result is the same to the bit. */
-/* The fields of a record ([compute] pack_forces), written before the walk. */
-enum { REC_X, REC_Y, REC_Z, REC_VOL, REC_VX, REC_VY, REC_VZ, REC_MASS, REC_PRHO2, REC_P };
-
 static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, const sph_kernel *kv, int i,
-                                     const int dim, const bool packed)
+                                     const int dim)
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
@@ -177,36 +174,14 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
     for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
         __mmask16 live = sph_simd_live(e, end);
         __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
-        __m512 r2, vol, vjx, vjy, vjz = zero, mass_j = zero, prho2_j = zero, p_j = zero;
-        if (packed) { /* the same values as the gathers below, in the same operations */
-            __m512 f[16];
-            sph_simd_records(S->pack, live, idx, f);
-            d3[0] = _mm512_sub_ps(xi[0], f[REC_X]);
-            d3[1] = _mm512_sub_ps(xi[1], f[REC_Y]);
-            d3[2] = dim == 3 ? _mm512_sub_ps(xi[2], f[REC_Z]) : zero;
-            r2 = _mm512_add_ps(_mm512_mul_ps(d3[0], d3[0]), _mm512_mul_ps(d3[1], d3[1]));
-            if (dim == 3) r2 = _mm512_add_ps(r2, _mm512_mul_ps(d3[2], d3[2]));
-            vol = f[REC_VOL], vjx = f[REC_VX], vjy = f[REC_VY], vjz = f[REC_VZ];
-            mass_j = f[REC_MASS], prho2_j = f[REC_PRHO2], p_j = f[REC_P];
-        } else {
-            r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
-            vol = sph_simd_gather(live, idx, P->vol);
-            vjx = sph_simd_gather(live, idx, vj[0]);
-            vjy = sph_simd_gather(live, idx, vj[1]);
-            if (dim == 3) vjz = sph_simd_gather(live, idx, vj[2]);
-            if (symmetric) {
-                mass_j = sph_simd_gather(live, idx, P->mass);
-                prho2_j = sph_simd_gather(live, idx, P->p_rho2);
-            } else {
-                p_j = sph_simd_gather(live, idx, P->p);
-            }
-        }
+        __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
+        __m512 vol = sph_simd_gather(live, idx, P->vol);
         /* viscosity first, from the true r^2 (the pressure term below moves coincident pairs) */
         __m512 lap = _mm512_max_ps(_mm512_fnmadd_ps(_mm512_sqrt_ps(r2), inv_hv, one), zero); /* 1 - r/h */
         __m512 cv = _mm512_mul_ps(vol, lap);
-        bx = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(vjx, vxi), bx, live);
-        by = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(vjy, vyi), by, live);
-        if (dim == 3) bz = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(vjz, vzi), bz, live);
+        bx = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(sph_simd_gather(live, idx, vj[0]), vxi), bx, live);
+        by = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(sph_simd_gather(live, idx, vj[1]), vyi), by, live);
+        if (dim == 3) bz = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(sph_simd_gather(live, idx, vj[2]), vzi), bz, live);
         __m512 dx = d3[0], dy = d3[1], dz = d3[2];
         __mmask16 close = _mm512_mask_cmp_ps_mask(live, r2, rmin2, _CMP_LT_OQ);
         if (close) { /* coincident pairs: pushed apart along x, as in pressure_one */
@@ -220,8 +195,10 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
         __m512 r = _mm512_sqrt_ps(r2);
         __m512 t = _mm512_max_ps(_mm512_sub_ps(h, r), zero);
         __m512 dw_over_r = _mm512_maskz_div_ps(live, _mm512_mul_ps(m3s, _mm512_mul_ps(t, t)), r);
-        __m512 coef = symmetric ? _mm512_mul_ps(mass_j, _mm512_add_ps(pi_over, prho2_j))
-                                : _mm512_mul_ps(_mm512_mul_ps(vol, half_over_rho), _mm512_add_ps(pi, p_j));
+        __m512 coef = symmetric ? _mm512_mul_ps(sph_simd_gather(live, idx, P->mass),
+                                                _mm512_add_ps(pi_over, sph_simd_gather(live, idx, P->p_rho2)))
+                                : _mm512_mul_ps(_mm512_mul_ps(vol, half_over_rho),
+                                                _mm512_add_ps(pi, sph_simd_gather(live, idx, P->p)));
         if (close) /* a coincident pair only repels */
             coef = _mm512_mask_mov_ps(coef, _mm512_mask_cmp_ps_mask(close, coef, zero, _CMP_LT_OQ), zero);
         __m512 f = _mm512_mul_ps(coef, dw_over_r);
@@ -243,30 +220,6 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
     P->acc_v[1][i] = s * _mm512_reduce_add_ps(by);
     if (dim == 3) P->acc_v[2][i] = s * _mm512_reduce_add_ps(bz);
 }
-
-/* The records of every particle, once per step (after the pressure and
- * wall_state passes): what a neighbour contributes to the fused walk. */
-static void write_records(sph_sim *sim)
-{
-    const sph_particles *P = &sim->P;
-    float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
-    const int n = (int)sim->n, dim = sim->dim;
-    float *rec = sim->S.pack;
-#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int j = 0; j < n; j++) {
-        float *o = rec + 16 * (size_t)j;
-        o[REC_X] = P->pred[0][j];
-        o[REC_Y] = P->pred[1][j];
-        o[REC_Z] = dim == 3 ? P->pred[2][j] : 0.0f;
-        o[REC_VOL] = P->vol[j];
-        o[REC_VX] = vj[0][j];
-        o[REC_VY] = vj[1][j];
-        o[REC_VZ] = dim == 3 ? vj[2][j] : 0.0f;
-        o[REC_MASS] = P->mass[j];
-        o[REC_PRHO2] = P->p_rho2[j];
-        o[REC_P] = P->p[j];
-    }
-}
 #endif
 
 /* Wall particles (wall_model = particles) get no acceleration: they never move. */
@@ -286,16 +239,13 @@ static void run(sph_sim *sim)
 #if SPH_HAVE_AVX512
     if (sph_forces_fused(sim)) { /* also writes acc_v; the viscosity pass then does nothing */
         const sph_kernel kv = sim->k_viscosity;
-        const bool packed = sim->S.pack != NULL;
-        if (packed) write_records(sim);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) {
             if (sph_is_wall(&sim->P, i)) {
                 for (int d = 0; d < dim; d++) sim->P.acc_p[d][i] = sim->P.acc_v[d][i] = 0.0f;
                 continue;
             }
-            if (packed) dim == 3 ? forces_one_avx512(sim, &k, &kv, i, 3, true) : forces_one_avx512(sim, &k, &kv, i, 2, true);
-            else dim == 3 ? forces_one_avx512(sim, &k, &kv, i, 3, false) : forces_one_avx512(sim, &k, &kv, i, 2, false);
+            dim == 3 ? forces_one_avx512(sim, &k, &kv, i, 3) : forces_one_avx512(sim, &k, &kv, i, 2);
         }
         return;
     }

@@ -40,43 +40,6 @@ static inline __m512 sph_simd_offsets(const sph_particles *P, __mmask16 live, __
     return dim == 3 ? _mm512_add_ps(r2, _mm512_mul_ps(d[2], d[2])) : r2;
 }
 
-/* The 16-float records of 16 particles (idx; the live lanes, zeros in the
- * others), turned into 16 vectors: f[k] holds field k of every lane. One
- * 64-byte load per neighbour and a 4-stage transpose (64 shuffles) in place
- * of one gather per field. */
-static inline void sph_simd_records(const float *rec, __mmask16 live, __m512i idx, __m512 f[16])
-{
-    uint32_t at[16];
-    _mm512_storeu_si512((void *)at, idx);
-    __m512 t[16], u[16];
-    for (int l = 0; l < 16; l++)
-        f[l] = (live >> l) & 1 ? _mm512_load_ps(rec + 16 * (size_t)at[l]) : _mm512_setzero_ps();
-    for (int k = 0; k < 8; k++) { /* pairs of rows: t[2k + m], 128-bit lane L: fields 4L + 2m, 4L + 2m + 1 */
-        t[2 * k] = _mm512_unpacklo_ps(f[2 * k], f[2 * k + 1]);
-        t[2 * k + 1] = _mm512_unpackhi_ps(f[2 * k], f[2 * k + 1]);
-    }
-    for (int k = 0; k < 4; k++) { /* u[4k + m], lane L: field 4L + m of rows 4k .. 4k + 3 */
-        const __m512d a = _mm512_castps_pd(t[4 * k]), b = _mm512_castps_pd(t[4 * k + 1]);
-        const __m512d c = _mm512_castps_pd(t[4 * k + 2]), d = _mm512_castps_pd(t[4 * k + 3]);
-        u[4 * k] = _mm512_castpd_ps(_mm512_unpacklo_pd(a, c));
-        u[4 * k + 1] = _mm512_castpd_ps(_mm512_unpackhi_pd(a, c));
-        u[4 * k + 2] = _mm512_castpd_ps(_mm512_unpacklo_pd(b, d));
-        u[4 * k + 3] = _mm512_castpd_ps(_mm512_unpackhi_pd(b, d));
-    }
-    for (int m = 0; m < 4; m++) { /* lanes 0, 2 (0x88) or 1, 3 (0xDD) of two row groups */
-        t[m] = _mm512_shuffle_f32x4(u[m], u[4 + m], 0x88);
-        t[4 + m] = _mm512_shuffle_f32x4(u[m], u[4 + m], 0xDD);
-        t[8 + m] = _mm512_shuffle_f32x4(u[8 + m], u[12 + m], 0x88);
-        t[12 + m] = _mm512_shuffle_f32x4(u[8 + m], u[12 + m], 0xDD);
-    }
-    for (int m = 0; m < 4; m++) {
-        f[m] = _mm512_shuffle_f32x4(t[m], t[8 + m], 0x88);
-        f[8 + m] = _mm512_shuffle_f32x4(t[m], t[8 + m], 0xDD);
-        f[4 + m] = _mm512_shuffle_f32x4(t[4 + m], t[12 + m], 0x88);
-        f[12 + m] = _mm512_shuffle_f32x4(t[4 + m], t[12 + m], 0xDD);
-    }
-}
-
 /* A particle's position broadcast to every lane (z = 0 in 2D). */
 static inline void sph_simd_centre(const sph_particles *P, int i, const int dim, __m512 xi[3])
 {
