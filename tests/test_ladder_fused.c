@@ -115,6 +115,28 @@ Test(ladder_fused, same_as_l7_3d)
     sph_sim_destroy(b);
 }
 
+/* L9: L8 with the first thread's lists built in place. */
+#define L9_KEYS "[compute]\nfuse_forces = on\n[search]\nlists_in_place = on\n"
+
+Test(ladder_fused, l9_same_as_l7_2d)
+{
+    sph_sim *a = make(DAM_2D, ""), *b = make(DAM_2D, L9_KEYS);
+    compare(a, b, 40, "2D dam, L9");
+    sph_sim_destroy(a);
+    sph_sim_destroy(b);
+}
+
+Test(ladder_fused, l9_same_as_l7_3d)
+{
+    sph_sim *a = make(DAM_3D, ""), *b = make(DAM_3D, L9_KEYS);
+    compare(a, b, 40, "3D dam, L9");
+    /* the first thread kept no buffer of its own: its rows were written in place */
+    cr_assert_null(b->S.tbuf[0], "thread 0 built its lists in a buffer of its own");
+    cr_assert_not_null(a->S.tbuf[0]);
+    sph_sim_destroy(a);
+    sph_sim_destroy(b);
+}
+
 /* Wall particles: the viscosity reads their mirrored velocities (vel_visc). */
 Test(ladder_fused, same_as_l7_wall_particles)
 {

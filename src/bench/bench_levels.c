@@ -40,6 +40,10 @@ const bench_level bench_levels[] = {
     /* Past L7 (docs/performance.md, "Past L7"): fewer gathers per neighbour. */
     {"L8", "L7 + pressure and viscosity in one walk",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on", 0},
+    {"L9", "L8 + lists built in place (one copy less)",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
+     "search.lists_in_place=on",
+     0},
 };
 const int bench_level_count = (int)(sizeof bench_levels / sizeof bench_levels[0]);
 

@@ -89,6 +89,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s:%d: [obstacle %s]: obstacles are not implemented by the GL backend yet (they are made of "
                         "wall particles, whose wall_state pass and force run on the CPU; use [compute] backend = cpu)",
                         def->file, def->obstacles[0].line, def->obstacles[0].name);
+    if (def->lists_in_place == SPH_ON)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [search] lists_in_place = on is not implemented by the GL backend (its passes walk the "
+                        "cells and build no lists; accepted there: off)",
+                        def->file);
     if (def->fuse_forces == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [compute] fuse_forces = on is not implemented by the GL backend (the fused walk is the "
