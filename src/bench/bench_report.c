@@ -320,10 +320,11 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
             if (!r->at_ok) continue;
             if (r->at.pairs > 0)
                 fprintf(out, "%-5s %12.0f %10.3f %16.3g %10.3f %16.3g %10.0f\n", bench_levels[o->sel[s]].name,
-                        r->at.pairs, r->search_ms, r->search_rate, r->force_ms, r->force_rate, r->at.peak_rss / r->at.n);
+                        r->at.pairs, r->search_ms, r->search_rate, r->force_ms, r->force_rate,
+                        r->at.peak_rss / r->at.n);
             else /* a GL level: no lists, its passes walk the cells */
-                fprintf(out, "%-5s %12s %10.3f %16s %10.3f %16s %10.0f\n", bench_levels[o->sel[s]].name, "-", r->search_ms,
-                        "-", r->force_ms, "-", r->at.peak_rss / r->at.n);
+                fprintf(out, "%-5s %12s %10.3f %16s %10.3f %16s %10.0f\n", bench_levels[o->sel[s]].name, "-",
+                        r->search_ms, "-", r->force_ms, "-", r->at.peak_rss / r->at.n);
         }
         fprintf(out, "search: hash, sort, reorder, offsets, neighbours; forces: density, pressure_force, viscosity\n"
                "(GL levels build no lists: density and the forces walk the cells themselves, so no pair count)\n"
