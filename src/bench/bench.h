@@ -106,6 +106,8 @@ typedef struct bench_meas {
     double others;                  /* cores other processes kept busy meanwhile (NAN if unknown) */
     int attempts;                   /* measurements made (bench_measure_retry) */
     const char *timing;             /* a backend's way of timing passes (sph_backend.timing); NULL on the CPU */
+    double peak_rss;                /* [B] the process's peak resident size so far (getrusage ru_maxrss),
+                                       taken after the timed steps: at a large N, this level's own */
 } bench_meas;
 
 /* Makes the simulation of size k, runs one warm-up step, then times

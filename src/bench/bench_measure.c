@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "bench.h"
 #include "gpu.h"
@@ -84,6 +85,8 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
                      : sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start ? (double)sim->S.nbr_start[sim->n]
                                                                                  : 0;
     }
+    struct rusage ru;
+    out->peak_rss = getrusage(RUSAGE_SELF, &ru) == 0 ? (double)ru.ru_maxrss * 1024.0 : NAN; /* ru_maxrss: KiB */
     free(rate);
     free(step_ms);
     free(pass_ms);

@@ -43,7 +43,7 @@ static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *r
     fprintf(f, "level,description,backend,threads,max_n,capped,steps_per_s_at_max,speedup,n_at,ms_per_step,pairs_per_step,"
                "search_ms,force_ms,search_pairs_per_s_core,force_pairs_per_s_core,check,check_ref,check_n,sets_differ,"
                "edge_pairs,max_dx_m,max_dv_m_s,max_drho,check_at_ref,check_at_n,sets_differ_at,edge_pairs_at,"
-               "max_dx_at_m,max_dv_at_m_s,max_drho_at,others_cores");
+               "max_dx_at_m,max_dv_at_m_s,max_drho_at,others_cores,peak_rss_bytes_per_particle");
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (pass_used[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
     fputc('\n', f);
@@ -85,6 +85,7 @@ static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *r
         bench_csv_num(f, r->large.done ? r->large.dv : NAN, "%.3g");
         bench_csv_num(f, r->large.done ? r->large.drho : NAN, "%.3g");
         bench_csv_num(f, r->others, "%.3f");
+        bench_csv_num(f, r->at_ok && r->at.n ? r->at.peak_rss / r->at.n : NAN, "%.1f");
         for (int p = 0; p < SPH_PASS_COUNT; p++)
             if (pass_used[p]) bench_csv_num(f, r->at_ok ? r->at.pass_ms[p] : NAN, "%.6g");
         fputc('\n', f);
@@ -165,6 +166,7 @@ static bool json_level(cJSON *levels, const bench_opts *o, const level_result *r
     ok &= json_fixed(lv, "n_at", r->at_ok ? (double)r->at.n : NAN, 0);
     ok &= sph_json_add_num(lv, "ms_per_step", r->at_ok ? r->at.ms_step : NAN, 6);
     ok &= json_fixed(lv, "pairs_per_step", r->at_ok ? r->at.pairs : NAN, 0);
+    ok &= json_fixed(lv, "peak_rss_bytes_per_particle", r->at_ok && r->at.n ? r->at.peak_rss / r->at.n : NAN, 1);
     ok &= sph_json_add_num(lv, "search_pairs_per_s_core", r->at_ok ? r->search_rate : NAN, 4);
     ok &= sph_json_add_num(lv, "force_pairs_per_s_core", r->at_ok ? r->force_rate : NAN, 4);
     ok &= json_fixed(lv, "other_processes_cores", r->others, 3);
@@ -315,20 +317,23 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
                "ms/step and passes: medians at N = %s; others: cores that other processes kept busy meanwhile\n",
                fps, nat);
         fprintf(out, "\nwhere the time goes at N = %s (pairs: neighbour-list entries per step, i->j and j->i):\n", nat);
-        fprintf(out, "%-5s %12s %10s %16s %10s %16s\n", "level", "pairs", "search ms", "pairs/s/core", "forces ms",
-               "pairs/s/core");
+        fprintf(out, "%-5s %12s %10s %16s %10s %16s %10s\n", "level", "pairs", "search ms", "pairs/s/core", "forces ms",
+               "pairs/s/core", "peak B/N");
         for (int s = 0; s < o->nsel; s++) {
             const level_result *r = &res[s];
             if (!r->at_ok) continue;
             if (r->at.pairs > 0)
-                fprintf(out, "%-5s %12.0f %10.3f %16.3g %10.3f %16.3g\n", bench_levels[o->sel[s]].name, r->at.pairs,
-                       r->search_ms, r->search_rate, r->force_ms, r->force_rate);
+                fprintf(out, "%-5s %12.0f %10.3f %16.3g %10.3f %16.3g %10.0f\n", bench_levels[o->sel[s]].name,
+                        r->at.pairs, r->search_ms, r->search_rate, r->force_ms, r->force_rate,
+                        r->at.peak_rss / r->at.n);
             else /* a GL level: no lists, its passes walk the cells */
-                fprintf(out, "%-5s %12s %10.3f %16s %10.3f %16s\n", bench_levels[o->sel[s]].name, "-", r->search_ms, "-",
-                       r->force_ms, "-");
+                fprintf(out, "%-5s %12s %10.3f %16s %10.3f %16s %10.0f\n", bench_levels[o->sel[s]].name, "-",
+                        r->search_ms, "-", r->force_ms, "-", r->at.peak_rss / r->at.n);
         }
         fprintf(out, "search: hash, sort, reorder, offsets, neighbours; forces: density, pressure_force, viscosity\n"
-               "(GL levels build no lists: density and the forces walk the cells themselves, so no pair count)\n");
+               "(GL levels build no lists: density and the forces walk the cells themselves, so no pair count)\n"
+               "peak B/N: the process's peak resident size (getrusage) over N, after the level's timed steps: a\n"
+               "bound on the level's bytes per particle (it includes what earlier levels and checks touched)\n");
         fprintf(out, "\nchecks: neighbour sets identical after 1 step (a pair within %g h of r = h is rounding's call and\n"
                "counted apart: edge pairs), and after %d steps positions within %g m, velocities within %g m/s,\n"
                "densities within %g (relative), particles matched by id; against %s at N = %s",

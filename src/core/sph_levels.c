@@ -22,6 +22,13 @@ const sph_level sph_levels[] = {
      "search.method=hash search.sort=counting search.reorder=on search.vector=on", 0},
     {"L7", "dense grid: a stencil row is one run",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on", 0},
+    /* Past L7 (docs/performance.md, "Past L7"): fewer gathers per neighbour. */
+    {"L8", "L7 + pressure and viscosity in one walk",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on", 0},
+    {"L9", "L8 + lists built in place (one copy less)",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
+     "search.lists_in_place=on",
+     0},
     /* The seed's GPU steps: the passes as GLSL compute shaders (src/gpu/), on
      * whatever OpenGL 4.3 device EGL gives (llvmpipe without a GPU). */
     {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0},

@@ -237,7 +237,9 @@ typedef struct sph_scene_def {
     uint32_t table_size; /* [1] hash table size; 0: the particle count, as in the seed */
     sph_onoff reorder;   /* store the particles in cell order after the sort (for memory locality) */
     sph_onoff vector;    /* use the CPU's vector instructions (AVX-512) in the inner loops where written */
+    sph_onoff lists_in_place; /* the first thread builds its lists straight into the joined array */
     sph_backend_kind backend; /* where the passes run: the CPU, or GL compute shaders (src/gpu/) */
+    sph_onoff fuse_forces; /* pressure force and viscosity in one walk of the lists, where the forms allow */
     float jitter;        /* [1] random offset of each particle, in spacings */
     uint32_t seed;       /* [1] random seed of the jitter */
     float interaction_radius;   /* [m] reach of the push/pull around the point */

@@ -206,10 +206,18 @@ const sph_key sph_scene_keys[] = {
     {"search", "vector", SPH_KEY_CHOICE, S(vector), 0, 0, 0, 0, CH(sph_onoff_names), "", "on",
      "on: inner loops written with the CPU's vector instructions (AVX-512, 16 floats at a time) use them, where the "
      "build has them; off: plain scalar loops"},
+    {"search", "lists_in_place", SPH_KEY_CHOICE, S(lists_in_place), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: the first thread writes its particles' neighbour lists straight into the joined array the other passes "
+     "read, instead of into a buffer of its own that is then copied there (the same lists, one copy less of the "
+     "first thread's share in memory and in time); off: every thread builds in its own buffer"},
 
     {"compute", "backend", SPH_KEY_CHOICE, S(backend), 0, 0, 0, 0, CH(sph_backend_names), "", "cpu",
      "where the passes run: cpu (C with OpenMP), or gl (GLSL compute shaders, OpenGL 4.3 through EGL: the GPU, or "
      "Mesa's llvmpipe without one); sphlab run --backend overrides it"},
+    {"compute", "fuse_forces", SPH_KEY_CHOICE, S(fuse_forces), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: the pressure force and viscosity passes share one walk of each particle's neighbours (each neighbour's "
+     "data gathered once for both), where the vector loops run both (spiky pressure kernel, laplacian viscosity "
+     "form); otherwise, and off, the two passes walk the lists each"},
 
     {"fluid", "min", SPH_KEY_POINT, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_POINT, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},

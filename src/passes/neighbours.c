@@ -335,7 +335,9 @@ static void run(sph_sim *sim)
 #endif
         uint32_t lo = (uint32_t)((uint64_t)n * (uint64_t)t / (uint64_t)nt);
         uint32_t hi = (uint32_t)((uint64_t)n * (uint64_t)(t + 1) / (uint64_t)nt);
-        list l = {S->tbuf[t], 0, S->tcap[t]};
+        /* in place: thread 0's rows start the joined array, so it builds there */
+        const bool direct = sim->def.lists_in_place == SPH_ON && t == 0;
+        list l = direct ? (list){S->nbr, 0, S->nbr_cap} : (list){S->tbuf[t], 0, S->tcap[t]};
         if (S->reordered) {
             const bool periodic = sim->period[0] > 0 || sim->period[1] > 0 || sim->period[2] > 0;
             if (sim->dim == 2)
@@ -348,8 +350,13 @@ static void run(sph_sim *sim)
                 S->nbr_start[i + 1] = (uint32_t)l.len; /* local end of row i, made global below */
             }
         }
-        S->tbuf[t] = l.buf;
-        S->tcap[t] = l.cap;
+        if (direct) {
+            S->nbr = l.buf;
+            S->nbr_cap = l.cap;
+        } else {
+            S->tbuf[t] = l.buf;
+            S->tcap[t] = l.cap;
+        }
         base[t + 1] = l.len;
 #pragma omp barrier
 #pragma omp single
@@ -361,7 +368,7 @@ static void run(sph_sim *sim)
                 sph_memory_fail("%.3g neighbour pairs, more than the lists' 2^32", (double)base[nt]);
             if (base[nt] > S->nbr_cap) {
                 size_t cap = base[nt] + base[nt] / 4 + 1024;
-                uint32_t *b = realloc(S->nbr, cap * sizeof *b);
+                uint32_t *b = realloc(S->nbr, cap * sizeof *b); /* keeps thread 0's rows if built in place */
                 if (!b) {
                     char size[32];
                     sph_memory_fail("the neighbour lists could not grow to %s (%s)",
@@ -373,7 +380,7 @@ static void run(sph_sim *sim)
             S->nbr_start[0] = 0;
         }
         for (uint32_t i = lo; i < hi; i++) S->nbr_start[i + 1] += (uint32_t)base[t];
-        if (l.len) memcpy(S->nbr + base[t], l.buf, l.len * sizeof *l.buf);
+        if (l.len && !direct) memcpy(S->nbr + base[t], l.buf, l.len * sizeof *l.buf);
     }
 }
 

@@ -56,4 +56,17 @@ static inline bool sph_simd_on(const sph_sim *sim)
            !sph_sim_periodic(sim);
 }
 
+/* Whether the pressure_force pass also computes the viscosity in its walk
+ * ([compute] fuse_forces = on): both passes in the pipeline, both in the
+ * forms whose vector loops exist (spiky pressure gradient, laplacian
+ * viscosity with the viscosity kernel), both switched on. The viscosity
+ * pass then only keeps its place; in every other case the two passes run apart. */
+static inline bool sph_forces_fused(const sph_sim *sim)
+{
+    return sim->def.fuse_forces == SPH_ON && sph_simd_on(sim) && sim->in_pipeline[SPH_PASS_PRESSURE_FORCE] &&
+           sim->enabled[SPH_PASS_PRESSURE_FORCE] && sim->in_pipeline[SPH_PASS_VISCOSITY] &&
+           sim->enabled[SPH_PASS_VISCOSITY] && sim->k_pressure.kind == SPH_KERNEL_SPIKY &&
+           sim->k_viscosity.kind == SPH_KERNEL_VISCOSITY && sim->def.viscosity_form == SPH_VFORM_LAPLACIAN;
+}
+
 #endif

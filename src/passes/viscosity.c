@@ -165,6 +165,7 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
     const bool periodic = sph_sim_periodic(sim);
+    if (sph_forces_fused(sim)) return; /* the pressure_force pass wrote acc_v in its walk */
 #if SPH_HAVE_AVX512
     if (sph_simd_on(sim) && k.kind == SPH_KERNEL_VISCOSITY && sim->def.viscosity_form == SPH_VFORM_LAPLACIAN) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
