@@ -104,6 +104,20 @@ grep -q "; 150 fluid nodes of the blocks fall inside obstacles and are not creat
 sph run "$oscene" --steps 2 --quiet --stats "$tmp/ob.csv" > "$tmp/ob.txt" 2>&1 && head -1 "$tmp/ob.csv" | grep -q ',obstacle_box_fx,obstacle_box_fy,obstacle_cylinder_fx,obstacle_cylinder_fy' && ok || { bad "stats: obstacle force columns"; cat "$tmp/ob.txt"; head -1 "$tmp/ob.csv"; }
 sph run scenes/validate/taylor-green.ini --backend gl --steps 1 > "$tmp/tvf.txt" 2>&1
 [ $? -eq 1 ] && grep -q "shifting = tvf is not implemented by the GL backend yet (its transport pass" "$tmp/tvf.txt" && ok || { bad "gl with shifting = tvf: want exit 1 and the reason"; cat "$tmp/tvf.txt"; }
+# Choices valid alone that do not work together are refused at load, naming both.
+S=lessons/scenes
+sph run $S/rest-2d.ini --set physics.shifting=tvf --steps 1 > "$tmp/combo.txt" 2>&1
+[ $? -eq 1 ] && grep -q "shifting = tvf needs a fluid that fills its domain (no free surface).*fill 67 % of the domain" "$tmp/combo.txt" && ok || { bad "tvf with a free surface: want exit 1 and the share"; cat "$tmp/combo.txt"; }
+sph run $S/dam-break-2d.ini --set "fluid column.initial_pressure=hydrostatic" --set physics.pressure_solver=dfsph --steps 1 > "$tmp/combo.txt" 2>&1
+[ $? -eq 1 ] && grep -q "initial_pressure = hydrostatic with \[physics\] pressure_solver = dfsph" "$tmp/combo.txt" && ok || { bad "hydrostatic start with dfsph: want exit 1"; cat "$tmp/combo.txt"; }
+sph run $S/study-taylor-green-2d.ini --set physics.pressure_solver=pcisph --steps 1 > "$tmp/combo.txt" 2>&1
+[ $? -eq 1 ] && grep -q "pressure_solver = pcisph does not run on a periodic domain yet" "$tmp/combo.txt" && ok || { bad "pcisph on a periodic domain: want exit 1"; cat "$tmp/combo.txt"; }
+sph run $S/dam-break-2d.ini --set "fluid column.field_pressure=on" --steps 1 > "$tmp/combo.txt" 2>&1
+[ $? -eq 1 ] && grep -q "field_pressure = on needs a velocity field with a pressure" "$tmp/combo.txt" && ok || { bad "field_pressure without a field: want exit 1"; cat "$tmp/combo.txt"; }
+sph lesson 10 --export --quick > "$tmp/combo.txt" 2>&1
+[ $? -eq 2 ] && grep -q "needs a value (DIR) before the option '--quick'" "$tmp/combo.txt" && [ ! -e ./--quick ] && ok || { bad "lesson --export --quick: want exit 2, no folder named --quick"; cat "$tmp/combo.txt"; }
+sph validate dam-brake > "$tmp/combo.txt" 2>&1
+[ $? -eq 2 ] && grep -q "did you mean dam-break?" "$tmp/combo.txt" && ok || { bad "validate dam-brake: want the nearest name"; cat "$tmp/combo.txt"; }
 sph run scenes/validate/hydrostatic.ini --backend gl --steps 1 --set physics.delta_form=fourtakas > "$tmp/fk.txt" 2>&1
 [ $? -eq 1 ] && grep -q "delta_form = fourtakas is not implemented by the GL backend" "$tmp/fk.txt" && ok || { bad "gl with delta_form = fourtakas: want exit 1 and the reason"; cat "$tmp/fk.txt"; }
 sph check "$oscene" --set domain.wall_model=volume > "$tmp/ob.txt" 2>&1

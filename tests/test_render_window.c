@@ -168,7 +168,7 @@ Test(render_window, lessons_first_frame_inspects_the_selected_cell, .timeout = 3
         int got = sscanf(c, "inspector: cell (%d, %d, %d)", &cell[0], &cell[1], &cell[2]);
         cr_assert(got >= 2, "%s", c);
         /* the lesson's scene, made as the window makes it: the cell of the particle's position */
-        char path[256];
+        char path[256 + 16]; /* room for the folder's name and "/lesson.ini" */
         snprintf(path, sizeof path, "lessons/0%d-", n);
         char cmd[300], dir[256] = "";
         snprintf(cmd, sizeof cmd, "ls -d %s* 2>/dev/null", path);

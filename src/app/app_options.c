@@ -427,6 +427,14 @@ int app_opts_parse(const app_cmd_spec *spec, int argc, char **argv, app_opts *o)
                     fprintf(stderr, "sphlab %s: %s needs a value (%s)\n", cmd, r->name, r->arg);
                     return 2;
                 }
+                /* "--export --quick": the next word is this command's option,
+                 * not a value (a value may start with one '-': a number) */
+                const char *next_v = NULL, *next = argv[i + 1];
+                if (next[0] == '-' && next[1] == '-' && opt_find(spec->cmd, next, &next_v)) {
+                    fprintf(stderr, "sphlab %s: %s needs a value (%s) before the option '%s'\n", cmd, r->name, r->arg,
+                            next);
+                    return 2;
+                }
                 v = argv[++i];
             }
             if (!opt_store(r, cmd, v, o)) return 2;

@@ -918,5 +918,7 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                         "term (with gamma = surface_tension_coefficient); list one of them",
                         origin_text(def, def->origin[key_index("physics", "surface_tension")].line, loc, sizeof loc));
     }
+    sph_error_code combos = sph_scene_check_combinations(def, err); /* sph_scene_combos.c */
+    if (combos != SPH_ERR_OK) return combos;
     return sph_scene_check_limits(def, err); /* precision, cells, memory (sph_scene_limits.c) */
 }

@@ -261,6 +261,9 @@ sph_error_code sph_scene_load_string(const char *text, const char *name, sph_sce
 sph_error_code sph_scene_set(sph_scene_def *def, const char *assignment, sph_error *err);
 /* Cross-checks the scene: blocks inside the domain, particle count, memory. */
 sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err);
+/* Choices valid alone that do not work together (sph_scene_combos.c); part of
+ * sph_scene_validate. */
+sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error *err);
 
 /* Number of particles the blocks make (a double: counts can be absurd before validation). */
 double sph_scene_particle_count(const sph_scene_def *def);

@@ -10,6 +10,7 @@
 #include "app.h"
 #include "plot.h"
 #include "validate_run.h"
+#include "sph_names.h"
 
 /* One row per problem; run NULL: not written yet. */
 const val_problem val_problems[] = {
@@ -161,6 +162,12 @@ int cmd_validate(int argc, char **argv)
         fprintf(stderr, "sphlab validate: unknown problem '%s'; known:", name);
         for (int i = 0; i < val_problem_count; i++) fprintf(stderr, " %s", val_problems[i].name);
         fprintf(stderr, ", list, all\n");
+        int best = -1, best_d = 1 << 30;
+        for (int i = 0; i < val_problem_count; i++) {
+            int d = sph_edit_distance(name, val_problems[i].name);
+            if (sph_name_near(name, val_problems[i].name) && d < best_d) best = i, best_d = d;
+        }
+        if (best >= 0) fprintf(stderr, "sphlab validate: did you mean %s?\n", val_problems[best].name);
         return VAL_USAGE;
     }
     if (!p->run) {
