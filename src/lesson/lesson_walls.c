@@ -361,9 +361,12 @@ static void lesson10_dam(lx *x)
     for (int m = 0; m < NMODEL; m++) {
         lx_md(x, "| %s |", models[m]);
         for (int k = 0; k < nw; k++) {
-            double v = NAN;
-            for (int i = 0; i < fc[m].n; i++)
-                if (fc[m].t[i] <= when[k] + 1e-9) v = fc[m].x[i];
+            double v = NAN; /* the front at when[k], interpolated between the samples around it */
+            for (int i = 0; i + 1 < fc[m].n && !isfinite(v); i++)
+                if (fc[m].t[i] <= when[k] && when[k] <= fc[m].t[i + 1]) {
+                    const double u = (when[k] - fc[m].t[i]) / fmax(fc[m].t[i + 1] - fc[m].t[i], 1e-300);
+                    v = fc[m].x[i] + u * (fc[m].x[i + 1] - fc[m].x[i]);
+                }
             lx_md(x, " %s |", ok[m] && isfinite(v) ? lx_fmt("%.3f m (%.2f a)", v, v / a) : "-");
         }
         lx_md(x, "%s\n", stop[m] ? " (stopped by the watchdog)" : "");

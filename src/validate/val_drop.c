@@ -180,9 +180,11 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
     const double form = dim == 3 ? 2.0 * sqrt(5.0) : 4.0; /* D_x = form sqrt(<x^2>) */
     o->D0 = form * sqrt(m2[0]);
     bool ok = true;
+    char ray[80] = "not measurable: the Laplace jump is not positive";
+    if (isfinite(o->T_ray)) snprintf(ray, sizeof ray, "%.4g s", o->T_ray);
     if (!c->quiet)
         fprintf(stderr, "  %s: sigma %.4g (inner pressure %.5g at R = %.4g m, %.5g at R = %.4g m); oscillating to t = %.3g s "
-                "(Rayleigh's period %.4g s)\n", label, o->sigma, o->p_in, o->R, o->p_small, o->R_small, t_end, o->T_ray);
+                "(Rayleigh's period %s)\n", label, o->sigma, o->p_in, o->R, o->p_small, o->R_small, t_end, ray);
     while (ok && sim->t < t_end - 1e-12) {
         double mx = -1e30, mn = 1e30;
         drop_shape(sim, spacing, cen, m2, &R);
@@ -206,8 +208,8 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
     for (size_t i = 0; i < o->dx.n; i++)
         if (!val_series_add(&o->ray, o->dx.x[i], o->D0 + a * sin(omega * o->dx.x[i]))) return false;
     if (!c->quiet)
-        fprintf(stderr, "  %s: R %.4g m, sigma %.4g (p_in %.4g at R %.4g, %.4g at R %.4g), period %.4g s, Rayleigh %.4g s\n",
-                label, o->R, o->sigma, o->p_in, o->R, o->p_small, o->R_small, o->T, o->T_ray);
+        fprintf(stderr, "  %s: R %.4g m, sigma %.4g (p_in %.4g at R %.4g, %.4g at R %.4g), period %.4g s, Rayleigh %s\n",
+                label, o->R, o->sigma, o->p_in, o->R, o->p_small, o->R_small, o->T, ray);
     return true;
 }
 
@@ -257,8 +259,12 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
         memset(&ch, 0, sizeof ch);
         snprintf(ch.title, sizeof ch.title, "%s oscillation (n = 2) against Rayleigh's period", p->name);
         for (int r = 0; r < done; r++)
-            val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: %+.1f%%", r ? "; " : "period error: ", c->res[r],
-                       100 * (obs[r].T / obs[r].T_ray - 1));
+            if (isfinite(obs[r].T_ray))
+                val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: %+.1f%%", r ? "; " : "period error: ", c->res[r],
+                           100 * (obs[r].T / obs[r].T_ray - 1));
+            else /* no sigma, so no reference: say so rather than print nan */
+                val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: sigma not measurable", r ? "; " : "period error: ",
+                           c->res[r]);
         snprintf(ch.xlabel, sizeof ch.xlabel, "t since the kick [s]");
         ch.np = 1;
         snprintf(ch.p[0].ylabel, sizeof ch.p[0].ylabel, "extent along x [m]");
@@ -267,7 +273,7 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
             snprintf(s->label, sizeof s->label, "R/%d", c->res[r]);
             s->x = obs[r].dx.x, s->y = obs[r].dx.y, s->n = obs[r].dx.n, s->style = r;
         }
-        if (done) {
+        if (done && isfinite(obs[done - 1].T_ray)) { /* Rayleigh's curve only where sigma was measured */
             const drop_obs *o = &obs[done - 1];
             plot_series *e = &ch.p[0].s[ch.p[0].n++];
             snprintf(e->label, sizeof e->label, "Rayleigh, R/%d's sigma", c->res[done - 1]);
