@@ -237,6 +237,7 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
         fprintf(stderr, "sphlab lesson: cannot find this program (/proc/self/exe): %s\n", strerror(errno));
         return 1;
     }
+    plot_out_command("lesson");
     if (!plot_out_dir(dir)) return 1;
     /* paths as given (they show in the commands and the logs); absolute
      * ones only where a command runs in another directory (lx_abs) */

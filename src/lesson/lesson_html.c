@@ -26,6 +26,11 @@ static void inl(FILE *o, const char *s, size_t n)
     size_t i = 0;
     while (i < n) {
         const char *c = s + i, *end = s + n;
+        if (*c == '\\' && c + 1 < end && c[1] == '|') { /* an escaped bar inside a table cell */
+            fputc('|', o);
+            i += 2;
+            continue;
+        }
         if (*c == '`') {
             const char *q = memchr(c + 1, '`', (size_t)(end - c - 1));
             if (q) {
@@ -84,11 +89,25 @@ static bool table_row(const char *line)
     return line[0] == '|';
 }
 
+/* The next cell border: a '|' not escaped as "\|" (Markdown's way to put a
+ * bar inside a cell). */
+static const char *next_bar(const char *p)
+{
+    for (; *p; p++) {
+        if (*p == '\\' && p[1] == '|') {
+            p++;
+            continue;
+        }
+        if (*p == '|') return p;
+    }
+    return NULL;
+}
+
 static void row(FILE *o, const char *line, const char *cell)
 {
     fputs("<tr>", o);
     const char *p = line + 1;
-    for (const char *q; (q = strchr(p, '|')); p = q + 1) {
+    for (const char *q; (q = next_bar(p)); p = q + 1) {
         const char *a = p, *b = q;
         while (a < b && *a == ' ') a++;
         while (b > a && b[-1] == ' ') b--;

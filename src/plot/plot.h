@@ -42,6 +42,8 @@ int plot_table_need(const plot_table *t, const char *name, const char *what);
 /* Makes DIR (and its parents) if it does not exist; message and false if it
  * cannot be made or is not a directory. */
 bool plot_out_dir(const char *dir);
+/* The command that --out errors name (default "plot"). */
+void plot_out_command(const char *name);
 /* Stages DIR/FILE: creates its temporary (so an unwritable DIR fails here,
  * before anything is drawn) and returns the temporary's path, or NULL with a
  * message. The path stays valid until plot_out_commit/abort. */

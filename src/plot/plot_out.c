@@ -10,12 +10,15 @@ enum { MAX_STAGED = 64 };
 
 static sph_out g_staged[MAX_STAGED];
 static int g_n;
+static const char *g_cmd = "plot"; /* the command named in messages */
+
+void plot_out_command(const char *name) { g_cmd = name; }
 
 bool plot_out_dir(const char *dir)
 {
     char err[SPH_IO_PATH + 200];
     if (sph_mkdir_p(dir, err, sizeof err)) return true;
-    fprintf(stderr, "sphlab plot: --out %s: %s\n", dir, err);
+    fprintf(stderr, "sphlab %s: --out %s: %s\n", g_cmd, dir, err);
     return false;
 }
 
@@ -24,22 +27,22 @@ bool plot_out_dir(const char *dir)
 static sph_out *stage(const char *dir, const char *file)
 {
     if (g_n == MAX_STAGED) {
-        fprintf(stderr, "sphlab plot: more than %d output files\n", MAX_STAGED);
+        fprintf(stderr, "sphlab %s: more than %d output files\n", g_cmd, MAX_STAGED);
         return NULL;
     }
     char final[SPH_IO_PATH], err[SPH_IO_PATH + 200];
     int len = snprintf(final, sizeof final, "%s/%s", dir, file);
     if (len < 0 || (size_t)len >= sizeof final) {
-        fprintf(stderr, "sphlab plot: %s/%s: path too long\n", dir, file);
+        fprintf(stderr, "sphlab %s: %s/%s: path too long\n", g_cmd, dir, file);
         return NULL;
     }
     for (int i = 0; i < g_n; i++)
         if (strcmp(g_staged[i].path, final) == 0) {
-            fprintf(stderr, "sphlab plot: %s: two outputs of this command have this name (see --name)\n", final);
+            fprintf(stderr, "sphlab %s: %s: two outputs of this command have this name (see --name)\n", g_cmd, final);
             return NULL;
         }
     if (!sph_out_open(&g_staged[g_n], final, err, sizeof err)) {
-        fprintf(stderr, "sphlab plot: %s\n", err);
+        fprintf(stderr, "sphlab %s: %s\n", g_cmd, err);
         return NULL;
     }
     return &g_staged[g_n++];
@@ -51,7 +54,7 @@ const char *plot_out_stage(const char *dir, const char *file)
     if (!o) return NULL;
     char err[SPH_IO_PATH + 200];
     if (!sph_out_release(o, err, sizeof err)) {
-        fprintf(stderr, "sphlab plot: %s\n", err);
+        fprintf(stderr, "sphlab %s: %s\n", g_cmd, err);
         g_n--;
         return NULL;
     }
@@ -72,11 +75,11 @@ bool plot_out_close_csv(FILE *f, const char *dir, const char *file)
         if (g_staged[i].f != f) continue;
         char err[SPH_IO_PATH + 200];
         if (sph_out_release(&g_staged[i], err, sizeof err)) return true;
-        fprintf(stderr, "sphlab plot: %s\n", err);
+        fprintf(stderr, "sphlab %s: %s\n", g_cmd, err);
         return false; /* the temporary is gone; plot_out_abort removes the others */
     }
     fclose(f);
-    fprintf(stderr, "sphlab plot: %s/%s: not a staged output\n", dir, file);
+    fprintf(stderr, "sphlab %s: %s/%s: not a staged output\n", g_cmd, dir, file);
     return false;
 }
 
@@ -85,7 +88,7 @@ bool plot_out_commit(bool quiet)
     char err[SPH_IO_PATH + 200];
     for (int i = 0; i < g_n; i++) {
         if (!sph_out_commit(&g_staged[i], err, sizeof err)) {
-            fprintf(stderr, "sphlab plot: %s\n", err);
+            fprintf(stderr, "sphlab %s: %s\n", g_cmd, err);
             for (int j = i + 1; j < g_n; j++) sph_out_abort(&g_staged[j]);
             g_n = 0;
             return false;

@@ -132,6 +132,7 @@ int study_estimate_write(const study_est_opts *opts, const double *h_list, int n
         nn = 3;
         memcpy(nv, d2, sizeof d2);
     }
+    plot_out_command("estimate");
     if (out && !plot_out_dir(out)) return 1;
 
     static double err[MAX_LIST][MAX_LIST], bias[MAX_LIST];

@@ -134,6 +134,7 @@ int cmd_validate(int argc, char **argv)
     app_opts o;
     app_opts_init(&o);
     int rc = app_opts_parse(&spec, argc, argv, &o);
+    plot_out_command("validate");
     if (rc >= 0) return rc;
     if (o.n_pos == 0) {
         app_opts_usage_error(&spec, "name a problem (sphlab validate list names them)");

@@ -127,7 +127,10 @@ int val_verdict(const val_ctx *c, const val_problem *p, bool outputs_ok, bool pa
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    printf("validate %s: %s: %s\n", p->name, pass ? "PASS" : "FAIL", text);
+    printf("validate %s: %s: %s%s\n", p->name, pass ? "PASS" : "FAIL", text,
+           c->quick ? " [--quick: one small resolution and a short run, to try the command; the targets are meant "
+                      "for the default resolutions, so a FAIL here says little]"
+                    : "");
     fflush(stdout);
     return pass ? VAL_PASS : VAL_FAIL;
 }
