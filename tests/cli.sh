@@ -124,6 +124,8 @@ got=$(grep '^| particles |' "$tmp/l10/report.md" | tail -1 | sed 's/^| particles
 # the HTML report keeps an escaped bar inside its cell (lesson 10's wall-row header)
 sph lesson 10 --export "$tmp/l10h" --quick --quiet --format html > "$tmp/l10h.txt" 2>&1
 grep -q '<th>wall row: |p - rho0 g (H - y)| / rho0 g H</th><th>mean over the column</th>' "$tmp/l10h/report.html" && ! grep -q '\\|' "$tmp/l10h/report.html" && ok || { bad "lesson 10 html: an escaped bar split its cell"; cat "$tmp/l10h.txt"; }
+sph keys extra > "$tmp/keys.txt" 2>&1
+[ $? -eq 2 ] && grep -q "sphlab keys: takes no argument ('extra')" "$tmp/keys.txt" && ok || { bad "keys extra: want exit 2"; cat "$tmp/keys.txt"; }
 sph validate dam-brake > "$tmp/combo.txt" 2>&1
 [ $? -eq 2 ] && grep -q "did you mean dam-break?" "$tmp/combo.txt" && ok || { bad "validate dam-brake: want the nearest name"; cat "$tmp/combo.txt"; }
 sph run scenes/validate/hydrostatic.ini --backend gl --steps 1 --set physics.delta_form=fourtakas > "$tmp/fk.txt" 2>&1

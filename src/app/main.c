@@ -25,8 +25,10 @@ static void usage(FILE *f)
 
 int cmd_keys(int argc, char **argv)
 {
-    (void)argc;
-    (void)argv;
+    if (argc > 1 && strcmp(argv[1], "--help") != 0 && strcmp(argv[1], "-h") != 0) {
+        fprintf(stderr, "sphlab keys: takes no argument ('%s'); it prints every scene key\n", argv[1]);
+        return 2;
+    }
     /* each section once, in the order it first appears: the table may hold
      * a section's keys in more than one run (keys added at its end) */
     for (int i = 0; i < sph_scene_key_count; i++) {

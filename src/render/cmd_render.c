@@ -229,7 +229,8 @@ int cmd_render(int argc, char **argv)
             fprintf(stderr, "sphlab render: %s\n", err);
             ok = false;
         } else if (!quiet) {
-            printf("video %s: %u frames (%dx%d) at %d frames/s, %s\n", video_path, frame, vo.w, vo.h, fps, codec);
+            printf("video %s: %u frame%s (%dx%d) at %d frames/s, %s\n", video_path, frame, frame == 1 ? "" : "s",
+                   vo.w, vo.h, fps, codec);
         }
     }
     if (!quiet && frame && out)
