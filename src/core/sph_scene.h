@@ -259,6 +259,9 @@ sph_error_code sph_scene_load_string(const char *text, const char *name, sph_sce
 sph_error_code sph_scene_set(sph_scene_def *def, const char *assignment, sph_error *err);
 /* Cross-checks the scene: blocks inside the domain, particle count, memory. */
 sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err);
+/* Its first check (sph_scene.c, where the parser records the components):
+ * in a 3D scene every vector given has 3 components. */
+sph_error_code sph_scene_check_components(const sph_scene_def *def, sph_error *err);
 
 /* Number of particles the blocks make (a double: counts can be absurd before validation). */
 double sph_scene_particle_count(const sph_scene_def *def);
