@@ -163,6 +163,15 @@ static double line_height(void)
     return ht / (y1 - y0);
 }
 
+/* The bottom of the plot area: at least `frac` of the page, and room below
+ * the axis for the x-axis title written `disp` character heights under it
+ * (plmtex) and the title's own height. PLplot keeps the character height
+ * in mm whatever the page, so a short page needs a larger fraction. */
+static double bottom_room(double frac, double disp)
+{
+    return fmax(frac, (disp + 1.3) * line_height());
+}
+
 /* Visible characters of a PLplot string: #[0x...] and #gX count one, #u #d none. */
 static int visible_chars(const char *s)
 {
@@ -389,7 +398,7 @@ static void scale_label(char *dst, size_t cap, const char *label, int e)
 static void draw_lines(const void *chart)
 {
     const plot_lines *c = chart;
-    const double vx0 = 0.125, vx1 = 0.75, vy0 = 0.10, vy1 = 0.885, gap = 0.035;
+    const double vx0 = 0.125, vx1 = 0.75, vy0 = bottom_room(0.10, 3.2), vy1 = 0.885, gap = 0.035;
     int np = c->np > 0 ? c->np : 1;
     double ph = (vy1 - vy0 - gap * (np - 1)) / np;
 
@@ -476,7 +485,7 @@ static void draw_lines(const void *chart)
 static void draw_bars(const void *chart)
 {
     const plot_bars *c = chart;
-    const double vx0 = 0.20, vx1 = 0.955, vy0 = 0.11, vy1 = 0.875;
+    const double vx0 = 0.20, vx1 = 0.955, vy0 = bottom_room(0.11, 3.2), vy1 = 0.875;
     double vmax = 0;
     for (int i = 0; i < c->n; i++)
         if (isfinite(c->value[i])) vmax = fmax(vmax, c->value[i]);
@@ -516,7 +525,7 @@ static void draw_bars(const void *chart)
 static void draw_stack(const void *chart)
 {
     const plot_stack *c = chart;
-    const double vx0 = 0.11, vx1 = 0.74, vy0 = 0.10, vy1 = 0.885;
+    const double vx0 = 0.11, vx1 = 0.74, vy0 = bottom_room(0.10, 3.2), vy1 = 0.885;
     size_t n = c->n;
     double *base = calloc(n ? n : 1, sizeof *base);
     PLFLT *px = malloc((2 * n + 1) * sizeof *px), *py = malloc((2 * n + 1) * sizeof *py);
@@ -592,7 +601,7 @@ static range decades(const plot_loglog *c, bool x)
 static void draw_loglog(const void *chart)
 {
     const plot_loglog *c = chart;
-    const double vx0 = 0.11, vx1 = 0.66, vy0 = 0.11, vy1 = 0.875;
+    const double vx0 = 0.11, vx1 = 0.66, vy0 = bottom_room(0.11, 3.0), vy1 = 0.875;
     range xr = decades(c, true), yr = decades(c, false);
     plot_titles(c->title, c->subtitle);
     plvpor(vx0, vx1, vy0, vy1);
