@@ -464,7 +464,12 @@ static void draw_lines(const void *chart)
         plcol0(PLOT_FG);
         plot_width(1.6);
         pllsty(1);
-        plbox(p == c->np - 1 ? "bcnst" : "bcst", 0, 0, "bcnstv", 0, 0);
+        /* "f": fixed-point tick labels. The values are scaled above to
+         * [1e-2, 1e4), which fixed point writes in at most 6 characters;
+         * PLplot's own exponent (e.g. a range from just below 0 to 0.09)
+         * would go in the corner above the axis, over the panel above's
+         * lowest tick label or the y-axis title. */
+        plbox(p == c->np - 1 ? "bcnst" : "bcst", 0, 0, "bcnstvf", 0, 0);
         plot_width(1.0);
         plmtex("l", 5.2, 0.5, 0.5, ylabel);
         if (p == c->np - 1) plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
