@@ -603,11 +603,68 @@ static range decades(const plot_loglog *c, bool x)
     return r;
 }
 
+/* The numbers written beside points, so that one is not written over
+ * another (two runs of nearly the same cost and error). Boxes in world
+ * units: x0, x1, y0, y1. */
+enum { MAX_NUMBERS = 256 };
+typedef struct numbers {
+    double box[MAX_NUMBERS][4];
+    int n;
+    double dx, dy;   /* the gap between a point and its number */
+    double cw, ch;   /* a digit's width and height */
+} numbers;
+
+static numbers numbers_start(range xr, range yr, double vw, double vh, double scale)
+{
+    PLFLT def, ht, x0, x1, y0, y1;
+    plgchr(&def, &ht);
+    plgspa(&x0, &x1, &y0, &y1);
+    numbers n = {.dx = 0.012 * (xr.hi - xr.lo), .dy = 0.012 * (yr.hi - yr.lo)};
+    n.cw = 0.7 * def * scale / (x1 - x0) / vw * (xr.hi - xr.lo); /* as fit_scale's estimate */
+    n.ch = def * scale / (y1 - y0) / vh * (yr.hi - yr.lo);
+    return n;
+}
+
+static bool number_free(const numbers *n, const double b[4])
+{
+    for (int k = 0; k < n->n; k++)
+        if (b[0] < n->box[k][1] && n->box[k][0] < b[1] && b[2] < n->box[k][3] && n->box[k][2] < b[3]) return false;
+    return true;
+}
+
+/* Where to write s beside the point (x, y): up and to the right as always,
+ * unless a number already written is there; then below, then to the left,
+ * then further out. at: the reference point for plptex (left, middle). */
+static void number_place(numbers *n, double x, double y, const char *s, double at[2])
+{
+    double w = visible_chars(s) * n->cw, h = n->ch;
+    const double right = x + n->dx, left = x - n->dx - w;
+    const double cand[][2] = {{right, y + n->dy},         {right, y - n->dy - h},         {left, y + n->dy},
+                              {left, y - n->dy - h},      {right, y + n->dy + h},         {right, y - n->dy - 2 * h},
+                              {left, y + n->dy + h},      {left, y - n->dy - 2 * h}};
+    int pick = 0;
+    for (int k = 0; k < (int)(sizeof cand / sizeof *cand); k++) {
+        double b[4] = {cand[k][0], cand[k][0] + w, cand[k][1] - 0.5 * h, cand[k][1] + 0.5 * h};
+        if (number_free(n, b)) {
+            pick = k;
+            break;
+        }
+    }
+    at[0] = cand[pick][0];
+    at[1] = cand[pick][1];
+    if (n->n < MAX_NUMBERS) {
+        double *b = n->box[n->n++];
+        b[0] = at[0], b[1] = at[0] + w, b[2] = at[1] - 0.5 * h, b[3] = at[1] + 0.5 * h;
+    }
+}
+
 static void draw_loglog(const void *chart)
 {
     const plot_loglog *c = chart;
     const double vx0 = 0.11, vx1 = 0.66, vy0 = bottom_room(0.11, 3.0), vy1 = 0.875;
     range xr = decades(c, true), yr = decades(c, false);
+    static numbers nums; /* large: not on the stack */
+    nums = numbers_start(xr, yr, vx1 - vx0, vy1 - vy0, 0.62);
     plot_titles(c->title, c->subtitle);
     plvpor(vx0, vx1, vy0, vy1);
     plwind(xr.lo, xr.hi, yr.lo, yr.hi);
@@ -649,15 +706,16 @@ static void draw_loglog(const void *chart)
             plschr(0, s->filled ? 1.0 : 0.9);
             plstring(m, px, py, (s->filled ? marker_filled : marker)[s->style % 8]);
         }
-        if (s->numbers) { /* beside each point, up and to the right */
+        if (s->numbers) { /* beside each point: up and to the right, else where no other number is */
             plschr(0, 0.62);
             plcol0(PLOT_FG);
-            double dx = 0.012 * (xr.hi - xr.lo), dy = 0.012 * (yr.hi - yr.lo);
             for (int i = 0, j = 0; i < s->n; i++) {
                 if (!point_ok(s, i)) continue;
                 char num[16];
                 snprintf(num, sizeof num, "%d", s->numbers[i]);
-                plptex(px[j] + dx, py[j] + dy, 1, 0, 0.0, num);
+                double at[2];
+                number_place(&nums, px[j], py[j], num, at);
+                plptex(at[0], at[1], 1, 0, 0.0, num);
                 j++;
             }
         }
