@@ -7,7 +7,7 @@
  * are drawn beside the plot area, never over the data. The study's and the
  * bench's charts are drawn here too (log-log) or with the public pieces
  * (plot_page, plot_fill, plot_legend, ...), so that the tables below are
- * the only ones. */
+ * the only ones. The pages and their files (PNG, PDF, SVG) are plot_page.c. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -130,8 +130,11 @@ void plot_fill(int n, const double *x, const double *y, int style)
     }
 }
 
-static void setup_colours(void)
+/* Before plinit: the page's colour map, and the scale of the lengths
+ * PLplot keeps absolute (the PDF's page is half the PNG's). */
+void plot_style_start(double scale)
 {
+    g_scale = scale;
     plscmap0n(N_COLOURS);
     plscol0(PLOT_BG, 255, 255, 255);
     plscol0(PLOT_FG, 0, 0, 0);
@@ -743,119 +746,9 @@ static void draw_loglog(const void *chart)
     plot_legend(e, n, notes, c->nn, vx1 + 0.02, 0.992, vy1);
 }
 
-/* ---- devices and files ------------------------------------------------------ */
-
-static int on_plplot_exit(PLCHAR_VECTOR msg)
-{
-    fprintf(stderr, "sphlab plot: PLplot stopped: %s\n", msg ? msg : "");
-    plot_out_abort();
-    return 1;
-}
-
-static bool have_device(const char *name)
-{
-    const char *menu_a[64], *devs_a[64];
-    const char **menu = menu_a, **devs = devs_a;
-    int n = 64;
-    plgDevs(&menu, &devs, &n);
-    for (int i = 0; i < n; i++)
-        if (strcmp(devs[i], name) == 0) return true;
-    return false;
-}
-
-static void render(plot_draw_fn *draw, const void *chart, const char *dev, const char *file, int w, int h, double scale)
-{
-    g_scale = scale;
-    plsexit(on_plplot_exit);
-    plsdev(dev);
-    plsfnam(file);
-    plspage(0, 0, w, h, 0, 0);
-    setup_colours();
-    plinit();
-    pladv(0);
-    plschr(0, 1.0);
-    draw(chart);
-    plend();
-}
-
-/* cairo writes the time of day into the PDF as /CreationDate (D:YYYYMMDDHHMMSS...).
- * Overwrite those 14 digits in place (same length: the offsets stay valid). */
-static bool fix_pdf_date(const char *path)
-{
-    FILE *f = fopen(path, "r+b");
-    if (!f) return false;
-    static char buf[1 << 20];
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    buf[n] = '\0';
-    const char key[] = "/CreationDate (D:";
-    char *p = NULL;
-    for (size_t i = 0; i + sizeof key <= n; i++)
-        if (memcmp(buf + i, key, sizeof key - 1) == 0) p = buf + i + sizeof key - 1;
-    bool ok = true;
-    if (p && p + 14 <= buf + n) {
-        time_t when = 0;
-        const char *sde = getenv("SOURCE_DATE_EPOCH");
-        if (sde && *sde) when = (time_t)strtoll(sde, NULL, 10);
-        struct tm tm;
-        char date[32];
-        if (gmtime_r(&when, &tm) && strftime(date, sizeof date, "%Y%m%d%H%M%S", &tm) == 14) {
-            ok = fseek(f, (long)(p - buf), SEEK_SET) == 0 && fwrite(date, 1, 14, f) == 14;
-        }
-    }
-    ok &= fclose(f) == 0;
-    return ok;
-}
-
-static bool g_svg;
-void plot_set_svg(bool on) { g_svg = on; }
-
-bool plot_page(plot_draw_fn *draw, const void *chart, const char *dir, const char *base, int width, int height)
-{
-    for (int i = 0; i < (g_svg ? 3 : 2); i++) {
-        const char *dev = i == 2 ? "svgcairo" : i ? "pdfcairo" : "pngcairo";
-        if (!have_device(dev)) {
-            fprintf(stderr, "sphlab plot: PLplot has no %s driver (Debian: apt-get install plplot-driver-cairo)\n",
-                    dev);
-            return false;
-        }
-    }
-    char png[300], pdf[300];
-    snprintf(png, sizeof png, "%s.png", base);
-    snprintf(pdf, sizeof pdf, "%s.pdf", base);
-    const char *png_tmp = plot_out_stage(dir, png);
-    if (!png_tmp) return false;
-    const char *pdf_tmp = plot_out_stage(dir, pdf);
-    if (!pdf_tmp) return false;
-    render(draw, chart, "pngcairo", png_tmp, width, height, 1.0);
-    /* same layout on a page of half the pixel count in points: the PNG is the PDF at 144 dpi */
-    render(draw, chart, "pdfcairo", pdf_tmp, (width + 1) / 2, (height + 1) / 2, 0.5);
-    if (!fix_pdf_date(pdf_tmp)) {
-        fprintf(stderr, "sphlab plot: %s/%s: cannot finish the PDF\n", dir, pdf);
-        return false;
-    }
-    if (g_svg) {
-        char svg[300];
-        snprintf(svg, sizeof svg, "%s.svg", base);
-        const char *svg_tmp = plot_out_stage(dir, svg);
-        if (!svg_tmp) return false;
-        render(draw, chart, "svgcairo", svg_tmp, (width + 1) / 2, (height + 1) / 2, 0.5);
-    }
-    return true;
-}
-
 bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *base, int width, int height)
 {
     static plot_draw_fn *const draw[] = {
         [PLOT_LINES] = draw_lines, [PLOT_BARS] = draw_bars, [PLOT_STACK] = draw_stack, [PLOT_LOGLOG] = draw_loglog};
     return plot_page(draw[kind], chart, dir, base, width, height);
-}
-
-/* Under LeakSanitizer (`make asan`): fontconfig keeps its font cache, and
- * libltdl the PLplot driver it loaded, to the end of the process; neither is
- * a leak of sphlab's. LeakSanitizer calls this hook, if the binary defines
- * it, for its default suppressions; without the sanitizer it is never called. */
-const char *__lsan_default_suppressions(void);
-const char *__lsan_default_suppressions(void)
-{
-    return "leak:libfontconfig.so\nleak:libltdl.so\nleak:libcairo.so\nleak:libpango\nleak:libplplot.so\n";
 }
