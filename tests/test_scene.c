@@ -280,10 +280,10 @@ Test(scene, initial_pressure_hydrostatic_needs_gravity_without_a_ramp)
     cr_assert_eq(def.blocks[0].initial_pressure, SPH_INITP_NONE, "the default");
     EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\ninitial_pressure = hydrostatic\n[physics]\n"
                      "gravity_ramp = 0.3\n",
-               SPH_ERR_SCENE, "x.ini:10", "fluid b", "initial_pressure = hydrostatic", "gravity_ramp");
+               SPH_ERR_SCENE, "x.ini:13", "fluid b", "initial_pressure = hydrostatic", "gravity_ramp = 0.3 (at x.ini:15)");
     EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\ninitial_pressure = hydrostatic\n[physics]\n"
                      "gravity = 0 0\n",
-               SPH_ERR_SCENE, "x.ini:10", "fluid b", "no gravity");
+               SPH_ERR_SCENE, "x.ini:13", "fluid b", "no gravity");
     EXPECT_LIB(BASE2 "[fluid b]\nmin = 0.5 0.5\nmax = 0.7 0.7\ninitial_pressure = lithostatic\n", SPH_ERR_PARSE,
                "x.ini:13", "initial_pressure", "hydrostatic");
 }

@@ -264,6 +264,9 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err);
 /* Choices valid alone that do not work together (sph_scene_combos.c); part of
  * sph_scene_validate. */
 sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error *err);
+/* Its first check (sph_scene.c, where the parser records the components):
+ * in a 3D scene every vector given has 3 components. */
+sph_error_code sph_scene_check_components(const sph_scene_def *def, sph_error *err);
 
 /* Number of particles the blocks make (a double: counts can be absurd before validation). */
 double sph_scene_particle_count(const sph_scene_def *def);

@@ -97,6 +97,30 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
                                 sph_pressure_solver_names[def->pressure_solver],
                                 key_where(def, "physics", "pressure_solver", b, sizeof b));
     }
+    /* a hydrostatic start is the column at rest under the full gravity */
+    for (int k = 0; k < def->n_blocks; k++) {
+        if (def->blocks[k].initial_pressure != SPH_INITP_HYDROSTATIC) continue;
+        double g2 = 0;
+        for (int d = 0; d < def->dim; d++) g2 += (double)def->gravity[d] * def->gravity[d];
+        block_key_where(def, k, "initial_pressure", a, sizeof a);
+        if (!(def->effects & SPH_EFFECT(GRAVITY)) || g2 == 0)
+            return sph_fail(err, SPH_ERR_SCENE,
+                            "%s: [fluid %s] initial_pressure = hydrostatic: the scene has no gravity (add the effect "
+                            "gravity, or set initial_pressure = none)",
+                            a, def->blocks[k].name);
+        if (!pressure)
+            return sph_fail(err, SPH_ERR_SCENE,
+                            "%s: [fluid %s] initial_pressure = hydrostatic: the scene has no pressure effect (set "
+                            "initial_pressure = none)",
+                            a, def->blocks[k].name);
+        if (def->gravity_ramp > 0)
+            return sph_fail(err, SPH_ERR_SCENE,
+                            "%s: [fluid %s] initial_pressure = hydrostatic with [physics] gravity_ramp = %g (at %s): "
+                            "the ramp starts from no gravity, so the column would not be at rest; set one of them "
+                            "(initial_pressure = none, or gravity_ramp = 0)",
+                            a, def->blocks[k].name, (double)def->gravity_ramp,
+                            key_where(def, "physics", "gravity_ramp", b, sizeof b));
+    }
     /* field_pressure is the pressure of a velocity field: without one it would
      * do nothing, silently */
     for (int k = 0; k < def->n_blocks; k++)

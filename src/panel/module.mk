@@ -20,8 +20,8 @@ MOD_LIBS += $(shell pkg-config --libs imgui 2>/dev/null || echo -limgui) -lstdc+
 
 $(BUILD)/panel/%.o: src/panel/%.cpp src/panel/*.h src/core/*.h src/render/font.h | $(BUILD)/panel
 	$(PANEL_CXX) $(PANEL_CXXFLAGS) -Isrc/core -Isrc/render -Isrc/panel -c -o $@ $<
-$(BUILD)/render/cmd_view.o: src/panel/panel.h
-$(BUILD)/render/cmd_view.o: CORE_CFLAGS += -Isrc/panel
+$(BUILD)/render/cmd_view.o $(BUILD)/render/view_keys.o: src/panel/panel.h
+$(BUILD)/render/cmd_view.o $(BUILD)/render/view_keys.o: CORE_CFLAGS += -Isrc/panel
 
 $(BUILD)/panel:
 	mkdir -p $@

@@ -1,6 +1,6 @@
 # src/plot: `sphlab plot`, charts for a report through PLplot's cairo driver
 # (PNG and PDF). Included by the Makefile (-include src/*/module.mk).
-PLOT_SRC    := cmd_plot plot_csv plot_out plot_draw
+PLOT_SRC    := cmd_plot plot_csv plot_out plot_draw plot_page
 PLOT_CFLAGS := $(shell pkg-config --cflags plplot 2>/dev/null || echo -I/usr/include/plplot)
 PLOT_LIBS   := $(shell pkg-config --libs plplot 2>/dev/null || echo -lplplot)
 STB_CFLAGS  := $(shell pkg-config --cflags stb 2>/dev/null || echo -I/usr/include/stb)

@@ -1,7 +1,7 @@
 /* sphlab plot: charts for a report, drawn with PLplot (cairo driver) as PNG
  * and PDF, each beside the CSV that holds the data it shows.
  *
- * Four files:
+ * Five files:
  *   plot_csv.c   reads a CSV with a header line into columns of doubles;
  *   plot_out.c   stages output files (through the I/O layer's atomic writer, and
  *                renamed only when every file of the command is complete);
@@ -9,6 +9,8 @@
  *                stacked areas, log-log), their black-and-white-safe styles,
  *                and the pieces a chart drawn elsewhere (the bench ladder)
  *                builds on, so every chart of sphlab has one look;
+ *   plot_page.c  the pages: PLplot's cairo devices drawing a chart into the
+ *                PNG, PDF (fixed date) and SVG files;
  *   cmd_plot.c   the subcommands: passes, series, kernel, kernels. */
 #ifndef SPH_PLOT_H
 #define SPH_PLOT_H
@@ -165,6 +167,10 @@ enum { PLOT_BG, PLOT_FG, PLOT_GRID, PLOT_REF, PLOT_CURVE, PLOT_FILL = PLOT_CURVE
  * plot_chart does (same sizes, staging and fixed PDF date). */
 typedef void plot_draw_fn(const void *chart);
 bool plot_page(plot_draw_fn *draw, const void *chart, const char *dir, const char *base, int width, int height);
+
+/* Before plinit (plot_page.c): the colour map and the scale of absolute
+ * lengths (1 for the PNG, 0.5 for the PDF and SVG pages). */
+void plot_style_start(double scale);
 
 /* Within a page being drawn: */
 void plot_width(double w);  /* line width, scaled with the page */

@@ -7,7 +7,7 @@
  * are drawn beside the plot area, never over the data. The study's and the
  * bench's charts are drawn here too (log-log) or with the public pieces
  * (plot_page, plot_fill, plot_legend, ...), so that the tables below are
- * the only ones. */
+ * the only ones. The pages and their files (PNG, PDF, SVG) are plot_page.c. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -130,8 +130,11 @@ void plot_fill(int n, const double *x, const double *y, int style)
     }
 }
 
-static void setup_colours(void)
+/* Before plinit: the page's colour map, and the scale of the lengths
+ * PLplot keeps absolute (the PDF's page is half the PNG's). */
+void plot_style_start(double scale)
 {
+    g_scale = scale;
     plscmap0n(N_COLOURS);
     plscol0(PLOT_BG, 255, 255, 255);
     plscol0(PLOT_FG, 0, 0, 0);
@@ -161,6 +164,15 @@ static double line_height(void)
     plgchr(&def, &ht);
     plgspa(&x0, &x1, &y0, &y1);
     return ht / (y1 - y0);
+}
+
+/* The bottom of the plot area: at least `frac` of the page, and room below
+ * the axis for the x-axis title written `disp` character heights under it
+ * (plmtex) and the title's own height. PLplot keeps the character height
+ * in mm whatever the page, so a short page needs a larger fraction. */
+static double bottom_room(double frac, double disp)
+{
+    return fmax(frac, (disp + 1.3) * line_height());
 }
 
 /* Visible characters of a PLplot string: #[0x...] and #gX count one, #u #d none. */
@@ -389,7 +401,7 @@ static void scale_label(char *dst, size_t cap, const char *label, int e)
 static void draw_lines(const void *chart)
 {
     const plot_lines *c = chart;
-    const double vx0 = 0.125, vx1 = 0.75, vy0 = 0.10, vy1 = 0.885, gap = 0.035;
+    const double vx0 = 0.125, vx1 = 0.75, vy0 = bottom_room(0.10, 3.2), vy1 = 0.885, gap = 0.035;
     int np = c->np > 0 ? c->np : 1;
     double ph = (vy1 - vy0 - gap * (np - 1)) / np;
 
@@ -455,7 +467,12 @@ static void draw_lines(const void *chart)
         plcol0(PLOT_FG);
         plot_width(1.6);
         pllsty(1);
-        plbox(p == c->np - 1 ? "bcnst" : "bcst", 0, 0, "bcnstv", 0, 0);
+        /* "f": fixed-point tick labels. The values are scaled above to
+         * [1e-2, 1e4), which fixed point writes in at most 6 characters;
+         * PLplot's own exponent (e.g. a range from just below 0 to 0.09)
+         * would go in the corner above the axis, over the panel above's
+         * lowest tick label or the y-axis title. */
+        plbox(p == c->np - 1 ? "bcnst" : "bcst", 0, 0, "bcnstvf", 0, 0);
         plot_width(1.0);
         plmtex("l", 5.2, 0.5, 0.5, ylabel);
         if (p == c->np - 1) plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
@@ -476,7 +493,7 @@ static void draw_lines(const void *chart)
 static void draw_bars(const void *chart)
 {
     const plot_bars *c = chart;
-    const double vx0 = 0.20, vx1 = 0.955, vy0 = 0.11, vy1 = 0.875;
+    const double vx0 = 0.20, vx1 = 0.955, vy0 = bottom_room(0.11, 3.2), vy1 = 0.875;
     double vmax = 0;
     for (int i = 0; i < c->n; i++)
         if (isfinite(c->value[i])) vmax = fmax(vmax, c->value[i]);
@@ -516,7 +533,7 @@ static void draw_bars(const void *chart)
 static void draw_stack(const void *chart)
 {
     const plot_stack *c = chart;
-    const double vx0 = 0.11, vx1 = 0.74, vy0 = 0.10, vy1 = 0.885;
+    const double vx0 = 0.11, vx1 = 0.74, vy0 = bottom_room(0.10, 3.2), vy1 = 0.885;
     size_t n = c->n;
     double *base = calloc(n ? n : 1, sizeof *base);
     PLFLT *px = malloc((2 * n + 1) * sizeof *px), *py = malloc((2 * n + 1) * sizeof *py);
@@ -589,11 +606,68 @@ static range decades(const plot_loglog *c, bool x)
     return r;
 }
 
+/* The numbers written beside points, so that one is not written over
+ * another (two runs of nearly the same cost and error). Boxes in world
+ * units: x0, x1, y0, y1. */
+enum { MAX_NUMBERS = 256 };
+typedef struct numbers {
+    double box[MAX_NUMBERS][4];
+    int n;
+    double dx, dy;   /* the gap between a point and its number */
+    double cw, ch;   /* a digit's width and height */
+} numbers;
+
+static numbers numbers_start(range xr, range yr, double vw, double vh, double scale)
+{
+    PLFLT def, ht, x0, x1, y0, y1;
+    plgchr(&def, &ht);
+    plgspa(&x0, &x1, &y0, &y1);
+    numbers n = {.dx = 0.012 * (xr.hi - xr.lo), .dy = 0.012 * (yr.hi - yr.lo)};
+    n.cw = 0.7 * def * scale / (x1 - x0) / vw * (xr.hi - xr.lo); /* as fit_scale's estimate */
+    n.ch = def * scale / (y1 - y0) / vh * (yr.hi - yr.lo);
+    return n;
+}
+
+static bool number_free(const numbers *n, const double b[4])
+{
+    for (int k = 0; k < n->n; k++)
+        if (b[0] < n->box[k][1] && n->box[k][0] < b[1] && b[2] < n->box[k][3] && n->box[k][2] < b[3]) return false;
+    return true;
+}
+
+/* Where to write s beside the point (x, y): up and to the right as always,
+ * unless a number already written is there; then below, then to the left,
+ * then further out. at: the reference point for plptex (left, middle). */
+static void number_place(numbers *n, double x, double y, const char *s, double at[2])
+{
+    double w = visible_chars(s) * n->cw, h = n->ch;
+    const double right = x + n->dx, left = x - n->dx - w;
+    const double cand[][2] = {{right, y + n->dy},         {right, y - n->dy - h},         {left, y + n->dy},
+                              {left, y - n->dy - h},      {right, y + n->dy + h},         {right, y - n->dy - 2 * h},
+                              {left, y + n->dy + h},      {left, y - n->dy - 2 * h}};
+    int pick = 0;
+    for (int k = 0; k < (int)(sizeof cand / sizeof *cand); k++) {
+        double b[4] = {cand[k][0], cand[k][0] + w, cand[k][1] - 0.5 * h, cand[k][1] + 0.5 * h};
+        if (number_free(n, b)) {
+            pick = k;
+            break;
+        }
+    }
+    at[0] = cand[pick][0];
+    at[1] = cand[pick][1];
+    if (n->n < MAX_NUMBERS) {
+        double *b = n->box[n->n++];
+        b[0] = at[0], b[1] = at[0] + w, b[2] = at[1] - 0.5 * h, b[3] = at[1] + 0.5 * h;
+    }
+}
+
 static void draw_loglog(const void *chart)
 {
     const plot_loglog *c = chart;
-    const double vx0 = 0.11, vx1 = 0.66, vy0 = 0.11, vy1 = 0.875;
+    const double vx0 = 0.11, vx1 = 0.66, vy0 = bottom_room(0.11, 3.0), vy1 = 0.875;
     range xr = decades(c, true), yr = decades(c, false);
+    static numbers nums; /* large: not on the stack */
+    nums = numbers_start(xr, yr, vx1 - vx0, vy1 - vy0, 0.62);
     plot_titles(c->title, c->subtitle);
     plvpor(vx0, vx1, vy0, vy1);
     plwind(xr.lo, xr.hi, yr.lo, yr.hi);
@@ -635,15 +709,16 @@ static void draw_loglog(const void *chart)
             plschr(0, s->filled ? 1.0 : 0.9);
             plstring(m, px, py, (s->filled ? marker_filled : marker)[s->style % 8]);
         }
-        if (s->numbers) { /* beside each point, up and to the right */
+        if (s->numbers) { /* beside each point: up and to the right, else where no other number is */
             plschr(0, 0.62);
             plcol0(PLOT_FG);
-            double dx = 0.012 * (xr.hi - xr.lo), dy = 0.012 * (yr.hi - yr.lo);
             for (int i = 0, j = 0; i < s->n; i++) {
                 if (!point_ok(s, i)) continue;
                 char num[16];
                 snprintf(num, sizeof num, "%d", s->numbers[i]);
-                plptex(px[j] + dx, py[j] + dy, 1, 0, 0.0, num);
+                double at[2];
+                number_place(&nums, px[j], py[j], num, at);
+                plptex(at[0], at[1], 1, 0, 0.0, num);
                 j++;
             }
         }
@@ -671,119 +746,9 @@ static void draw_loglog(const void *chart)
     plot_legend(e, n, notes, c->nn, vx1 + 0.02, 0.992, vy1);
 }
 
-/* ---- devices and files ------------------------------------------------------ */
-
-static int on_plplot_exit(PLCHAR_VECTOR msg)
-{
-    fprintf(stderr, "sphlab plot: PLplot stopped: %s\n", msg ? msg : "");
-    plot_out_abort();
-    return 1;
-}
-
-static bool have_device(const char *name)
-{
-    const char *menu_a[64], *devs_a[64];
-    const char **menu = menu_a, **devs = devs_a;
-    int n = 64;
-    plgDevs(&menu, &devs, &n);
-    for (int i = 0; i < n; i++)
-        if (strcmp(devs[i], name) == 0) return true;
-    return false;
-}
-
-static void render(plot_draw_fn *draw, const void *chart, const char *dev, const char *file, int w, int h, double scale)
-{
-    g_scale = scale;
-    plsexit(on_plplot_exit);
-    plsdev(dev);
-    plsfnam(file);
-    plspage(0, 0, w, h, 0, 0);
-    setup_colours();
-    plinit();
-    pladv(0);
-    plschr(0, 1.0);
-    draw(chart);
-    plend();
-}
-
-/* cairo writes the time of day into the PDF as /CreationDate (D:YYYYMMDDHHMMSS...).
- * Overwrite those 14 digits in place (same length: the offsets stay valid). */
-static bool fix_pdf_date(const char *path)
-{
-    FILE *f = fopen(path, "r+b");
-    if (!f) return false;
-    static char buf[1 << 20];
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    buf[n] = '\0';
-    const char key[] = "/CreationDate (D:";
-    char *p = NULL;
-    for (size_t i = 0; i + sizeof key <= n; i++)
-        if (memcmp(buf + i, key, sizeof key - 1) == 0) p = buf + i + sizeof key - 1;
-    bool ok = true;
-    if (p && p + 14 <= buf + n) {
-        time_t when = 0;
-        const char *sde = getenv("SOURCE_DATE_EPOCH");
-        if (sde && *sde) when = (time_t)strtoll(sde, NULL, 10);
-        struct tm tm;
-        char date[32];
-        if (gmtime_r(&when, &tm) && strftime(date, sizeof date, "%Y%m%d%H%M%S", &tm) == 14) {
-            ok = fseek(f, (long)(p - buf), SEEK_SET) == 0 && fwrite(date, 1, 14, f) == 14;
-        }
-    }
-    ok &= fclose(f) == 0;
-    return ok;
-}
-
-static bool g_svg;
-void plot_set_svg(bool on) { g_svg = on; }
-
-bool plot_page(plot_draw_fn *draw, const void *chart, const char *dir, const char *base, int width, int height)
-{
-    for (int i = 0; i < (g_svg ? 3 : 2); i++) {
-        const char *dev = i == 2 ? "svgcairo" : i ? "pdfcairo" : "pngcairo";
-        if (!have_device(dev)) {
-            fprintf(stderr, "sphlab plot: PLplot has no %s driver (Debian: apt-get install plplot-driver-cairo)\n",
-                    dev);
-            return false;
-        }
-    }
-    char png[300], pdf[300];
-    snprintf(png, sizeof png, "%s.png", base);
-    snprintf(pdf, sizeof pdf, "%s.pdf", base);
-    const char *png_tmp = plot_out_stage(dir, png);
-    if (!png_tmp) return false;
-    const char *pdf_tmp = plot_out_stage(dir, pdf);
-    if (!pdf_tmp) return false;
-    render(draw, chart, "pngcairo", png_tmp, width, height, 1.0);
-    /* same layout on a page of half the pixel count in points: the PNG is the PDF at 144 dpi */
-    render(draw, chart, "pdfcairo", pdf_tmp, (width + 1) / 2, (height + 1) / 2, 0.5);
-    if (!fix_pdf_date(pdf_tmp)) {
-        fprintf(stderr, "sphlab plot: %s/%s: cannot finish the PDF\n", dir, pdf);
-        return false;
-    }
-    if (g_svg) {
-        char svg[300];
-        snprintf(svg, sizeof svg, "%s.svg", base);
-        const char *svg_tmp = plot_out_stage(dir, svg);
-        if (!svg_tmp) return false;
-        render(draw, chart, "svgcairo", svg_tmp, (width + 1) / 2, (height + 1) / 2, 0.5);
-    }
-    return true;
-}
-
 bool plot_chart(plot_kind kind, const void *chart, const char *dir, const char *base, int width, int height)
 {
     static plot_draw_fn *const draw[] = {
         [PLOT_LINES] = draw_lines, [PLOT_BARS] = draw_bars, [PLOT_STACK] = draw_stack, [PLOT_LOGLOG] = draw_loglog};
     return plot_page(draw[kind], chart, dir, base, width, height);
-}
-
-/* Under LeakSanitizer (`make asan`): fontconfig keeps its font cache, and
- * libltdl the PLplot driver it loaded, to the end of the process; neither is
- * a leak of sphlab's. LeakSanitizer calls this hook, if the binary defines
- * it, for its default suppressions; without the sanitizer it is never called. */
-const char *__lsan_default_suppressions(void);
-const char *__lsan_default_suppressions(void)
-{
-    return "leak:libfontconfig.so\nleak:libltdl.so\nleak:libcairo.so\nleak:libpango\nleak:libplplot.so\n";
 }

@@ -4,7 +4,8 @@
 # builder) and draws the overlay lists of src/overlay/. The renderer library
 # includes nothing of src/gpu/: the GL backend's buffers reach it through
 # src/gl/gl_fields.h. Only the commands (cmd_render.c, cmd_view.c) include
-# src/gpu/gpu.h, to create simulations that share their context.
+# src/gpu/gpu.h, to create simulations that share their context. The window
+# (view) is cmd_view.c (its loop) and view_keys.c (its keys and their actions).
 
 RENDER_PKGS   := sdl2 stb
 RENDER_PKG_CFLAGS := $(shell pkg-config --cflags $(RENDER_PKGS) 2>/dev/null || echo -I/usr/include/stb -I/usr/include/SDL2)
@@ -17,7 +18,7 @@ RENDER_LIBS   := $(shell pkg-config --libs $(RENDER_PKGS) 2>/dev/null || echo -l
 DEB_PKGS += libstb-dev libsdl2-dev fonts-dejavu-core
 
 RENDER_LIB_OBJ := $(patsubst %,$(BUILD)/render/%.o,camera font renderer canvas hud layout view_ladder)
-RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view view_record)
+RENDER_CMD_OBJ := $(patsubst %,$(BUILD)/render/%.o,cmd_common cmd_render cmd_view view_keys view_record)
 
 MOD_OBJ       += $(RENDER_LIB_OBJ) $(RENDER_CMD_OBJ)
 MOD_LIBS      += $(RENDER_LIBS)

@@ -2,7 +2,7 @@
  * (src/core/sph_levels.h) the running simulation is at, its speed measured
  * live per level, the validate mode's last result, the particle count's
  * scaling, and the passes numbered as `sphlab check` numbers them. No SDL,
- * no GL: cmd_view.c switches the simulation, this file does the arithmetic
+ * no GL: the window's keys (view_keys.c) switch the simulation, this file does the arithmetic
  * and the HUD's lines. */
 #ifndef SPH_VIEW_LADDER_H
 #define SPH_VIEW_LADDER_H

@@ -1,5 +1,5 @@
 /* The window's record key (sphlab view, key v): a video of the frames on
- * screen through src/video/. Kept beside cmd_view.c, which calls it. */
+ * screen through src/video/. Kept beside view_keys.c, which calls it. */
 #ifndef SPH_VIEW_RECORD_H
 #define SPH_VIEW_RECORD_H
 

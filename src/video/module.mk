@@ -33,7 +33,7 @@ $(BUILD)/video:
 	mkdir -p $@
 
 # The render commands and the tests include video.h.
-VIDEO_USERS := $(patsubst %,$(BUILD)/render/%.o,cmd_render cmd_view view_record)
+VIDEO_USERS := $(patsubst %,$(BUILD)/render/%.o,cmd_render cmd_view view_keys view_record)
 $(VIDEO_USERS): src/video/video.h
 $(VIDEO_USERS): RENDER_INC += -Isrc/video
 $(BUILD)/tests/test_render_video.o: CORE_CFLAGS += -Isrc/video $(VIDEO_CFLAGS)

@@ -1,0 +1,245 @@
+/* Validation of a scene as a whole (sph_scene_validate): what no single
+ * key's range can say: the domain and the blocks in it, the keys that must
+ * go together, the particle count; then the limits of sph_scene_limits.c.
+ * Each error names the file and line of the value it refuses. The parser,
+ * which checks each value on its own, is sph_scene.c. */
+#include "sph_scene.h"
+#include "sph_obstacles.h"
+#include "sph_memory.h"
+#include "sph_names.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Index of a key of a plain section ([domain], [physics]) in sph_scene_keys. */
+static int key_index(const char *section, const char *name)
+{
+    for (int i = 0; i < sph_scene_key_count; i++)
+        if (strcmp(sph_scene_keys[i].section, section) == 0 && strcmp(sph_scene_keys[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+int64_t sph_block_nodes(const sph_scene_def *def, int b, int axis)
+{
+    const sph_block_def *blk = &def->blocks[b];
+    if (axis >= def->dim) return 1;
+    double extent = (double)blk->max[axis] - (double)blk->min[axis];
+    if (!(extent > 0) || !(blk->spacing > 0)) return 0;
+    double n = floor(extent / blk->spacing + 1e-3); /* tolerate float rounding of the corners (up to 0.1% of a spacing) */
+    return n > 9e15 ? (int64_t)9e15 : (int64_t)n;
+}
+
+double sph_scene_neighbour_estimate(const sph_scene_def *def)
+{
+    double s = INFINITY;
+    for (int b = 0; b < def->n_blocks; b++) s = fmin(s, def->blocks[b].spacing);
+    if (!isfinite(s) || !(s > 0)) return 0;
+    double q = def->h / s, pi = 3.14159265358979323846;
+    return def->dim == 3 ? 4.0 / 3.0 * pi * q * q * q : pi * q * q;
+}
+
+const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n)
+{
+    double nb = sph_scene_neighbour_estimate(def);
+    double count = sph_scene_particle_count(def);
+    if (def->n_blocks == 0 || !(def->effects & (SPH_EFFECT(DENSITY) | SPH_EFFECT(PRESSURE) | SPH_EFFECT(VISCOSITY))))
+        return NULL;
+    if (nb > 400) {
+        snprintf(buf, n,
+                 "h = %g m is %.3g spacings: each particle will have about %.0f neighbours (usually 20 to 60); steps "
+                 "will be slow, about %.3g pair evaluations each",
+                 def->h, def->h / def->blocks[0].spacing, fmin(nb, count), count * fmin(nb, count));
+        return buf;
+    }
+    if (nb < 6) {
+        snprintf(buf, n,
+                 "h = %g m gives about %.1f neighbours per particle: too few for a smooth estimate (use h of about 2 "
+                 "spacings)",
+                 def->h, nb);
+        return buf;
+    }
+    /* A pressure force conserves energy when it is the gradient of the
+     * density sum's energy, so with the same kernel (Price 2012, J. Comput.
+     * Phys. 231, 759: the equations from a Lagrangian); Mueller et al.'s
+     * spiky gradient with poly6 density (2003) is not: without viscosity a
+     * 2D column gains up to 27% of its energy scale (hard case
+     * zero-viscosity-mueller). */
+    bool inviscid = !(def->effects & SPH_EFFECT(VISCOSITY)) || def->viscosity == 0;
+    if ((def->effects & SPH_EFFECT(PRESSURE)) && inviscid && def->kernel_density != def->kernel_pressure) {
+        snprintf(buf, n,
+                 "no viscosity with [kernels] density = %s and pressure = %s: the pressure force is not the gradient "
+                 "of that density's energy, so total energy is not conserved (it grew by up to 27%% in a dam break); "
+                 "use one kernel for both, or some viscosity",
+                 sph_kernel_names[def->kernel_density], sph_kernel_names[def->kernel_pressure]);
+        return buf;
+    }
+    return NULL;
+}
+
+double sph_scene_particle_count(const sph_scene_def *def)
+{
+    double total = 0;
+    for (int b = 0; b < def->n_blocks; b++) {
+        double n = 1;
+        for (int a = 0; a < def->dim; a++) n *= (double)sph_block_nodes(def, b, a);
+        total += n;
+    }
+    /* less the nodes that fall inside obstacles (not counted beyond 2e8, which validation refuses) */
+    return def->n_obstacles && total <= 2e8 ? total - sph_obstacles_fluid_dropped(def) : total;
+}
+
+#define SPH_MAX_PARTICLES 200000000.0
+
+/* "file:line" for a value set in the file, "--set" for one set on the command line. */
+static const char *origin_text(const sph_scene_def *def, int line, char *buf, size_t n)
+{
+    if (line > 0)
+        snprintf(buf, n, "%s:%d", def->file, line);
+    else if (line < 0)
+        snprintf(buf, n, "--set");
+    else
+        snprintf(buf, n, "%s", def->file);
+    return buf;
+}
+
+static sph_error_code block_error(sph_error *err, const sph_scene_def *def, int b, const char *fmt, const char *what)
+{
+    return sph_fail(err, SPH_ERR_SCENE, fmt, def->file, def->blocks[b].line, def->blocks[b].name, what);
+}
+
+sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
+{
+    const char *axes = "xyz";
+    int dim = def->dim;
+    /* A 3D scene needs every vector with 3 components (sph_scene.c: the parser counted them). */
+    sph_error_code cc = sph_scene_check_components(def, err);
+    if (cc) return cc;
+    for (int a = 0; a < dim; a++) {
+        if (!(def->domain_min[a] < def->domain_max[a])) {
+            /* name the key the user wrote: max if given, else min (max is then its default) */
+            int li = key_index("domain", "max"), lo = key_index("domain", "min");
+            int line = def->origin[li].line ? def->origin[li].line : def->origin[lo].line;
+            char loc[300];
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s: [domain] max.%c = %g%s is not above min.%c = %g (accepted: max above min on each axis)",
+                            origin_text(def, line, loc, sizeof loc), axes[a], def->domain_max[a],
+                            def->origin[li].line ? "" : " (the default)", axes[a], def->domain_min[a]);
+        }
+    }
+    for (int a = 0; a < 3; a++) {
+        if (!(def->periodic & (1u << a))) continue;
+        int li = key_index("domain", "periodic");
+        char loc[300];
+        origin_text(def, def->origin[li].line, loc, sizeof loc);
+        if (a >= dim)
+            return sph_fail(err, SPH_ERR_RANGE, "%s: [domain] periodic lists %c but the scene is %dD", loc, axes[a],
+                            dim);
+        double len = (double)def->domain_max[a] - def->domain_min[a];
+        if (len < 3.0 * def->h * (1.0 + 1.0 / 1024))
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s: [domain] periodic %c: the domain is %g m long, less than 3 h = %g m (a particle "
+                            "would meet its own image)",
+                            loc, axes[a], len, 3.0 * def->h);
+    }
+    /* a moving top wall: only wall particles carry it, and they cannot move along their normal */
+    if (def->wall_velocity[0] != 0 || def->wall_velocity[1] != 0 || def->wall_velocity[2] != 0) {
+        int li = key_index("domain", "wall_velocity");
+        char loc[300];
+        origin_text(def, def->origin[li].line, loc, sizeof loc);
+        if (!(def->effects & SPH_EFFECT(WALLS)) || def->wall_model != SPH_WALL_PARTICLES ||
+            !(def->effects & SPH_EFFECT(PRESSURE)))
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s: [domain] wall_velocity = %g %g: a moving wall needs wall particles ([domain] "
+                            "wall_model = particles, effects walls and pressure)",
+                            loc, def->wall_velocity[0], def->wall_velocity[1]);
+        if (def->wall_velocity[1] != 0)
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s: [domain] wall_velocity y = %g: the top wall may only move along itself (accepted: "
+                            "a y component of 0)",
+                            loc, def->wall_velocity[1]);
+        if (def->periodic & 2u)
+            return sph_fail(err, SPH_ERR_RANGE, "%s: [domain] wall_velocity: y is periodic, there is no top wall",
+                            loc);
+    }
+    /* Morris's form divides x_ij . grad W = r W'(r) by r^2: it needs W'(r) / r
+     * bounded, that is W'(0) = 0, which the viscosity and spiky kernels lack */
+    if (def->viscosity_form == SPH_VFORM_MORRIS &&
+        (def->kernel_viscosity == SPH_KERNEL_VISCOSITY || def->kernel_viscosity == SPH_KERNEL_SPIKY) &&
+        (def->effects & SPH_EFFECT(VISCOSITY))) {
+        int li = key_index("physics", "viscosity_form");
+        char loc[300];
+        return sph_fail(err, SPH_ERR_RANGE,
+                        "%s: [physics] viscosity_form = morris with [kernels] viscosity = %s: that kernel's slope "
+                        "does not vanish at r = 0, so W'(r)/r grows without bound for close pairs; set [kernels] "
+                        "viscosity = cubic, wendland or poly6",
+                        origin_text(def, def->origin[li].line, loc, sizeof loc),
+                        sph_kernel_names[def->kernel_viscosity]);
+    }
+    if (def->n_blocks == 0)
+        return sph_fail(err, SPH_ERR_SCENE, "%s: no particles: the scene has no [fluid NAME] block", def->file);
+    for (int b = 0; b < def->n_blocks; b++) {
+        const sph_block_def *blk = &def->blocks[b];
+        for (int a = 0; a < dim; a++) {
+            if (!(blk->min[a] < blk->max[a])) {
+                char what[64];
+                snprintf(what, sizeof what, "max.%c (%g) is not above min.%c (%g)", axes[a], blk->max[a], axes[a],
+                         blk->min[a]);
+                return block_error(err, def, b, "%s:%d: [fluid %s]: %s", what);
+            }
+            if (blk->min[a] < def->domain_min[a] || blk->max[a] > def->domain_max[a]) {
+                char what[160];
+                snprintf(what, sizeof what, "%c from %g to %g leaves the domain, %g to %g", axes[a], blk->min[a],
+                         blk->max[a], def->domain_min[a], def->domain_max[a]);
+                return block_error(err, def, b,
+                                   "%s:%d: [fluid %s]: block outside the domain: %s (accepted: min and max within "
+                                   "[domain])",
+                                   what);
+            }
+            if (sph_block_nodes(def, b, a) == 0) {
+                char what[128];
+                snprintf(what, sizeof what, "along %c the box (%g m) is thinner than one spacing (%g m)", axes[a],
+                         blk->max[a] - blk->min[a], blk->spacing);
+                return block_error(err, def, b, "%s:%d: [fluid %s]: no particles: %s", what);
+            }
+        }
+    }
+    sph_error_code oc = sph_obstacles_validate(def, err); /* sph_obstacles.c */
+    if (oc) return oc;
+    double count = sph_scene_particle_count(def);
+    if (count > SPH_MAX_PARTICLES) /* particle indices are 32-bit, with room for wall particles */
+        return sph_fail(err, SPH_ERR_MEMORY,
+                        "%s: the fluid blocks make %.3g particles, more than memory allows (at most %.0f); raise "
+                        "[fluid] spacing or shrink the blocks",
+                        def->file, count, SPH_MAX_PARTICLES);
+    if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)) &&
+        ((def->effects & SPH_EFFECT(WALLS)) && def->wall_model == SPH_WALL_PARTICLES)) {
+        char loc[300];
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] pressure_solver = %s does not run with [domain] wall_model = particles yet (the "
+                        "wall particles' pressure comes from the equation of state; accepted: volume, reflect)",
+                        origin_text(def, def->origin[key_index("physics", "pressure_solver")].line, loc, sizeof loc),
+                        sph_pressure_solver_names[def->pressure_solver]);
+    }
+    if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)) &&
+        def->density_method == SPH_DMETHOD_CONTINUITY) {
+        char loc[300];
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] pressure_solver = %s needs density_method = summation (it sums the predicted "
+                        "density itself)",
+                        origin_text(def, def->origin[key_index("physics", "pressure_solver")].line, loc, sizeof loc),
+                        sph_pressure_solver_names[def->pressure_solver]);
+    }
+    if (def->surface_tension == SPH_STENSION_AKINCI && (def->effects & SPH_EFFECT(COHESION))) {
+        char loc[300];
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] surface_tension = akinci with the effect cohesion: akinci includes the cohesion "
+                        "term (with gamma = surface_tension_coefficient); list one of them",
+                        origin_text(def, def->origin[key_index("physics", "surface_tension")].line, loc, sizeof loc));
+    }
+    sph_error_code combos = sph_scene_check_combinations(def, err); /* sph_scene_combos.c */
+    if (combos != SPH_ERR_OK) return combos;
+    return sph_scene_check_limits(def, err); /* precision, cells, memory (sph_scene_limits.c) */
+}
