@@ -305,7 +305,7 @@ Test(render_window, validate_refuses_brute_force_at_large_n)
     cr_expect_not(view_validate(&l, sim, "L0", msg, sizeof msg));
     cr_expect(strstr(msg, "shift+a") && strstr(msg, "brute force"), "%s", msg);
     cr_expect_not(l.validated);
-    cr_expect_not(view_validate(&l, sim, "L9", msg, sizeof msg));
+    cr_expect_not(view_validate(&l, sim, "L99", msg, sizeof msg));
     cr_expect(strstr(msg, "no such reference level"), "%s", msg);
     sph_sim_destroy(sim);
 }

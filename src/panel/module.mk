@@ -18,8 +18,8 @@ MOD_OBJ  += $(PANEL_OBJ)
 # libimgui.a is C++: the link (by the C compiler) also needs the C++ runtime.
 MOD_LIBS += $(shell pkg-config --libs imgui 2>/dev/null || echo -limgui) -lstdc++
 
-$(BUILD)/panel/%.o: src/panel/%.cpp src/panel/*.h src/core/*.h src/render/font.h | $(BUILD)/panel
-	$(PANEL_CXX) $(PANEL_CXXFLAGS) -Isrc/core -Isrc/render -Isrc/panel -c -o $@ $<
+$(BUILD)/panel/%.o: src/panel/%.cpp src/panel/*.h src/core/*.h | $(BUILD)/panel
+	$(PANEL_CXX) $(PANEL_CXXFLAGS) -Isrc/core -Isrc/panel -c -o $@ $<
 $(BUILD)/render/cmd_view.o $(BUILD)/render/view_keys.o: src/panel/panel.h
 $(BUILD)/render/cmd_view.o $(BUILD)/render/view_keys.o: CORE_CFLAGS += -Isrc/panel
 

@@ -5,7 +5,6 @@
 
 // the C headers first, with C linkage (panel.h includes sph_scene.h again, guarded)
 extern "C" {
-#include "font.h" // sph_font_path: the same face as the renderer's text
 #include "sph_scene.h"
 }
 #include "panel.h"
@@ -62,7 +61,8 @@ static void ladder_widgets(const sph_panel_ladder *l, sph_panel_out *out)
     }
 }
 
-extern "C" sph_panel *sph_panel_create(SDL_Window *win, void *gl_context, const char *save_path, char *err, size_t n)
+extern "C" sph_panel *sph_panel_create(SDL_Window *win, void *gl_context, const char *save_path,
+                                      const char *font_path, char *err, size_t n)
 {
     sph_panel *p = static_cast<sph_panel *>(std::calloc(1, sizeof(sph_panel)));
     if (!p) {
@@ -76,10 +76,10 @@ extern "C" sph_panel *sph_panel_create(SDL_Window *win, void *gl_context, const 
     io.LogFilename = NULL;
     ImGui::StyleColorsDark();
     // the renderer's face at its normal size for a 720-pixel window; ImGui's own font without it
-    FILE *f = std::fopen(sph_font_path(), "rb");
+    FILE *f = font_path ? std::fopen(font_path, "rb") : NULL;
     if (f) {
         std::fclose(f);
-        io.Fonts->AddFontFromFileTTF(sph_font_path(), 15.0f);
+        io.Fonts->AddFontFromFileTTF(font_path, 15.0f);
     }
     p->sdl_ok = ImGui_ImplSDL2_InitForOpenGL(win, gl_context);
     p->gl_ok = p->sdl_ok && ImGui_ImplOpenGL3_Init("#version 330 core");

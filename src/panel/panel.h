@@ -52,9 +52,11 @@ typedef struct sph_panel_ladder {
 void sph_panel_set_ladder(sph_panel *p, const sph_panel_ladder *ladder);
 
 /* Makes the panel's ImGui context in the window's current OpenGL (3.3 core
- * or later) context. save_path: the "Save scene as…" field's first value.
- * NULL with the reason in err on failure. */
-sph_panel *sph_panel_create(struct SDL_Window *win, void *gl_context, const char *save_path, char *err, size_t n);
+ * or later) context. save_path: the "Save scene as…" field's first value;
+ * font_path: a TrueType face (the renderer's, so both read alike; NULL or
+ * missing: ImGui's own). NULL with the reason in err on failure. */
+sph_panel *sph_panel_create(struct SDL_Window *win, void *gl_context, const char *save_path, const char *font_path,
+                            char *err, size_t n);
 void sph_panel_destroy(sph_panel *p);
 /* Hands the panel an event; true if it takes it (the mouse is over the
  * panel, or a text field has the keyboard): the window then ignores it. */

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "cmd_common.h"
+#include "font.h"
 #include "commands.h"
 #include "gl_context.h"
 #include "gpu.h"
@@ -302,7 +303,7 @@ int cmd_view(int argc, char **argv)
         if (len > 4 && strcmp(base + len - 4, ".ini") == 0) len -= 4;
         snprintf(w.save_path, sizeof w.save_path, "%.*s-saved.ini", (int)(len < 1000 ? len : 1000), base);
     }
-    w.params = sph_panel_create(win, ctx, w.save_path, err, sizeof err);
+    w.params = sph_panel_create(win, ctx, w.save_path, sph_font_path(), err, sizeof err);
     if (!w.params) fprintf(stderr, "sphlab view: no parameter panel: %s\n", err);
     w.params_open = w.params && (opt.panel || !w.scripted);
     if (!w.scripted) {
