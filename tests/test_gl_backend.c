@@ -14,6 +14,7 @@
 #include "gpu.h"
 #include "sph_obstacles.h"
 #include "sph_search.h"
+#include "test_gl_util.h"
 #include "test_util.h"
 
 /* Tolerances, as a fraction of the largest magnitude of the field in the
@@ -44,19 +45,6 @@ static const char *scene_3d =
     "[kernels]\nh=0.05\n[time]\ndt=0.001\ncfl=0.4\n"
     "[fluid a]\nmin=-0.2 -0.2 -0.2\nmax=0.0 0.0 0.0\nspacing=0.025\nvelocity=0 0 0.3\n";
 
-/* No GL at all (no EGL display) is a reason to skip; a display without
- * OpenGL 4.3 is a failure: CI has Mesa, whose llvmpipe gives 4.5. */
-static void need_gl(void)
-{
-    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
-    sph_gpu_register();
-    char dev[512];
-    if (sph_gpu_probe(dev, sizeof dev)) return;
-    if (strstr(dev, "eglGetPlatformDisplay") || strstr(dev, "EGL_MESA_platform_surfaceless") ||
-        strstr(dev, "eglInitialize"))
-        cr_skip_test("no EGL display on this machine: %s", dev);
-    cr_assert_fail("an EGL display but no OpenGL 4.3 context: %s", dev);
-}
 
 static sph_sim *make(const char *ini, const char *const *sets, int n_sets, bool gl)
 {

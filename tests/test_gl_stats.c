@@ -11,19 +11,9 @@
 
 #include "gpu.h"
 #include "sph_overlay.h"
+#include "test_gl_util.h"
 #include "test_util.h"
 
-static void need_gl(void)
-{
-    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
-    sph_gpu_register();
-    char dev[512];
-    if (sph_gpu_probe(dev, sizeof dev)) return;
-    if (strstr(dev, "eglGetPlatformDisplay") || strstr(dev, "EGL_MESA_platform_surfaceless") ||
-        strstr(dev, "eglInitialize"))
-        cr_skip_test("no EGL display on this machine: %s", dev);
-    cr_assert_fail("an EGL display but no OpenGL 4.3 context: %s", dev);
-}
 
 static void near(const char *what, double dev, double host, double tol)
 {

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "gpu.h"
+#include "test_gl_util.h"
 #include "test_util.h"
 
 static const char *scene_2d =
@@ -19,17 +20,6 @@ static const char *scene_2d =
     "[kernels]\nh=0.04\n[time]\ndt=0.001\ncfl=0.4\n"
     "[fluid a]\nmin=-0.3 -0.2\nmax=0.0 0.1\nspacing=0.02\nvelocity=0.5 0\n";
 
-static void need_gl(void)
-{
-    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
-    sph_gpu_register();
-    char dev[512];
-    if (sph_gpu_probe(dev, sizeof dev)) return;
-    if (strstr(dev, "eglGetPlatformDisplay") || strstr(dev, "EGL_MESA_platform_surfaceless") ||
-        strstr(dev, "eglInitialize"))
-        cr_skip_test("no EGL display on this machine: %s", dev);
-    cr_assert_fail("an EGL display but no OpenGL 4.3 context: %s", dev);
-}
 
 static sph_sim *make_gl(const char *ini)
 {

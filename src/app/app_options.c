@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "sph_sim.h"
+#include "sph_names.h"
 
 /* The offset of a field of app_opts, and a compile-time check of its type:
  * comparing pointers to different types is an error, so a row cannot store
@@ -359,27 +360,6 @@ static const app_opt *opt_find(unsigned cmd, const char *a, const char **value)
     return NULL;
 }
 
-/* Edit distance between two short strings (typos: a letter wrong, missing, extra or swapped). */
-static int edit_distance(const char *a, const char *b)
-{
-    enum { MAXLEN = 48 };
-    size_t na = strlen(a), nb = strlen(b);
-    if (na >= MAXLEN || nb >= MAXLEN) return MAXLEN;
-    int d[MAXLEN][MAXLEN];
-    for (size_t i = 0; i <= na; i++) d[i][0] = (int)i;
-    for (size_t j = 0; j <= nb; j++) d[0][j] = (int)j;
-    for (size_t i = 1; i <= na; i++)
-        for (size_t j = 1; j <= nb; j++) {
-            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
-            if (d[i - 1][j] + 1 < best) best = d[i - 1][j] + 1;
-            if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
-            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
-                best = d[i - 2][j - 2] + 1;
-            d[i][j] = best;
-        }
-    return d[na][nb];
-}
-
 const char *app_opts_closest(unsigned cmd, const char *arg)
 {
     char a[64];
@@ -392,7 +372,7 @@ const char *app_opts_closest(unsigned cmd, const char *arg)
     for (int k = 0; k < app_option_count; k++) {
         const app_opt *r = &app_options[k];
         if (!(r->cmds & cmd)) continue;
-        int d = edit_distance(a, r->name);
+        int d = sph_edit_distance(a, r->name);
         /* a prefix of a longer option ("--step" for "--steps-per-frame") counts as close */
         if (na > 3 && strncmp(r->name, a, na) == 0 && d > 2) d = 2;
         if (d < best_d) {
