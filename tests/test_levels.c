@@ -58,7 +58,7 @@ static void every_level_matches(const char *ini)
         sph_sim_destroy(sim);
         checked++;
     }
-    cr_expect_eq(checked, 8, "levels L0..L7");
+    cr_expect_eq(checked, 10, "levels L0..L9");
 }
 
 Test(levels, every_cpu_level_finds_brute_forces_sets_2d) { every_level_matches(scene_2d); }
@@ -117,5 +117,12 @@ Test(levels, level_of_the_ingredients)
     def.sort = SPH_SORT_BITONIC; /* reorder with bitonic: no level has it */
     cr_expect_eq(sph_level_of(&def, 1, 8), -1);
     cr_expect_eq(sph_level_find("G2") >= 0 && sph_level_gl(&sph_levels[sph_level_find("G2")]), true);
-    cr_expect_eq(sph_level_find("L9"), -1);
+    cr_expect_eq(sph_level_find("L99"), -1);
+    /* down from L9 to L7 (the window's shift+l): nothing of L8 or L9 stays on */
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L9")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L9"));
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L7")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.fuse_forces, SPH_OFF);
+    cr_expect_eq(def.lists_in_place, SPH_OFF);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L7"));
 }

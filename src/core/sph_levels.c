@@ -52,6 +52,10 @@ bool sph_level_gl(const sph_level *L) { return strstr(L->sets, "compute.backend=
 
 sph_error_code sph_level_apply(const sph_level *L, sph_scene_def *def, sph_error *err)
 {
+    /* the ingredients past L7 are off unless the level names them, so going
+     * from L8 down to L7 (in the window) leaves no fused walk behind */
+    def->fuse_forces = SPH_OFF;
+    def->lists_in_place = SPH_OFF;
     char buf[512];
     snprintf(buf, sizeof buf, "%s", L->sets);
     char *save = NULL;
@@ -74,7 +78,8 @@ int sph_level_of(const sph_scene_def *def, int threads, int cores)
         sph_error err;
         if (sph_level_apply(L, &at, &err) != SPH_ERR_OK) continue;
         if (at.search == def->search && at.sort == def->sort && at.reorder == def->reorder &&
-            at.vector == def->vector && at.backend == def->backend)
+            at.vector == def->vector && at.backend == def->backend && at.fuse_forces == def->fuse_forces &&
+            at.lists_in_place == def->lists_in_place)
             return i;
     }
     return -1;
