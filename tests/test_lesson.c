@@ -138,7 +138,7 @@ static double field(const char *line, int k)
 
 /* report.md names the lesson and holds measured numbers (a decimal with digits
  * on both sides of the point, in a table row). */
-static char *check_report(const char *dir, int num, const char *title)
+static char *check_report(const char *dir, int num, const char *title, const char *title_fr)
 {
     char path[512], want[128];
     snprintf(path, sizeof path, "%s/report.md", dir);
@@ -160,9 +160,16 @@ static char *check_report(const char *dir, int num, const char *title)
     snprintf(path, sizeof path, "%s/report.fr.md", dir);
     char *fr = read_all(path);
     cr_assert(fr, "report.fr.md is missing");
-    snprintf(want, sizeof want, "# Leçon %d : %s", num, title);
+    snprintf(want, sizeof want, "# Leçon %d : %s", num, title_fr);
     cr_expect(strstr(fr, want), "report.fr.md does not start with '%s'", want);
     cr_expect(!strstr(fr, "{{") && !strstr(fr, "not measured)"), "report.fr.md has an unfilled placeholder");
+    /* the generated tables speak the report's language: no English level or header word in French */
+    cr_expect(!strstr(fr, "Niveau : beginner") && !strstr(fr, "Niveau : intermediate") &&
+                  !strstr(fr, "Niveau : advanced"),
+              "report.fr.md names its level in English");
+    cr_expect(!strstr(fr, "| wall model |") && !strstr(fr, "| particle |") && !strstr(fr, "| level |") &&
+                  !strstr(fr, "| pass |") && !strstr(fr, "Pareto front"),
+              "report.fr.md has an English table header");
     free(fr);
     return text;
 }
@@ -341,7 +348,7 @@ Test(lesson, unwritable_output)
 Test(lesson, export_1_kernel_estimation)
 {
     const char *dir = export_lesson(1);
-    free(check_report(dir, 1, "Kernel estimation"));
+    free(check_report(dir, 1, "Kernel estimation", "Estimation par noyau"));
     check_png(dir, "kernels-2d.png", 0, 0);
     check_pdf(dir, "kernels-2d.pdf");
     check_csv(dir, "kernels-2d.csv", "r_over_h,r,w_poly6", 100, NULL);
@@ -372,7 +379,7 @@ Test(lesson, export_1_kernel_estimation)
 Test(lesson, export_2_density_summation)
 {
     const char *dir = export_lesson(2);
-    free(check_report(dir, 2, "Density summation"));
+    free(check_report(dir, 2, "Density summation", "Sommation de la densité"));
     csv c;
     check_csv(dir, "density-profile.csv", "y,rho_volume,rho_reflect", 20, &c);
     /* floor row: the volume walls make up the missing support, reflect does not */
@@ -397,7 +404,7 @@ Test(lesson, export_2_density_summation)
 Test(lesson, export_3_pressure_gradient)
 {
     const char *dir = export_lesson(3);
-    free(check_report(dir, 3, "The pressure gradient"));
+    free(check_report(dir, 3, "The pressure gradient", "Le gradient de pression"));
     check_csv(dir, "pool-stats.csv", "step,t,dt,n,ekin", 300, NULL);
     csv c;
     check_csv(dir, "pressure-depth.csv", "y,p_sph,p_hydrostatic", 10, &c);
@@ -420,7 +427,7 @@ Test(lesson, export_3_pressure_gradient)
 Test(lesson, export_4_viscosity)
 {
     const char *dir = export_lesson(4);
-    free(check_report(dir, 4, "The viscosity Laplacian"));
+    free(check_report(dir, 4, "The viscosity Laplacian", "Le laplacien de la viscosité"));
     csv c;
     check_csv(dir, "taylor-green.csv", "run,t,ekin_over_ekin0,analytic", 200, &c);
     double last = field(c.line[100], 2), an = field(c.line[100], 3); /* the first run's last row */
@@ -439,7 +446,7 @@ Test(lesson, export_4_viscosity)
 Test(lesson, export_5_spatial_hash)
 {
     const char *dir = export_lesson(5);
-    char *report = check_report(dir, 5, "The spatial hash");
+    char *report = check_report(dir, 5, "The spatial hash", "Le hachage spatial");
     cr_expect(strstr(report, "Particle 7: cell (4, 1), hash 9800625, key 5"), "report lacks particle 7's numbers");
     free(report);
     csv c;
@@ -460,7 +467,7 @@ Test(lesson, export_5_spatial_hash)
 Test(lesson, export_6_sorting_offsets)
 {
     const char *dir = export_lesson(6);
-    free(check_report(dir, 6, "Sorting and offsets"));
+    free(check_report(dir, 6, "Sorting and offsets", "Le tri et la liste des départs"));
     csv c;
     check_csv(dir, "bitonic-steps.csv", "stage,step,w,kind,swaps,k0", 10, &c);
     cr_expect(strstr(c.line[c.nlines - 1], ",0,1,1,2,2,2,4,6,7,9"), "not sorted after the last step: %s",
@@ -492,7 +499,7 @@ Test(lesson, export_6_sorting_offsets)
 Test(lesson, export_7_full_simulation)
 {
     const char *dir = export_lesson(7);
-    char *report = check_report(dir, 7, "The full simulation");
+    char *report = check_report(dir, 7, "The full simulation", "La simulation complète");
     cr_expect(strstr(report, "| neighbours |") && strstr(report, "| all passes |"), "no timing table in the report");
     free(report);
     check_csv(dir, "stats.csv", "step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed", 200, NULL);
@@ -515,7 +522,7 @@ Test(lesson, export_7_full_simulation)
 Test(lesson, export_8_optimisation_ladder)
 {
     const char *dir = export_lesson(8);
-    free(check_report(dir, 8, "The optimisation ladder"));
+    free(check_report(dir, 8, "The optimisation ladder", "L'échelle des optimisations"));
     if (has_command("bench")) {
         csv c;
         check_csv(dir, "levels.csv", "level,threads,particles,ms_per_step,neighbours_ms,speedup,steps_per_s", 7, &c);
@@ -544,7 +551,7 @@ Test(lesson, export_8_optimisation_ladder)
 Test(lesson, export_9_accuracy)
 {
     const char *dir = export_lesson(9);
-    free(check_report(dir, 9, "What accuracy costs"));
+    free(check_report(dir, 9, "What accuracy costs", "Ce que coûte la précision"));
     csv c;
     if (has_command("study")) {
         check_csv(dir, "accuracy.csv", "combo,", 4, NULL);
@@ -566,7 +573,7 @@ Test(lesson, export_9_accuracy)
 Test(lesson, export_10_boundaries)
 {
     const char *dir = export_lesson(10);
-    char *text = check_report(dir, 10, "Boundary handling");
+    char *text = check_report(dir, 10, "Boundary handling", "Les conditions aux parois");
     cr_expect(strstr(text, "| reflect |") && strstr(text, "| volume |") && strstr(text, "| particles |"),
               "the report does not compare the three models");
     free(text);
@@ -599,7 +606,7 @@ Test(lesson, export_11_incompressible)
 {
     if (!has_command("study")) cr_skip_test("no study command in this build");
     const char *dir = export_lesson(11);
-    free(check_report(dir, 11, "How incompressible, at what cost?"));
+    free(check_report(dir, 11, "How incompressible, at what cost?", "Incompressible à quel point, et à quel prix ?"));
     csv c;
     check_csv(dir, "solvers.csv", "combo,physics.pressure_solver+physics.stiffness+physics.solver_tolerance,", 3, &c);
     int it = -1, nf = 1;

@@ -19,40 +19,72 @@
 const lesson sph_lessons[] = {
     {1, "01-kernel-estimation", "Kernel estimation", "beginner",
      "the SPH sum as a kernel estimate; what h does: noise against smoothing; W, grad W, lap W",
+     "Estimation par noyau",
+     "la somme SPH comme estimation par noyau ; ce que fait h : bruit contre lissage ; W, grad W, lap W",
      "--paused --color density --range 600:1400 --overlay neighbours,hud,legend --select 625", lx_lesson1},
     {2, "02-density-summation", "Density summation", "beginner",
      "rho_i = sum_j m_j W_ij on a lattice; the deficiency at the free surface; walls that count",
+     "Sommation de la densité",
+     "rho_i = somme_j m_j W_ij sur un réseau ; le déficit à la surface libre ; des parois qui comptent",
      "--paused --color density --overlay grid,neighbours,hud,legend --select 585", lx_lesson2},
     {3, "03-pressure-gradient", "The pressure gradient", "intermediate",
      "equation of state; symmetric against the seed's shared form; momentum and energy",
+     "Le gradient de pression",
+     "équation d'état ; la forme symétrique contre la forme partagée de la source ; quantité de mouvement et énergie",
      "--paused --color pressure --overlay forces,hud,legend", lx_lesson3},
     {4, "04-viscosity", "The viscosity Laplacian", "intermediate",
      "velocity diffusion; the 2D viscosity kernel; Taylor-Green decay against exp(-2 nu k^2 t)",
+     "Le laplacien de la viscosité",
+     "diffusion de la vitesse ; le noyau de viscosité 2D ; décroissance de Taylor-Green contre exp(-2 nu k^2 t)",
      "--paused --color speed --overlay forces,hud,legend", lx_lesson4},
     {5, "05-spatial-hash", "The spatial hash", "intermediate",
      "cells, hash, keys, collisions; the seed's worked example: particle 7, cell (4,1)",
+     "Le hachage spatial",
+     "cellules, hachage, clés, collisions ; l'exemple de la source : particule 7, cellule (4,1)",
      "--paused --color key --overlay grid,keys,collisions,neighbours,index,hud,legend --select 7 --size 1100x760",
      lx_lesson5},
     {6, "06-sorting-offsets", "Sorting and offsets", "intermediate",
      "the bitonic network step by step, the counting sort, the start-offset table",
+     "Le tri et la liste des départs",
+     "le réseau bitonique pas à pas, le tri par comptage, la table des départs",
      "--paused --color key --overlay grid,keys,index,hud,legend --select 7 --size 1100x760", lx_lesson6},
     {7, "07-full-simulation", "The full simulation", "beginner",
      "a dam break, stepped pass by pass; where the time goes",
+     "La simulation complète",
+     "une rupture de barrage, passe par passe ; où va le temps",
      "--paused --color speed --overlay hud,timings,legend", lx_lesson7},
     {8, "08-optimisation-ladder", "The optimisation ladder", "advanced",
      "switch each optimisation, read the speedup, rebuild the seed's table (350, 5,000, 20,000, 60,000)",
+     "L'échelle des optimisations",
+     "activer chaque optimisation, lire le gain, refaire le tableau de la source (350, 5 000, 20 000, 60 000)",
      "--paused --color neighbours --overlay grid,hud,timings,legend", lx_lesson8},
     {9, "09-accuracy", "What accuracy costs", "advanced",
      "error against time: resolution, h, kernel; the cheapest run for a given error",
+     "Ce que coûte la précision",
+     "l'erreur contre le temps : résolution, h, noyau ; le calcul le moins cher pour une erreur donnée",
      "--paused --color speed --overlay hud,timings,legend", lx_lesson9},
     {10, "10-boundaries", "Boundary handling", "intermediate",
      "the truncated support at a wall; reflect, volume and wall particles: the wall row, a tank, a dam break",
+     "Les conditions aux parois",
+     "le support tronqué contre une paroi ; reflect, volume et particules de paroi : la rangée du bord, une cuve, "
+     "une rupture de barrage",
      "--paused --color density --overlay neighbours,hud,legend --select 15", lx_lesson10},
     {11, "11-incompressible", "How incompressible, at what cost?", "advanced",
      "the equation of state at three stiffnesses against PCISPH and DFSPH: density error and time per simulated second",
+     "Incompressible à quel point, et à quel prix ?",
+     "l'équation d'état à trois raideurs contre PCISPH et DFSPH : erreur de densité et temps par seconde simulée",
      "--paused --color density --overlay hud,timings,legend", lx_lesson11},
 };
 const int sph_lesson_count = (int)(sizeof sph_lessons / sizeof sph_lessons[0]);
+
+/* A level's name in French, for report.fr.md. */
+static const char *lx_level_fr(const char *level)
+{
+    if (strcmp(level, "beginner") == 0) return "débutant";
+    if (strcmp(level, "intermediate") == 0) return "intermédiaire";
+    if (strcmp(level, "advanced") == 0) return "avancé";
+    return level;
+}
 
 /* The commands of this build, from the one list in commands.h. */
 static bool have_command(const char *name)
@@ -134,10 +166,13 @@ static bool find_folder(const lesson *L, char *out, size_t cap)
 
 static int list(void)
 {
-    printf("%-3s %-24s %-13s %s\n", "N", "lesson", "level", "about");
+    int w = (int)strlen("lesson"); /* the title column fits the longest title */
+    for (int i = 0; i < sph_lesson_count; i++)
+        if ((int)strlen(sph_lessons[i].title) > w) w = (int)strlen(sph_lessons[i].title);
+    printf("%-3s %-*s %-13s %s\n", "N", w, "lesson", "level", "about");
     for (int i = 0; i < sph_lesson_count; i++) {
         const lesson *L = &sph_lessons[i];
-        printf("%-3d %-24s %-13s %s\n", L->num, L->title, L->level, L->about);
+        printf("%-3d %-*s %-13s %s\n", L->num, w, L->title, L->level, L->about);
     }
     printf("\nsphlab lesson N opens one in the window; sphlab lesson N --export DIR writes its figures\n"
            "and report; the texts are lessons/NN-NAME/README.md (English) and README.fr.md (French).\n");
@@ -276,9 +311,9 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
 
     /* the values every lesson's template has */
     lx_val(&x, "num", "%d", L->num);
-    lx_val(&x, "title", "%s", L->title);
-    lx_val(&x, "level", "%s", L->level);
-    lx_val(&x, "about", "%s", L->about);
+    lx_val(&x, "title", "{{@%s|%s}}", L->title, L->title_fr);
+    lx_val(&x, "level", "{{@%s|%s}}", L->level, lx_level_fr(L->level));
+    lx_val(&x, "about", "{{@%s|%s}}", L->about, L->about_fr);
     lx_val(&x, "slug", "%s", L->slug);
     lx_val(&x, "seconds", "%.1f", secs);
     lx_val(&x, "cores", "%ld", sysconf(_SC_NPROCESSORS_ONLN));
@@ -332,6 +367,7 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
             break;
         }
         lx_values_reset_use(&x);
+        x.lang = k;
         if (!lx_report_write(&x, tmpl, out.f)) x.failed++;
         if (lx_values_unused(&x, tmpl)) x.failed++;
         ok = app_out_commit(&out);
@@ -342,7 +378,7 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
             app_out h;
             ok = md && app_out_open(&h, hpath);
             if (ok) {
-                lx_html_write(md, L->title, h.f);
+                lx_html_write(md, k == 1 ? L->title_fr : L->title, h.f);
                 ok = app_out_commit(&h);
             }
             free(md);

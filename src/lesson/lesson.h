@@ -51,6 +51,8 @@ typedef struct lesson {
     const char *title;
     const char *level;     /* beginner, intermediate, advanced */
     const char *about;     /* one line for --list */
+    const char *title_fr;  /* the same in French, for report.fr.md */
+    const char *about_fr;
     const char *view_args; /* options for `sphlab view` with the lesson's scene */
     int (*export_fn)(lx *x);
 } lesson;
@@ -110,11 +112,12 @@ struct lx {
     FILE *blk;         /* the open block's stream, or NULL */
     lx_value vals[LX_MAX_VALUES];
     int nval;
-    char figs[96][256]; /* figures written: "file: what it shows" */
+    char figs[96][512]; /* figures written: "file: what it shows" (both languages, {{@en|fr}}) */
     int nfig;
     char missing[8][256];
     int nmissing;
     int failed;        /* commands that failed */
+    int lang;          /* the report being written: 0 English, 1 French (picks {{@en|fr}} in values) */
     char scratch[1100]; /* DIR/.work */
     int nlog;
     char srcs[16][1024]; /* lx_src's paths */

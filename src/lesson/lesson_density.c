@@ -40,7 +40,8 @@ int lx_lesson1(lx *x)
     }
     lx_val(x, "h", "%g", h0);
     lx_block(x, "kernels_table");
-    lx_md(x, "| kernel | sigma 2D [1/m^2] | sigma 3D [1/m^3] | W(0) 2D [1/m^2] | W(0) in kernels-2d.csv | M2 / h^2 (2D) |\n"
+    lx_md(x, "| {{@kernel|noyau}} | sigma 2D [1/m^2] | sigma 3D [1/m^3] | W(0) 2D [1/m^2] | {{@W(0) in "
+             "kernels-2d.csv|W(0) dans kernels-2d.csv}} | M2 / h^2 (2D) |\n"
              "|---|---|---|---|---|---|\n");
     for (int k = 0; k < SPH_KERNEL_COUNT; k++) {
         sph_kernel k2 = sph_kernel_make((sph_kernel_kind)k, 2, (float)h0);
@@ -125,7 +126,9 @@ int lx_lesson1(lx *x)
     if (f) fprintf(f, "h_over_spacing,h,neighbours,interior_mean,interior_rms_percent,surface_mean,surface_deficit_percent\n");
     lx_val(x, "rho0", "%g", rho0);
     lx_block(x, "density_table");
-    lx_md(x, "| h / spacing | h [m] | interior mean [kg/m^2] | interior rms error | top row mean [kg/m^2] | top row deficit |\n"
+    lx_md(x, "| {{@h / spacing|h / pas}} | h [m] | {{@interior mean [kg/m^2]|moyenne intérieure [kg/m^2]}} | "
+             "{{@interior rms error|erreur rms intérieure}} | {{@top row mean [kg/m^2]|moyenne de la rangée du haut "
+             "[kg/m^2]}} | {{@top row deficit|déficit de la rangée du haut}} |\n"
              "|---|---|---|---|---|---|\n");
     int good = 0;
     for (int k = 0; k < nhl; k++) {
@@ -257,16 +260,18 @@ int lx_lesson2(lx *x)
     lx_val(x, "spacing", "%g", s);
     lx_val(x, "rho0", "%g", rho0);
     lx_block(x, "points_table");
-    lx_md(x, "| particle |");
+    lx_md(x, "| {{@particle|particule}} |");
     for (int m = 0; m < 2; m++)
-        for (int k = 0; k < nh; k++) lx_md(x, " %s, h = %g spacings |", models[m], hl[k]);
+        for (int k = 0; k < nh; k++) lx_md(x, " %s, h = %g {{@spacings|pas}} |", models[m], hl[k]);
     lx_md(x, "\n|---|");
     for (int i = 0; i < 2 * nh; i++) lx_md(x, "---|");
     lx_md(x, "\n");
     FILE *f = lx_csv_open(x, "density-points.csv");
     if (f) fprintf(f, "wall_model,h_over_spacing,particle,rho,error_percent\n");
     for (int q = 0; q < NSPOT + 2; q++) {
-        lx_md(x, "| %s |", q < NSPOT ? spot[q].name : q == NSPOT ? "lowest" : "highest");
+        lx_md(x, "| %s |", q < NSPOT    ? spot[q].name
+                           : q == NSPOT ? "{{@lowest|la plus basse}}"
+                                        : "{{@highest|la plus haute}}");
         for (int m = 0; m < 2; m++)
             for (int k = 0; k < nh; k++) {
                 if (!ok[m][k]) {

@@ -21,7 +21,7 @@
 
 const char *lx_fmt(const char *fmt, ...)
 {
-    static char buf[64][256];
+    static char buf[64][512]; /* room for a caption in both languages */
     static int slot;
     char *b = buf[slot++ % 64];
     va_list ap;
@@ -317,7 +317,7 @@ bool lx_chart(lx *x, plot_kind kind, const void *chart, const char *base, int w,
         return false;
     }
     lx_fig(x, lx_fmt("%s.png", base), what);
-    lx_fig(x, lx_fmt("%s.pdf", base), "the same chart as PDF");
+    lx_fig(x, lx_fmt("%s.pdf", base), "{{@the same chart as PDF|le même graphique en PDF}}");
     return true;
 }
 

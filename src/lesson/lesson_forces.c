@@ -181,7 +181,8 @@ int lx_lesson3(lx *x)
             }
             plot_lines L = {0};
             snprintf(L.title, sizeof L.title, "The equation of state as the pressure pass computed it");
-            snprintf(L.subtitle, sizeof L.subtitle, "every particle of the pool; k = %g m#u2#d/s#u2#d, negative pressure clamped",
+            snprintf(L.subtitle, sizeof L.subtitle, "every particle of the pool; k = %g m#u2#d/s#u2#d, negative "
+                                                    "pressure clamped",
                      def.stiffness);
             snprintf(L.xlabel, sizeof L.xlabel, "density [kg/m#u2#d]");
             L.np = 1;
@@ -216,7 +217,9 @@ int lx_lesson3(lx *x)
                                           {"cubic", "cubic", "shared"}};
         lx_val(x, "column_steps", "%s", nsteps);
         lx_block(x, "energy_table");
-        lx_md(x, "| density kernel | pressure kernel | force form | E after 1 step [J/m] | E at the end [J/m] | change |\n"
+        lx_md(x, "| {{@density kernel|noyau de densité}} | {{@pressure kernel|noyau de pression}} | {{@force "
+                 "form|forme de la force}} | {{@E after 1 step [J/m]|E après 1 pas [J/m]}} | {{@E at the end [J/m]|E "
+                 "à la fin [J/m]}} | {{@change|variation}} |\n"
                  "|---|---|---|---|---|---|\n");
         FILE *f = lx_csv_open(x, "energy.csv");
         if (f) fprintf(f, "density_kernel,pressure_kernel,form,steps,e_start,e_end,change_percent\n");
@@ -254,7 +257,8 @@ int lx_lesson3(lx *x)
         snprintf(nsteps, sizeof nsteps, "%d", x->quick ? 100 : odef.steps);
         lx_val(x, "open_steps", "%s", nsteps);
         lx_block(x, "momentum_table");
-        lx_md(x, "| form | sum m abs(v) [kg m/s] | abs(sum m v) [kg m/s] | ratio |\n|---|---|---|---|\n");
+        lx_md(x, "| {{@form|forme}} | sum m abs(v) [kg m/s] | abs(sum m v) [kg m/s] | {{@ratio|rapport}} "
+                 "|\n|---|---|---|---|\n");
         FILE *f = lx_csv_open(x, "momentum.csv");
         if (f) fprintf(f, "form,steps,sum_m_abs_v,abs_sum_m_v,ratio\n");
         const char *forms[2] = {"symmetric", "shared"};
@@ -323,7 +327,9 @@ int lx_lesson4(lx *x)
     lx_val(x, "length", "%g", L);
     lx_val(x, "rate", "%.4f", rate0);
     lx_block(x, "decay_table");
-    lx_md(x, "| viscosity form | h / spacing | steps | fitted rate [1/s] | analytic [1/s] | error |\n|---|---|---|---|---|---|\n");
+    lx_md(x, "| {{@viscosity form|forme de la viscosité}} | {{@h / spacing|h / pas}} | {{@steps|pas}} | {{@fitted "
+             "rate [1/s]|taux ajusté [1/s]}} | {{@analytic [1/s]|analytique [1/s]}} | {{@error|erreur}} "
+             "|\n|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "taylor-green.csv");
     if (f) fprintf(f, "run,t,ekin_over_ekin0,analytic\n");
     for (int r = 0; r < nr; r++) {

@@ -35,7 +35,7 @@ int lx_lesson7(lx *x)
     lx_val(x, "t_sim", "%.3f", r.t_sim);
     lx_val(x, "threads", "%d", r.threads);
     lx_block(x, "passes_table");
-    lx_md(x, "| pass | ms/step | share |\n|---|---|---|\n");
+    lx_md(x, "| {{@pass|passe}} | {{@ms/step|ms/pas}} | {{@share|part}} |\n|---|---|---|\n");
     int top = 0;
     for (int i = 0; i < r.npass; i++) {
         lx_md(x, "| %s | %.4f | %.1f%% |\n", r.pass[i], r.ms_step[i], r.share[i]);
@@ -129,7 +129,8 @@ static int split_csv(char *line, char **f, int cap)
 static void ladder_table(lx *x, const bench_opts *o, const bench_ladder *lad)
 {
     lx_block(x, "ladder_table");
-    lx_md(x, "| level | what | threads | largest N at 60 steps/s | ms/step at the table's N |\n|---|---|---|---|---|\n");
+    lx_md(x, "| {{@level|niveau}} | {{@what|ce qu'il fait}} | threads | {{@largest N at 60 steps/s|plus grand N à 60 "
+             "pas/s}} | {{@ms/step at the table's N|ms/pas au N du tableau}} |\n|---|---|---|---|---|\n");
     for (int s = 0; s < o->nsel; s++) {
         const bench_level *L = &bench_levels[o->sel[s]];
         const level_result *r = &lad->res[s];
@@ -192,8 +193,10 @@ int lx_lesson8(lx *x)
         lx_val(x, "steps", "%s", steps);
         lx_val(x, "spacing_sets", "%s", spacing ? " --set fluid.spacing=0.04 --set kernels.h=0.08" : "");
         lx_block(x, "levels_table");
-        lx_md(x, "| level | what | threads | ms/step | neighbours [ms] | speedup over L0 | over the level before | "
-                 "steps/s | 60 steps/s? |\n|---|---|---|---|---|---|---|---|---|\n");
+        lx_md(x, "| {{@level|niveau}} | {{@what|ce qu'il fait}} | threads | {{@ms/step|ms/pas}} | {{@neighbours "
+                 "[ms]|voisins [ms]}} | {{@speedup over L0|gain sur L0}} | {{@over the level before|sur le niveau "
+                 "précédent}} | "
+                 "{{@steps/s|pas/s}} | {{@60 steps/s?|60 pas/s ?}} |\n|---|---|---|---|---|---|---|---|---|\n");
         FILE *f = lx_csv_open(x, "levels.csv");
         if (f) fprintf(f, "level,threads,particles,ms_per_step,neighbours_ms,speedup,steps_per_s\n");
         int good = 0;
@@ -336,7 +339,8 @@ static void study_table(lx *x, const char *csv)
     }
     lx_md(x, "|");
     for (int i = 1; i < c_part; i++) lx_md(x, " %s |", hdr[i]);
-    lx_md(x, " particles | error | ms/step | run [s] | Pareto front |\n|");
+    lx_md(x, " {{@particles|particules}} | {{@error|erreur}} | {{@ms/step|ms/pas}} | {{@run [s]|calcul [s]}} | "
+             "{{@Pareto front|front de Pareto}} |\n|");
     for (int i = 1; i < c_part + 5; i++) lx_md(x, "---|");
     lx_md(x, "\n");
     for (int l = 1; l < nl; l++) {
@@ -366,15 +370,18 @@ int lx_lesson9(lx *x)
     if (lx_has_command(x, "study")) {
         /* the study: every combination, median of repeats, the Pareto front */
         static const struct {
-            const char *name, *what;
+            const char *name, *what, *what_fr;
             const char *args_quick[8], *args_full[8];
         } st[2] = {
             {"accuracy", "error against wall time of every combination of spacing and h / spacing (log-log), the "
                          "Pareto front marked",
+             "l'erreur contre le temps de calcul de chaque combinaison du pas et de h / pas (log-log), le front de "
+             "Pareto marqué",
              {"--vary", "fluid.spacing=0.04,0.02", "--vary", "h_over_spacing=2,3", "--repeats", "1", NULL},
              {"--vary", "fluid.spacing=0.04,0.025,0.02,0.0125", "--vary", "h_over_spacing=1.5,2,3", "--repeats", "3",
               NULL}},
             {"accuracy-precision", "float against double sums at one resolution (h = 2 spacings)",
+             "sommes en float contre double à une résolution (h = 2 pas)",
              {"--vary", "physics.accumulate=float,double", "--set", "fluid.spacing=0.02", "--set", "kernels.h=0.04",
               "--repeats", "1"},
              {"--vary", "physics.accumulate=float,double", "--set", "fluid.spacing=0.0125", "--set", "kernels.h=0.025",
@@ -436,7 +443,8 @@ int lx_lesson9(lx *x)
             free(text);
             study_table(x, lx_out(x, lx_fmt("%s.csv", st[q].name)));
             lx_block_end(x);
-            lx_fig(x, lx_fmt("%s.png", st[q].name), lx_fmt("%s (PDF and CSV beside it)", st[q].what));
+            lx_fig(x, lx_fmt("%s.png", st[q].name),
+                   lx_fmt("{{@%s (PDF and CSV beside it)|%s (PDF et CSV à côté)}}", st[q].what, st[q].what_fr));
             lx_fig(x, lx_fmt("%s.csv", st[q].name), "one row per combination: knobs, error, ms per step, run time, "
                                                      "on the front or not");
         }
@@ -487,8 +495,10 @@ int lx_lesson9(lx *x)
             if (j != i && runs[j].wall_s <= runs[i].wall_s && runs[j].err < runs[i].err) runs[i].pareto = false;
     }
     lx_block(x, "runs_table");
-    lx_md(x, "| spacing [m] | h / spacing | sums | particles | steps | wall time [s] | fitted rate [1/s] | error | Pareto "
-             "front |\n|---|---|---|---|---|---|---|---|---|\n");
+    lx_md(x, "| {{@spacing [m]|pas [m]}} | {{@h / spacing|h / pas}} | {{@sums|sommes}} | "
+             "{{@particles|particules}} | {{@steps|pas}} | {{@wall time [s]|temps écoulé [s]}} | "
+             "{{@fitted rate [1/s]|taux ajusté [1/s]}} | {{@error|erreur}} | {{@Pareto front|front de Pareto}} "
+             "|\n|---|---|---|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "accuracy.csv");
     if (f) fprintf(f, "spacing,h_over_spacing,accumulate,particles,steps,wall_s,rate,analytic_rate,error_percent,pareto\n");
     for (int i = 0; i < nr; i++) {

@@ -5,7 +5,8 @@
  * section {{?name}}...{{/name}} is kept only if the value `name` is not empty.
  * Every placeholder must have a value and every value must be used by the
  * template: either slip is a failure of the export, so the text and the code
- * cannot drift apart unnoticed. */
+ * cannot drift apart unnoticed. Words the code writes into a value come in
+ * both languages, {{@English|Français}}; each report keeps its own. */
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -85,6 +86,30 @@ static void put(FILE *out, const char *s, size_t n)
     if (n) fwrite(s, 1, n, out);
 }
 
+/* Writes a value's text, where "{{@English|Français}}" pieces (table headers,
+ * words of generated sentences) give the report's language its own words:
+ * the values are measured once and written in both reports. */
+static void put_localised(const lx *x, FILE *out, const char *s, size_t n)
+{
+    const char *end = s + n;
+    while (s < end) {
+        const char *open = strstr(s, "{{@");
+        if (!open || open >= end) break;
+        const char *bar = open + 2, *close = strstr(open + 3, "}}");
+        do /* the first bar not escaped as a Markdown table's \| */
+            bar = strchr(bar + 1, '|');
+        while (bar && bar[-1] == '\\');
+        if (!bar || !close || close >= end || bar > close) break;
+        put(out, s, (size_t)(open - s));
+        if (x->lang == 1)
+            put(out, bar + 1, (size_t)(close - bar - 1));
+        else
+            put(out, open + 3, (size_t)(bar - open - 3));
+        s = close + 2;
+    }
+    put(out, s, (size_t)(end - s));
+}
+
 /* Fills [t, end) into out; returns the count of placeholders without a value. */
 static int fill(lx *x, const char *t, const char *end, FILE *out, const char *tmpl_name)
 {
@@ -131,7 +156,7 @@ static int fill(lx *x, const char *t, const char *end, FILE *out, const char *tm
             unfilled++;
         } else {
             v->used = true;
-            put(out, v->text ? v->text : "", v->len);
+            put_localised(x, out, v->text ? v->text : "", v->len);
         }
         t = close + 2;
     }

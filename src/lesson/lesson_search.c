@@ -34,7 +34,8 @@ int lx_lesson5(lx *x)
     lx_val(x, "cell_size", "%.7g", def.h * (1 + 1.0 / 1024));
     lx_val(x, "table_size", "%u", T);
     lx_block(x, "hash_table");
-    lx_md(x, "| particle | x [m] | y [m] | cell | hash | key |\n|---|---|---|---|---|---|\n");
+    lx_md(x, "| {{@particle|particule}} | x [m] | y [m] | {{@cell|cellule}} | {{@hash|hachage}} | {{@key|clé}} "
+             "|\n|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "hash-example.csv");
     if (f) fprintf(f, "particle,x,y,cell_x,cell_y,hash,key\n");
     for (int i = 0; i < n; i++) {
@@ -93,7 +94,9 @@ int lx_lesson5(lx *x)
     f = lx_csv_open(x, "collisions.csv");
     if (f) fprintf(f, "table_size,keys,occupied_cells,colliding_cells,neighbours_ms,density_ms\n");
     lx_block(x, "collisions_table");
-    lx_md(x, "| table_size | keys | occupied cells | cells sharing a key | neighbours [ms/step] |\n|---|---|---|---|---|\n");
+    lx_md(x, "| table_size | {{@keys|clés}} | {{@occupied cells|cellules occupées}} | {{@cells sharing a "
+             "key|cellules partageant une clé}} | {{@neighbours [ms/step]|voisins [ms/pas]}} "
+             "|\n|---|---|---|---|---|\n");
     for (int i = 0; i < nt; i++) {
         char set[64];
         snprintf(set, sizeof set, "search.table_size=%u", ts[i]);
@@ -193,7 +196,8 @@ int lx_lesson6(lx *x)
     /* 1. the slide's keys through the bitonic network */
     static const uint32_t slide[10] = {9, 0, 6, 7, 1, 1, 4, 2, 2, 2};
     lx_block(x, "bitonic_table");
-    lx_md(x, "| stage | step | w | kind | swaps | entries after the step |\n|---|---|---|---|---|---|\n");
+    lx_md(x, "| {{@stage|étage}} | {{@step|étape}} | w | {{@kind|sens}} | {{@swaps|échanges}} | {{@entries after the "
+             "step|entrées après l'étape}} |\n|---|---|---|---|---|---|\n");
     bitonic_ctx b = {x, lx_csv_open(x, "bitonic-steps.csv")};
     if (b.csv) fprintf(b.csv, "stage,step,w,kind,swaps,k0,k1,k2,k3,k4,k5,k6,k7,k8,k9\n");
     int steps = lx_bitonic_steps(slide, 10, bitonic_row, &b);
@@ -270,7 +274,8 @@ int lx_lesson6(lx *x)
     FILE *f = lx_csv_open(x, "sort-time.csv");
     if (f) fprintf(f, "particles,bitonic_ms,counting_ms,qsort_ms\n");
     lx_block(x, "sort_table");
-    lx_md(x, "| particles | bitonic | counting | qsort |\n|---|---|---|---|\n");
+    lx_md(x, "| {{@particles|particules}} | {{@bitonic|bitonique}} | {{@counting|comptage}} | qsort "
+             "|\n|---|---|---|---|\n");
     int good = 0;
     for (int i = 0; i < ns; i++) {
         bool all = true;

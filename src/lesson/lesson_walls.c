@@ -172,8 +172,10 @@ static void lesson10_rest(lx *x)
     lx_val(x, "rest_h", "%g", def.h);
     lx_val(x, "rest_kernel", "%s", sph_kernel_names[def.kernel_density]);
     lx_block(x, "rest_table");
-    lx_md(x, "| wall model | wall row (floor) | interior | free top row | corner (floor and wall) | wall row / "
-             "interior |\n|---|---|---|---|---|---|\n");
+    lx_md(x, "| {{@wall model|modèle de paroi}} | {{@wall row (floor)|rangée de paroi (fond)}} | "
+             "{{@interior|intérieur}} | "
+             "{{@free top row|rangée libre du haut}} | {{@corner (floor and wall)|coin (fond et paroi)}} | "
+             "{{@wall row / interior|rangée de paroi / intérieur}} |\n|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "wall-row-density.csv");
     if (f) fprintf(f, "wall_model,row,y,rho,rho_over_rho0\n");
     for (int m = 0; m < NMODEL; m++) {
@@ -192,7 +194,9 @@ static void lesson10_rest(lx *x)
     }
     lx_block_end(x);
     lx_val(x, "rest_interior", "%.1f", interior[1]);
-    if (f) lx_csv_close(x, f, "wall-row-density.csv", "the density up the middle column with each wall model");
+    if (f) lx_csv_close(x, f, "wall-row-density.csv", 
+                           "{{@the density up the middle column with each wall model|"
+                           "la densité le long de la colonne du milieu avec chaque modèle de paroi}}");
     plot_lines L = {0};
     snprintf(L.title, sizeof L.title, "The wall row: density up the middle column, floor to free surface");
     snprintf(L.subtitle, sizeof L.subtitle, "a %d x %d lattice at rest, spacing %g m, h = %g m, %s; the first density "
@@ -213,7 +217,8 @@ static void lesson10_rest(lx *x)
     if (L.p[0].n) {
         L.p[0].s[L.p[0].n++] = (plot_series){"rest density", prof_y[1], flat, (size_t)nrow, 6};
         lx_chart(x, PLOT_LINES, &L, "wall-row-density", 1000, 650,
-                 "the density up the middle column with each wall model: the wall row");
+                 "{{@the density up the middle column with each wall model: the wall row|la densité le long de la "
+                 "colonne du milieu avec chaque modèle de paroi : la rangée contre la paroi}}");
     }
 }
 
@@ -279,13 +284,16 @@ static void lesson10_tank(lx *x)
     lx_val(x, "tank_spacing", "%g", s);
     lx_val(x, "tank_scale", "%.0f", rho0 * g * H);
     lx_block(x, "tank_table");
-    lx_md(x, "| wall model | wall row: \\|p - rho0 g (H - y)\\| / rho0 g H | mean over the column | max speed / sqrt(g H) "
+    lx_md(x, "| {{@wall model|modèle de paroi}} | {{@wall row: \\|p - rho0 g (H - y)\\| / rho0 g H|rangée de paroi : "
+             "\\|p - rho0 g (H - y)\\| / rho0 g H}} | "
+             "{{@mean over the column|moyenne sur la colonne}} | {{@max speed / sqrt(g H)|vitesse max / sqrt(g H)}} "
              "|\n|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "hydrostatic-pressure.csv");
     if (f) fprintf(f, "wall_model,rank,y,p,p_exact\n");
     for (int m = 0; m < NMODEL; m++) {
         if (!ok[m]) {
-            lx_md(x, "| %s | %s | - | - |\n", models[m], stop[m] ? "stopped by the watchdog" : "-");
+            lx_md(x, "| %s | %s | - | - |\n", models[m],
+                  stop[m] ? "{{@stopped by the watchdog|arrêté par le chien de garde}}" : "-");
             lx_val(x, lx_fmt("tank_wall_%s", models[m]), "%s", stop[m] ? "stopped" : "-");
             continue;
         }
@@ -300,10 +308,13 @@ static void lesson10_tank(lx *x)
     for (int m = 0; m < NMODEL; m++)
         if (stop[m]) lx_md(x, "- `%s`: %s\n", models[m], notes[m]);
     lx_block_end(x);
-    if (f) lx_csv_close(x, f, "hydrostatic-pressure.csv", "the pressure up the middle of the tank with each wall model");
+    if (f) lx_csv_close(x, f, "hydrostatic-pressure.csv", 
+                           "{{@the pressure up the middle of the tank with each wall model|"
+                           "la pression le long du milieu de la cuve avec chaque modèle de paroi}}");
     plot_lines L = {0};
     snprintf(L.title, sizeof L.title, "A tank at rest: pressure up the middle, against #gr#d0#u g (H - y)");
-    snprintf(L.subtitle, sizeof L.subtitle, "water %.2f m deep, spacing %g m, t = %g s; every particle of the two middle columns",
+    snprintf(L.subtitle, sizeof L.subtitle, "water %.2f m deep, spacing %g m, t = %g s; every particle of the two "
+                                            "middle columns",
              H, s, t_end);
     snprintf(L.xlabel, sizeof L.xlabel, "height y [m]");
     L.np = 1;
@@ -320,7 +331,9 @@ static void lesson10_tank(lx *x)
     if (L.p[0].n) {
         L.p[0].s[L.p[0].n++] = (plot_series){"#gr#d0#u g (H - y)", ey, exact, (size_t)nrow, 6};
         lx_chart(x, PLOT_LINES, &L, "hydrostatic-pressure", 1000, 650,
-                 "the pressure up the middle of a tank at rest with each wall model, against the exact profile");
+                 "{{@the pressure up the middle of a tank at rest with each wall model, against the exact profile|la "
+                 "pression le long du milieu d'une cuve au repos avec chaque modèle de paroi, contre le profil "
+                 "exact}}");
     }
 }
 
@@ -351,8 +364,8 @@ static void lesson10_dam(lx *x)
     lx_val(x, "dam_height", "%g", (double)def.blocks[0].max[1] - def.blocks[0].min[1]);
     lx_val(x, "dam_time", "%g", t_end);
     lx_block(x, "dam_table");
-    lx_md(x, "| wall model |");
-    for (int k = 0; k < nw; k++) lx_md(x, " front at t = %g s |", when[k]);
+    lx_md(x, "| {{@wall model|modèle de paroi}} |");
+    for (int k = 0; k < nw; k++) lx_md(x, " {{@front at|front à}} t = %g s |", when[k]);
     lx_md(x, "\n|---|");
     for (int k = 0; k < nw; k++) lx_md(x, "---|");
     lx_md(x, "\n");
@@ -376,7 +389,9 @@ static void lesson10_dam(lx *x)
                         fc[m].t[i] * sqrt(2 * g / a));
     }
     lx_block_end(x);
-    if (f) lx_csv_close(x, f, "dam-front.csv", "the front of the dam break over time with each wall model");
+    if (f) lx_csv_close(x, f, "dam-front.csv", 
+                           "{{@the front of the dam break over time with each wall model|"
+                           "le front de la rupture de barrage au cours du temps avec chaque modèle de paroi}}");
     plot_lines L = {0};
     snprintf(L.title, sizeof L.title, "Dam break: the front with each wall model");
     snprintf(L.subtitle, sizeof L.subtitle, "a column %g m wide; the front is the fluid's largest x", a);
@@ -392,7 +407,10 @@ static void lesson10_dam(lx *x)
             ps->n = (size_t)fc[m].n;
             ps->style = m;
         }
-    if (L.p[0].n) lx_chart(x, PLOT_LINES, &L, "dam-front", 1000, 650, "the dam break's front over time, each wall model");
+    if (L.p[0].n)
+        lx_chart(x, PLOT_LINES, &L, "dam-front", 1000, 650,
+                 "{{@the dam break's front over time, each wall model|"
+                 "le front de la rupture de barrage au cours du temps, avec chaque modèle de paroi}}");
 }
 
 int lx_lesson10(lx *x)
@@ -450,8 +468,12 @@ static void solvers_table(lx *x, const char *csv)
             return;
         }
     }
-    lx_md(x, "| setting (solver+stiffness+tolerance) | each step's largest compression, time mean | the run's "
-             "largest | mean compression | steps per simulated s | iterations per step | ms per simulated s | Pareto front "
+    lx_md(x, "| {{@setting (solver+stiffness+tolerance)|réglage (solveur+raideur+tolérance)}} | "
+             "{{@each step's largest compression, time mean|plus grande compression de chaque pas, moyenne en "
+             "temps}} | "
+             "{{@the run's largest|la plus grande du calcul}} | {{@mean compression|compression moyenne}} | "
+             "{{@steps per simulated s|pas par s simulée}} | {{@iterations per step|itérations par pas}} | "
+             "{{@ms per simulated s|ms par s simulée}} | {{@Pareto front|front de Pareto}} "
              "|\n|---|---|---|---|---|---|---|---|\n");
     for (int l = 1; l < nl; l++) {
         char *f[32];
@@ -459,7 +481,7 @@ static void solvers_table(lx *x, const char *csv)
         double v[7];
         for (int k = 0; k < 7; k++) v[k] = strtod(f[col[k]], NULL);
         lx_md(x, "| %s | %.2f %% | %.2f %% | %.3f %% | %.0f | %.1f | %.0f | %s |\n", f[1], 100 * v[0], 100 * v[1],
-              100 * v[2], v[3], v[4], v[5], v[6] > 0 ? "yes" : "");
+              100 * v[2], v[3], v[4], v[5], v[6] > 0 ? "{{@yes|oui}}" : "");
     }
     lx_md(x, "\n");
     free(text);
@@ -519,9 +541,16 @@ int lx_lesson11(lx *x)
     free(text);
     solvers_table(x, lx_out(x, "solvers.csv"));
     lx_block_end(x);
-    lx_fig(x, "solvers.png", "each step's largest compression (time mean) against the run's wall time of every setting "
-                             "(log-log), the Pareto front marked (PDF and CSV beside it)");
-    lx_fig(x, "solvers.csv", "one row per setting: compression (each step's largest, the run's largest, the mean), steps "
-                             "and ms per simulated second, iterations per step");
+    lx_fig(x, "solvers.png",
+           "{{@each step's largest compression (time mean) against the run's wall time of every setting (log-log), "
+                             "the Pareto front marked (PDF and CSV beside it)|la plus grande compression de chaque pas "
+                             "(moyenne en temps) contre le temps de calcul de chaque réglage (log-log), le front de "
+                             "Pareto marqué (PDF et CSV à côté)}}");
+    lx_fig(x, "solvers.csv",
+           "{{@one row per setting: compression (each step's largest, the run's largest, the mean), steps and ms per "
+                             "simulated second, iterations per step|une ligne par réglage : compression (la plus "
+                             "grande "
+                             "de chaque pas, la plus grande du calcul, la moyenne), pas et ms par seconde simulée, "
+                             "itérations par pas}}");
     return 0;
 }
