@@ -1,5 +1,7 @@
 /* The HUD's lines and the inspector's rows, as text (see sph_overlay.h). */
+#include <ctype.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,12 +26,26 @@ double sph_density_error(const sph_sim *sim)
     return ((double)mx - sim->def.rest_density) / sim->def.rest_density;
 }
 
+/* Whether a scene's name already says its dimension ("dam break 2D"), so the
+ * HUD's first line does not say it twice. */
+static bool names_dimension(const char *name, int dim)
+{
+    const char want = dim == 3 ? '3' : '2';
+    for (const char *p = name; *p; p++)
+        if (p[0] == want && (p[1] == 'D' || p[1] == 'd') && (p == name || !isalnum((unsigned char)p[-1])) &&
+            !isalnum((unsigned char)p[2]))
+            return true;
+    return false;
+}
+
 int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128], int max_lines)
 {
     int k = 0;
 #define HUD_LINE(...) \
     if (k < max_lines) snprintf(lines[k++], 128, __VA_ARGS__)
-    HUD_LINE("%s   %dD   %u particles", sim->def.name[0] ? sim->def.name : "scene", sim->dim, sim->n);
+    const char *name = sim->def.name[0] ? sim->def.name : "scene";
+    HUD_LINE("%s%s   %u particles", name, names_dimension(name, sim->dim) ? "" : sim->dim == 3 ? "   3D" : "   2D",
+             sim->n);
     HUD_LINE("step %llu   t = %.4f s   dt = %.3g ms%s", (unsigned long long)sim->step, sim->t, 1e3 * sim->dt,
              info && info->paused ? "   PAUSED" : "");
     double e = sph_density_error(sim);
@@ -62,7 +78,17 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
         }
     }
     double drift = sph_sim_energy_drift(sim);
-    if (drift == drift) HUD_LINE("energy drift since step 1 = %+.2f %%", 100 * drift);
+    if (sim->def.effects & SPH_EFFECT(COHESION) || sim->def.surface_tension != SPH_STENSION_NONE) {
+        /* the energy summed (kinetic, gravity, compression) leaves out the
+         * surface's: a drop rounding itself turns surface energy into motion,
+         * which a drift would show as an error */
+        if (drift == drift) HUD_LINE("energy drift: not shown (surface energy is not counted)");
+    } else if (sim->def.damping_time > 0 && sim->t < sim->def.damping_time) {
+        if (drift == drift) HUD_LINE("energy drift: not shown while damping (%.2f of %.2f s)", sim->t,
+                                     (double)sim->def.damping_time);
+    } else if (drift == drift) {
+        HUD_LINE("energy drift since step 1 = %+.2f %%", 100 * drift);
+    }
     char off[100] = "";
     int on = 0, total = 0;
     for (int p = 0; p < SPH_PASS_COUNT; p++) {
