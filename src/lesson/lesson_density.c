@@ -173,8 +173,8 @@ int lx_lesson1(lx *x)
     L3.np = 1;
     snprintf(L3.p[0].ylabel, sizeof L3.p[0].ylabel, "density error [%%]");
     L3.p[0].n = 2;
-    L3.p[0].s[0] = (plot_series){"interior rms error", xs, noise, (size_t)good, 0};
-    L3.p[0].s[1] = (plot_series){"top row deficit", xs, deficit, (size_t)good, 1};
+    L3.p[0].s[0] = (plot_series){"interior rms error", xs, noise, (size_t)good, 0, false};
+    L3.p[0].s[1] = (plot_series){"top row deficit", xs, deficit, (size_t)good, 1, false};
     lx_chart(x, PLOT_LINES, &L3, "density-vs-h", 1000, 650, "the slab's interior noise and surface deficit against h");
 
     /* 4. two pictures */
@@ -305,9 +305,9 @@ int lx_lesson2(lx *x)
     L.np = 1;
     snprintf(L.p[0].ylabel, sizeof L.p[0].ylabel, "density [kg/m#u2#d]");
     L.p[0].n = 3;
-    L.p[0].s[0] = (plot_series){"walls count (volume)", prof_y, prof[0], (size_t)nprof, 0};
-    L.p[0].s[1] = (plot_series){"reflect only (the seed)", prof_y, prof[1], (size_t)nprof, 1};
-    L.p[0].s[2] = (plot_series){"rest density", prof_y, flat, (size_t)nprof, 6};
+    L.p[0].s[0] = (plot_series){"walls count (volume)", prof_y, prof[0], (size_t)nprof, 0, false};
+    L.p[0].s[1] = (plot_series){"reflect only (the seed)", prof_y, prof[1], (size_t)nprof, 1, false};
+    L.p[0].s[2] = (plot_series){"rest density", prof_y, flat, (size_t)nprof, 6, false};
     lx_chart(x, PLOT_LINES, &L, "density-profile", 1000, 650,
              "the density up the middle column, with and without the walls' share");
 
@@ -335,8 +335,8 @@ int lx_lesson2(lx *x)
             P.np = 1;
             snprintf(P.p[0].ylabel, sizeof P.p[0].ylabel, "kinetic energy [J/m]");
             P.p[0].n = 2;
-            P.p[0].s[0] = (plot_series){"walls count (volume)", t0, e0, pt[0].nrows, 0};
-            P.p[0].s[1] = (plot_series){"reflect only (the seed)", t1, e1, pt[1].nrows, 1};
+            P.p[0].s[0] = (plot_series){"walls count (volume)", t0, e0, pt[0].nrows, 0, false};
+            P.p[0].s[1] = (plot_series){"reflect only (the seed)", t1, e1, pt[1].nrows, 1, false};
             lx_chart(x, PLOT_LINES, &P, "pool-walls", 1000, 600,
                      "a pool at rest: kinetic energy over time with volume walls and with the seed's reflecting walls");
             size_t a = pt[0].nrows - 1, b = pt[1].nrows - 1;

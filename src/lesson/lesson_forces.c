@@ -83,10 +83,10 @@ int lx_lesson3(lx *x)
                     L.np = 1;
                     snprintf(L.p[0].ylabel, sizeof L.p[0].ylabel, "kinetic energy [J/m]");
                     L.p[0].n = 2;
-                    L.p[0].s[0] = (plot_series){"", t0, e0, ta.nrows, 0};
+                    L.p[0].s[0] = (plot_series){"", t0, e0, ta.nrows, 0, false};
                     snprintf(L.p[0].s[0].label, sizeof L.p[0].s[0].label, "%s / %s",
                              sph_kernel_names[def.kernel_density], sph_kernel_names[def.kernel_pressure]);
-                    L.p[0].s[1] = (plot_series){"poly6 / spiky", t1, e1, tb.nrows, 1};
+                    L.p[0].s[1] = (plot_series){"poly6 / spiky", t1, e1, tb.nrows, 1, false};
                     lx_chart(x, PLOT_LINES, &L, "pool-energy", 1000, 600,
                              "the pool's kinetic energy over time: one kernel against Mueller's pair, no viscosity");
                     lx_val(x, "pool_t", "%.3g", t0[ta.nrows - 1]);
@@ -145,8 +145,8 @@ int lx_lesson3(lx *x)
         L.np = 1;
         snprintf(L.p[0].ylabel, sizeof L.p[0].ylabel, "pressure [N/m] (2D)");
         L.p[0].n = 2;
-        L.p[0].s[0] = (plot_series){"SPH, mean of each layer", by, bp, (size_t)m, 0};
-        L.p[0].s[1] = (plot_series){"#gr#d0#u g (H - y)", by, hyd, (size_t)m, 1};
+        L.p[0].s[0] = (plot_series){"SPH, mean of each layer", by, bp, (size_t)m, 0, false};
+        L.p[0].s[1] = (plot_series){"#gr#d0#u g (H - y)", by, hyd, (size_t)m, 1, false};
         lx_chart(x, PLOT_LINES, &L, "pressure-depth", 1000, 650, "the pool's pressure against height, and rho0 g (H - y)");
         lx_val(x, "depth", "%.3f", H);
         lx_val(x, "dpdy", "%.0f", dpdy);
@@ -188,8 +188,8 @@ int lx_lesson3(lx *x)
             L.np = 1;
             snprintf(L.p[0].ylabel, sizeof L.p[0].ylabel, "pressure [N/m] (2D)");
             L.p[0].n = 2;
-            L.p[0].s[0] = (plot_series){"linear: k (#gr - #gr#d0#u)", xl, yl, n, 0};
-            L.p[0].s[1] = (plot_series){"Tait, #gg = 7", xt, yt, n, 1};
+            L.p[0].s[0] = (plot_series){"linear: k (#gr - #gr#d0#u)", xl, yl, n, 0, false};
+            L.p[0].s[1] = (plot_series){"Tait, #gg = 7", xt, yt, n, 1, false};
             lx_chart(x, PLOT_LINES, &L, "eos", 1000, 650, "pressure against density of every particle: linear and Tait");
             lx_val(x, "rho_densest_linear", "%.1f", xl[n - 1]);
             lx_val(x, "p_densest_linear", "%.0f", yl[n - 1]);
@@ -384,7 +384,7 @@ int lx_lesson4(lx *x)
         }
     }
     if (an) {
-        C.p[0].s[C.p[0].n++] = (plot_series){"analytic", tan_, an, nan_, 6};
+        C.p[0].s[C.p[0].n++] = (plot_series){"analytic", tan_, an, nan_, 6, false};
         lx_chart(x, PLOT_LINES, &C, "taylor-green", 1000, 650,
                  "kinetic energy over time: the Laplacian and the seed's smoothing form against exp(-4 nu k^2 t)");
     }

@@ -550,7 +550,7 @@ int lx_lesson9(lx *x)
             xv[4][j] = runs[i].wall_s;
             yv[4][j] = 100 * runs[i].err;
         }
-    if (m) C.p[0].s[C.p[0].n++] = (plot_series){"Pareto front", xv[4], yv[4], m, 6};
+    if (m) C.p[0].s[C.p[0].n++] = (plot_series){"Pareto front", xv[4], yv[4], m, 6, false};
     if (nr >= 2) lx_chart(x, PLOT_LINES, &C, "accuracy", 1000, 650, "error against wall time of every run, with the "
                                                                     "Pareto front");
     return 0;

@@ -308,7 +308,7 @@ int lx_lesson6(lx *x)
         L.np = 1;
         snprintf(L.p[0].ylabel, sizeof L.p[0].ylabel, "sort pass [ms/step]");
         for (int k = 0; k < 3; k++)
-            L.p[0].s[L.p[0].n++] = (plot_series){"", N, ms[k], (size_t)good, k};
+            L.p[0].s[L.p[0].n++] = (plot_series){"", N, ms[k], (size_t)good, k, false};
         for (int k = 0; k < 3; k++) snprintf(L.p[0].s[k].label, sizeof L.p[0].s[k].label, "%s", sorts[k]);
         lx_chart(x, PLOT_LINES, &L, "sort-time", 1000, 650, "the sort pass's time against the particle count");
     }

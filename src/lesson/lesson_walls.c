@@ -215,7 +215,7 @@ static void lesson10_rest(lx *x)
             ps->style = m;
         }
     if (L.p[0].n) {
-        L.p[0].s[L.p[0].n++] = (plot_series){"rest density", prof_y[1], flat, (size_t)nrow, 6};
+        L.p[0].s[L.p[0].n++] = (plot_series){"rest density", prof_y[1], flat, (size_t)nrow, 6, false};
         lx_chart(x, PLOT_LINES, &L, "wall-row-density", 1000, 650,
                  "{{@the density up the middle column with each wall model: the wall row|la densité le long de la "
                  "colonne du milieu avec chaque modèle de paroi : la rangée contre la paroi}}");
@@ -329,7 +329,7 @@ static void lesson10_tank(lx *x)
             ps->style = m;
         }
     if (L.p[0].n) {
-        L.p[0].s[L.p[0].n++] = (plot_series){"#gr#d0#u g (H - y)", ey, exact, (size_t)nrow, 6};
+        L.p[0].s[L.p[0].n++] = (plot_series){"#gr#d0#u g (H - y)", ey, exact, (size_t)nrow, 6, false};
         lx_chart(x, PLOT_LINES, &L, "hydrostatic-pressure", 1000, 650,
                  "{{@the pressure up the middle of a tank at rest with each wall model, against the exact profile|la "
                  "pression le long du milieu d'une cuve au repos avec chaque modèle de paroi, contre le profil "

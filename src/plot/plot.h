@@ -69,6 +69,7 @@ typedef struct plot_series {
     const double *x, *y;
     size_t n;
     int style;          /* index into the style table: colour, line style, marker */
+    bool reference;     /* an exact or published curve: its style's colour, solid and thin, no markers */
 } plot_series;
 
 typedef struct plot_panel {

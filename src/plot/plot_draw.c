@@ -458,11 +458,11 @@ static void draw_lines(const void *chart)
         }
         for (int k = 0; k < P->n; k++) {
             const plot_series *s = &P->s[k];
-            pen(s->style, false);
-            plot_width(2.2);
+            pen(s->style, s->reference);
+            plot_width(s->reference ? 1.2 : 2.2);
             draw_polyline(s->x, s->y, s->n, scale);
             pllsty(1);
-            draw_markers(s, k, P->n, xr, yr, scale);
+            if (!s->reference) draw_markers(s, k, P->n, xr, yr, scale);
         }
         plcol0(PLOT_FG);
         plot_width(1.6);
@@ -481,7 +481,8 @@ static void draw_lines(const void *chart)
         char text[PLOT_MAX_SERIES][72];
         for (int k = 0; k < P->n; k++) {
             snprintf(text[k], sizeof text[k], "%s%s", P->s[k].label, singular[k] ? "*" : "");
-            e[k] = (plot_key){.text = text[k], .style = P->s[k].style, .line = true, .marker = true};
+            e[k] = (plot_key){.text = text[k], .style = P->s[k].style, .line = true, .solid = P->s[k].reference,
+                              .marker = !P->s[k].reference};
         }
         const char *note = "* off scale near 0";
         plot_legend(e, P->n, &note, any_singular, vx1 + 0.015, 0.992, top);

@@ -150,9 +150,9 @@ int val_channel_run(const val_ctx *c, const val_problem *p, const val_channel *c
             }
             if (k % 2 == 1 && k != VAL_CHANNEL_TIMES - 1) continue; /* 8 series at most: three times drawn */
             plot_series *e = &pl.p[0].s[pl.p[0].n++], *s = &pl.p[0].s[pl.p[0].n++];
-            snprintf(e->label, sizeof e->label, "exact t = %g s", o->times[k]);
-            snprintf(s->label, sizeof s->label, "sphlab t = %g s", o->times[k]);
-            e->x = ey[k], e->y = eu[k], e->n = NE, e->style = 7;
+            snprintf(e->label, sizeof e->label, "exact t = %.3g s", o->times[k]);
+            snprintf(s->label, sizeof s->label, "sphlab t = %.3g s", o->times[k]);
+            e->x = ey[k], e->y = eu[k], e->n = NE, e->style = k, e->reference = true; /* its run's colour */
             s->x = o->y + (size_t)k * o->rows, s->y = o->u + (size_t)k * o->rows, s->n = (size_t)o->rows;
             s->style = k;
         }
