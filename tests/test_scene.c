@@ -844,3 +844,18 @@ Test(scene, every_key_is_documented)
     }
     free(doc);
 }
+
+/* Every key of a [fluid NAME] or [obstacle NAME] section has an origin slot
+ * in its block (sph_block_def.origin, sph_obstacle_def.origin): a key added to
+ * the table past SPH_GROUP_KEYS_MAX would be written out of the array. */
+Test(scene, group_keys_fit_their_origin_slots)
+{
+    const char *groups[] = {"fluid", "obstacle"};
+    for (int g = 0; g < 2; g++) {
+        int n = 0;
+        for (int i = 0; i < sph_scene_key_count; i++)
+            if (strcmp(sph_scene_keys[i].section, groups[g]) == 0) n++;
+        cr_expect_gt(n, 0, "no [%s] key in the table", groups[g]);
+        cr_expect_leq(n, SPH_GROUP_KEYS_MAX, "[%s] has %d keys, %d origin slots", groups[g], n, SPH_GROUP_KEYS_MAX);
+    }
+}

@@ -391,6 +391,9 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
     if (g) {
         const char *bname = fluid_block_name(section);
         int slot = fluid_slot(index), *count = group_count(g, def);
+        if (slot >= SPH_GROUP_KEYS_MAX) /* a key added to the table beyond the origin slots: a build defect */
+            return sph_fail(err, SPH_ERR_SCENE, "%s: [%.60s] %s: key %d of its section, past the %d origin slots "
+                            "(raise SPH_GROUP_KEYS_MAX)", loc, section, name, slot + 1, SPH_GROUP_KEYS_MAX);
         char *targets[SPH_MAX_BLOCKS > SPH_MAX_OBSTACLES ? SPH_MAX_BLOCKS : SPH_MAX_OBSTACLES];
         int nt = 0;
         if (line < 0 && *bname == '\0') { /* --set fluid.key=v: every block */

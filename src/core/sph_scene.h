@@ -137,6 +137,10 @@ typedef struct sph_origin {
     int ncomp;  /* number of components given, for vectors */
 } sph_origin;
 
+/* Keys a [fluid NAME] or [obstacle NAME] section can hold: one origin slot
+ * each. tests/test_scene.c counts the key table's keys of each against it. */
+#define SPH_GROUP_KEYS_MAX 8
+
 /* Longest fluid block name: the INI parser keeps 49 characters of a section
  * header and "fluid " takes 6; longer names are refused, never cut. */
 #define SPH_BLOCK_NAME_MAX 43
@@ -153,7 +157,7 @@ typedef struct sph_block_def {
     sph_initial_pressure initial_pressure; /* none (rho0 everywhere), or hydrostatic: each particle's mass holds
                                             * the equation of state's density at rho0 g (its depth in the block) */
     int line;          /* line of the [fluid ...] section header, for messages */
-    sph_origin origin[8];
+    sph_origin origin[SPH_GROUP_KEYS_MAX];
 } sph_block_def;
 
 /* Longest obstacle name: "obstacle " takes 9 of inih's 49 characters. */
@@ -171,7 +175,7 @@ typedef struct sph_obstacle_def {
     float radius;      /* [m] circle: radius */
     sph_wall_slip slip; /* no: no-slip surface (velocity mirrored); free: free-slip */
     int line;          /* line of the [obstacle ...] section header, for messages */
-    sph_origin origin[8];
+    sph_origin origin[SPH_GROUP_KEYS_MAX];
 } sph_obstacle_def;
 
 typedef struct sph_scene_def {
