@@ -20,21 +20,6 @@
 
 static char out[65536];
 
-static const char *temp_dir(void)
-{
-    static char path[64];
-    snprintf(path, sizeof path, "/tmp/sphlab-lesson-XXXXXX");
-    cr_assert(mkdtemp(path), "cannot make a temporary directory");
-    return path;
-}
-
-static void remove_dir(const char *dir)
-{
-    char cmd[256];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    cr_assert(system(cmd) == 0);
-}
-
 static char *read_all(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -176,7 +161,7 @@ static char *check_report(const char *dir, int num, const char *title, const cha
 
 static const char *export_lesson(int num)
 {
-    const char *dir = temp_dir();
+    const char *dir = test_temp_dir("lesson");
     char args[256];
     snprintf(args, sizeof args, "lesson %d --export %s --quick --quiet", num, dir);
     int rc = test_sphlab(args, out, sizeof out);
@@ -233,7 +218,7 @@ Test(lesson, templates_agree)
  * its values unused, fails the export and names both. */
 Test(lesson, template_slip_fails_the_export)
 {
-    const char *root = temp_dir();
+    const char *root = test_temp_dir("lesson");
     char cmd[512];
     snprintf(cmd, sizeof cmd, "cp -r lessons/04-viscosity '%s/' && sed -i 's/{{lap_exact}}/{{no_such_value}}/' "
                               "'%s/04-viscosity/report.md'",
@@ -254,7 +239,7 @@ Test(lesson, template_slip_fails_the_export)
     char *fr = read_all(path);
     cr_expect(fr && !strstr(fr, "{{"), "the French report (its template is intact) is not filled");
     free(fr);
-    remove_dir(root);
+    test_remove_dir(root);
 }
 
 /* ---- the command ------------------------------------------------------------------ */
@@ -310,13 +295,13 @@ Test(lesson, window_offscreen)
 {
     if (!has_command("view")) cr_skip_test("no view command in this build");
     setenv("SDL_VIDEODRIVER", "offscreen", 1);
-    const char *dir = temp_dir();
+    const char *dir = test_temp_dir("lesson");
     char args[256];
     snprintf(args, sizeof args, "lesson 5 --frames 2 --keys . --threads 1 --screenshot %s/shot.png", dir);
     int rc = test_sphlab(args, out, sizeof out);
     cr_assert(rc == 0, "exit %d: %s", rc, out);
     check_png(dir, "shot.png", 1100, 760);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* The new lessons' first frame opens in the window without error (their
@@ -326,13 +311,13 @@ Test(lesson, window_opens_lessons_10_and_11)
     if (!has_command("view")) cr_skip_test("no view command in this build");
     setenv("SDL_VIDEODRIVER", "offscreen", 1);
     for (int num = 10; num <= 11; num++) {
-        const char *dir = temp_dir();
+        const char *dir = test_temp_dir("lesson");
         char args[256];
         snprintf(args, sizeof args, "lesson %d --frames 1 --threads 1 --screenshot %s/shot.png", num, dir);
         int rc = test_sphlab(args, out, sizeof out);
         cr_assert(rc == 0, "lesson %d: exit %d: %s", num, rc, out);
         check_png(dir, "shot.png", 0, 0);
-        remove_dir(dir);
+        test_remove_dir(dir);
     }
 }
 
@@ -373,7 +358,7 @@ Test(lesson, export_1_kernel_estimation)
     check_pdf(dir, "density-vs-h.pdf");
     check_png(dir, "density-h1.5.png", 900, 650);
     check_png(dir, "density-h4.png", 900, 650);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(lesson, export_2_density_summation)
@@ -398,7 +383,7 @@ Test(lesson, export_2_density_summation)
     check_pdf(dir, "pool-walls.pdf");
     check_png(dir, "density.png", 1000, 640);
     check_png(dir, "density-reflect.png", 1000, 640);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(lesson, export_3_pressure_gradient)
@@ -421,7 +406,7 @@ Test(lesson, export_3_pressure_gradient)
         cr_expect(field(c.line[i], 4) < 1e-5, "momentum not conserved: %s", c.line[i]);
     free(c.text);
     check_png(dir, "pressure.png", 1000, 560);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(lesson, export_4_viscosity)
@@ -440,7 +425,7 @@ Test(lesson, export_4_viscosity)
     check_csv(dir, "kernel-viscosity-2d.csv", "r_over_h,r,w,dw_dr,lap", 100, NULL);
     check_png(dir, "kernel-viscosity-3d.png", 0, 0);
     check_png(dir, "speed.png", 800, 700);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(lesson, export_5_spatial_hash)
@@ -461,7 +446,7 @@ Test(lesson, export_5_spatial_hash)
     cr_expect(field(c.line[2], 1) == 16 && field(c.line[2], 3) == field(c.line[2], 2), "%s", c.line[2]);
     free(c.text);
     check_png(dir, "collisions.png", 1000, 640);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(lesson, export_6_sorting_offsets)
@@ -493,7 +478,7 @@ Test(lesson, export_6_sorting_offsets)
             cr_expect(field(c.line[i], k) >= 0, "sort %d: no time in %s", k, c.line[i]);
     free(c.text);
     check_png(dir, "sort-time.png", 1000, 650);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(lesson, export_7_full_simulation)
@@ -516,7 +501,7 @@ Test(lesson, export_7_full_simulation)
                                "pass-09-pressure_force.png", "pass-12-walls.png"};
         for (int i = 0; i < 5; i++) check_png(dir, shots[i], 960, 560);
     }
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(lesson, export_8_optimisation_ladder)
@@ -545,7 +530,7 @@ Test(lesson, export_8_optimisation_ladder)
         check_pdf(dir, "levels.pdf");
     }
     check_png(dir, "block.png", 900, 700);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(lesson, export_9_accuracy)
@@ -563,7 +548,7 @@ Test(lesson, export_9_accuracy)
     }
     check_png(dir, "accuracy.png", 0, 0);
     check_pdf(dir, "accuracy.pdf");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* Lesson 10: the three wall models side by side. The wall row of a block at
@@ -597,7 +582,7 @@ Test(lesson, export_10_boundaries)
     check_csv(dir, "dam-front.csv", "wall_model,t,front_x", 6, NULL);
     check_png(dir, "dam-front.png", 1000, 650);
     check_pdf(dir, "dam-front.pdf");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* Lesson 11: one row per setting, the solvers iterate and the equation of
@@ -625,5 +610,5 @@ Test(lesson, export_11_incompressible)
     free(c.text);
     check_png(dir, "solvers.png", 0, 0);
     check_pdf(dir, "solvers.pdf");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }

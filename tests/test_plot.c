@@ -21,23 +21,6 @@
 
 static char out[16384];
 
-static const char *temp_dir(void)
-{
-    static char paths[4][64];
-    static int slot;
-    char *p = paths[slot++ % 4];
-    snprintf(p, 64, "/tmp/sphlab-plot-XXXXXX");
-    cr_assert(mkdtemp(p), "cannot make a temporary directory");
-    return p;
-}
-
-static void remove_dir(const char *dir)
-{
-    char cmd[256];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    cr_assert(system(cmd) == 0);
-}
-
 static int plot(const char *fmt, const char *a, const char *b)
 {
     char args[2048];
@@ -192,7 +175,7 @@ static int parse_row(char *line, double *v, int cap)
 
 Test(plot, kernel_chart_png_pdf_and_csv_of_the_kernel_values)
 {
-    const char *dir = temp_dir();
+    const char *dir = test_temp_dir("plot");
     int rc = plot("plot kernel wendland --dim 3 --h 0.5 --size 800x640 --out %s%s", dir, "");
     cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
     char png[256], pdf[256], csv[256];
@@ -230,7 +213,7 @@ Test(plot, kernel_chart_png_pdf_and_csv_of_the_kernel_values)
     cr_assert(last_q > 1.0, "r/h stops at %g, before the end of the support", last_q);
     cr_assert(nonzero > 100 && nonzero < rows, "W > 0 inside the support only (%d of %d rows)", nonzero, rows);
     free(text);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* --svg adds BASE.svg: an SVG document of the PDF's page size (points) that
@@ -238,7 +221,7 @@ Test(plot, kernel_chart_png_pdf_and_csv_of_the_kernel_values)
  * SVG is written. */
 Test(plot, svg_on_request)
 {
-    const char *dir = temp_dir();
+    const char *dir = test_temp_dir("plot");
     int rc = plot("plot kernel poly6 --size 800x640 --svg --out %s%s", dir, "");
     cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
     char svg[256];
@@ -255,13 +238,13 @@ Test(plot, svg_on_request)
     cr_assert(paths > 20, "%s: only %d paths", svg, paths);
     cr_assert(strstr(text, "</svg>"), "%s is cut short", svg);
     free(text);
-    remove_dir(dir);
+    test_remove_dir(dir);
 
-    dir = temp_dir();
+    dir = test_temp_dir("plot");
     rc = plot("plot kernel poly6 --out %s%s", dir, "");
     cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
     cr_assert_eq(dir_entries(dir), 3, "without --svg: csv, png and pdf only");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* Curves differ by colour and style: the dW/dr panel is drawn in blue, the
@@ -269,7 +252,7 @@ Test(plot, svg_on_request)
  * blue ones lie above the red ones (panels stacked W, dW/dr, Laplacian). */
 Test(plot, kernel_panels_hold_their_curves)
 {
-    const char *dir = temp_dir();
+    const char *dir = test_temp_dir("plot");
     int rc = plot("plot kernel cubic --out %s --quiet%s", dir, "");
     cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
     char png[256];
@@ -286,12 +269,12 @@ Test(plot, kernel_panels_hold_their_curves)
     cr_assert(blue > 300 && red > 300, "curve pixels: blue %ld, red %ld", blue, red);
     cr_assert(blue_y / blue < red_y / red, "the dW/dr curve should be above the Laplacian's");
     stbi_image_free(im.px);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(plot, kernels_writes_every_kernel_and_the_comparison)
 {
-    const char *dir = temp_dir();
+    const char *dir = test_temp_dir("plot");
     int rc = plot("plot kernels --dim 2 --out %s --quiet%s", dir, "");
     cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
     cr_assert_eq(dir_entries(dir), 3 * (SPH_KERNEL_COUNT + 1), "want csv, png, pdf for 5 kernels and the comparison");
@@ -320,12 +303,12 @@ Test(plot, kernels_writes_every_kernel_and_the_comparison)
                   v[2 + kk], want);
     }
     free(text);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(plot, same_input_same_bytes)
 {
-    const char *a = temp_dir(), *b = temp_dir();
+    const char *a = test_temp_dir("plot"), *b = test_temp_dir("plot");
     cr_assert_eq(plot("plot kernel spiky --quiet --out %s%s", a, ""), 0, "%s", out);
     cr_assert_eq(plot("plot kernel spiky --quiet --out %s%s", b, ""), 0, "%s", out);
     const char *ext[3] = {"csv", "png", "pdf"};
@@ -339,8 +322,8 @@ Test(plot, same_input_same_bytes)
         free(da);
         free(db);
     }
-    remove_dir(a);
-    remove_dir(b);
+    test_remove_dir(a);
+    test_remove_dir(b);
 }
 
 /* ---- from --stats ---------------------------------------------------------------- */
@@ -373,7 +356,7 @@ static long count_grey(const image *im, int level)
 
 Test(plot, passes_bars_are_the_medians)
 {
-    const char *dir = temp_dir(), *stats = synthetic_stats();
+    const char *dir = test_temp_dir("plot"), *stats = synthetic_stats();
     int rc = plot("plot passes %s --out %s --quiet", stats, dir);
     cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
     char path[256];
@@ -415,12 +398,12 @@ Test(plot, passes_bars_are_the_medians)
     cr_assert(strncmp(text, "t,step_first,step_last,external_ms,hash_ms,sort_ms\n", 51) == 0, "%s", text);
     free(text);
     cr_assert_eq(dir_entries(dir), 6);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(plot, series_of_stats_columns)
 {
-    const char *dir = temp_dir(), *stats = synthetic_stats();
+    const char *dir = test_temp_dir("plot"), *stats = synthetic_stats();
     int rc = plot("plot series %s --y ekin,rho_max,rho_min --dim 2 --size 900x800 --out %s", stats, dir);
     cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
     char path[256];
@@ -432,12 +415,12 @@ Test(plot, series_of_stats_columns)
     char *text = read_all(path, &n);
     cr_assert(strncmp(text, "t,ekin,rho_max,rho_min\n0.001,0.5,1100,900\n", 42) == 0, "%s", text);
     free(text);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(plot, series_beside_the_csv_by_default)
 {
-    const char *dir = temp_dir();
+    const char *dir = test_temp_dir("plot");
     char csv[256], path[256];
     snprintf(csv, sizeof csv, "%s/stats.csv", dir);
     FILE *f = fopen(csv, "w");
@@ -447,24 +430,24 @@ Test(plot, series_beside_the_csv_by_default)
     cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
     snprintf(path, sizeof path, "%s/energy.png", dir);
     cr_assert(check_png(path, 1000, 700) > 500, "too few curve pixels");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 /* ---- errors ------------------------------------------------------------------------ */
 
 Test(plot, missing_csv)
 {
-    const char *dir = temp_dir();
+    const char *dir = test_temp_dir("plot");
     int rc = plot("plot passes /nonexistent/stats.csv --out %s%s", dir, "");
     cr_assert_neq(rc, 0);
     cr_assert(strstr(out, "/nonexistent/stats.csv"), "message does not name the file: %s", out);
     cr_assert_eq(dir_entries(dir), 0);
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(plot, csv_without_the_columns)
 {
-    const char *dir = temp_dir(), *csv = test_write_temp("step,t,ekin\n1,0.1,2\n", ".csv");
+    const char *dir = test_temp_dir("plot"), *csv = test_write_temp("step,t,ekin\n1,0.1,2\n", ".csv");
     int rc = plot("plot passes %s --out %s", csv, dir);
     cr_assert_neq(rc, 0);
     cr_assert(strstr(out, csv) && strstr(out, "_ms"), "message does not name the file and PASS_ms: %s", out);
@@ -480,12 +463,12 @@ Test(plot, csv_without_the_columns)
     cr_assert_neq(rc, 0);
     cr_assert(strstr(out, ":2:") && strstr(out, "'abc'"), "message does not name the line and value: %s", out);
     cr_assert_eq(dir_entries(dir), 0, "an error left files behind");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(plot, unknown_kernel_and_column)
 {
-    const char *dir = temp_dir();
+    const char *dir = test_temp_dir("plot");
     int rc = plot("plot kernel gaussian --out %s%s", dir, "");
     cr_assert_neq(rc, 0);
     cr_assert(strstr(out, "'gaussian'") && strstr(out, "wendland"), "message: %s", out);
@@ -496,7 +479,7 @@ Test(plot, unknown_kernel_and_column)
     cr_assert_neq(rc, 0);
     cr_assert(strstr(out, "'chart'"), "message: %s", out);
     cr_assert_eq(dir_entries(dir), 0, "an error left files behind");
-    remove_dir(dir);
+    test_remove_dir(dir);
 }
 
 Test(plot, unwritable_out_directory)

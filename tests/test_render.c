@@ -208,43 +208,10 @@ static unsigned char *read_all(const char *path, size_t *len)
     return b;
 }
 
-/* Like test_sphlab, with environment assignments before the binary. */
-static int sphlab_env(const char *env, const char *args, char *out, size_t cap)
-{
-    const char *bin = getenv("SPHLAB");
-    char cmd[4096];
-    snprintf(cmd, sizeof cmd, "env %s %s %s 2>&1", env, bin && *bin ? bin : "./sphlab", args);
-    FILE *p = popen(cmd, "r");
-    cr_assert_not_null(p, "cannot run %s", cmd);
-    size_t n = fread(out, 1, cap - 1, p);
-    out[n] = '\0';
-    char sink[4096];
-    while (fread(sink, 1, sizeof sink, p) > 0) {}
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
-}
-
-static const char *temp_dir(void)
-{
-    static char paths[4][64];
-    static int slot;
-    char *p = paths[slot++ % 4];
-    snprintf(p, 64, "/tmp/sphlab-render-XXXXXX");
-    cr_assert_not_null(mkdtemp(p));
-    return p;
-}
-
-static void remove_dir(const char *dir)
-{
-    char cmd[256];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    cr_expect_eq(system(cmd), 0);
-}
-
 Test(render, cli_frames_are_byte_identical_run_to_run)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d1 = temp_dir(), *d2 = temp_dir();
+    const char *d1 = test_temp_dir("render"), *d2 = test_temp_dir("render");
     char args[1024], out[4096];
     const char *opts = "--steps 4 --every 2 --size 200x150 --overlay grid,keys,index,forces --select 30 --quiet";
     snprintf(args, sizeof args, "render %s --out %s %s", scene, d1, opts);
@@ -265,15 +232,15 @@ Test(render, cli_frames_are_byte_identical_run_to_run)
     char p3[128];
     snprintf(p3, sizeof p3, "%s/frame_00003.png", d1);
     cr_expect(access(p3, F_OK) != 0, "4 steps every 2: frames 0, 1, 2 only");
-    remove_dir(d1);
-    remove_dir(d2);
+    test_remove_dir(d1);
+    test_remove_dir(d2);
     remove(scene);
 }
 
 Test(render, egl_and_osmesa_render_the_same_picture)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d[2] = {temp_dir(), temp_dir()};
+    const char *d[2] = {test_temp_dir("render"), test_temp_dir("render")};
     const char *gl[2] = {"egl", "osmesa"};
     unsigned char *img[2];
     int w = 0, h = 0;
@@ -301,22 +268,22 @@ Test(render, egl_and_osmesa_render_the_same_picture)
                   w * h * 3, worst);
     stbi_image_free(img[0]);
     stbi_image_free(img[1]);
-    remove_dir(d[0]);
-    remove_dir(d[1]);
+    test_remove_dir(d[0]);
+    test_remove_dir(d[1]);
     remove(scene);
 }
 
 Test(render, without_usable_gl_it_says_so_and_exits_non_zero)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d = temp_dir();
+    const char *d = test_temp_dir("render");
     char args[1024], out[4096];
     /* an EGL with no vendor library: what a machine without Mesa's EGL looks like */
     snprintf(args, sizeof args, "render %s --out %s --steps 0 --quiet", scene, d);
-    int rc = sphlab_env("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json", args, out, sizeof out);
+    int rc = test_sphlab_env("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json", args, out, sizeof out);
     cr_expect_eq(rc, 1, "exit %d: %s", rc, out);
     cr_expect(strstr(out, "no usable OpenGL") && strstr(out, "EGL"), "message: %s", out);
-    remove_dir(d);
+    test_remove_dir(d);
     remove(scene);
 }
 
@@ -344,12 +311,12 @@ static unsigned char *load_png(const char *path, int *w, int *h)
 Test(render, window_screenshot_is_what_render_draws)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d = temp_dir();
+    const char *d = test_temp_dir("render");
     char args[1024], out[4096];
     const char *draw_opts = "--size 240x180 --overlay none --overlay grid,keys,legend";
     snprintf(args, sizeof args, "view %s --frames 3 --steps-per-frame 2 --screenshot %s/shot.png %s", scene, d,
              draw_opts);
-    int rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
     cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
     /* the window colours each frame by its own range: so does this render */
     snprintf(args, sizeof args, "render %s --out %s --steps 6 --every 6 --range frame --quiet %s", scene, d, draw_opts);
@@ -366,20 +333,20 @@ Test(render, window_screenshot_is_what_render_draws)
     cr_expect_leq(off, (size_t)w1 * h1 * 3 / 200, "%zu channel values differ", off);
     stbi_image_free(a);
     stbi_image_free(b);
-    remove_dir(d);
+    test_remove_dir(d);
     remove(scene);
 }
 
 Test(render, window_keys_step_pass_by_pass_and_switch_overlays)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d = temp_dir();
+    const char *d = test_temp_dir("render");
     char args[1024], out[8192];
     /* paused; one pass at a time: the first two of the pipeline (external, hash),
      * overlay 1 (grid), the next pass */
     snprintf(args, sizeof args, "view %s --paused --frames 5 --keys '..1.' --size 240x180 --screenshot %s/k.png", scene,
              d);
-    int rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
     cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
     const char *want[] = {"pass external wrote vel pred", "pass hash wrote entries; colour: key; index strip on",
                           "overlay grid on", "pass ", "saved"};
@@ -392,7 +359,7 @@ Test(render, window_keys_step_pass_by_pass_and_switch_overlays)
     char p1[128];
     snprintf(p1, sizeof p1, "%s/k.png", d);
     cr_expect_eq(access(p1, F_OK), 0);
-    remove_dir(d);
+    test_remove_dir(d);
     remove(scene);
 }
 
@@ -404,13 +371,13 @@ Test(render, window_keys_step_pass_by_pass_and_switch_overlays)
 Test(render, window_panel_changes_the_run_saves_the_scene_and_stays_beside_the_domain)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d = temp_dir();
+    const char *d = test_temp_dir("render");
     char args[1024], out[8192], saved[128], shot[128];
     snprintf(saved, sizeof saved, "%s/saved.ini", d);
     snprintf(shot, sizeof shot, "%s/p.png", d);
     snprintf(args, sizeof args, "view %s --panel --frames 4 --keys 'mfw' --size 640x400 --save-scene %s --screenshot %s",
              scene, saved, shot);
-    int rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
     cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
     cr_expect(!strstr(out, "no parameter panel"), "%s", out);
     cr_expect(strstr(out, "search.method=grid") && strstr(out, "scene saved as"), "%s", out);
@@ -450,10 +417,10 @@ Test(render, window_panel_changes_the_run_saves_the_scene_and_stays_beside_the_d
     stbi_image_free(img);
     /* tab hides it */
     snprintf(args, sizeof args, "view %s --panel --frames 2 --keys '\t' --size 320x240", scene);
-    rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
     cr_expect_eq(rc, 0, "view exit %d: %s", rc, out);
     cr_expect(strstr(out, "parameter panel hidden"), "%s", out);
-    remove_dir(d);
+    test_remove_dir(d);
     remove(scene);
 }
 
@@ -462,11 +429,11 @@ Test(render, window_without_a_display_says_so_and_exits_non_zero)
     const char *scene = test_write_temp(scene_2d, ".ini");
     char args[1024], out[4096];
     snprintf(args, sizeof args, "view %s", scene);
-    int rc = sphlab_env("-u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER", args, out, sizeof out);
+    int rc = test_sphlab_env("-u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER", args, out, sizeof out);
     cr_expect_eq(rc, 1, "exit %d: %s", rc, out);
     cr_expect(strstr(out, "no display") != NULL, "message: %s", out);
     /* a display that is not there */
-    rc = sphlab_env("SDL_VIDEODRIVER=x11 DISPLAY=:97", args, out, sizeof out);
+    rc = test_sphlab_env("SDL_VIDEODRIVER=x11 DISPLAY=:97", args, out, sizeof out);
     cr_expect_eq(rc, 1, "exit %d: %s", rc, out);
     cr_expect(strstr(out, "sphlab view: SDL") != NULL, "message: %s", out);
     remove(scene);
@@ -479,11 +446,11 @@ Test(render, window_without_a_display_says_so_and_exits_non_zero)
 Test(render, window_on_the_gl_backend_draws_from_its_buffers)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d = temp_dir();
+    const char *d = test_temp_dir("render");
     char args[1024], out[4096];
     const char *opts = "--frames 4 --steps-per-frame 2 --size 240x180 --overlay none";
     snprintf(args, sizeof args, "view %s --backend gl %s --screenshot %s/gl.png", scene, opts, d);
-    int rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
     cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
     const char *line = strstr(out, "particles drawn from its buffers; bytes read back from it per frame:");
     cr_assert_not_null(line, "no report of the direct path in: %s", out);
@@ -492,7 +459,7 @@ Test(render, window_on_the_gl_backend_draws_from_its_buffers)
     cr_assert_eq(got, 4, "%s", line);
     for (int f = 1; f < 4; f++) cr_expect_eq(bytes[f], 0, "frame %d read back %llu bytes", f, bytes[f]);
     snprintf(args, sizeof args, "view %s --backend cpu %s --screenshot %s/cpu.png", scene, opts, d);
-    rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
     cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
     char p1[128], p2[128];
     snprintf(p1, sizeof p1, "%s/gl.png", d);
@@ -507,6 +474,6 @@ Test(render, window_on_the_gl_backend_draws_from_its_buffers)
     cr_expect_leq(off, (size_t)w1 * h1 * 3 / 200, "%zu channel values differ from the CPU backend's", off);
     stbi_image_free(a);
     stbi_image_free(b);
-    remove_dir(d);
+    test_remove_dir(d);
     remove(scene);
 }

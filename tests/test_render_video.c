@@ -21,38 +21,6 @@ static const char *scene_2d = "[scene]\nname=video test\neffects=gravity pressur
                               "[domain]\nmin=0 0\nmax=0.4 0.3\n[fluid a]\nmin=0 0\nmax=0.2 0.2\nspacing=0.02\n"
                               "[kernels]\nh=0.04\n[time]\ndt=0.0002\ncfl=0\n[search]\ntable_size=37\n";
 
-static int sphlab_env(const char *env, const char *args, char *out, size_t cap)
-{
-    const char *bin = getenv("SPHLAB");
-    char cmd[4096];
-    snprintf(cmd, sizeof cmd, "env %s %s %s 2>&1", env, bin && *bin ? bin : "./sphlab", args);
-    FILE *p = popen(cmd, "r");
-    cr_assert_not_null(p, "cannot run %s", cmd);
-    size_t n = fread(out, 1, cap - 1, p);
-    out[n] = '\0';
-    char sink[4096];
-    while (fread(sink, 1, sizeof sink, p) > 0) {}
-    int st = pclose(p);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
-}
-
-static const char *temp_dir(void)
-{
-    static char paths[4][64];
-    static int slot;
-    char *p = paths[slot++ % 4];
-    snprintf(p, 64, "/tmp/sphlab-video-XXXXXX");
-    cr_assert_not_null(mkdtemp(p));
-    return p;
-}
-
-static void remove_dir(const char *dir)
-{
-    char cmd[256];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    cr_expect_eq(system(cmd), 0);
-}
-
 /* An MP4's video streams, size and decoded frames (every packet decoded: the
  * container's own count may be absent). */
 static void mp4_read(const char *path, int *streams, int *w, int *h, long *frames, char *codec, size_t n)
@@ -110,7 +78,7 @@ static void gif_read(const char *path, int *frames, int *w, int *h)
 Test(video, render_writes_mp4_and_gif_that_read_back_with_every_frame)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d = temp_dir();
+    const char *d = test_temp_dir("video");
     char args[1024], out[4096], mp4[128], gif[128];
     snprintf(mp4, sizeof mp4, "%s/run.mp4", d);
     snprintf(gif, sizeof gif, "%s/run.gif", d);
@@ -134,7 +102,7 @@ Test(video, render_writes_mp4_and_gif_that_read_back_with_every_frame)
     /* no temporary left beside them */
     snprintf(args, sizeof args, "%s/run.part.mp4", d);
     cr_expect(access(args, F_OK) != 0, "temporary left: %s", args);
-    remove_dir(d);
+    test_remove_dir(d);
     remove(scene);
 }
 
@@ -149,7 +117,7 @@ Test(video, bad_video_paths_are_refused_naming_the_value)
     cr_expect_eq(test_sphlab(args, out, sizeof out), 1, "%s", out);
     cr_expect(strstr(out, "/proc/sphlab-no/x.mp4") && strstr(out, "cannot create"), "%s", out);
     snprintf(args, sizeof args, "view %s --frames 1 --video x.webm", scene);
-    cr_expect_eq(sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out), 2, "%s", out);
+    cr_expect_eq(test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out), 2, "%s", out);
     cr_expect(strstr(out, "'x.webm'"), "%s", out);
     /* the library's own check, without the command line */
     char err[256];
@@ -164,18 +132,18 @@ Test(video, bad_video_paths_are_refused_naming_the_value)
 Test(video, window_record_key_writes_a_video)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d = temp_dir();
+    const char *d = test_temp_dir("video");
     char args[1024], out[8192], gif[128];
     snprintf(gif, sizeof gif, "%s/rec.gif", d);
     snprintf(args, sizeof args, "view %s --frames 6 --keys '.v...v' --size 240x180 --video %s", scene, gif);
-    int rc = sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
     cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
     cr_expect(strstr(out, "recording ") && strstr(out, "recorded "), "%s", out);
     int frames, w, h;
     gif_read(gif, &frames, &w, &h);
     cr_expect_eq(frames, 4, "%d frames recorded (keys before frames 2..5: 4 frames drawn)", frames);
     cr_expect(w == 240 && h == 180, "%dx%d", w, h);
-    remove_dir(d);
+    test_remove_dir(d);
     remove(scene);
 }
 
@@ -205,7 +173,7 @@ static bool legends_equal(const char *p1, const char *p2)
 Test(video, frames_of_one_run_share_one_colour_range)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d = temp_dir();
+    const char *d = test_temp_dir("video");
     char args[1024], out[4096], f0[128], f3[128];
     const char *opts = "--steps 300 --every 100 --size 320x240 --overlay none --overlay legend --color speed";
     snprintf(f0, sizeof f0, "%s/frame_00000.png", d);
@@ -238,15 +206,15 @@ Test(video, frames_of_one_run_share_one_colour_range)
     }
     /* the window cannot know its run's range beforehand */
     snprintf(args, sizeof args, "view %s --frames 1 --range run", scene);
-    cr_expect_eq(sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out), 2, "%s", out);
-    remove_dir(d);
+    cr_expect_eq(test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out), 2, "%s", out);
+    test_remove_dir(d);
     remove(scene);
 }
 
 Test(video, render_overlay_all_gives_the_same_bytes_every_run)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    const char *d1 = temp_dir(), *d2 = temp_dir();
+    const char *d1 = test_temp_dir("video"), *d2 = test_temp_dir("video");
     char args[1024], out[4096];
     for (int k = 0; k < 2; k++) {
         snprintf(args, sizeof args, "render %s --out %s --steps 4 --every 2 --size 320x240 --overlay all --quiet", scene,
@@ -260,7 +228,7 @@ Test(video, render_overlay_all_gives_the_same_bytes_every_run)
         snprintf(cmd, sizeof cmd, "cmp -s %s %s", p1, p2);
         cr_expect_eq(system(cmd), 0, "frame %d differs between two runs with --overlay all", f);
     }
-    remove_dir(d1);
-    remove_dir(d2);
+    test_remove_dir(d1);
+    test_remove_dir(d2);
     remove(scene);
 }

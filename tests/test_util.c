@@ -34,9 +34,15 @@ void test_run_pass(sph_sim *sim, sph_pass_id id)
 
 int test_sphlab(const char *args, char *out, size_t cap)
 {
+    return test_sphlab_env(NULL, args, out, cap);
+}
+
+int test_sphlab_env(const char *env, const char *args, char *out, size_t cap)
+{
     const char *bin = getenv("SPHLAB");
     char cmd[4096];
-    snprintf(cmd, sizeof cmd, "%s %s 2>&1", bin && *bin ? bin : "./sphlab", args);
+    snprintf(cmd, sizeof cmd, "%s%s%s%s %s 2>&1", env ? "env " : "", env ? env : "", env ? " " : "",
+             bin && *bin ? bin : "./sphlab", args);
     FILE *p = popen(cmd, "r");
     if (!p) cr_assert_fail("cannot run %s", cmd);
     size_t n = 0;
@@ -62,4 +68,21 @@ const char *test_write_temp(const char *text, const char *suffix)
     if (write(fd, text, len) != (ssize_t)len) cr_assert_fail("cannot write %s", path);
     close(fd);
     return path;
+}
+
+const char *test_temp_dir(const char *what)
+{
+    static char paths[8][96];
+    static int slot;
+    char *p = paths[slot++ % 8];
+    snprintf(p, sizeof paths[0], "/tmp/sphlab-%s-XXXXXX", what);
+    if (!mkdtemp(p)) cr_assert_fail("cannot make a temporary directory %s", p);
+    return p;
+}
+
+void test_remove_dir(const char *dir)
+{
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    cr_expect_eq(system(cmd), 0, "cannot remove %s", dir);
 }
