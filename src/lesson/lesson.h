@@ -132,6 +132,10 @@ const char *lx_src(lx *x, const char *file);
 const char *lx_out(lx *x, const char *file);
 /* The absolute path of an existing file or directory (rotating static buffers). */
 const char *lx_abs(const char *path);
+/* Splits a CSV line in place at its commas into at most cap fields; returns
+ * how many. No quoting: the study quotes only values with commas or spaces,
+ * and the bench and study CSVs read here have none. */
+int lx_split_csv(char *line, char **f, int cap);
 /* printf into a rotating static buffer (for numeric arguments). */
 const char *lx_fmt(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 

@@ -112,19 +112,6 @@ int lx_lesson7(lx *x)
 
 /* ---- lesson 8: the optimisation ladder ------------------------------------------------------ */
 
-/* Splits a CSV line (no quoting) in place. */
-static int split_csv(char *line, char **f, int cap)
-{
-    int n = 0;
-    for (char *p = line; n < cap;) {
-        f[n++] = p;
-        p = strchr(p, ',');
-        if (!p) break;
-        *p++ = '\0';
-    }
-    return n;
-}
-
 /* The ladder's results as a Markdown table, from bench_ladder_measure's struct. */
 static void ladder_table(lx *x, const bench_opts *o, const bench_ladder *lad)
 {
@@ -323,7 +310,7 @@ static void study_table(lx *x, const char *csv)
     int nl = 0;
     for (char *l = strtok(text, "\n"); l && nl < 256; l = strtok(NULL, "\n")) lines[nl++] = l;
     char *hdr[64];
-    int nh = nl ? split_csv(lines[0], hdr, 64) : 0;
+    int nh = nl ? lx_split_csv(lines[0], hdr, 64) : 0;
     int c_part = -1, c_err = -1, c_ms = -1, c_s = -1, c_front = -1;
     for (int i = 0; i < nh; i++) {
         if (!strcmp(hdr[i], "particles")) c_part = i;
@@ -345,7 +332,7 @@ static void study_table(lx *x, const char *csv)
     lx_md(x, "\n");
     for (int l = 1; l < nl; l++) {
         char *f[64];
-        int nf = split_csv(lines[l], f, 64);
+        int nf = lx_split_csv(lines[l], f, 64);
         if (nf != nh) continue;
         lx_md(x, "|");
         for (int i = 1; i < c_part; i++) lx_md(x, " %s |", f[i]);

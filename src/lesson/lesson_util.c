@@ -129,3 +129,15 @@ int lx_take_all(lx *x, const char *sub)
     }
     return n;
 }
+
+int lx_split_csv(char *line, char **f, int cap)
+{
+    int n = 0;
+    for (char *p = line; n < cap;) {
+        f[n++] = p;
+        p = strchr(p, ',');
+        if (!p) break;
+        *p++ = '\0';
+    }
+    return n;
+}

@@ -427,20 +427,6 @@ int lx_lesson10(lx *x)
 
 /* ---- lesson 11: how incompressible, at what cost --------------------------------------------- */
 
-/* Splits a CSV line (no quoting: the study quotes only values with commas or
- * spaces, and the settings here have none) in place. */
-static int split_fields(char *line, char **f, int cap)
-{
-    int n = 0;
-    for (char *p = line; n < cap;) {
-        f[n++] = p;
-        p = strchr(p, ',');
-        if (!p) break;
-        *p++ = '\0';
-    }
-    return n;
-}
-
 /* The study's CSV as a Markdown table: setting, errors, cost. */
 static void solvers_table(lx *x, const char *csv)
 {
@@ -453,7 +439,7 @@ static void solvers_table(lx *x, const char *csv)
     int nl = 0;
     for (char *l = strtok(text, "\n"); l && nl < 64; l = strtok(NULL, "\n")) lines[nl++] = l;
     char *hdr[32];
-    int nh = nl ? split_fields(lines[0], hdr, 32) : 0;
+    int nh = nl ? lx_split_csv(lines[0], hdr, 32) : 0;
     static const char *const want[] = {"error", "run_max", "mean_error", "steps_per_sim_s",
                                        "iterations_per_step", "ms_per_sim_s", "pareto"};
     int col[7];
@@ -477,7 +463,7 @@ static void solvers_table(lx *x, const char *csv)
              "|\n|---|---|---|---|---|---|---|---|\n");
     for (int l = 1; l < nl; l++) {
         char *f[32];
-        if (split_fields(lines[l], f, 32) != nh) continue;
+        if (lx_split_csv(lines[l], f, 32) != nh) continue;
         double v[7];
         for (int k = 0; k < 7; k++) v[k] = strtod(f[col[k]], NULL);
         lx_md(x, "| %s | %.2f %% | %.2f %% | %.3f %% | %.0f | %.1f | %.0f | %s |\n", f[1], 100 * v[0], 100 * v[1],
