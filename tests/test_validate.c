@@ -200,6 +200,24 @@ Test(validate, each_problem_at_quick_writes_csv_png_pdf_and_a_verdict, .timeout 
         cr_assert(strstr(out, want) && strstr(out, "target"), "%s: no verdict line with its target: %s", names[k], out);
         cr_assert(nonempty(dir, names[k], "csv") && nonempty(dir, names[k], "png") && nonempty(dir, names[k], "pdf"),
                   "%s: CSV, PNG or PDF missing in %s", names[k], dir);
+        /* what it cost: a line below the verdict and NAME-cost.csv, one row per run, time per simulated second > 0 */
+        snprintf(want, sizeof want, "validate %s: cost (this machine, load ", names[k]);
+        cr_expect(strstr(out, want) && strstr(out, "ms per simulated s"), "%s: no cost line: %s", names[k], out);
+        char path[700], text[4096] = "";
+        snprintf(path, sizeof path, "%s/%s-cost.csv", dir, names[k]);
+        FILE *f = fopen(path, "r");
+        cr_assert_not_null(f, "%s missing", path);
+        size_t len = fread(text, 1, sizeof text - 1, f);
+        fclose(f);
+        text[len] = '\0';
+        cr_expect(strncmp(text, "run,particles,fluid_particles,steps,t_sim,wall_s,cpu_s,ms_per_sim_s,error\n", 73) == 0,
+                  "%s: header: %s", path, text);
+        const char *row = strchr(text, '\n');
+        cr_assert(row && row[1] == '"', "%s: no run row: %s", path, text);
+        /* the 8th field of the first row: ms per simulated second */
+        const char *q = strchr(row + 2, '"');
+        for (int c = 0; q && c < 7; c++) q = strchr(q + 1, ',');
+        cr_expect(q && strtod(q + 1, NULL) > 0, "%s: ms_per_sim_s not positive: %s", path, text);
     }
 }
 

@@ -1,5 +1,6 @@
 /* What every problem of `sphlab validate` shares: its scene at a resolution,
  * the stepping loop with an observer, the output files and the verdict. */
+#define _DEFAULT_SOURCE /* getloadavg */
 #include "validate_run.h"
 
 #include <limits.h>
@@ -7,6 +8,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "sph_walls.h"
@@ -55,6 +57,30 @@ bool val_scene(const char *file, double spacing, sph_scene_def *def)
     return true;
 }
 
+/* What each run of the problem cost, for the verdict's cost line and
+ * NAME-cost.csv: the command runs one problem at a time, and val_verdict
+ * empties the list. */
+enum { VAL_MAX_COSTS = 16 };
+static struct val_cost {
+    char label[64];
+    uint32_t particles, fluid;
+    unsigned long long steps;
+    double t_sim, wall_s, cpu_s; /* [s] simulated, elapsed, process CPU */
+    double error;                /* the problem's error measure, NaN: none given */
+} costs[VAL_MAX_COSTS];
+static int ncosts;
+
+static double cpu_seconds(void)
+{
+    struct timespec ts;
+    return clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) == 0 ? (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec : NAN;
+}
+
+void val_cost_error(int run, double error)
+{
+    if (run >= 0 && run < ncosts) costs[run].error = error;
+}
+
 bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, double t_end, val_observe_fn fn, void *ctx)
 {
     sph_sim *sim;
@@ -64,7 +90,7 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
         return false;
     }
     bool ok = true;
-    double shown = sph_now_ms(), start = shown;
+    double shown = sph_now_ms(), start = shown, cpu0 = cpu_seconds();
     fn(ctx, sim);
     while (sim->t < t_end - 1e-12) {
         sph_sim_step(sim);
@@ -88,6 +114,17 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
     if (!c->quiet)
         fprintf(stderr, "\r%-62s\r  %-40.40s done: %u particles, %llu steps, %.1f s\n", "", label, sim->n,
                 (unsigned long long)sim->step, (sph_now_ms() - start) / 1e3);
+    if (ncosts < VAL_MAX_COSTS) {
+        struct val_cost *k = &costs[ncosts++];
+        snprintf(k->label, sizeof k->label, "%s", label);
+        k->particles = sim->n;
+        k->fluid = (uint32_t)val_fluid_count(sim);
+        k->steps = (unsigned long long)sim->step;
+        k->t_sim = sim->t;
+        k->wall_s = (sph_now_ms() - start) / 1e3;
+        k->cpu_s = cpu_seconds() - cpu0;
+        k->error = NAN;
+    }
     sph_sim_destroy(sim);
     return ok;
 }
@@ -114,11 +151,53 @@ bool val_chart(const val_ctx *c, const char *base, const plot_lines *chart)
     return plot_chart(PLOT_LINES, chart, c->out, base, 1400, 1000);
 }
 
+/* The 1-minute load average, for the cost line (times on a busy machine are longer). */
+static const char *load_text(void)
+{
+    static char buf[32];
+    double l[1];
+    if (getloadavg(l, 1) == 1)
+        snprintf(buf, sizeof buf, "%.1f", l[0]);
+    else
+        snprintf(buf, sizeof buf, "unknown");
+    return buf;
+}
+
 int val_verdict(const val_ctx *c, const val_problem *p, bool outputs_ok, bool pass, const char *fmt, ...)
 {
     if (!outputs_ok) {
         plot_out_abort();
         fprintf(stderr, "sphlab validate %s: the run or its outputs failed (above); no verdict\n", p->name);
+        return VAL_ERROR;
+    }
+    /* what each run cost: a CSV beside the others, and one line below the verdict */
+    char cost[1024] = "";
+    if (ncosts) {
+        char file[96];
+        snprintf(file, sizeof file, "%s-cost.csv", p->name);
+        FILE *f = val_csv(c, file);
+        if (f) {
+            fprintf(f, "run,particles,fluid_particles,steps,t_sim,wall_s,cpu_s,ms_per_sim_s,error\n");
+            for (int i = 0; i < ncosts; i++) {
+                const struct val_cost *k = &costs[i];
+                fprintf(f, "\"%s\",%u,%u,%llu,%.6g,%.4g,%.4g,%.4g,", k->label, k->particles, k->fluid, k->steps,
+                        k->t_sim, k->wall_s, k->cpu_s, k->t_sim > 0 ? 1e3 * k->wall_s / k->t_sim : NAN);
+                if (isfinite(k->error)) fprintf(f, "%.6g", k->error); /* empty: the problem gave none */
+                fputc('\n', f);
+            }
+            if (!val_csv_close(c, f, file)) outputs_ok = false;
+        }
+        for (int i = 0; i < ncosts; i++) {
+            const struct val_cost *k = &costs[i];
+            val_append(cost, sizeof cost,
+                       "%s%s: %u particles, %llu steps, %.3g s (%.3g s CPU), %.3g ms per simulated s", i ? "; " : "", k->label, k->particles, k->steps, k->wall_s, k->cpu_s,
+                       k->t_sim > 0 ? 1e3 * k->wall_s / k->t_sim : NAN);
+        }
+        ncosts = 0;
+    }
+    if (!outputs_ok) {
+        plot_out_abort();
+        fprintf(stderr, "sphlab validate %s: the outputs failed (above); no verdict\n", p->name);
         return VAL_ERROR;
     }
     if (!plot_out_commit(c->quiet)) return VAL_ERROR;
@@ -131,6 +210,7 @@ int val_verdict(const val_ctx *c, const val_problem *p, bool outputs_ok, bool pa
            c->quick ? " [--quick: one small resolution and a short run, to try the command; the targets are meant "
                       "for the default resolutions, so a FAIL here says little]"
                     : "");
+    if (*cost) printf("validate %s: cost (this machine, load %s): %s\n", p->name, load_text(), cost);
     fflush(stdout);
     return pass ? VAL_PASS : VAL_FAIL;
 }

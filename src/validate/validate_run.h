@@ -17,6 +17,10 @@ typedef void (*val_observe_fn)(void *ctx, const sph_sim *sim);
  * false with a message if it cannot be made or the watchdog stops it. */
 bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, double t_end, val_observe_fn fn, void *ctx);
 
+/* The error measure of the problem's run number `run` (0: the first val_run
+ * since the last verdict), written beside its cost in NAME-cost.csv. */
+void val_cost_error(int run, double error);
+
 /* Number of fluid particles (wall particles left out). */
 double val_fluid_count(const sph_sim *sim);
 
@@ -25,8 +29,10 @@ FILE *val_csv(const val_ctx *c, const char *file);
 bool val_csv_close(const val_ctx *c, FILE *f, const char *file);
 bool val_chart(const val_ctx *c, const char *base, const plot_lines *chart);
 
-/* Commits the outputs and prints "validate NAME: PASS|FAIL: text" on
- * stdout; returns VAL_PASS or VAL_FAIL, or VAL_ERROR (outputs dropped) if
+/* Commits the outputs (with NAME-cost.csv: each run's particles, steps, CPU
+ * and wall seconds, ms per simulated second and error) and prints
+ * "validate NAME: PASS|FAIL: text" on stdout, then a line with each run's
+ * cost; returns VAL_PASS or VAL_FAIL, or VAL_ERROR (outputs dropped) if
  * !outputs_ok or the commit fails. */
 int val_verdict(const val_ctx *c, const val_problem *p, bool outputs_ok, bool pass, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
