@@ -120,6 +120,9 @@ int val_channel_run(const val_ctx *c, const val_problem *p, const val_channel *c
     bool pass = done > 0;
     char trend[700] = "";
     for (int r = 0; r < done; r++) {
+        double worst = 0; /* beside its cost: the run's worst sample */
+        for (int k = 0; k < obs[r].taken; k++) worst = fmax(worst, obs[r].err[k]);
+        val_cost_error(r, worst);
         val_append(trend, sizeof trend, "%sR=%d:", r ? "; " : "", c->res[r]);
         for (int k = 0; k < obs[r].taken; k++) {
             bool last = k == VAL_CHANNEL_TIMES - 1 && !c->quick;

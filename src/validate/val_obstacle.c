@@ -131,6 +131,7 @@ int val_run_obstacle(const val_ctx *c, const val_problem *p)
     }
     /* the verdict: every run at a/spacing >= 20, or the finest if none is */
     bool pass = done > 0;
+    for (int r = 0; r < done; r++) val_cost_error(r, fabs(obs[r].f_mean / obs[r].f_rest - 1));
     int judged = 0, finest = 0;
     for (int r = 0; r < done; r++) {
         if (c->res[r] > c->res[finest]) finest = r;

@@ -94,6 +94,7 @@ int val_run_taylor_green(const val_ctx *c, const val_problem *p)
         ok = val_csv_close(c, f, "taylor-green.csv");
     }
     char trend[600] = "";
+    for (int r = 0; r < done; r++) val_cost_error(r, obs[r].worst_l1); /* the L1 of the speed, beside its cost */
     for (int r = 0; r < done; r++) {
         val_append(trend, sizeof trend, "%s%d^2: max-speed %.2f%% L1 %.2f%%", r ? ", " : "", c->res[r],
                    100 * obs[r].worst_linf, 100 * obs[r].worst_l1);
