@@ -19,8 +19,8 @@ GPU_SHADERS := $(wildcard shaders/gpu_*.comp shaders/gpu_*.glsl)
 $(BUILD)/gpu/gpu_shaders.h: $(GPU_SHADERS) src/gl/embed-shaders.sh | $(BUILD)/gpu
 	sh src/gl/embed-shaders.sh $(GPU_SHADERS) > $@.tmp && mv $@.tmp $@
 
-$(BUILD)/gpu/%.o: src/gpu/%.c src/gpu/*.h src/gl/*.h src/core/*.h $(BUILD)/gpu/gpu_shaders.h | $(BUILD)/gpu
-	$(CC) $(CFLAGS) $(CORE_CFLAGS) $(GL_CFLAGS) -Isrc/gl -I$(BUILD)/gpu -c -o $@ $<
+$(BUILD)/gpu/%.o: src/gpu/%.c src/gpu/*.h src/gl/*.h src/core/*.h src/passes/solver.h $(BUILD)/gpu/gpu_shaders.h | $(BUILD)/gpu
+	$(CC) $(CFLAGS) $(CORE_CFLAGS) $(GL_CFLAGS) -Isrc/gl -Isrc/passes -I$(BUILD)/gpu -c -o $@ $<
 
 $(BUILD)/gpu:
 	mkdir -p $@
