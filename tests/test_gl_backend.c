@@ -135,7 +135,9 @@ static void lockstep(sph_sim *c, sph_sim *g)
     do {
         copy_state(g, c);
         sph_pass_id pc = sph_sim_step_pass(c), pg = sph_sim_step_pass(g);
-        cr_assert_eq(pc, pg, "the backends ran different passes");
+        cr_assert_eq(pc, pg, "the backends ran different passes: %s on the CPU, %s on GL (alarms %d, %d; solver iteration %d, %d)",
+                     pc < SPH_PASS_COUNT ? sph_passes[pc]->name : "none", pg < SPH_PASS_COUNT ? sph_passes[pg]->name : "none",
+                     c->alarm.raised, g->alarm.raised, c->solver.iteration, g->solver.iteration);
         const char *name = sph_passes[pc]->name;
         switch (pc) {
         case SPH_PASS_EXTERNAL:
@@ -481,7 +483,13 @@ Test(gl_backend, every_choice_runs_or_is_refused, .timeout = 900)
                 sph_sim_destroy(c);
                 continue;
             }
+            /* the passes' fields are compared, not the watchdog's verdict: its
+             * energy check stops pressure_solver = pcisph at step 1 on this
+             * jittered block (the solver undoes the jitter's compression, +122
+             * J, which no internal energy accounts for) */
+            c->watchdog = g->watchdog = false;
             for (int st = 0; st < 2; st++) sph_sim_step(c);
+            if (getenv("SPH_TEST_VERBOSE")) fprintf(stderr, "-- %s\n", set);
             lockstep(c, g);
             ran++;
             sph_sim_destroy(g);
