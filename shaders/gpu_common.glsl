@@ -220,6 +220,41 @@ float wall_hidden(vec3 x, out vec3 grad)
         }
     return hidden;
 }
+
+// The pressure solvers' walls (sph_solver_walls in src/passes/solver.h): the
+// share of RHO_R the fluid's lattice continued behind the walls adds at x,
+// combined over walls as 1 - prod (1 - share), and its gradient [1/m]; the
+// table follows the density kernel's in wall_ (src/gpu/gpu_backend.c).
+float solver_walls(vec3 x, out vec3 grad)
+{
+    float vis[6], dvis[6], all = 1.0;
+    for (int d = 0; d < DIM; d++)
+        for (int side = 0; side < 2; side++) {
+            int w = 2 * d + side;
+            vis[w] = 1.0;
+            dvis[w] = 0.0;
+            if (PER[d] > 0.0) continue; // no walls on a periodic axis
+            float dist = side == 0 ? x[d] - DOM_MIN[d] : DOM_MAX[d] - x[d];
+            float t = max(dist, 0.0) * SOLVER_WALL_SCALE;
+            if (!(t < float(SOLVER_WALL_SAMPLES))) continue;
+            int i = int(t);
+            float f = t - float(i);
+            int a = SOLVER_WALL_AT + i, b = SOLVER_WALL_AT + SOLVER_WALL_SAMPLES + 1 + i;
+            vis[w] = 1.0 - (wall_[a] + f * (wall_[a + 1] - wall_[a]));
+            float slope = wall_[b] + f * (wall_[b + 1] - wall_[b]);
+            dvis[w] = side == 0 ? -slope : slope; // d(visible)/dx along the axis
+            all *= vis[w];
+        }
+    grad = vec3(0.0);
+    for (int d = 0; d < DIM; d++)
+        for (int w = 2 * d; w <= 2 * d + 1; w++) {
+            float others = 1.0;
+            for (int o = 0; o < 2 * DIM; o++)
+                if (o != w) others *= vis[o];
+            grad[d] -= dvis[w] * others;
+        }
+    return 1.0 - all;
+}
 #endif
 
 // ---- cells and the seed's hash (src/core/sph_search.h) ----------------------

@@ -106,12 +106,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [physics] delta_form = fourtakas is not implemented by the GL backend yet (its "
                         "hydrostatic correction runs on the CPU; accepted there: molteni, antuono)",
                         def->file);
-    if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)))
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] pressure_solver = %s is not implemented by the GL backend yet (its iterations "
-                        "run on the CPU, a pass called again until the density error is reached; accepted there: "
-                        "eos)",
-                        def->file, sph_pressure_solver_names[def->pressure_solver]);
     if (def->surface_tension != SPH_STENSION_NONE)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] surface_tension = %s is not implemented by the GL backend yet (its normals and "
@@ -177,7 +171,7 @@ static bool make_buffers(gpu *g, const sph_sim *sim)
     /* the volume walls' tables (sph_wall_hidden), the density kernel's: its
      * lattice share, slope, corner share and corner slope (shaders/gpu_common.glsl) */
     const sph_kernel *kd = &sim->k_density;
-    float *wall = malloc(GPU_WALL_FLOATS * sizeof *wall);
+    float *wall = malloc((GPU_WALL_FLOATS + GPU_SOLVER_WALL_FLOATS) * sizeof *wall);
     if (!wall) return false;
     float *o = wall;
     memcpy(o, kd->wall_lat_psi, sizeof kd->wall_lat_psi);
@@ -187,7 +181,12 @@ static bool make_buffers(gpu *g, const sph_sim *sim)
     memcpy(o, kd->wall_corner, sizeof kd->wall_corner);
     o += (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1);
     memcpy(o, kd->wall_corner_slope, sizeof kd->wall_corner_slope);
-    g->buf[B_WALL] = new_buffer(g, GPU_WALL_FLOATS * sizeof *wall, wall);
+    o += (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1);
+    /* the solvers' table, made by their pass in the start-up evaluation (zero without a solver) */
+    memcpy(o, sim->solver.wall_share, sizeof sim->solver.wall_share);
+    o += SPH_SOLVER_WALL_SAMPLES + 1;
+    memcpy(o, sim->solver.wall_slope, sizeof sim->solver.wall_slope);
+    g->buf[B_WALL] = new_buffer(g, (GPU_WALL_FLOATS + GPU_SOLVER_WALL_FLOATS) * sizeof *wall, wall);
     free(wall);
     for (int b = 0; b < B_TOTAL; b++)
         if (g->buf[b]) gpu_bind(g, b, g->buf[b]);

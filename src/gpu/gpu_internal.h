@@ -40,7 +40,7 @@ extern const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT]; /* 
  * number), then the helpers several passes share (shaders/gpu_NAME.comp). */
 #define GPU_HELPERS(X) \
     X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range) \
-    X(bitonic_local) X(stats) X(stats_sum)
+    X(bitonic_local) X(stats) X(stats_sum) X(dfsph_force)
 enum {
 #define GPU_H_ENUM(name) H_##name,
     GPU_HELPERS(GPU_H_ENUM)
@@ -63,6 +63,9 @@ enum {
 #define MAX_SCAN_LEVELS 8
 /* floats of the density kernel's volume-wall tables, the B_WALL buffer (gpu_backend.c) */
 #define GPU_WALL_FLOATS (2 * (SPH_WALL_TABLE + 1) + 2 * (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1))
+/* after them, the pressure solvers' wall share and slope (sph_solver_state,
+ * src/passes/solver.h), in the same buffer: no binding more for them */
+#define GPU_SOLVER_WALL_FLOATS (2 * (SPH_SOLVER_WALL_SAMPLES + 1))
 
 /* Timer queries (gpu_timing.c): per step, a GL_TIMESTAMP before and after
  * each pass; a ring of steps read back when the device has them. */

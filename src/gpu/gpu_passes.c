@@ -10,6 +10,7 @@
 
 #include "gpu_internal.h"
 #include "gpu_shaders.h"
+#include "solver.h"
 #include "sph_start.h"
 
 const char *const gpu_common_source = shader_gpu_common_glsl;
@@ -267,6 +268,125 @@ static void run_shifting(gpu *g, sph_sim *sim)
     gpu_dispatch(g, g->n);
 }
 
+/* ---- the pressure solvers: one iteration per call ------------------------------
+ * The host keeps each solve's count and decides, as the CPU passes do
+ * (src/passes/pcisph.c, dfsph.c: the same calls in the same order, with
+ * sph_solver_done); the device measures. Per iteration the only read-back is
+ * the density (or divergence) error, 4 bytes reduced on the device. */
+
+/* One stage of a solver's program (its u_count). */
+static void solver_stage(gpu *g, sph_sim *sim, int p, uint32_t stage, float value)
+{
+    use_walk(g, sim, p);
+    gpu_set_u(g, p, U_count, stage);
+    gpu_set_f(g, p, U_dt, sim->dt);
+    gpu_set_f(g, p, U_value, value);
+    gpu_dispatch(g, g->n);
+}
+
+/* A stage that measures: reduce_[2] zeroed first, the largest error read
+ * back (NaN if the read fails: not converged, the solve runs to its cap). */
+static double solver_measure(gpu *g, sph_sim *sim, int p, uint32_t stage)
+{
+    static const uint32_t zero = 0;
+    gpu_send(g, g->buf[B_REDUCE], 2 * sizeof zero, sizeof zero, &zero);
+    solver_stage(g, sim, p, stage, 0.0f);
+    uint32_t bits = 0x7fc00000u;
+    gpu_get(g, g->buf[B_REDUCE], 2 * sizeof bits, sizeof bits, &bits);
+    float e;
+    memcpy(&e, &bits, sizeof e);
+    return e;
+}
+
+enum { PCI_START, PCI_FORCE, PCI_PREDICT, PCI_CORRECT, PCI_STARTUP }; /* shaders/gpu_pcisph.comp's stages */
+
+static void run_pcisph(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_PCISPH;
+    sph_solver_state *s = &sim->solver;
+    if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */
+        solver_stage(g, sim, p, PCI_STARTUP, 0.0f);
+        return;
+    }
+    if (s->iteration == 0) solver_stage(g, sim, p, PCI_START, 0.0f); /* the step's first call: from p = 0 */
+    const double error = solver_measure(g, sim, p, PCI_PREDICT);
+    if (sph_solver_done(sim, error, sim->def.solver_tolerance)) {
+        s->iterations = s->iteration;
+        s->density_error = error;
+        s->iteration = 0;
+        return;
+    }
+    solver_stage(g, sim, p, PCI_CORRECT, s->delta / (sim->dt * sim->dt));
+    solver_stage(g, sim, p, PCI_FORCE, 0.0f);
+    sim->pass_again = true;
+}
+
+/* shaders/gpu_dfsph.comp's stages */
+enum { DF_FACTORS, DF_WARM_V, DF_WARM, DF_MEASURE_V, DF_MEASURE, DF_CORRECT_V, DF_CORRECT };
+
+/* The share of the last step's kappa a solve starts from: as SPH_DFSPH_WARM
+ * in src/passes/dfsph.c (0: off, see there); the lockstep test compares
+ * kappa after each call, so the two cannot differ unseen. */
+#define GPU_DFSPH_WARM 0.0f
+
+/* acc_df and dv_df from kappa_v (density: and kappa); startup: a = 0. */
+static void dfsph_force(gpu *g, sph_sim *sim, bool density, bool startup)
+{
+    const int p = PROG_H(dfsph_force);
+    use_walk(g, sim, p);
+    gpu_set_u(g, p, U_count, startup ? 2u : density);
+    gpu_set_f(g, p, U_dt, sim->dt);
+    gpu_dispatch(g, g->n);
+}
+
+static void run_dfsph(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_DFSPH;
+    sph_solver_state *s = &sim->solver;
+    if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */
+        dfsph_force(g, sim, false, true);
+        return;
+    }
+    const float dt2 = sim->dt * sim->dt;
+    if (s->iteration == 0 && s->phase == 0) { /* the step's first call */
+        solver_stage(g, sim, p, DF_FACTORS, 0.0f);
+        solver_stage(g, sim, p, DF_WARM_V, GPU_DFSPH_WARM);
+        dfsph_force(g, sim, false, false);
+    }
+    if (s->phase == 0) {
+        const double error = solver_measure(g, sim, p, DF_MEASURE_V);
+        if (!sph_solver_done(sim, error, sim->def.divergence_tolerance)) {
+            solver_stage(g, sim, p, DF_CORRECT_V, dt2);
+            dfsph_force(g, sim, false, false);
+            sim->pass_again = true;
+            return;
+        }
+        s->div_iterations = s->iteration;
+        s->divergence_error = error;
+        s->iteration = 0;
+        s->phase = 1; /* and on to the density in this call */
+        solver_stage(g, sim, p, DF_WARM, GPU_DFSPH_WARM);
+        dfsph_force(g, sim, true, false);
+    }
+    const double error = solver_measure(g, sim, p, DF_MEASURE);
+    if (!sph_solver_done(sim, error, sim->def.solver_tolerance)) {
+        solver_stage(g, sim, p, DF_CORRECT, dt2);
+        dfsph_force(g, sim, true, false);
+        sim->pass_again = true;
+        return;
+    }
+    s->iterations = s->iteration;
+    s->density_error = error;
+    s->iteration = 0;
+    s->phase = 0;
+}
+
+static unsigned dfsph_helpers(const sph_scene_def *def)
+{
+    (void)def;
+    return HELPER_BIT(dfsph_force);
+}
+
 /* ---- the table ------------------------------------------------------------- */
 
 const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
@@ -285,6 +405,8 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_VISCOSITY] = {.source = shader_gpu_viscosity_comp},
     [SPH_PASS_COHESION] = {.source = shader_gpu_cohesion_comp},
     [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
+    [SPH_PASS_PCISPH] = {.source = shader_gpu_pcisph_comp, .run = run_pcisph},
+    [SPH_PASS_DFSPH] = {.source = shader_gpu_dfsph_comp, .run = run_dfsph, .helpers = dfsph_helpers},
     [SPH_PASS_INTEGRATE] = {.source = shader_gpu_integrate_comp, .run = run_integrate},
     [SPH_PASS_SHIFTING] = {.source = shader_gpu_shifting_comp, .run = run_shifting},
     [SPH_PASS_WALLS] = {.source = shader_gpu_walls_comp},

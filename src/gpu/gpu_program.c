@@ -143,6 +143,23 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put_float(&t, "COHESION", def->cohesion);
     put_float(&t, "DAMP", def->wall_damping);
     put_float(&t, "INTER_R", def->interaction_radius);
+    /* the pressure solvers (src/passes/solver.h): the density they hold
+     * [kg/m^dim] and its inverses as their passes compute them, alpha's floor
+     * (dfsph.c), their wall table's place in B_WALL and scale [1/m], and the
+     * accelerations other than theirs, summed as sph_solver_other_acc does */
+    const float rho_r = sim->solver.rho_rest;
+    put_float(&t, "RHO_R", rho_r);
+    put_float(&t, "INV_RHO_R", rho_r > 0 ? 1.0f / rho_r : 0.0f);
+    put_float(&t, "INV_RHO_R2", rho_r > 0 ? 1.0f / (rho_r * rho_r) : 0.0f);
+    put_float(&t, "ALPHA_MIN", 1e-6f * rho_r * rho_r / (def->h * def->h));
+    put(&t, "#define SOLVER_WALL_AT %d\n#define SOLVER_WALL_SAMPLES %d\n", GPU_WALL_FLOATS, SPH_SOLVER_WALL_SAMPLES);
+    put_float(&t, "SOLVER_WALL_SCALE", (float)SPH_SOLVER_WALL_SAMPLES / def->h);
+    put(&t, "#define ACC_OTHER(k) (0.0");
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        if (sph_field_infos[f].kind == SPH_KIND_ACCELERATION && sim->P.field[f][0] && f != SPH_FIELD_ACC_PCI &&
+            f != SPH_FIELD_ACC_DF)
+            put(&t, " + %s_[k]", sph_field_infos[f].name);
+    put(&t, ")\n");
     if (t.failed) {
         free(t.s);
         return NULL;

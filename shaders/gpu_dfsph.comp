@@ -1,0 +1,122 @@
+// uses: PRED VEL MASS RHO ALPHA KAPPA KAPPA_V RHO_DF DV_DF ENTRIES START WALL REDUCE
+// Pass dfsph (src/passes/dfsph.c): one stage of an iteration per dispatch,
+// u_count says which (run_dfsph in src/gpu/gpu_passes.c calls them in the
+// CPU pass's order); every walk is over the pairs within h at pred (the
+// CPU's lists). The force is gpu_dfsph_force.comp, a program of its own:
+// with every acceleration field this one would declare more than the 16
+// storage blocks a shader may have.
+//   0 factors: alpha_i = rho_r / (G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij), walls in G
+//   1, 2 warm start: kappa_v (1) or kappa (2) *= u_value
+//   3 measure the divergence: rho_df = dt D rho/Dt of v + dv where rho >= rho_r (else 0), error rho_df / rho_r
+//   4 measure the density: rho_df = rho + dt sum_j m_j (dv_i - dv_j) . grad W_ij (walls too), error
+//     (rho_df - rho_r) / rho_r
+//     3 and 4 put the largest error, at least 0, into reduce_[2]: per work group in shared memory, then one
+//     atomicMax on the float's bits (non-negative floats order as their bits do; a NaN counts as 0, as fmaxf
+//     leaves it out on the CPU)
+//   5, 6 correct: kappa_v (5) or kappa (6) += max(excess, 0) alpha / dt^2, u_value = dt^2
+layout(local_size_x = WG) in;
+uniform uint u_count;
+uniform float u_dt;
+uniform float u_value;
+shared uint s_err[WG];
+vec3 gr, gp, vi;
+float dots, sum;
+
+float grad_factor(int kind, float s, float r2)
+{
+    float r = sqrt(r2);
+    return r > 0.0 ? kernel_dw(kind, s, r) / r : 0.0;
+}
+
+// v* - v + (v in the divergence solve)
+vec3 velocity(uint j)
+{
+    vec3 v = vec3(0.0);
+    for (int d = 0; d < DIM; d++) v[d] = dv_df_[uint(d) * N + j] + (u_count == 3u ? vel_[uint(d) * N + j] : 0.0);
+    return v;
+}
+
+void sph_pair(uint i, uint j, vec3 dx, float r2)
+{
+    if (u_count == 0u) {
+        float fr = mass_[j] * grad_factor(KD, SIG_D, r2), fp = mass_[j] * grad_factor(KP, SIG_P, r2);
+        for (int d = 0; d < DIM; d++) {
+            gr[d] += fr * dx[d];
+            gp[d] += fp * dx[d];
+            dots += fr * fp * dx[d] * dx[d];
+        }
+    } else {
+        float f = mass_[j] * grad_factor(KD, SIG_D, r2);
+        vec3 vj = velocity(j);
+        for (int d = 0; d < DIM; d++) sum += f * (vi[d] - vj[d]) * dx[d];
+    }
+}
+#include_walk
+
+void main()
+{
+    uint i = gid(), l = gl_LocalInvocationID.x, u = u_count;
+    uint err = 0u;
+    if (i < N) {
+        vec3 xi = PRED3(i), g = vec3(0.0);
+        float share = 0.0;
+#if WALL_VOLUME
+        if (u == 0u || u == 3u || u == 4u) share = solver_walls(xi, g);
+#endif
+        if (u == 0u) {
+            gr = vec3(0.0);
+            gp = vec3(0.0);
+            dots = 0.0;
+            sph_walk(i, xi);
+#if WALL_VOLUME
+            for (int d = 0; d < DIM; d++) {
+                gr[d] += RHO_R * g[d];
+                gp[d] += RHO_R * g[d];
+            }
+#endif
+            precise float den = dots + gr.x * gp.x + gr.y * gp.y + gr.z * gp.z;
+            alpha_[i] = den > ALPHA_MIN ? RHO_R / den : 0.0;
+        } else if (u == 1u) {
+            kappa_v_[i] *= u_value;
+        } else if (u == 2u) {
+            kappa_[i] *= u_value;
+        } else if (u == 3u || u == 4u) {
+            vi = velocity(i);
+            sum = 0.0;
+            sph_walk(i, xi);
+            float rho = rho_[i];
+#if WALL_VOLUME
+            for (int d = 0; d < DIM; d++) sum += RHO_R * g[d] * vi[d];
+            // the density pass counted the walls as the volume model does: count them as the solvers do
+            vec3 gh;
+            rho += RHO_R * share - RHO0 * wall_hidden(xi, gh);
+#endif
+            float e;
+            if (u == 4u) {
+                precise float r = rho + u_dt * sum; // sum: of dv, so dt sum is dt^2 sum of the accelerations
+                rho_df_[i] = r;
+                e = (r - RHO_R) / RHO_R;
+            } else {
+                float r = rho >= RHO_R ? u_dt * sum : 0.0;
+                rho_df_[i] = r;
+                e = r / RHO_R;
+            }
+            err = e > 0.0 ? floatBitsToUint(e) : 0u;
+        } else {
+            float excess = u == 6u ? rho_df_[i] - RHO_R : rho_df_[i]; // dt D for the divergence
+            precise float add = max(excess, 0.0) * alpha_[i] / u_value;
+            if (u == 6u)
+                kappa_[i] += add;
+            else
+                kappa_v_[i] += add;
+        }
+    }
+    if (u != 3u && u != 4u) return; // the same for the whole dispatch: no barrier skipped by part of a group
+    s_err[l] = err;
+    barrier();
+    for (uint off = uint(WG) / 2u; off > 0u; off >>= 1) {
+        if (l < off) s_err[l] = max(s_err[l], s_err[l + off]);
+        barrier();
+    }
+    if (l == 0u) atomicMax(reduce_[2], s_err[0]);
+}

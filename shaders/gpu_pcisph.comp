@@ -1,0 +1,104 @@
+// uses: PRED MASS P_PCI X_PCI RHO_PCI ACC_PCI ACCELERATIONS ENTRIES START WALL REDUCE
+// Pass pcisph (src/passes/pcisph.c): one stage of a predict-correct
+// iteration per dispatch, u_count says which (the host, run_pcisph in
+// src/gpu/gpu_passes.c, calls them in the CPU pass's order):
+//   0 start:   p = 0, a = 0, x* = pred + dt^2 (other accelerations)
+//   1 force:   a_i = -(1/rho_r^2) sum_j m_j (p_i + p_j) grad W^p_ij at pred, walls push back; x* as above plus a
+//   2 predict: rho*_i = sum_j m_j W^rho(x*_i - x*_j) + rho_r (walls' share at x*_i), over the pairs within h at
+//              pred (the CPU's lists); the largest (rho* - rho_r) / rho_r, at least 0, into reduce_[2] (per work
+//              group in shared memory, then one atomicMax on the float's bits: non-negative floats order as their
+//              bits do; a NaN counts as 0, as fmaxf leaves it out on the CPU)
+//   3 correct: p += delta (rho* - rho_r), u_value = delta / dt^2, clamped at 0 with negative_pressure = clamp
+//   4 the start-up evaluation (dt = 0): a = 0, x* = pred
+layout(local_size_x = WG) in;
+uniform uint u_count;
+uniform float u_dt;
+uniform float u_value;
+shared uint s_err[WG];
+vec3 acc, xs;
+float p_i, rho;
+
+void sph_pair(uint i, uint j, vec3 dx, float r2)
+{
+    if (u_count == 1u) {
+        if (r2 < R_MIN * R_MIN) { // coincident: apart along x, as pressure_force.c
+            dx = vec3(i < j ? -R_MIN : R_MIN, 0.0, 0.0);
+            r2 = R_MIN * R_MIN;
+        }
+        float r = sqrt(r2);
+        float c = mass_[j] * (p_i + p_pci_[j]) * INV_RHO_R2 * kernel_dw(KP, SIG_P, r) / r;
+        for (int d = 0; d < DIM; d++) acc[d] -= c * dx[d];
+    } else {
+        precise float q2 = 0.0;
+        for (int d = 0; d < DIM; d++) {
+            float e = xs[d] - x_pci_[uint(d) * N + j];
+            q2 += e * e;
+        }
+        rho += mass_[j] * kernel_w(KD, SIG_D, sqrt(q2));
+    }
+}
+#include_walk
+
+// x* = pred + dt^2 (a + the other accelerations), and a stored
+void put_prediction(uint i, vec3 a)
+{
+    for (int d = 0; d < DIM; d++) {
+        uint k = uint(d) * N + i;
+        acc_pci_[k] = a[d];
+        precise float x = pred_[k] + u_dt * u_dt * (a[d] + ACC_OTHER(k));
+        x_pci_[k] = x;
+    }
+}
+
+void main()
+{
+    uint i = gid(), l = gl_LocalInvocationID.x;
+    uint err = 0u;
+    if (i < N) {
+        if (u_count == 4u) {
+            for (int d = 0; d < DIM; d++) {
+                acc_pci_[uint(d) * N + i] = 0.0;
+                x_pci_[uint(d) * N + i] = pred_[uint(d) * N + i];
+            }
+        } else if (u_count == 0u) {
+            p_pci_[i] = 0.0;
+            put_prediction(i, vec3(0.0));
+        } else if (u_count == 1u) {
+            acc = vec3(0.0);
+            p_i = p_pci_[i];
+            vec3 xi = PRED3(i);
+            sph_walk(i, xi);
+#if WALL_VOLUME
+            vec3 grad;
+            solver_walls(xi, grad);
+            for (int d = 0; d < DIM; d++) acc[d] -= p_i * INV_RHO_R * grad[d];
+#endif
+            put_prediction(i, acc);
+        } else if (u_count == 2u) {
+            xs = LOAD3(x_pci_, i);
+            rho = mass_[i] * kernel_w(KD, SIG_D, 0.0);
+            sph_walk(i, PRED3(i));
+#if WALL_VOLUME
+            vec3 grad;
+            rho += RHO_R * solver_walls(xs, grad);
+#endif
+            rho_pci_[i] = rho;
+            float e = (rho - RHO_R) / RHO_R;
+            err = e > 0.0 ? floatBitsToUint(e) : 0u;
+        } else {
+            precise float p = p_pci_[i] + u_value * (rho_pci_[i] - RHO_R);
+#if CLAMP_NEG
+            p = max(0.0, p);
+#endif
+            p_pci_[i] = p;
+        }
+    }
+    if (u_count != 2u) return; // the same for the whole dispatch: no barrier skipped by part of a group
+    s_err[l] = err;
+    barrier();
+    for (uint off = uint(WG) / 2u; off > 0u; off >>= 1) {
+        if (l < off) s_err[l] = max(s_err[l], s_err[l + off]);
+        barrier();
+    }
+    if (l == 0u) atomicMax(reduce_[2], s_err[0]);
+}

@@ -1,0 +1,147 @@
+/* The pressure solvers (pressure_solver = pcisph, dfsph) on the GL backend
+ * against the CPU: separate runs of small dam breaks, 2D and 3D, step by
+ * step the same iteration counts (within 1, see compare_runs) and, at the end, the same
+ * positions within the whole-run tolerance of tests/test_gl_backend.c; the
+ * solver is called once per iteration on GL too, and reads back only the
+ * error of each iteration. Pass by pass, each iteration's fields are
+ * compared in test_gl_backend.c (passes_match_cpu_solvers). */
+#define _GNU_SOURCE /* setenv */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "gpu.h"
+#include "test_gl_util.h"
+#include "test_util.h"
+
+#define TOL_POS_RUN 1e-4 /* [m] positions after a whole run, as in test_gl_backend.c */
+
+/* A dam break at a fixed dt of 0.5 ms (twice the equation of state's CFL
+ * step at k = 1000, as tests/test_solvers.c), volume walls. */
+static const char *dam_2d =
+    "[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n"
+    "[domain]\nmin=0 0\nmax=0.8 0.5\nwall_damping=0.3\n"
+    "[fluid column]\nmin=0 0\nmax=0.3 0.3\nspacing=0.02\n"
+    "[physics]\nstiffness=1000\nviscosity=0.002\n[kernels]\nh=0.04\n[time]\ndt=0.0005\ncfl=0\n";
+
+static const char *dam_3d =
+    "[scene]\ndimension=3\neffects=gravity pressure viscosity walls\n"
+    "[domain]\nmin=0 0 0\nmax=0.4 0.3 0.15\nwall_damping=0.3\n"
+    "[physics]\nstiffness=1000\nviscosity=0.002\ngravity=0 -9.81 0\n"
+    "[fluid column]\nmin=0 0 0\nmax=0.15 0.15 0.15\nspacing=0.025\n"
+    "[kernels]\nh=0.05\n[time]\ndt=0.0005\ncfl=0\n";
+
+static sph_sim *make(const char *ini, const char *solver, const char *walls, bool gl)
+{
+    sph_scene_def def = test_scene(ini);
+    sph_error err;
+    char set[100];
+    snprintf(set, sizeof set, "physics.pressure_solver=%s", solver);
+    cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
+    snprintf(set, sizeof set, "domain.wall_model=%s", walls);
+    cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
+    def.backend = gl ? SPH_BACKEND_GL : SPH_BACKEND_CPU;
+    sph_sim *sim;
+    cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert(!gl || sim->backend, "the GL simulation has no backend");
+    return sim;
+}
+
+/* Iterations of the step just made, both solves. */
+static int iterations(const sph_sim *sim)
+{
+    return sim->solver.iterations + sim->solver.div_iterations;
+}
+
+static int count_difference(const sph_sim *a, const sph_sim *b)
+{
+    return abs(a->solver.iterations - b->solver.iterations) + abs(a->solver.div_iterations - b->solver.div_iterations);
+}
+
+/* The CPU run, the GL run and, as the measure of what rounding alone does,
+ * the CPU run again with every x moved by one ulp. How many iterations a
+ * solve takes is a threshold on a maximum over particles; DFSPH's
+ * divergence also counts a particle only where rho >= rho_r, which the held
+ * density sits on: on the 2D dam break the ulp-shifted CPU run takes 2 or 3
+ * iterations more or fewer than the CPU's at steps 28, 31 and 32, as GL
+ * does at the same steps. So each step's count on GL is held within 1 of
+ * the CPU's, or within the largest difference the ulp-shifted run has shown
+ * so far where that is more. */
+static void compare_runs(const char *ini, const char *solver, const char *walls, int steps)
+{
+    need_gl();
+    sph_sim *c = make(ini, solver, walls, false), *g = make(ini, solver, walls, true);
+    sph_sim *u = make(ini, solver, walls, false);
+    for (int d = 0; d < u->dim; d++)
+        for (uint32_t i = 0; i < u->n; i++) u->P.pos[d][i] = nextafterf(u->P.pos[d][i], INFINITY);
+    const bool df = g->def.pressure_solver == SPH_PSOLVER_DFSPH;
+    const int p = df ? SPH_PASS_DFSPH : SPH_PASS_PCISPH;
+    int same = 0, worst = 0, spread = 0;
+    long total = 0, total_gl = 0;
+    double err_worst = 0;
+    for (int s = 0; s < steps; s++) {
+        sph_sim_step(c);
+        sph_sim_step(g);
+        sph_sim_step(u);
+        cr_assert(!g->alarm.raised && !c->alarm.raised && !u->alarm.raised, "%s: the watchdog stopped step %d",
+                  solver, s);
+        const int d = count_difference(g, c), allowed = spread > 1 ? spread : 1;
+        spread = count_difference(u, c) > spread ? count_difference(u, c) : spread;
+        if (spread > allowed && d <= spread) { /* the ulp-shifted run differs as much at this very step */
+        } else {
+            cr_expect_leq(d, allowed, "%s, %s walls, step %d: %d (+%d) iterations on GL, %d (+%d) on the CPU", solver,
+                          walls, s, g->solver.iterations, g->solver.div_iterations, c->solver.iterations,
+                          c->solver.div_iterations);
+        }
+        same += d == 0;
+        worst = d > worst ? d : worst;
+        total += iterations(c);
+        total_gl += iterations(g);
+        err_worst = fmax(err_worst, fabs(g->solver.density_error - c->solver.density_error));
+        cr_expect_leq(g->solver.density_error, g->def.solver_tolerance * (g->solver.capped ? 2 : 1),
+                      "%s: GL step %d ended at density error %g", solver, s, g->solver.density_error);
+    }
+    /* one pass call per iteration (dfsph: the call that ends the divergence
+     * solve also makes the first density iteration), on GL as on the CPU */
+    const uint64_t calls = g->timing[p].calls;
+    cr_expect_eq((long)calls, total_gl - (df ? steps : 0), "%s: %llu calls of the pass on GL for %ld iterations",
+                 solver, (unsigned long long)calls, total_gl);
+    cr_expect_eq((long)c->timing[p].calls, total - (df ? steps : 0));
+    /* nothing read back but an error per iteration and the statistics' few floats per step */
+    const uint64_t bytes = sph_gpu_downloaded_bytes(g);
+    cr_expect_leq(bytes, 4 * calls + 64 * (uint64_t)steps, "%s: %llu bytes read back in %d steps, %llu calls",
+                  solver, (unsigned long long)bytes, steps, (unsigned long long)calls);
+    sph_sim_sync(g, SPH_SYNC_ALL);
+    uint32_t *where = malloc(c->n * sizeof *where);
+    cr_assert_not_null(where);
+    for (uint32_t i = 0; i < g->n; i++) where[g->P.id[i]] = i;
+    double err = 0, err_u = 0;
+    for (uint32_t i = 0; i < c->n; i++)
+        for (int d = 0; d < c->dim; d++) {
+            err = fmax(err, fabs((double)g->P.pos[d][where[c->P.id[i]]] - c->P.pos[d][i]));
+            err_u = fmax(err_u, fabs((double)u->P.pos[d][i] - c->P.pos[d][i]));
+        }
+    free(where);
+    if (getenv("SPH_TEST_VERBOSE"))
+        fprintf(stderr,
+                "%s %dD %s walls, %d steps: %ld iterations on the CPU, %ld on GL, %d steps with the same count (worst "
+                "difference %d; CPU shifted by one ulp: %d), density errors differ by %.3g at most, %llu bytes read "
+                "back, positions differ by %.3g m (CPU shifted by one ulp: %.3g m)\n",
+                solver, c->dim, walls, steps, total, total_gl, same, worst, spread, err_worst,
+                (unsigned long long)bytes, err, err_u);
+    cr_expect(total > (df ? 2 : 1) * steps, "%s: %ld iterations in %d steps: the solver did not iterate", solver,
+              total, steps);
+    cr_expect(labs(total_gl - total) <= total / 20, "%s: %ld iterations on GL, %ld on the CPU", solver, total_gl,
+              total);
+    cr_expect(err <= TOL_POS_RUN, "%s: positions after %d steps differ by %.3g m (tolerance %g m)", solver, steps,
+              err, TOL_POS_RUN);
+    sph_sim_destroy(u);
+    sph_sim_destroy(g);
+    sph_sim_destroy(c);
+}
+
+Test(gl_solvers, pcisph_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "pcisph", "volume", 40); }
+Test(gl_solvers, dfsph_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "dfsph", "volume", 40); }
+Test(gl_solvers, pcisph_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "pcisph", "volume", 20); }
+Test(gl_solvers, dfsph_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "volume", 20); }
