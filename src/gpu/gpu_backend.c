@@ -95,12 +95,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [search] lists_in_place = on is not implemented by the GL backend (its passes walk the "
                         "cells and build no lists; accepted there: off)",
                         def->file);
-    if (def->fuse_forces == SPH_ON)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [compute] fuse_forces = on is not implemented by the GL backend (the fused walk is the "
-                        "CPU's AVX-512 loop; its shaders run the pressure force and viscosity apart; accepted there: "
-                        "off)",
-                        def->file);
     if (sim->in_pipeline[SPH_PASS_DENSITY_RATE] && def->delta > 0 && def->delta_form == SPH_DFORM_FOURTAKAS)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] delta_form = fourtakas is not implemented by the GL backend yet (its "

@@ -40,7 +40,7 @@ extern const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT]; /* 
  * number), then the helpers several passes share (shaders/gpu_NAME.comp). */
 #define GPU_HELPERS(X) \
     X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range) \
-    X(bitonic_local) X(stats) X(stats_sum)
+    X(bitonic_local) X(stats) X(stats_sum) X(forces)
 enum {
 #define GPU_H_ENUM(name) H_##name,
     GPU_HELPERS(GPU_H_ENUM)
@@ -124,7 +124,7 @@ typedef struct gpu_pass_row {
 extern const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT];
 extern const char *const gpu_helper_names[H_TOTAL];
 extern const char *const gpu_helper_sources[H_TOTAL];
-extern const char *const gpu_common_source, *const gpu_walk_source;
+extern const char *const gpu_common_source, *const gpu_walk_source, *const gpu_force_terms_source;
 
 /* Runs one pass on the device (the core's sph_backend.run). */
 void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass);

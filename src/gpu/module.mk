@@ -25,7 +25,7 @@ $(BUILD)/gpu/%.o: src/gpu/%.c src/gpu/*.h src/gl/*.h src/core/*.h $(BUILD)/gpu/g
 $(BUILD)/gpu:
 	mkdir -p $@
 
-$(BUILD)/tests/test_gl_backend.o $(BUILD)/tests/test_gl_timing.o $(BUILD)/tests/test_gl_sort.o $(BUILD)/tests/test_gl_stats.o: CORE_CFLAGS += -Isrc/gpu
+$(BUILD)/tests/test_gl_backend.o $(BUILD)/tests/test_gl_timing.o $(BUILD)/tests/test_gl_sort.o $(BUILD)/tests/test_gl_stats.o $(BUILD)/tests/test_gl_fused.o: CORE_CFLAGS += -Isrc/gpu
 
 # Warnings are errors under clang too.
 .PHONY: check-clang-gpu
