@@ -56,6 +56,7 @@ static void upload(sph_backend *b, sph_sim *sim)
             if (sim->P.field[f][d]) gpu_send(g, g->buf[f], (size_t)d * row, row, sim->P.field[f][d]);
     }
     gpu_send(g, g->buf[B_ID], 0, (size_t)g->n * sizeof(uint32_t), sim->P.id);
+    g->changes++;
 }
 
 static void destroy(sph_backend *b)
@@ -74,6 +75,7 @@ static void destroy(sph_backend *b)
         if (g->range) g->gl.DeleteBuffers(1, &g->range);
         gpu_timer_free(g);
         gpu_stats_free(g);
+        gpu_health_free(g);
         sph_glctx_destroy(g->ctx);
     }
     free(g);
@@ -278,6 +280,7 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, void *share, sph_backend **o
     g->base.upload = upload;
     g->base.destroy = destroy;
     g->base.stats = gpu_stats;
+    g->base.hash_health = gpu_hash_health;
     g->n = sim->n;
     g->dim = sim->dim;
     g->table = sim->S.table_size ? sim->S.table_size : 1;

@@ -331,6 +331,8 @@ void gpu_needed_programs(const sph_sim *sim, bool need[PROG_TOTAL])
     memset(need, 0, PROG_TOTAL * sizeof *need);
     need[PROG_H(range)] = true; /* the window's colour scale */
     need[PROG_H(stats)] = need[PROG_H(stats_sum)] = true; /* the HUD's and --stats' figures (gpu_stats.c) */
+    /* the HUD's hash health, where there is a hash table (gpu_health.c) */
+    need[PROG_H(health)] = sim->in_pipeline[SPH_PASS_HASH] && !sim->S.cells.dense;
     need[SPH_PASS_INTEGRATE] = true;
     for (int p = 0; p < SPH_PASS_COUNT; p++) {
         if (!sim->in_pipeline[p]) continue;
@@ -362,6 +364,7 @@ void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass)
                 (unsigned)pass < SPH_PASS_COUNT ? sph_passes[pass]->name : "unknown");
         abort();
     }
+    g->changes++;
     gpu_timer_begin(g, sim, (int)pass);
     if (row->run) {
         row->run(g, sim);
