@@ -2,48 +2,22 @@
 // Pass pressure_force (src/passes/pressure_force.c): symmetric or shared form,
 // coincident pairs pushed apart along x (repulsion only), walls push back.
 // Wall particles (wall_model = particles) get no acceleration: they never move.
+// The terms are gpu_force_terms.glsl's, shared with the fused walk.
 layout(local_size_x = WG) in;
-vec3 acc;
-float pi_over, p_i, rho_i;
+#define FORCE_PRESSURE 1
+#define FORCE_VISCOSITY 0
+#include_forces
 void sph_pair(uint i, uint j, vec3 dx, float r2)
 {
-    float r;
-    if (r2 < R_MIN * R_MIN) {
-        dx = vec3(i < j ? -R_MIN : R_MIN, 0.0, 0.0);
-        r = R_MIN;
-    } else {
-        r = sqrt(r2);
-    }
-    float dw_over_r = kernel_dw(KP, SIG_P, r) / r;
-#if PFORM_SYM
-    float coef = mass_[j] * (pi_over + p_rho2_[j]);
-#else
-    float coef = vol_[j] * 0.5 * (p_i + p_[j]) / rho_i;
-#endif
-    if (r2 < R_MIN * R_MIN && coef < 0.0) coef = 0.0; // a coincident pair only repels
-    for (int d = 0; d < DIM; d++) acc[d] -= coef * dw_over_r * dx[d];
+    forces_pair(i, j, dx, r2);
 }
 #include_walk
 void main()
 {
     uint i = gid();
-    if (i >= N) return;
-#if HAS_FIXED
-    if (fixed_[i] != 0.0) {
-        for (int d = 0; d < DIM; d++) acc_p_[uint(d) * N + i] = 0.0;
-        return;
-    }
-#endif
+    if (i >= N || forces_still(i)) return;
     vec3 xi = PRED3(i);
-    acc = vec3(0.0);
-    pi_over = p_rho2_[i];
-    p_i = p_[i];
-    rho_i = rho_[i];
+    forces_begin(i);
     sph_walk(i, xi);
-#if WALL_VOLUME
-    vec3 grad;
-    wall_hidden(xi, grad);
-    for (int d = 0; d < DIM; d++) acc[d] -= RHO0 * pi_over * grad[d];
-#endif
-    for (int d = 0; d < DIM; d++) acc_p_[uint(d) * N + i] = acc[d];
+    forces_end(i, xi);
 }

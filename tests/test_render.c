@@ -458,6 +458,16 @@ Test(render, window_on_the_gl_backend_draws_from_its_buffers)
     int got = sscanf(strchr(line, ':') + 1, "%llu %llu %llu %llu", &bytes[0], &bytes[1], &bytes[2], &bytes[3]);
     cr_assert_eq(got, 4, "%s", line);
     for (int f = 1; f < 4; f++) cr_expect_eq(bytes[f], 0, "frame %d read back %llu bytes", f, bytes[f]);
+    /* the default overlays (HUD, legend): their few numbers reduced on the
+     * device, no field (the scene's positions and predicted ones: 1,600 bytes) */
+    snprintf(args, sizeof args, "view %s --backend gl --frames 4 --steps-per-frame 2 --size 240x180", scene);
+    rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    line = strstr(out, "bytes read back from it per frame:");
+    cr_assert_not_null(line, "no report of the bytes read back in: %s", out);
+    got = sscanf(strchr(line, ':') + 1, "%llu %llu %llu %llu", &bytes[0], &bytes[1], &bytes[2], &bytes[3]);
+    cr_assert_eq(got, 4, "%s", line);
+    for (int f = 1; f < 4; f++) cr_expect_leq(bytes[f], 128, "default overlays: frame %d read back %llu bytes", f, bytes[f]);
     snprintf(args, sizeof args, "view %s --backend cpu %s --screenshot %s/cpu.png", scene, opts, d);
     rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
     cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);

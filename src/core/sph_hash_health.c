@@ -90,6 +90,12 @@ bool sph_sim_hash_health(const sph_sim *sim, bool count_neighbours, sph_hash_hea
     const sph_cells *g = &sim->S.cells;
     const bool lists = !sim->backend && sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start &&
                        sim->timing[SPH_PASS_NEIGHBOURS].calls > 0 && sim->timing[SPH_PASS_HASH].calls > 0;
+    /* a backend counts on the device rather than download the positions;
+     * a fresh host copy is counted here */
+    sph_backend *b = sim->backend;
+    if (!count_neighbours && b && b->hash_health && (b->stale & (SPH_BIT(POS) | SPH_BIT(PRED))) &&
+        b->hash_health(b, sim, out))
+        return true;
     sph_sim_sync(sim, SPH_BIT(POS) | SPH_BIT(PRED));
     float *const *x = health_positions(sim);
     out->has_table = true;

@@ -34,10 +34,13 @@ const sph_level sph_levels[] = {
     {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0},
     {"G1", "GLSL: hash + bitonic sort (the seed)",
      "compute.backend=gl search.method=hash search.sort=bitonic search.reorder=off", 0},
-    {"G2", "GLSL: counting sort + reorder",
-     "compute.backend=gl search.method=hash search.sort=counting search.reorder=on", 0},
+    /* From G2 on the pressure force and viscosity share one walk
+     * (docs/performance.md, "The GL levels": the forces in half the time on
+     * llvmpipe, the same result to the bit). */
+    {"G2", "GLSL: counting sort, reorder, fused forces",
+     "compute.backend=gl search.method=hash search.sort=counting search.reorder=on compute.fuse_forces=on", 0},
     {"G3", "GLSL: dense grid: stencil rows",
-     "compute.backend=gl search.method=grid search.sort=counting search.reorder=on", 0},
+     "compute.backend=gl search.method=grid search.sort=counting search.reorder=on compute.fuse_forces=on", 0},
 };
 const int sph_level_count = (int)(sizeof sph_levels / sizeof sph_levels[0]);
 

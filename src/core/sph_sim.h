@@ -140,6 +140,7 @@ typedef struct sph_stats {
  * table; the module that implements it registers a factory, so no GL header
  * reaches the core. */
 typedef struct sph_backend sph_backend;
+struct sph_hash_health; /* sph_hash_health.h */
 struct sph_backend {
     const char *name;    /* "gl" */
     char device[200];    /* what it measures on, e.g. "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5" */
@@ -165,6 +166,10 @@ struct sph_backend {
      * numbers are read back; called when the host copy of the fields it
      * reads is stale. false: not done (the fields are downloaded). */
     bool (*stats)(sph_backend *b, const sph_sim *sim, sph_stats *out);
+    /* Optional: sph_sim_hash_health's figures without the neighbour count
+     * (sph_hash_health.h), computed on the device; called when the host copy
+     * of the positions is stale. false: not done (the positions are downloaded). */
+    bool (*hash_health)(sph_backend *b, const sph_sim *sim, struct sph_hash_health *out);
 };
 
 /* What sph_sim_sync can refresh: the bits of sph_fields.h, one per particle

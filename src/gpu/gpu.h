@@ -68,6 +68,12 @@ bool sph_gpu_field_buffer(const sph_sim *sim, sph_field_id f, unsigned *gl_name)
  * value). lo_hi non-NULL: also reads the two floats back (8 bytes; 0 and 0 if
  * none). False if sim is not on the GL backend or lacks the field. */
 bool sph_gpu_field_range(const sph_sim *sim, sph_field_id f, bool norm, unsigned *gl_name, float lo_hi[2]);
+/* The hash health (sph_hash_health.h) computed on the device whatever the
+ * host copy (sph_sim_hash_health does so only when that copy is stale): the
+ * figures without the neighbour count (neighbours and share NaN), 20 bytes
+ * read back. False if sim is not on the GL backend or has no hash table. */
+struct sph_hash_health;
+bool sph_gpu_hash_health(const sph_sim *sim, struct sph_hash_health *out);
 /* Bytes this simulation's backend copied to the host so far: sph_sim_sync's
  * downloads and range reads (not the integrate pass's 8-byte CFL maxima,
  * which every step reads). 0 if sim is not on the GL backend. */

@@ -56,6 +56,7 @@ static void upload(sph_backend *b, sph_sim *sim)
             if (sim->P.field[f][d]) gpu_send(g, g->buf[f], (size_t)d * row, row, sim->P.field[f][d]);
     }
     gpu_send(g, g->buf[B_ID], 0, (size_t)g->n * sizeof(uint32_t), sim->P.id);
+    g->changes++;
 }
 
 static void destroy(sph_backend *b)
@@ -74,6 +75,7 @@ static void destroy(sph_backend *b)
         if (g->range) g->gl.DeleteBuffers(1, &g->range);
         gpu_timer_free(g);
         gpu_stats_free(g);
+        gpu_health_free(g);
         sph_glctx_destroy(g->ctx);
     }
     free(g);
@@ -94,12 +96,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] lists_in_place = on is not implemented by the GL backend (its passes walk the "
                         "cells and build no lists; accepted there: off)",
-                        def->file);
-    if (def->fuse_forces == SPH_ON)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [compute] fuse_forces = on is not implemented by the GL backend (the fused walk is the "
-                        "CPU's AVX-512 loop; its shaders run the pressure force and viscosity apart; accepted there: "
-                        "off)",
                         def->file);
     if (sim->in_pipeline[SPH_PASS_DENSITY_RATE] && def->delta > 0 && def->delta_form == SPH_DFORM_FOURTAKAS)
         return sph_fail(err, SPH_ERR_SCENE,
@@ -283,6 +279,7 @@ sph_error_code sph_gpu_backend_create(sph_sim *sim, void *share, sph_backend **o
     g->base.upload = upload;
     g->base.destroy = destroy;
     g->base.stats = gpu_stats;
+    g->base.hash_health = gpu_hash_health;
     g->n = sim->n;
     g->dim = sim->dim;
     g->table = sim->S.table_size ? sim->S.table_size : 1;

@@ -40,7 +40,7 @@ extern const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT]; /* 
  * number), then the helpers several passes share (shaders/gpu_NAME.comp). */
 #define GPU_HELPERS(X) \
     X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range) \
-    X(bitonic_local) X(stats) X(stats_sum) X(dfsph_force)
+    X(bitonic_local) X(stats) X(stats_sum) X(dfsph_force) X(forces) X(health)
 enum {
 #define GPU_H_ENUM(name) H_##name,
     GPU_HELPERS(GPU_H_ENUM)
@@ -108,6 +108,10 @@ typedef struct gpu {
     gpu_timer timer;          /* pass times from timer queries (gpu_timing.c) */
     uint64_t finishes;        /* glFinish calls made by the passes (a debug counter for the tests) */
     GLuint stats_rows, stats_out; /* the statistics' per-group rows and their sum (gpu_stats.c) */
+    uint64_t changes;         /* passes run and uploads so far: what the device holds changed */
+    uint64_t stats_at;        /* changes + 1 when stats was reduced; 0: never */
+    sph_stats stats;          /* the last reduction, read again while nothing changed */
+    GLuint health_keys, health_sums; /* the hash health's per-key records and sums (gpu_health.c) */
 } gpu;
 
 /* ---- the table of passes (gpu_passes.c) ----------------------------------
@@ -127,7 +131,7 @@ typedef struct gpu_pass_row {
 extern const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT];
 extern const char *const gpu_helper_names[H_TOTAL];
 extern const char *const gpu_helper_sources[H_TOTAL];
-extern const char *const gpu_common_source, *const gpu_walk_source;
+extern const char *const gpu_common_source, *const gpu_walk_source, *const gpu_force_terms_source;
 
 /* Runs one pass on the device (the core's sph_backend.run). */
 void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass);
@@ -152,6 +156,14 @@ void gpu_timer_end(gpu *g);
 /* sph_sim_stats on the device (sph_backend.stats); false if it cannot. */
 bool gpu_stats(sph_backend *b, const sph_sim *sim, sph_stats *out);
 void gpu_stats_free(gpu *g);
+
+/* ---- hash health (gpu_health.c) -------------------------------------------- */
+
+struct sph_hash_health;
+/* sph_sim_hash_health without the neighbour count, on the device
+ * (sph_backend.hash_health); false if it cannot. */
+bool gpu_hash_health(sph_backend *b, const sph_sim *sim, struct sph_hash_health *out);
+void gpu_health_free(gpu *g);
 
 /* ---- programs (gpu_program.c) -------------------------------------------- */
 

@@ -15,6 +15,7 @@
 
 const char *const gpu_common_source = shader_gpu_common_glsl;
 const char *const gpu_walk_source = shader_gpu_walk_glsl;
+const char *const gpu_force_terms_source = shader_gpu_force_terms_glsl;
 
 const char *const gpu_helper_names[H_TOTAL] = {
 #define GPU_H_NAME(name) #name,
@@ -387,6 +388,39 @@ static unsigned dfsph_helpers(const sph_scene_def *def)
     return HELPER_BIT(dfsph_force);
 }
 
+/* [compute] fuse_forces = on: the pressure force and the viscosity in one
+ * walk (gpu_forces.comp), run as the pressure_force pass, while both passes
+ * are in the pipeline and switched on (as sph_forces_fused on the CPU; the
+ * shaders have every form, so no form is left out). */
+static bool forces_fused(const sph_sim *sim)
+{
+    return sim->def.fuse_forces == SPH_ON && sim->in_pipeline[SPH_PASS_PRESSURE_FORCE] &&
+           sim->enabled[SPH_PASS_PRESSURE_FORCE] && sim->in_pipeline[SPH_PASS_VISCOSITY] &&
+           sim->enabled[SPH_PASS_VISCOSITY];
+}
+
+static void run_pressure_force(gpu *g, sph_sim *sim)
+{
+    const bool fused = forces_fused(sim);
+    use_walk(g, sim, fused ? PROG_H(forces) : SPH_PASS_PRESSURE_FORCE);
+    gpu_dispatch(g, g->n);
+    /* the pass's registry row names acc_p only: the host copy of acc_v is
+     * now old too (read by the inspector when stepping pass by pass) */
+    if (fused) g->base.stale |= SPH_SYNC_FIELD(SPH_FIELD_ACC_V);
+}
+
+static unsigned pressure_force_helpers(const sph_scene_def *def)
+{
+    return def->fuse_forces == SPH_ON ? HELPER_BIT(forces) : 0;
+}
+
+static void run_viscosity(gpu *g, sph_sim *sim)
+{
+    if (forces_fused(sim)) return; /* the pressure_force pass wrote acc_v in its walk */
+    use_walk(g, sim, SPH_PASS_VISCOSITY);
+    gpu_dispatch(g, g->n);
+}
+
 /* ---- the table ------------------------------------------------------------- */
 
 const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
@@ -401,8 +435,10 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_DENSITY] = {.source = shader_gpu_density_comp, .run = run_density},
     [SPH_PASS_PRESSURE] = {.source = shader_gpu_pressure_comp},
     [SPH_PASS_WALL_STATE] = {.source = shader_gpu_wall_state_comp},
-    [SPH_PASS_PRESSURE_FORCE] = {.source = shader_gpu_pressure_force_comp},
-    [SPH_PASS_VISCOSITY] = {.source = shader_gpu_viscosity_comp},
+    [SPH_PASS_PRESSURE_FORCE] = {.source = shader_gpu_pressure_force_comp,
+                                 .run = run_pressure_force,
+                                 .helpers = pressure_force_helpers},
+    [SPH_PASS_VISCOSITY] = {.source = shader_gpu_viscosity_comp, .run = run_viscosity},
     [SPH_PASS_COHESION] = {.source = shader_gpu_cohesion_comp},
     [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
     [SPH_PASS_PCISPH] = {.source = shader_gpu_pcisph_comp, .run = run_pcisph},
@@ -417,6 +453,8 @@ void gpu_needed_programs(const sph_sim *sim, bool need[PROG_TOTAL])
     memset(need, 0, PROG_TOTAL * sizeof *need);
     need[PROG_H(range)] = true; /* the window's colour scale */
     need[PROG_H(stats)] = need[PROG_H(stats_sum)] = true; /* the HUD's and --stats' figures (gpu_stats.c) */
+    /* the HUD's hash health, where there is a hash table (gpu_health.c) */
+    need[PROG_H(health)] = sim->in_pipeline[SPH_PASS_HASH] && !sim->S.cells.dense;
     need[SPH_PASS_INTEGRATE] = true;
     for (int p = 0; p < SPH_PASS_COUNT; p++) {
         if (!sim->in_pipeline[p]) continue;
@@ -448,6 +486,7 @@ void gpu_run_pass(sph_backend *b, sph_sim *sim, sph_pass_id pass)
                 (unsigned)pass < SPH_PASS_COUNT ? sph_passes[pass]->name : "unknown");
         abort();
     }
+    g->changes++;
     gpu_timer_begin(g, sim, (int)pass);
     if (row->run) {
         row->run(g, sim);

@@ -201,13 +201,37 @@ static void declare_buffers(const gpu *g, const char *src, text *t)
     }
 }
 
+/* The shared GLSL a program's source may pull in, each by a line of its own:
+ * "#include_walk" (the neighbour walk) and "#include_forces" (the pressure
+ * and viscosity terms); GLSL itself has no #include. */
+#define GPU_INCLUDES 2
+#define GPU_PARTS (3 + 2 * GPU_INCLUDES + 1) /* prelude, buffers, common, then source and includes in turn */
+
+static int split_includes(const char *src, const char *parts[GPU_PARTS], GLint lens[GPU_PARTS], int count)
+{
+    const char *const marks[GPU_INCLUDES] = {"#include_walk\n", "#include_forces\n"};
+    const char *const texts[GPU_INCLUDES] = {gpu_walk_source, gpu_force_terms_source};
+    for (;;) {
+        const char *at = NULL;
+        int which = -1;
+        for (int k = 0; k < GPU_INCLUDES; k++) {
+            const char *m = strstr(src, marks[k]);
+            if (m && (!at || m < at)) at = m, which = k;
+        }
+        if (!at || count + 2 >= GPU_PARTS) break;
+        parts[count] = src, lens[count++] = (GLint)(at - src);
+        parts[count] = texts[which], lens[count++] = -1;
+        src = at + strlen(marks[which]);
+    }
+    parts[count] = src, lens[count++] = -1;
+    return count;
+}
+
 bool gpu_compile(gpu *g, int p, const char *pre, char *why, size_t n)
 {
     sph_gl *gl = &g->gl;
     const bool helper = p >= SPH_PASS_COUNT;
     const char *src = helper ? gpu_helper_sources[p - SPH_PASS_COUNT] : gpu_pass_rows[p].source;
-    /* "#include_walk" in a pass's source stands for gpu_walk.glsl */
-    const char *mark = strstr(src, "#include_walk\n");
     text uses = {0};
     declare_buffers(g, src, &uses);
     if (uses.failed) {
@@ -215,15 +239,9 @@ bool gpu_compile(gpu *g, int p, const char *pre, char *why, size_t n)
         snprintf(why, n, "out of memory");
         return false;
     }
-    const char *parts[6] = {pre, uses.s ? uses.s : "", gpu_common_source, src, "", ""};
-    GLint lens[6] = {-1, -1, -1, -1, -1, -1};
-    int count = 4;
-    if (mark) {
-        lens[3] = (GLint)(mark - src);
-        parts[4] = gpu_walk_source;
-        parts[5] = mark + strlen("#include_walk\n");
-        count = 6;
-    }
+    const char *parts[GPU_PARTS] = {pre, uses.s ? uses.s : "", gpu_common_source};
+    GLint lens[GPU_PARTS] = {-1, -1, -1};
+    const int count = split_includes(src, parts, lens, 3);
     const sph_gl_stage stage = {GL_COMPUTE_SHADER, count, parts, lens};
     char what[96];
     snprintf(what, sizeof what, "shaders/gpu_%s.comp", helper ? gpu_helper_names[p - SPH_PASS_COUNT] : sph_passes[p]->name);

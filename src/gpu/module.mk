@@ -3,7 +3,7 @@
 # its EGL context or one shared with it, its GL table and program builder).
 # Included by the top Makefile.
 
-GPU_OBJ := $(BUILD)/gpu/gpu_backend.o $(BUILD)/gpu/gpu_passes.o $(BUILD)/gpu/gpu_program.o $(BUILD)/gpu/gpu_timing.o $(BUILD)/gpu/gpu_stats.o
+GPU_OBJ := $(BUILD)/gpu/gpu_backend.o $(BUILD)/gpu/gpu_passes.o $(BUILD)/gpu/gpu_program.o $(BUILD)/gpu/gpu_timing.o $(BUILD)/gpu/gpu_stats.o $(BUILD)/gpu/gpu_health.o
 
 MOD_OBJ       += $(GPU_OBJ)
 # A module library: linked before the GL layer (libsphgl.a) and the core.
@@ -26,7 +26,7 @@ $(BUILD)/gpu:
 	mkdir -p $@
 
 $(BUILD)/tests/test_gl_backend.o $(BUILD)/tests/test_gl_timing.o $(BUILD)/tests/test_gl_sort.o $(BUILD)/tests/test_gl_stats.o \
-    $(BUILD)/tests/test_gl_solvers.o: CORE_CFLAGS += -Isrc/gpu
+    $(BUILD)/tests/test_gl_solvers.o $(BUILD)/tests/test_gl_fused.o $(BUILD)/tests/test_gl_health.o: CORE_CFLAGS += -Isrc/gpu
 
 # Warnings are errors under clang too.
 .PHONY: check-clang-gpu
