@@ -1,4 +1,5 @@
-/* Monaghan's artificial viscosity (viscosity_form = artificial) and the
+/* Monaghan's artificial viscosity (viscosity_form = artificial, and beside
+ * Morris's laminar term in morris-artificial) and the
  * start-up ramps ([physics] gravity_ramp, damping_time; src/core/sph_start.h).
  * Each test compares against the same scene without the feature, so it
  * would fail if the feature did nothing. (On GL:
@@ -6,7 +7,10 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
+#include "sph_walls.h"
 #include "test_util.h"
 
 /* Two blocks 0.2 m wide side by side in zero gravity, moving along x at
@@ -94,6 +98,82 @@ Test(artificial_viscosity, dissipates_energy_in_a_collision)
     cr_assert_gt(e0, 0.0);
     cr_assert_lt(e[1], 0.8 * e[0], "energy at 0.1 s: %g with alpha 0.5, %g without (start %g)", e[1], e[0], e0);
     cr_assert_lt(e[1], 0.8 * e0, "energy at 0.1 s: %g with alpha 0.5, start %g", e[1], e0);
+}
+
+/* ---- morris-artificial: Morris's laminar term and Monaghan's together ---- */
+
+/* The approaching blocks above with the wendland kernel for the viscosity
+ * (morris needs W'(0) = 0) and nu given: the first step in each form. */
+static sph_sim *blocks_nu(const char *form, double nu)
+{
+    char ini[1200], with[1300];
+    snprintf(ini, sizeof ini, BLOCKS, "viscosity", 1.0, -1.0, form, 0.5);
+    const char *k = strstr(ini, "[kernels]\n");
+    cr_assert_not_null(k);
+    snprintf(with, sizeof with, "%.*s[kernels]\nviscosity=wendland\n%s", (int)(k - ini), ini, k + strlen("[kernels]\n"));
+    sph_scene_def def = test_scene(with);
+    char set[64];
+    snprintf(set, sizeof set, "physics.viscosity=%g", nu);
+    sph_error err;
+    cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
+    sph_sim *sim = NULL;
+    cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s", err.msg);
+    sph_sim_step(sim);
+    return sim;
+}
+
+/* The combined form is the sum of the two forms it names, particle by
+ * particle, and both parts are large enough to be seen in the sum. */
+Test(morris_artificial, is_the_sum_of_morris_and_artificial)
+{
+    sph_sim *m = blocks_nu("morris", 0.05), *a = blocks_nu("artificial", 0.05);
+    sph_sim *both = blocks_nu("morris-artificial", 0.05);
+    double sm = acc_v_scale(m), sa = acc_v_scale(a), worst = 0;
+    cr_assert_gt(sm, 1e-2 * sa, "the morris part is too small to be seen: %g against %g", sm, sa);
+    cr_assert_gt(sa, 1e-2 * sm, "the artificial part is too small to be seen: %g against %g", sa, sm);
+    cr_assert_eq(both->n, m->n);
+    for (uint32_t i = 0; i < both->n; i++)
+        for (int d = 0; d < 2; d++)
+            worst = fmax(worst, fabs(both->P.acc_v[d][i] - (m->P.acc_v[d][i] + a->P.acc_v[d][i])));
+    cr_assert_lt(worst, 1e-5 * (sm + sa), "off the sum by up to %g m/s^2 (scales %g, %g)", worst, sm, sa);
+    sph_sim_destroy(m);
+    sph_sim_destroy(a);
+    sph_sim_destroy(both);
+}
+
+/* A layer sliding at 1 m/s over a no-slip floor of wall particles (which
+ * need the pressure effect), in zero gravity: Morris's term, fed the walls' mirrored velocity, brakes the row
+ * next to the floor; Monaghan's alone brakes it far less. */
+static double floor_drag(const char *form)
+{
+    char ini[1024];
+    snprintf(ini, sizeof ini,
+             "[scene]\ndimension=2\neffects=pressure viscosity walls\n"
+             "[domain]\nmin=0 0\nmax=1 0.5\nwall_model=particles\nwall_slip=no\n"
+             "[fluid layer]\nmin=0.3 0\nmax=0.7 0.1\nspacing=0.01\nvelocity=1 0\n"
+             "[physics]\nstiffness=400\nviscosity=0.001\nviscosity_form=%s\nalpha=0.1\ngravity=0 0 0\n"
+             "[kernels]\nh=0.03\nviscosity=wendland\npressure=wendland\ndensity=wendland\n[time]\ndt=0.0002\n",
+             form);
+    sph_sim *sim = test_sim(ini, 2);
+    sph_sim_step(sim);
+    double sum = 0;
+    int n = 0;
+    for (uint32_t i = 0; i < sim->n; i++) /* the bottom row, away from the layer's ends */
+        if (!sph_is_wall(&sim->P, i) && sim->P.pos[1][i] < 0.01 && fabs(sim->P.pos[0][i] - 0.5) < 0.1) {
+            sum += sim->P.acc_v[0][i];
+            n++;
+        }
+    sph_sim_destroy(sim);
+    cr_assert_gt(n, 5, "%s: no bottom row found", form);
+    return sum / n; /* [m/s^2] mean, negative brakes */
+}
+
+Test(morris_artificial, brakes_a_layer_on_a_no_slip_floor)
+{
+    double art = floor_drag("artificial"), both = floor_drag("morris-artificial"), mor = floor_drag("morris");
+    cr_assert_lt(mor, 0.0, "morris alone does not brake the bottom row: %g m/s^2", mor);
+    cr_assert_lt(both, art + 0.5 * mor, "morris-artificial %g m/s^2, artificial %g, morris %g", both, art, mor);
+    if (getenv("SPH_TEST_VERBOSE")) fprintf(stderr, "bottom row: artificial %g, morris %g, both %g m/s^2\n", art, mor, both);
 }
 
 /* ---- start-up ramps ---- */

@@ -33,6 +33,28 @@ Test(validate, surge_data_are_the_published_numbers)
         }
 }
 
+Test(validate, column_height_data_are_martin_and_moyce_table_6)
+{
+    const val_curve *c = &val_column;
+    cr_assert_eq(c->n, 17);
+    cr_assert_float_eq(c->x[0], 0.56, 1e-12, "tau = t sqrt(g/a) of the first row");
+    cr_assert_float_eq(c->y[0], 0.94, 1e-12);
+    cr_assert_float_eq(c->x[8], 2.00, 1e-12);
+    cr_assert_float_eq(c->y[8], 0.50, 1e-12, "half the column left at tau = 2");
+    cr_assert_float_eq(c->x[16], 7.40, 1e-12);
+    cr_assert_float_eq(c->y[16], 0.06, 1e-12);
+    for (int i = 0; i < c->n; i++) {
+        /* whole quarter inches over 2a = 4.5 in, as read off a scale */
+        cr_assert_float_eq(c->y[i] * 18.0, round(c->y[i] * 18.0), 0.1, "row %d: H = %g is not k/18", i, c->y[i]);
+        /* the top cannot fall faster than free fall: H >= 1 - tau^2/4 */
+        cr_assert_geq(c->y[i], 1.0 - 0.25 * c->x[i] * c->x[i], "row %d falls faster than free fall", i);
+        if (i) {
+            cr_assert_gt(c->x[i], c->x[i - 1], "row %d: tau increasing", i);
+            cr_assert_lt(c->y[i], c->y[i - 1], "row %d: the column only falls", i);
+        }
+    }
+}
+
 Test(validate, curve_interpolates_inside_and_is_nan_outside)
 {
     const val_curve *c = &val_surge[2];

@@ -45,7 +45,8 @@ static void pair_force(const sph_sim *sim, uint32_t f, uint32_t w, const float v
     if (P->acc_v[0]) { /* viscosity.c */
         const sph_kernel *k = &sim->k_viscosity;
         const float nu = def->viscosity, rho_f = P->rho[f];
-        if (def->viscosity_form == SPH_VFORM_ARTIFICIAL) {
+        const bool both = def->viscosity_form == SPH_VFORM_MORRIS_ARTIFICIAL;
+        if (def->viscosity_form == SPH_VFORM_ARTIFICIAL || both) {
             const float hs = 0.5f * k->h, ach = def->alpha * sqrtf(def->stiffness) * hs, eps2 = 0.01f * hs * hs;
             float vx = 0;
             for (int d = 0; d < dim; d++) vx += (vf[d] - P->vel[d][w]) * dx[d];
@@ -54,9 +55,10 @@ static void pair_force(const sph_sim *sim, uint32_t f, uint32_t w, const float v
                 float c = -P->mass[w] * pi_ij * sph_kernel_dw(&sim->k_pressure, r) / r;
                 for (int d = 0; d < dim; d++) a[d] += (double)c * dx[d];
             }
-        } else {
+        }
+        if (def->viscosity_form != SPH_VFORM_ARTIFICIAL) {
             float coef;
-            if (def->viscosity_form == SPH_VFORM_MORRIS)
+            if (def->viscosity_form == SPH_VFORM_MORRIS || both)
                 coef = nu * -P->mass[w] * (rho_f + P->rho[w]) / (rho_f * P->rho[w]) * r * sph_kernel_dw(k, r) /
                        (r2 + 1e-4f * k->h * k->h);
             else if (def->viscosity_form == SPH_VFORM_LAPLACIAN)

@@ -47,7 +47,8 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 /* The choices of each switchable method, as enums with their names. */
 #define SPH_EOS_CHOICES(X) X(LINEAR, "linear") X(TAIT, "tait")
 #define SPH_PFORM_CHOICES(X) X(SYMMETRIC, "symmetric") X(SHARED, "shared")
-#define SPH_VFORM_CHOICES(X) X(LAPLACIAN, "laplacian") X(SMOOTHING, "smoothing") X(MORRIS, "morris") X(ARTIFICIAL, "artificial")
+#define SPH_VFORM_CHOICES(X) X(LAPLACIAN, "laplacian") X(SMOOTHING, "smoothing") X(MORRIS, "morris") X(ARTIFICIAL, "artificial") \
+    X(MORRIS_ARTIFICIAL, "morris-artificial")
 #define SPH_SEARCH_CHOICES(X) X(HASH, "hash") X(GRID, "grid") X(BRUTE, "brute")
 #define SPH_SORT_CHOICES(X) X(BITONIC, "bitonic") X(COUNTING, "counting") X(QSORT, "qsort") X(NONE, "none")
 #define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")
@@ -212,7 +213,7 @@ typedef struct sph_scene_def {
     sph_viscosity_form viscosity_form;
     sph_accumulate accumulate;  /* sums in float (fast) or double (accurate) */
     float gravity[3];   /* [m/s^2] */
-    float alpha;        /* [1] Monaghan's artificial viscosity coefficient (viscosity_form = artificial) */
+    float alpha;        /* [1] Monaghan's artificial viscosity coefficient (viscosity_form = artificial, morris-artificial) */
     float gravity_ramp; /* [s] gravity grows smoothly from 0 to g over this time; 0: full g from the start */
     float damping_time; /* [s] velocities are damped, less and less, over this time; 0: no damping */
     sph_density_method density_method; /* summation each step, or carried by the continuity equation */

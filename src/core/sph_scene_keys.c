@@ -105,14 +105,16 @@ const sph_key sph_scene_keys[] = {
      "laplacian: Mueller's nu m_j (v_j - v_i)/rho_j lap W; smoothing: the seed's kernel-weighted velocity average; "
      "morris: nu m_j (rho_i + rho_j)/(rho_i rho_j) (x_ij . grad W)/(r^2 + 1e-4 h^2) (v_i - v_j), a Laplacian from "
      "the kernel's gradient (needs a kernel whose slope vanishes at r = 0: [kernels] viscosity = cubic, wendland or "
-     "poly6)"},
+     "poly6); artificial: Monaghan's term of [physics] alpha alone (nu unused); morris-artificial: both summed, the "
+     "physical nu in Morris's term (which sees the wall particles' no-slip velocity, so a floor has friction) and "
+     "alpha's term for the shocks"},
     {"physics", "cohesion", SPH_KEY_FLOAT, S(cohesion), 0, 1e6, 0, 0, NULL, 0, "m^4/(kg s^2)", "1",
      "gamma of the cohesion effect (Akinci 2013): a_i = -gamma sum_j 2 rho0/(rho_i + rho_j) m_j C(r) x_ij/r"},
     {"physics", "accumulate", SPH_KEY_CHOICE, S(accumulate), 0, 0, 0, 0, CH(sph_accumulate_names), "", "float",
      "precision of the density and force sums: float, or double (slower; shows what round-off costs)"},
     {"physics", "gravity", SPH_KEY_VEC, S(gravity), -1e4, 1e4, 0, 0, NULL, 0, "m/s^2", "0 -9.81 0", "g"},
     {"physics", "alpha", SPH_KEY_FLOAT, S(alpha), 0, 10, 0, 0, NULL, 0, "", "0.1",
-     "alpha of viscosity_form = artificial (Monaghan 1992): Pi_ij = -alpha c (h/2) (v_ij . x_ij) / (rho_avg (r^2 + "
+     "alpha of viscosity_form = artificial or morris-artificial (Monaghan 1992): Pi_ij = -alpha c (h/2) (v_ij . x_ij) / (rho_avg (r^2 + "
      "0.01 (h/2)^2)) for approaching pairs, c = sqrt(stiffness); typically 0.01 to 0.1"},
     {"physics", "gravity_ramp", SPH_KEY_FLOAT, S(gravity_ramp), 0, BIG, 0, 0, NULL, 0, "s", "0",
      "gravity grows as g (1 - cos(pi t / T)) / 2 over the first T seconds (as in Adami et al. 2012's hydrostatic "

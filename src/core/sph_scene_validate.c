@@ -166,17 +166,17 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
     }
     /* Morris's form divides x_ij . grad W = r W'(r) by r^2: it needs W'(r) / r
      * bounded, that is W'(0) = 0, which the viscosity and spiky kernels lack */
-    if (def->viscosity_form == SPH_VFORM_MORRIS &&
+    if ((def->viscosity_form == SPH_VFORM_MORRIS || def->viscosity_form == SPH_VFORM_MORRIS_ARTIFICIAL) &&
         (def->kernel_viscosity == SPH_KERNEL_VISCOSITY || def->kernel_viscosity == SPH_KERNEL_SPIKY) &&
         (def->effects & SPH_EFFECT(VISCOSITY))) {
         int li = key_index("physics", "viscosity_form");
         char loc[300];
         return sph_fail(err, SPH_ERR_RANGE,
-                        "%s: [physics] viscosity_form = morris with [kernels] viscosity = %s: that kernel's slope "
+                        "%s: [physics] viscosity_form = %s with [kernels] viscosity = %s: that kernel's slope "
                         "does not vanish at r = 0, so W'(r)/r grows without bound for close pairs; set [kernels] "
                         "viscosity = cubic, wendland or poly6",
                         origin_text(def, def->origin[li].line, loc, sizeof loc),
-                        sph_kernel_names[def->kernel_viscosity]);
+                        sph_viscosity_form_names[def->viscosity_form], sph_kernel_names[def->kernel_viscosity]);
     }
     if (def->n_blocks == 0)
         return sph_fail(err, SPH_ERR_SCENE, "%s: no particles: the scene has no [fluid NAME] block", def->file);

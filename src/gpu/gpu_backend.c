@@ -107,6 +107,12 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [physics] surface_tension = %s is not implemented by the GL backend yet (its normals and "
                         "curvature passes run on the CPU; accepted there: none, or the effect cohesion)",
                         def->file, sph_surface_tension_names[def->surface_tension]);
+    if (def->viscosity_form == SPH_VFORM_MORRIS_ARTIFICIAL && (def->effects & SPH_EFFECT(VISCOSITY)))
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] viscosity_form = morris-artificial is not implemented by the GL backend yet "
+                        "(its viscosity shader runs one form at a time; accepted there: laplacian, smoothing, morris, "
+                        "artificial)",
+                        def->file);
     if (def->xsph > 0)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] xsph = %g is not implemented by the GL backend yet (its pass runs on the CPU; "

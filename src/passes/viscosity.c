@@ -24,6 +24,11 @@
  *              would not bound. It acts only along x_ij and only on
  *              approach, so it damps compression (shocks, splashes) but not
  *              rigid motion or separation; pairwise equal and opposite.
+ *   morris-artificial: the sum of both, morris with the physical nu and
+ *              artificial with alpha: Monaghan's term damps the pressure
+ *              noise of a weakly compressible fluid, but being along x_ij it
+ *              gives a particle sliding on a no-slip floor no friction;
+ *              Morris's term, fed the walls' mirrored velocity, does.
  * It reads vel and writes acc_v only: the seed's shader added the result to
  * the velocities it was still reading for other particles, so its outcome
  * depended on the order threads ran in. With wall particles, the neighbours'
@@ -46,6 +51,12 @@ static void describe(const sph_scene_def *def, char *out, int n)
     if (def->viscosity_form == SPH_VFORM_ARTIFICIAL)
         snprintf(out, (size_t)n, "artificial form (Monaghan), %s kernel's gradient, alpha %g, c %g m/s",
                  sph_kernel_names[def->kernel_pressure], def->alpha, sqrt(def->stiffness));
+    else if (def->viscosity_form == SPH_VFORM_MORRIS_ARTIFICIAL)
+        snprintf(out, (size_t)n,
+                 "morris form, %s kernel, nu %g m^2/s, plus artificial (Monaghan), %s kernel's gradient, alpha %g, "
+                 "c %g m/s",
+                 sph_kernel_names[def->kernel_viscosity], def->viscosity, sph_kernel_names[def->kernel_pressure],
+                 def->alpha, sqrt(def->stiffness));
     else
         snprintf(out, (size_t)n, "%s form, %s kernel, nu %g m^2/s", sph_viscosity_form_names[def->viscosity_form],
                  sph_kernel_names[def->kernel_viscosity], def->viscosity);
@@ -59,8 +70,9 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
     const bool laplacian = sim->def.viscosity_form == SPH_VFORM_LAPLACIAN;
-    const bool morris = sim->def.viscosity_form == SPH_VFORM_MORRIS;
-    const bool artificial = sim->def.viscosity_form == SPH_VFORM_ARTIFICIAL;
+    const bool both = sim->def.viscosity_form == SPH_VFORM_MORRIS_ARTIFICIAL;
+    const bool morris = sim->def.viscosity_form == SPH_VFORM_MORRIS || both;
+    const bool artificial = sim->def.viscosity_form == SPH_VFORM_ARTIFICIAL || both;
     /* artificial: alpha c h_s, and the 0.01 h_s^2 that keeps close pairs finite */
     const float hs = 0.5f * k->h, ach = sim->def.alpha * sqrtf(sim->def.stiffness) * hs, eps2 = 0.01f * hs * hs;
     const float nu = sim->def.viscosity;
@@ -72,8 +84,8 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
     const float eta2 = 1e-4f * k->h * k->h;
     const float rho_i = P->rho[i];
     float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
-    float xi[3], vi[3], af[3] = {0, 0, 0};
-    double ad[3] = {0, 0, 0};
+    float xi[3], vi[3], af[3] = {0, 0, 0}, avf[3] = {0, 0, 0}; /* avf, avd: the artificial part when both */
+    double ad[3] = {0, 0, 0}, avd[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++) {
         xi[d] = P->pred[d][i];
         vi[d] = P->vel[d][i];
@@ -91,14 +103,15 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
         if (artificial) { /* along x_ij, so not of the form coef (v_j - v_i) below */
             float vx = 0;
             for (int d = 0; d < dim; d++) vx += (vi[d] - P->vel[d][j]) * dx[d];
-            if (!(vx < 0.0f) || r <= 0.0f) continue; /* receding, or coincident: no force */
-            float pi_ij = -ach * vx / (0.5f * (rho_i + P->rho[j]) * (r2 + eps2));
-            float f = -P->mass[j] * pi_ij * sph_kernel_dw(kp, r) / r; /* grad W_ij = W'(r) x_ij / r */
-            for (int d = 0; d < dim; d++) {
-                if (dbl) ad[d] += f * dx[d];
-                else af[d] += f * dx[d];
+            if (vx < 0.0f && r > 0.0f) { /* receding, or coincident: no force */
+                float pi_ij = -ach * vx / (0.5f * (rho_i + P->rho[j]) * (r2 + eps2));
+                float f = -P->mass[j] * pi_ij * sph_kernel_dw(kp, r) / r; /* grad W_ij = W'(r) x_ij / r */
+                for (int d = 0; d < dim; d++) {
+                    if (dbl) (both ? avd : ad)[d] += f * dx[d];
+                    else (both ? avf : af)[d] += f * dx[d];
+                }
             }
-            continue;
+            if (!both) continue;
         }
         if (morris) /* -(x_ij . grad W) = -r W'(r) >= 0 */
             coef = -P->mass[j] * (rho_i + P->rho[j]) / (rho_i * P->rho[j]) * r * sph_kernel_dw(k, r) / (r2 + eta2);
@@ -110,11 +123,15 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
             else af[d] += t;
         }
     }
-    float s = artificial  ? 1.0f
+    float s = both        ? nu
+              : artificial ? 1.0f
               : morris    ? nu
               : laplacian ? nu * sim->def.rest_density / rho_i
                           : nu * 2.0f * (float)dim / k->m2;
-    for (int d = 0; d < dim; d++) P->acc_v[d][i] = s * (dbl ? (float)ad[d] : af[d]);
+    if (both)
+        for (int d = 0; d < dim; d++) P->acc_v[d][i] = s * (dbl ? (float)ad[d] : af[d]) + (dbl ? (float)avd[d] : avf[d]);
+    else
+        for (int d = 0; d < dim; d++) P->acc_v[d][i] = s * (dbl ? (float)ad[d] : af[d]);
 }
 
 #if SPH_HAVE_AVX512

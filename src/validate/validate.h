@@ -36,6 +36,11 @@ typedef struct val_curve {
  *   [2] Koshizuka & Oka 1996 (experiment, column L x 2L) */
 enum { VAL_SURGE_CURVES = 3 };
 extern const val_curve val_surge[VAL_SURGE_CURVES];
+/* Residual column height of the same collapse (Martin & Moyce 1952, Table 6,
+ * n^2 = 2, a = 2.25 in): H = height at the back wall / 2a against
+ * tau = t sqrt(g/a) = T / n. (Koshizuka & Oka 1996 plot theirs too; no
+ * numbers of it are shipped.) */
+extern const val_curve val_column;
 
 /* Linear interpolation of the curve at x; NaN outside [x[0], x[n-1]]. */
 double val_curve_at(const val_curve *c, double x);

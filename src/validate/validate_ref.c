@@ -24,12 +24,28 @@ static const double mm2_Z[] = {1.217, 1.474, 2.292, 2.995, 4.134, 4.944,  5.881,
 static const double ko_T[] = {0.0, 0.381, 0.769, 1.153, 1.537, 1.935, 2.323, 2.719, 3.096};
 static const double ko_Z[] = {1.000, 1.111, 1.252, 1.505, 1.892, 2.241, 2.615, 3.003, 3.624};
 
+/* Martin & Moyce 1952 (above), Table 6: the residual column of the n^2 = 2,
+ * a = 2.25 in column, H = height at the back wall / (n^2 a) against
+ * tau = t sqrt(g/a) (not T = n tau), as Ocellaris keeps them (T. Landet,
+ * scripts/plot_dam_break.py, "Data from Martin and Moyce (1952), Table 2 and
+ * 6", used there with n^2 = 2, a = 0.05715 m). Every H is a whole number of
+ * quarter inches over 2a = 4.5 in (k/18, two decimals), as a table read off a
+ * scale in the tank would be; and the top never falls faster than free fall
+ * (H >= 1 - tau^2/4), which holds for tau = t sqrt(g/a) and not for
+ * t sqrt(2g/a). */
+static const double mm6_tau[] = {0.56, 0.77, 0.93, 1.08, 1.28, 1.46, 1.66, 1.84, 2.00,
+                                 2.21, 2.45, 2.70, 3.06, 3.44, 4.20, 5.25, 7.40};
+static const double mm6_H[] = {0.94, 0.89, 0.83, 0.78, 0.72, 0.67, 0.61, 0.56, 0.50,
+                               0.44, 0.39, 0.33, 0.28, 0.22, 0.17, 0.11, 0.06};
+
 #define N(a) ((int)(sizeof a / sizeof a[0]))
 const val_curve val_surge[VAL_SURGE_CURVES] = {
     {"Martin & Moyce 1952, a = 1.125 in", "Martin & Moyce 1952, Fig. 3", mm1_T, mm1_Z, N(mm1_T)},
     {"Martin & Moyce 1952, a = 2.25 in", "Martin & Moyce 1952, Fig. 3", mm2_T, mm2_Z, N(mm2_T)},
     {"Koshizuka & Oka 1996, experiment", "Koshizuka & Oka 1996", ko_T, ko_Z, N(ko_T)},
 };
+const val_curve val_column = {"Martin & Moyce 1952, a = 2.25 in", "Martin & Moyce 1952, Table 6", mm6_tau, mm6_H,
+                              N(mm6_tau)};
 
 double val_curve_at(const val_curve *c, double x)
 {
