@@ -436,10 +436,10 @@ Test(gl_backend, every_choice_runs_or_is_refused, .timeout = 900)
 }
 
 /* Separate simulations, 40 steps each: positions stay within TOL_POS_RUN. */
-static void whole_run(const char *ini)
+static void whole_run_sets(const char *ini, const char *const *sets, int n_sets)
 {
     need_gl();
-    sph_sim *c = make(ini, NULL, 0, false), *g = make(ini, NULL, 0, true);
+    sph_sim *c = make(ini, sets, n_sets, false), *g = make(ini, sets, n_sets, true);
     for (int s = 0; s < 40; s++) {
         sph_sim_step(c);
         sph_sim_step(g);
@@ -465,6 +465,11 @@ static void whole_run(const char *ini)
     sph_sim_destroy(c);
 }
 
+static void whole_run(const char *ini)
+{
+    whole_run_sets(ini, NULL, 0);
+}
+
 Test(gl_backend, whole_run_2d)
 {
     whole_run(scene_2d);
@@ -473,6 +478,19 @@ Test(gl_backend, whole_run_2d)
 Test(gl_backend, whole_run_3d)
 {
     whole_run(scene_3d);
+}
+
+/* xsph > 0 (Monaghan 1989): the smoothing acceleration pass by pass, with
+ * wall particles (which neither get nor give any) and periodic, then whole
+ * runs of separate simulations. */
+Test(gl_backend, passes_match_cpu_xsph)
+{
+    const char *sets[] = {"physics.xsph=0.3", "domain.wall_model=particles", "domain.periodic=x"};
+    lockstep_steps(scene_2d, sets, 2, 2);
+    lockstep_steps(scene_2d, sets, 3, 1);
+    lockstep_steps(scene_3d, sets, 1, 1);
+    whole_run_sets(scene_2d, sets, 1);
+    whole_run_sets(scene_3d, sets, 2);
 }
 
 /* A particle just below zero is in cell -1 (floor), not 0 (truncation), and

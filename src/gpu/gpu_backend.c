@@ -117,11 +117,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [physics] surface_tension = %s is not implemented by the GL backend yet (its normals and "
                         "curvature passes run on the CPU; accepted there: none, or the effect cohesion)",
                         def->file, sph_surface_tension_names[def->surface_tension]);
-    if (def->xsph > 0)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] xsph = %g is not implemented by the GL backend yet (its pass runs on the CPU; "
-                        "accepted there: 0)",
-                        def->file, def->xsph);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)

@@ -267,6 +267,15 @@ static void run_shifting(gpu *g, sph_sim *sim)
     gpu_dispatch(g, g->n);
 }
 
+/* XSPH's epsilon / dt [1/s], as xsph.c computes it (0 before the first step). */
+static void run_xsph(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_XSPH;
+    use_walk(g, sim, p);
+    gpu_set_f(g, p, U_value, sim->dt > 0 ? sim->def.xsph / sim->dt : 0.0f);
+    gpu_dispatch(g, g->n);
+}
+
 /* ---- the table ------------------------------------------------------------- */
 
 const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
@@ -284,6 +293,7 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_PRESSURE_FORCE] = {.source = shader_gpu_pressure_force_comp},
     [SPH_PASS_VISCOSITY] = {.source = shader_gpu_viscosity_comp},
     [SPH_PASS_COHESION] = {.source = shader_gpu_cohesion_comp},
+    [SPH_PASS_XSPH] = {.source = shader_gpu_xsph_comp, .run = run_xsph},
     [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
     [SPH_PASS_INTEGRATE] = {.source = shader_gpu_integrate_comp, .run = run_integrate},
     [SPH_PASS_SHIFTING] = {.source = shader_gpu_shifting_comp, .run = run_shifting},
