@@ -493,6 +493,21 @@ Test(gl_backend, passes_match_cpu_xsph)
     whole_run_sets(scene_3d, sets, 2);
 }
 
+/* surface_tension = akinci (Akinci et al. 2013): the normals, the curvature
+ * term and the cohesion term with the model's gamma, pass by pass and over
+ * 40-step runs; with wall particles, which get none. A gamma large enough
+ * that the terms are of the order of gravity. */
+Test(gl_backend, passes_match_cpu_akinci)
+{
+    const char *sets[] = {"physics.surface_tension=akinci", "physics.surface_tension_coefficient=2",
+                          "domain.wall_model=particles"};
+    lockstep_steps(scene_2d, sets, 3, 2);
+    lockstep_steps(scene_2d, sets, 2, 1);
+    lockstep_steps(scene_3d, sets, 3, 1);
+    whole_run_sets(scene_2d, sets, 2);
+    whole_run_sets(scene_3d, sets, 3);
+}
+
 /* A particle just below zero is in cell -1 (floor), not 0 (truncation), and
  * its hash wraps in unsigned arithmetic as the CPU's does. */
 Test(gl_backend, hash_negative_coordinates)

@@ -112,11 +112,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "run on the CPU, a pass called again until the density error is reached; accepted there: "
                         "eos)",
                         def->file, sph_pressure_solver_names[def->pressure_solver]);
-    if (def->surface_tension != SPH_STENSION_NONE)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] surface_tension = %s is not implemented by the GL backend yet (its normals and "
-                        "curvature passes run on the CPU; accepted there: none, or the effect cohesion)",
-                        def->file, sph_surface_tension_names[def->surface_tension]);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)

@@ -293,6 +293,8 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_PRESSURE_FORCE] = {.source = shader_gpu_pressure_force_comp},
     [SPH_PASS_VISCOSITY] = {.source = shader_gpu_viscosity_comp},
     [SPH_PASS_COHESION] = {.source = shader_gpu_cohesion_comp},
+    [SPH_PASS_NORMALS] = {.source = shader_gpu_normals_comp},
+    [SPH_PASS_CURVATURE] = {.source = shader_gpu_curvature_comp},
     [SPH_PASS_XSPH] = {.source = shader_gpu_xsph_comp, .run = run_xsph},
     [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
     [SPH_PASS_INTEGRATE] = {.source = shader_gpu_integrate_comp, .run = run_integrate},
