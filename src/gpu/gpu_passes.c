@@ -267,6 +267,15 @@ static void run_shifting(gpu *g, sph_sim *sim)
     gpu_dispatch(g, g->n);
 }
 
+/* The walls' hydrostatic term takes the step's share of g (wall_state.c). */
+static void run_wall_state(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_WALL_STATE;
+    use_walk(g, sim, p);
+    gpu_set_f(g, p, U_gscale, sph_start_gravity_scale(sim));
+    gpu_dispatch(g, g->n);
+}
+
 /* XSPH's epsilon / dt [1/s], as xsph.c computes it (0 before the first step). */
 static void run_xsph(gpu *g, sph_sim *sim)
 {
@@ -289,7 +298,7 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_DENSITY_RATE] = {.source = shader_gpu_density_rate_comp, .run = run_density_rate},
     [SPH_PASS_DENSITY] = {.source = shader_gpu_density_comp, .run = run_density},
     [SPH_PASS_PRESSURE] = {.source = shader_gpu_pressure_comp},
-    [SPH_PASS_WALL_STATE] = {.source = shader_gpu_wall_state_comp},
+    [SPH_PASS_WALL_STATE] = {.source = shader_gpu_wall_state_comp, .run = run_wall_state},
     [SPH_PASS_PRESSURE_FORCE] = {.source = shader_gpu_pressure_force_comp},
     [SPH_PASS_VISCOSITY] = {.source = shader_gpu_viscosity_comp},
     [SPH_PASS_COHESION] = {.source = shader_gpu_cohesion_comp},
