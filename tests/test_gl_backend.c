@@ -508,6 +508,21 @@ Test(gl_backend, passes_match_cpu_akinci)
     whole_run_sets(scene_3d, sets, 3);
 }
 
+/* delta_form = fourtakas (Fourtakas et al. 2019): the hydrostatic density
+ * difference in density_rate, with the linear and Tait equations of state,
+ * wall particles and a gravity ramp part-way (its factor is a uniform), pass
+ * by pass and over 40-step runs. */
+Test(gl_backend, passes_match_cpu_fourtakas)
+{
+    const char *sets[] = {"physics.density_method=continuity", "physics.delta=0.1", "physics.delta_form=fourtakas",
+                          "domain.wall_model=particles", "physics.eos=tait", "physics.gravity_ramp=0.01"};
+    lockstep_steps(scene_2d, sets, 3, 2);
+    lockstep_steps(scene_2d, sets, 6, 2);
+    lockstep_steps(scene_3d, sets, 4, 1);
+    whole_run_sets(scene_2d, sets, 4);
+    whole_run_sets(scene_3d, sets, 5);
+}
+
 /* A particle just below zero is in cell -1 (floor), not 0 (truncation), and
  * its hash wraps in unsigned arithmetic as the CPU's does. */
 Test(gl_backend, hash_negative_coordinates)

@@ -101,11 +101,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "CPU's AVX-512 loop; its shaders run the pressure force and viscosity apart; accepted there: "
                         "off)",
                         def->file);
-    if (sim->in_pipeline[SPH_PASS_DENSITY_RATE] && def->delta > 0 && def->delta_form == SPH_DFORM_FOURTAKAS)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] delta_form = fourtakas is not implemented by the GL backend yet (its "
-                        "hydrostatic correction runs on the CPU; accepted there: molteni, antuono)",
-                        def->file);
     if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)))
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] pressure_solver = %s is not implemented by the GL backend yet (its iterations "

@@ -243,6 +243,13 @@ static void run_density_rate(gpu *g, sph_sim *sim)
     gpu_set_u(g, p, U_count, sim->rho_carried);
     /* delta h_s c [m^2/s], as density_rate.c computes it */
     gpu_set_f(g, p, U_value, sim->def.delta * 0.5f * sim->def.h * sqrtf(sim->def.stiffness));
+    /* delta_form = fourtakas: rho0 g of the step, ramped as density_rate.c ramps it */
+    float g0[3] = {0, 0, 0};
+    if (sim->def.effects & SPH_EFFECT(GRAVITY)) {
+        const float gs = sph_start_gravity_scale(sim);
+        for (int d = 0; d < sim->dim; d++) g0[d] = sim->def.rest_density * sim->def.gravity[d] * gs;
+    }
+    if (g->loc[p][U_g0] >= 0) g->gl.Uniform3f(g->loc[p][U_g0], g0[0], g0[1], g0[2]);
     gpu_dispatch(g, g->n);
 }
 

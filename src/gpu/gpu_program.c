@@ -136,6 +136,7 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
             "#define VFORM_MORRIS %d\n#define VFORM_ARTIFICIAL %d\n",
         def->pressure_form == SPH_PFORM_SYMMETRIC, (int)def->viscosity_form, (int)SPH_VFORM_LAPLACIAN,
         (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS, (int)SPH_VFORM_ARTIFICIAL);
+    put(&t, "#define DFORM_FOURTAKAS %d\n", def->delta_form == SPH_DFORM_FOURTAKAS);
     put_float(&t, "NU", def->viscosity);
     /* artificial viscosity: alpha c h_s as the CPU pass computes it in float */
     put_float(&t, "AV_ACH", def->alpha * sqrtf(def->stiffness) * (0.5f * def->h));
