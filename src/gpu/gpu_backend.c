@@ -85,11 +85,6 @@ static void destroy(sph_backend *b)
 static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
 {
     const sph_scene_def *def = &sim->def;
-    if (sim->in_pipeline[SPH_PASS_TRANSPORT])
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] shifting = tvf is not implemented by the GL backend yet (its transport pass, "
-                        "the drift of the background pressure, runs on the CPU; accepted there: none)",
-                        def->file);
     if (def->lists_in_place == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] lists_in_place = on is not implemented by the GL backend (its passes walk the "

@@ -292,6 +292,16 @@ static void run_xsph(gpu *g, sph_sim *sim)
     gpu_dispatch(g, g->n);
 }
 
+/* shifting = tvf: dt (dt/2) p_b, p_b = rho0 c^2 [Pa], as transport.c computes it. */
+static void run_transport(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_TRANSPORT;
+    use_walk(g, sim, p);
+    const float p_b = sim->def.rest_density * sim->def.stiffness;
+    gpu_set_f(g, p, U_value, sim->dt * 0.5f * sim->dt * p_b);
+    gpu_dispatch(g, g->n);
+}
+
 /* ---- the table ------------------------------------------------------------- */
 
 const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
@@ -315,6 +325,7 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
     [SPH_PASS_INTEGRATE] = {.source = shader_gpu_integrate_comp, .run = run_integrate},
     [SPH_PASS_SHIFTING] = {.source = shader_gpu_shifting_comp, .run = run_shifting},
+    [SPH_PASS_TRANSPORT] = {.source = shader_gpu_transport_comp, .run = run_transport},
     [SPH_PASS_WALLS] = {.source = shader_gpu_walls_comp},
 };
 
