@@ -8,9 +8,25 @@
 // particles enter the velocity term only and get drho = 0; with volume
 // walls, rho0 grad(hidden share) . v_i is added. u_count = 0 at the start
 // (nothing carried yet): drho = 0. u_value = delta h_s c [m^2/s].
+// With delta_form = fourtakas (Fourtakas et al. 2019, Comput. Fluids 190,
+// 346, eq. 14-15) psi_ij loses the pair's hydrostatic density difference:
+//   psi_ij . x_ij += 2 rho^H_ji,  rho^H_ji = EOS^-1(rho0 g . x_ji) - rho0,
+// u_g0 = rho0 times the step's (ramped) gravity [kg/(m^dim s^2)].
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_value;
+#if DFORM_FOURTAKAS
+uniform vec3 u_g0;
+// rho^H_ji [kg/m^dim] for the pressure ph = rho0 g . x_ji [Pa] (density_rate.c's hydro_density)
+float hydro_density(float ph)
+{
+#if EOS_TAIT
+    return RHO0 * (pow(max(1.0 + ph / TAIT_B, 1e-3), 1.0 / GAMMA) - 1.0);
+#else
+    return ph / STIFF;
+#endif
+}
+#endif
 float sum, rho_i;
 vec3 vi, gi;
 void sph_pair(uint i, uint j, vec3 dx, float r2)
@@ -31,6 +47,11 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
         float psi = -2.0 * (rho_c_[j] - rho_i);
 #if HAS_GRAD_RHO
         for (int d = 0; d < DIM; d++) psi -= (gi[d] + grad_rho_[uint(d) * N + j]) * dx[d];
+#endif
+#if DFORM_FOURTAKAS
+        float ph = 0.0;
+        for (int d = 0; d < DIM; d++) ph -= u_g0[d] * dx[d];
+        psi += 2.0 * hydro_density(ph);
 #endif
         t += u_value * psi * dw_over_r * mass_[j] / rho_c_[j];
     }

@@ -8,8 +8,11 @@
 // Fluid particles get vel_visc = v. It reads p and rho of fluid particles
 // only and writes them for wall particles only, as the CPU pass. The sums
 // are in float (the CPU's in double): a ratio of sums of like-signed terms,
-// a few roundings apart.
+// a few roundings apart. u_gscale: the share of g of the step (the
+// gravity_ramp, src/core/sph_start.h), so the walls' hydrostatic term is the
+// fluid's weight in this step, as on the CPU.
 layout(local_size_x = WG) in;
+uniform float u_gscale;
 float sw, sp;
 vec3 srr, sv;
 void sph_pair(uint i, uint j, vec3 dx, float r2)
@@ -53,7 +56,7 @@ void main()
     if (sw > 0.0) {
         float q = sp;
 #if HAS_GRAVITY
-        for (int d = 0; d < DIM; d++) q += GRAVITY[d] * srr[d];
+        for (int d = 0; d < DIM; d++) q += GRAVITY[d] * u_gscale * srr[d];
 #endif
         p = q / sw;
         for (int d = 0; d < DIM; d++) vt[d] = sv[d] / sw;

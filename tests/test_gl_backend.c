@@ -501,10 +501,10 @@ Test(gl_backend, every_choice_runs_or_is_refused, .timeout = 900)
 }
 
 /* Separate simulations, 40 steps each: positions stay within TOL_POS_RUN. */
-static void whole_run(const char *ini)
+static void whole_run_sets(const char *ini, const char *const *sets, int n_sets)
 {
     need_gl();
-    sph_sim *c = make(ini, NULL, 0, false), *g = make(ini, NULL, 0, true);
+    sph_sim *c = make(ini, sets, n_sets, false), *g = make(ini, sets, n_sets, true);
     for (int s = 0; s < 40; s++) {
         sph_sim_step(c);
         sph_sim_step(g);
@@ -530,6 +530,11 @@ static void whole_run(const char *ini)
     sph_sim_destroy(c);
 }
 
+static void whole_run(const char *ini)
+{
+    whole_run_sets(ini, NULL, 0);
+}
+
 Test(gl_backend, whole_run_2d)
 {
     whole_run(scene_2d);
@@ -538,6 +543,79 @@ Test(gl_backend, whole_run_2d)
 Test(gl_backend, whole_run_3d)
 {
     whole_run(scene_3d);
+}
+
+/* xsph > 0 (Monaghan 1989): the smoothing acceleration pass by pass, with
+ * wall particles (which neither get nor give any) and periodic, then whole
+ * runs of separate simulations. */
+Test(gl_backend, passes_match_cpu_xsph)
+{
+    const char *sets[] = {"physics.xsph=0.3", "domain.wall_model=particles", "domain.periodic=x"};
+    lockstep_steps(scene_2d, sets, 2, 2);
+    lockstep_steps(scene_2d, sets, 3, 1);
+    lockstep_steps(scene_3d, sets, 1, 1);
+    whole_run_sets(scene_2d, sets, 1);
+    whole_run_sets(scene_3d, sets, 2);
+}
+
+/* surface_tension = akinci (Akinci et al. 2013): the normals, the curvature
+ * term and the cohesion term with the model's gamma, pass by pass and over
+ * 40-step runs; with wall particles, which get none. A gamma large enough
+ * that the terms are of the order of gravity. */
+Test(gl_backend, passes_match_cpu_akinci)
+{
+    const char *sets[] = {"physics.surface_tension=akinci", "physics.surface_tension_coefficient=2",
+                          "domain.wall_model=particles"};
+    lockstep_steps(scene_2d, sets, 3, 2);
+    lockstep_steps(scene_2d, sets, 2, 1);
+    lockstep_steps(scene_3d, sets, 3, 1);
+    whole_run_sets(scene_2d, sets, 2);
+    whole_run_sets(scene_3d, sets, 3);
+}
+
+/* delta_form = fourtakas (Fourtakas et al. 2019): the hydrostatic density
+ * difference in density_rate, with the linear and Tait equations of state,
+ * wall particles and a gravity ramp part-way (its factor is a uniform), pass
+ * by pass and over 40-step runs. */
+Test(gl_backend, passes_match_cpu_fourtakas)
+{
+    const char *sets[] = {"physics.density_method=continuity", "physics.delta=0.1", "physics.delta_form=fourtakas",
+                          "domain.wall_model=particles", "physics.eos=tait", "physics.gravity_ramp=0.01"};
+    lockstep_steps(scene_2d, sets, 3, 2);
+    lockstep_steps(scene_2d, sets, 6, 2);
+    lockstep_steps(scene_3d, sets, 4, 1);
+    whole_run_sets(scene_2d, sets, 4);
+    whole_run_sets(scene_3d, sets, 5);
+}
+
+/* shifting = tvf (Adami et al. 2013): the background pressure's drift, in
+ * jittered boxes the fluid fills (what it is meant for: no free surface),
+ * periodic, and closed by wall particles, which count in the sum and never
+ * move; pass by pass and over 40-step runs. */
+static const char *scene_tvf_2d =
+    "[scene]\nname=gl tvf 2d\ndimension=2\neffects=pressure viscosity\njitter=0.2\n"
+    "[domain]\nmin=-0.2 -0.2\nmax=0.2 0.2\n"
+    "[physics]\nviscosity=0.005\nshifting=tvf\n"
+    "[kernels]\nh=0.04\n[time]\ndt=0.001\ncfl=0.4\n"
+    "[fluid a]\nmin=-0.2 -0.2\nmax=0.2 0.2\nspacing=0.02\nvelocity=0.5 0.2\n";
+static const char *scene_tvf_3d =
+    "[scene]\nname=gl tvf 3d\ndimension=3\neffects=pressure viscosity\njitter=0.2\n"
+    "[domain]\nmin=-0.1 -0.1 -0.1\nmax=0.1 0.1 0.1\n"
+    "[physics]\nviscosity=0.005\nshifting=tvf\n"
+    "[kernels]\nh=0.05\n[time]\ndt=0.001\ncfl=0.4\n"
+    "[fluid a]\nmin=-0.1 -0.1 -0.1\nmax=0.1 0.1 0.1\nspacing=0.025\nvelocity=0 0.2 0.3\n";
+
+Test(gl_backend, passes_match_cpu_tvf)
+{
+    const char *periodic[] = {"domain.periodic=x y z", "domain.periodic=x y"};
+    const char *walls[] = {"domain.wall_model=particles", "physics.eos=tait"};
+    lockstep_steps(scene_tvf_2d, periodic + 1, 1, 2);
+    lockstep_steps(scene_tvf_2d, walls, 2, 2);
+    lockstep_steps(scene_tvf_3d, periodic, 1, 1);
+    lockstep_steps(scene_tvf_3d, walls, 1, 1);
+    whole_run_sets(scene_tvf_2d, periodic + 1, 1);
+    whole_run_sets(scene_tvf_2d, walls, 1);
+    whole_run_sets(scene_tvf_3d, periodic, 1);
 }
 
 /* A particle just below zero is in cell -1 (floor), not 0 (truncation), and

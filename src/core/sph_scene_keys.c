@@ -135,13 +135,13 @@ const sph_key sph_scene_keys[] = {
      "Commun. 181:532), which vanishes for a hydrostatic (linear) density, so a column at rest does not drift; "
      "fourtakas: rho_j - rho_i minus the hydrostatic density difference of the pair, the equation of state's density "
      "at p = rho0 g . (x_j - x_i) minus rho0 (Fourtakas et al. 2019, Comput. Fluids 190:346), zero for a column at "
-     "rest with no gradient to estimate, walls or free surface alike; fourtakas is CPU only"},
+     "rest with no gradient to estimate, walls or free surface alike"},
     {"physics", "shifting", SPH_KEY_CHOICE, S(shifting), 0, 0, 0, 0, CH(sph_shifting_names), "", "none",
      "particle shifting after each step: none; lind: every particle moves by -D grad C_i, C the particle "
      "concentration (Lind et al. 2012, J. Comput. Phys. 231:1499), D = shifting_coefficient h |v_i| dt; particles "
      "at the free surface are not shifted; tvf: every particle also drifts by dt (dt/2) a_b, a_b the acceleration of a "
      "background pressure p_b = rest_density * stiffness (the transport velocity of Adami, Hu & Adams 2013, J. Comput. "
-     "Phys. 241:292, without its extra stress term), for flows that fill their domain (no free surface); tvf is CPU only"},
+     "Phys. 241:292, without its extra stress term), for flows that fill their domain (no free surface)"},
     {"physics", "shifting_coefficient", SPH_KEY_FLOAT, S(shifting_coefficient), 0, 100, 0, 0, NULL, 0, "", "2",
      "A of shifting = lind's D = A h |v_i| dt (2 in Skillen et al. 2013, who scaled Lind's D with the step)"},
     {"physics", "pressure_solver", SPH_KEY_CHOICE, S(pressure_solver), 0, 0, 0, 0, CH(sph_pressure_solver_names),
@@ -161,15 +161,14 @@ const sph_key sph_scene_keys[] = {
      "none",
      "none; akinci: Akinci, Akinci & Teschner 2013 (ACM TOG 32(6)), the cohesion term (eq. 1-2, the cohesion pass) "
      "plus the curvature term a_i = -gamma sum_j K_ij (n_i - n_j) (eq. 4-5) with the normals n_i = h sum_j m_j/rho_j "
-     "grad W (eq. 3, pointing into the fluid); gamma = surface_tension_coefficient; not with the effect cohesion; "
-     "CPU only"},
+     "grad W (eq. 3, pointing into the fluid); gamma = surface_tension_coefficient; not with the effect cohesion"},
     {"physics", "surface_tension_coefficient", SPH_KEY_FLOAT, S(surface_tension_coefficient), 0, 1e6, 0, 0, NULL, 0,
      "m^4/(kg s^2)", "1",
      "gamma of surface_tension = akinci (both terms; the paper's gamma, not a physical sigma: docs/accuracy.md "
      "measures sigma from a drop's Laplace pressure)"},
     {"physics", "xsph", SPH_KEY_FLOAT, S(xsph), 0, 1, 0, 0, NULL, 0, "", "0",
      "epsilon of XSPH velocity smoothing (Monaghan 1989, J. Comput. Phys. 82:1): a_i = (epsilon / dt) sum_j m_j / "
-     "((rho_i + rho_j)/2) (v_j - v_i) W_ij, so a step moves v_i towards its neighbours' average; 0: none; CPU only"},
+     "((rho_i + rho_j)/2) (v_j - v_i) W_ij, so a step moves v_i towards its neighbours' average; 0: none"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "

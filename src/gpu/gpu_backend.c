@@ -87,37 +87,17 @@ static void destroy(sph_backend *b)
 static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
 {
     const sph_scene_def *def = &sim->def;
-    if (sim->in_pipeline[SPH_PASS_TRANSPORT])
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] shifting = tvf is not implemented by the GL backend yet (its transport pass, "
-                        "the drift of the background pressure, runs on the CPU; accepted there: none)",
-                        def->file);
     if (def->lists_in_place == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] lists_in_place = on is not implemented by the GL backend (its passes walk the "
                         "cells and build no lists; accepted there: off)",
                         def->file);
-    if (sim->in_pipeline[SPH_PASS_DENSITY_RATE] && def->delta > 0 && def->delta_form == SPH_DFORM_FOURTAKAS)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] delta_form = fourtakas is not implemented by the GL backend yet (its "
-                        "hydrostatic correction runs on the CPU; accepted there: molteni, antuono)",
-                        def->file);
-    if (def->surface_tension != SPH_STENSION_NONE)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] surface_tension = %s is not implemented by the GL backend yet (its normals and "
-                        "curvature passes run on the CPU; accepted there: none, or the effect cohesion)",
-                        def->file, sph_surface_tension_names[def->surface_tension]);
     if (def->viscosity_form == SPH_VFORM_MORRIS_ARTIFICIAL && (def->effects & SPH_EFFECT(VISCOSITY)))
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] viscosity_form = morris-artificial is not implemented by the GL backend yet "
                         "(its viscosity shader runs one form at a time; accepted there: laplacian, smoothing, morris, "
                         "artificial)",
                         def->file);
-    if (def->xsph > 0)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] xsph = %g is not implemented by the GL backend yet (its pass runs on the CPU; "
-                        "accepted there: 0)",
-                        def->file, def->xsph);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)

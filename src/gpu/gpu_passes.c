@@ -245,6 +245,13 @@ static void run_density_rate(gpu *g, sph_sim *sim)
     gpu_set_u(g, p, U_count, sim->rho_carried);
     /* delta h_s c [m^2/s], as density_rate.c computes it */
     gpu_set_f(g, p, U_value, sim->def.delta * 0.5f * sim->def.h * sqrtf(sim->def.stiffness));
+    /* delta_form = fourtakas: rho0 g of the step, ramped as density_rate.c ramps it */
+    float g0[3] = {0, 0, 0};
+    if (sim->def.effects & SPH_EFFECT(GRAVITY)) {
+        const float gs = sph_start_gravity_scale(sim);
+        for (int d = 0; d < sim->dim; d++) g0[d] = sim->def.rest_density * sim->def.gravity[d] * gs;
+    }
+    if (g->loc[p][U_g0] >= 0) g->gl.Uniform3f(g->loc[p][U_g0], g0[0], g0[1], g0[2]);
     gpu_dispatch(g, g->n);
 }
 
@@ -421,6 +428,34 @@ static void run_viscosity(gpu *g, sph_sim *sim)
     gpu_dispatch(g, g->n);
 }
 
+/* The walls' hydrostatic term takes the step's share of g (wall_state.c). */
+static void run_wall_state(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_WALL_STATE;
+    use_walk(g, sim, p);
+    gpu_set_f(g, p, U_gscale, sph_start_gravity_scale(sim));
+    gpu_dispatch(g, g->n);
+}
+
+/* XSPH's epsilon / dt [1/s], as xsph.c computes it (0 before the first step). */
+static void run_xsph(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_XSPH;
+    use_walk(g, sim, p);
+    gpu_set_f(g, p, U_value, sim->dt > 0 ? sim->def.xsph / sim->dt : 0.0f);
+    gpu_dispatch(g, g->n);
+}
+
+/* shifting = tvf: dt (dt/2) p_b, p_b = rho0 c^2 [Pa], as transport.c computes it. */
+static void run_transport(gpu *g, sph_sim *sim)
+{
+    const int p = SPH_PASS_TRANSPORT;
+    use_walk(g, sim, p);
+    const float p_b = sim->def.rest_density * sim->def.stiffness;
+    gpu_set_f(g, p, U_value, sim->dt * 0.5f * sim->dt * p_b);
+    gpu_dispatch(g, g->n);
+}
+
 /* ---- the table ------------------------------------------------------------- */
 
 const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
@@ -434,17 +469,21 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_DENSITY_RATE] = {.source = shader_gpu_density_rate_comp, .run = run_density_rate},
     [SPH_PASS_DENSITY] = {.source = shader_gpu_density_comp, .run = run_density},
     [SPH_PASS_PRESSURE] = {.source = shader_gpu_pressure_comp},
-    [SPH_PASS_WALL_STATE] = {.source = shader_gpu_wall_state_comp},
+    [SPH_PASS_WALL_STATE] = {.source = shader_gpu_wall_state_comp, .run = run_wall_state},
     [SPH_PASS_PRESSURE_FORCE] = {.source = shader_gpu_pressure_force_comp,
                                  .run = run_pressure_force,
                                  .helpers = pressure_force_helpers},
     [SPH_PASS_VISCOSITY] = {.source = shader_gpu_viscosity_comp, .run = run_viscosity},
     [SPH_PASS_COHESION] = {.source = shader_gpu_cohesion_comp},
+    [SPH_PASS_NORMALS] = {.source = shader_gpu_normals_comp},
+    [SPH_PASS_CURVATURE] = {.source = shader_gpu_curvature_comp},
+    [SPH_PASS_XSPH] = {.source = shader_gpu_xsph_comp, .run = run_xsph},
     [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
     [SPH_PASS_PCISPH] = {.source = shader_gpu_pcisph_comp, .run = run_pcisph},
     [SPH_PASS_DFSPH] = {.source = shader_gpu_dfsph_comp, .run = run_dfsph, .helpers = dfsph_helpers},
     [SPH_PASS_INTEGRATE] = {.source = shader_gpu_integrate_comp, .run = run_integrate},
     [SPH_PASS_SHIFTING] = {.source = shader_gpu_shifting_comp, .run = run_shifting},
+    [SPH_PASS_TRANSPORT] = {.source = shader_gpu_transport_comp, .run = run_transport},
     [SPH_PASS_WALLS] = {.source = shader_gpu_walls_comp},
 };
 

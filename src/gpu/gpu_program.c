@@ -136,11 +136,16 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
             "#define VFORM_MORRIS %d\n#define VFORM_ARTIFICIAL %d\n",
         def->pressure_form == SPH_PFORM_SYMMETRIC, (int)def->viscosity_form, (int)SPH_VFORM_LAPLACIAN,
         (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS, (int)SPH_VFORM_ARTIFICIAL);
+    put(&t, "#define DFORM_FOURTAKAS %d\n", def->delta_form == SPH_DFORM_FOURTAKAS);
     put_float(&t, "NU", def->viscosity);
     /* artificial viscosity: alpha c h_s as the CPU pass computes it in float */
     put_float(&t, "AV_ACH", def->alpha * sqrtf(def->stiffness) * (0.5f * def->h));
     put_float(&t, "AV_EPS2", 0.01f * (0.5f * def->h) * (0.5f * def->h));
-    put_float(&t, "COHESION", def->cohesion);
+    /* the cohesion pass's gamma: surface_tension = akinci's coefficient when
+     * the pass is that model's cohesion term (cohesion.c) */
+    const bool akinci = def->surface_tension == SPH_STENSION_AKINCI;
+    put_float(&t, "COHESION", akinci ? def->surface_tension_coefficient : def->cohesion);
+    put_float(&t, "ST_GAMMA", def->surface_tension_coefficient); /* the curvature term's gamma [m/s^2] */
     put_float(&t, "DAMP", def->wall_damping);
     put_float(&t, "INTER_R", def->interaction_radius);
     /* the pressure solvers (src/passes/solver.h): the density they hold
