@@ -243,6 +243,39 @@ Test(validate, each_problem_at_quick_writes_csv_png_pdf_and_a_verdict, .timeout 
     }
 }
 
+/* The hydrostatic line says where its worst figures sit (issue 13: which row,
+ * which frame, bias or noise, and where the fastest particle is), so that a
+ * miss can be read from the line: at --quick (H/spacing 8, frames from 1 s
+ * to 1.2 s) the row lies in the column, the frame in the window, and the
+ * fastest particle in the tank. */
+Test(validate, hydrostatic_line_says_where_the_worst_figures_sit, .timeout = 120)
+{
+    char dir[] = "/tmp/sphlab-validate-XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    char args[600], out[16384];
+    snprintf(args, sizeof args, "validate hydrostatic --quick --quiet --threads 2 --out %s", dir);
+    int rc = test_sphlab(args, out, sizeof out);
+    cr_assert(rc == 0 || rc == 1, "exit %d: %s", rc, out);
+    const char *at = strstr(out, "R=8 p ");
+    cr_assert_not_null(at, "%s", out);
+    int row;
+    double p, yh, t, bias, spread, inc, speed, wall, fy;
+    int got = sscanf(at,
+                     "R=8 p %lf%% (row %d from the floor, y/H %lf, t %lf s; rows' bias up to %lf%%, spread between "
+                     "frames up to %lf%%; against rho0 g (H - y): %lf%%) speed %lf%% (%lf spacings from a side wall, "
+                     "y/H %lf)",
+                     &p, &row, &yh, &t, &bias, &spread, &inc, &speed, &wall, &fy);
+    cr_assert_eq(got, 10, "parsed %d fields of: %s", got, at);
+    cr_log_info("quick hydrostatic: worst %.2f %% in row %d (y/H %.2f) at t = %.2f s, bias %.2f %%, spread %.2f %%; "
+                "fastest %.1f spacings from a side wall at y/H %.2f",
+                p, row, yh, t, bias, spread, wall, fy);
+    cr_assert(row >= 1 && row <= 9 && yh > 0 && yh < 1.1, "row %d, y/H %g", row, yh);
+    cr_assert(t >= 1.0 - 1e-6 && t <= 1.2 + 1e-3, "t %g", t);
+    /* the worst single particle is at least the worst row's mean over the frames */
+    cr_assert(bias <= p + 0.01 && spread >= 0, "bias %g, spread %g, worst %g", bias, spread, p);
+    cr_assert(wall >= 0 && wall <= 4 && fy >= 0 && fy < 1.1, "fastest at %g spacings, y/H %g", wall, fy);
+}
+
 Test(validate, bad_input_is_refused_with_exit_2)
 {
     char out[8192];
