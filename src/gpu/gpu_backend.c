@@ -115,8 +115,9 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
     if (def->surface_tension != SPH_STENSION_NONE)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] surface_tension = %s is not implemented by the GL backend yet (its normals and "
-                        "curvature passes run on the CPU; accepted there: none, or the effect cohesion)",
-                        def->file, sph_surface_tension_names[def->surface_tension]);
+                        "%s passes run on the CPU; accepted there: none, or the effect cohesion)",
+                        def->file, sph_surface_tension_names[def->surface_tension],
+                        def->surface_tension == SPH_STENSION_CSF ? "csf" : "curvature");
     if (def->xsph > 0)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] xsph = %g is not implemented by the GL backend yet (its pass runs on the CPU; "
