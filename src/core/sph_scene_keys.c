@@ -161,7 +161,7 @@ const sph_key sph_scene_keys[] = {
      "plus the curvature term a_i = -gamma sum_j K_ij (n_i - n_j) (eq. 4-5) with the normals n_i = h sum_j m_j/rho_j "
      "grad W (eq. 3, pointing into the fluid); gamma = surface_tension_coefficient; not with the effect cohesion; "
      "csf: a continuum surface force (Brackbill, Kothe & Zemach 1992; Morris 2000) a_i = sigma kappa_i grad c_i / "
-     "(B rho_i) of the stated sigma, kappa the renormalised divergence of the unit normals, B the delta's integral "
+     "(B rho0) of the stated sigma, kappa the renormalised divergence of the unit normals, B the delta's integral "
      "across a flat surface of the scene's lattice; both CPU only"},
     {"physics", "surface_tension_coefficient", SPH_KEY_FLOAT, S(surface_tension_coefficient), 0, 1e6, 0, 0, NULL, 0,
      "m^4/(kg s^2)", "1",

@@ -10,34 +10,43 @@
  * c is the colour field (1 in the fluid) and grad c_i = normal_i / h, the
  * normals pass's field (h sum_j V_j grad_i W_ij, into the fluid).
  *
- * Curvature. Morris (his eq. 20-21) takes the divergence of the unit normals
- * only over the particles whose normal is long enough to have a direction,
- * |grad c| > 0.01 / h (the same cut here: |normal| > 0.01), and corrects
- * the truncated sum. Here the correction is the renormalisation matrix
- * (Bonet & Lok 1999) of the same neighbours: with
- *   A_i = sum_j V_j grad_i W_ij (x_j - x_i)^T,  S_i = sum_j V_j grad_i W_ij (u_j - u_i)^T,
- * u = -normal / |normal| (outward), kappa_i = trace(A_i^-1 S_i): exact for a
- * linear u however few rows of surface particles hold a normal (the band is
- * about h deep, so a scalar correction would read the missing depth as
- * curvature). Where A_i is nearly singular (a filament one particle wide)
- * the scalar correction dim / trace(A_i) is used instead.
+ * Which particles. Morris (his eq. 20-21) keeps only the particles whose
+ * normal is long enough to have a direction, |grad c| > 0.01 / h. In a free
+ * drop that cut let the disordered interior's normals (0.01 to 0.3) in,
+ * whose curvatures were noise and whose forces stirred the drop until it
+ * flew apart; at 0.1 and 0.3 the second row (|h grad c| 0.29 on a lattice,
+ * cubic kernel at h = 3 spacings) flickered across the cut and the surface
+ * frayed within a period (0.1) or two (0.3, cut 0.6: sooner). The cut is
+ * 0.3, so that on a lattice the force acts on the outermost row (|n| 1.23)
+ * alone; a drop of R = 20 spacings still frays after about one period
+ * (docs/accuracy.md, the drop): this is not solved.
+ *
+ * Curvature: the divergence of the outward unit normal u = -normal/|normal|
+ * over the neighbours above the cut, renormalised (Bonet & Lok 1999) on the
+ * tangent plane of u_i: with
+ *   A = sum_j V_j grad_i W_ij (x_j - x_i)^T,  S = sum_j V_j grad_i W_ij (u_j - u_i)^T,
+ * projected on the tangents t_p (A_t = t_p.A.t_q), kappa_i = trace(A_t^-1 S_t).
+ * The unit normal of a curved surface does not change along itself (u.du = 0
+ * and, for concentric surfaces, du/dn = 0), so the tangential part is the
+ * whole divergence, and it needs no support across the surface, where the
+ * rows are few (the full matrix's inverse there amplified the normals' noise
+ * and gave a disc of 20 spacings curvatures of -50 to 300 1/m for 10). A
+ * particle whose tangential support is below 0.1 (1 in a full support) gets
+ * no curvature.
  *
  * The delta. At a free surface the particles carry only the fluid's side of
- * the colour jump: across a flat surface sum_i V_i |grad c_i| per unit area
- * is B, about 1/2, not 1. The force is divided by B, computed on the scene's
- * lattice (a half-space of the finest block's spacing, the density kernel,
- * V = m / rho as the density pass gives it, the same 0.01 cut), so that the
- * force per unit area of a flat-lattice surface is sigma kappa. This is the
- * discretisation's own constant, not a fit to any result. With the
- * symmetric pressure force the bulk then balances it with p = sigma kappa
- * (its surface push is -2 p grad c / rho, whose integral is 2 p B).
+ * the colour jump: across a flat surface s sum_rows |grad c| is B (0.41 for
+ * the cubic kernel at h = 3 spacings with the cut), not 1. The force is
+ * divided by B, computed on the scene's lattice (a half-space of the finest
+ * block's spacing, the density kernel, volumes s^dim, the same cut), so that
+ * a flat-lattice surface feels sigma kappa per unit area. This is the
+ * discretisation's own constant, not a fit to any result.
  *
- * Per unit mass: a_i = sigma kappa_i grad c_i / (B rho_i), only for
- * particles with a normal above the cut. A pair's terms are not equal and
- * opposite (kappa differs between particles), so momentum is conserved
- * only as far as kappa is uniform (sum_i V_i grad c_i = 0 exactly):
- * tests/test_csf.c measures the net force on a disc. Wall particles get
- * none and are left out of the sums, as in the normals pass. */
+ * Per unit mass: a_i = sigma kappa_i grad c_i / (B rho0), only for
+ * particles above the cut. A pair's terms are not equal and opposite (kappa
+ * differs between particles), so momentum is conserved only as far as kappa
+ * is uniform: tests/test_csf.c measures the net force on a disc. Wall
+ * particles get none and are left out of the sums, as in the normals pass. */
 #include "sph_search.h"
 #include "sph_walls.h"
 
@@ -45,7 +54,7 @@
 #include <stdio.h>
 
 #define CSF_SUPPORT_MIN 0.1 /* the tangential renormalisation's least eigenvalue (1 in a full support) */
-#define CSF_NORMAL_MIN 0.1f /* |h grad c| below which a normal has no direction (Morris 2000: 0.01 / h; see above) */
+#define CSF_NORMAL_MIN 0.3f /* |h grad c| a particle needs to feel the force (Morris 2000: 0.01; see above) */
 
 static const char *skip_reason(const sph_scene_def *def)
 {
@@ -91,8 +100,8 @@ double sph_csf_delta_integral(const sph_kernel *k, int dim, double s)
 }
 
 /* kappa = trace(A_t^-1 S_t), A and S projected on the tangent plane of the
- * outward unit normal u (2D: one tangent; 3D: two); the scalar form where
- * A_t is nearly singular or empty. */
+ * outward unit normal u (2D: one tangent; 3D: two); 0 where A_t is nearly
+ * singular. */
 static inline float csf_div(const double A[3][3], const double S[3][3], const double u[3], const int dim)
 {
     double t[2][3] = {{0}};
