@@ -30,6 +30,7 @@
     X(COHESION, cohesion)  \
     X(NORMALS, normals)    \
     X(CURVATURE, curvature) \
+    X(CSF, csf)            \
     X(XSPH, xsph)          \
     X(INTERACTION, interaction) \
     X(PCISPH, pcisph)      \

@@ -65,7 +65,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
 #define SPH_BACKEND_CHOICES(X) X(CPU, "cpu") X(GL, "gl")
 #define SPH_PSOLVER_CHOICES(X) X(EOS, "eos") X(PCISPH, "pcisph") X(DFSPH, "dfsph")
-#define SPH_STENSION_CHOICES(X) X(NONE, "none") X(AKINCI, "akinci")
+#define SPH_STENSION_CHOICES(X) X(NONE, "none") X(AKINCI, "akinci") X(CSF, "csf")
 
 #define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
     typedef enum type { LIST(SPH_CHOICE_ITEM_##PREFIX) PREFIX##_COUNT } type;
@@ -225,10 +225,12 @@ typedef struct sph_scene_def {
     float solver_tolerance;     /* [1] pcisph, dfsph: largest relative density error a step may end with */
     int solver_max_iterations;  /* [1] pcisph, dfsph: iterations a solve may take at most */
     float divergence_tolerance; /* [1] dfsph: largest dt |D rho/Dt| / rho_rest the divergence solve may leave */
-    sph_surface_tension surface_tension; /* none, or Akinci 2013's cohesion plus curvature (passes normals, curvature) */
+    sph_surface_tension surface_tension; /* none; akinci: Akinci 2013 (passes cohesion, normals, curvature); csf: a
+                                            continuum surface force of stated sigma (passes normals, csf) */
     float surface_tension_coefficient;   /* [m^4/(kg s^2)] gamma of surface_tension = akinci (the cohesion pass's
                                             gamma then; in 2D m^3/(kg s^2)) */
     float xsph;                          /* [1] epsilon of XSPH velocity smoothing (Monaghan 1989); 0: none */
+    float sigma;                         /* [N/m] surface tension of surface_tension = csf (2D: N, per metre of depth) */
     sph_kernel_kind kernel_density, kernel_pressure, kernel_viscosity;
 
     float dt;           /* [s] time step when cfl = 0; the first step's bound otherwise */

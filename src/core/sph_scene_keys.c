@@ -161,7 +161,10 @@ const sph_key sph_scene_keys[] = {
      "none",
      "none; akinci: Akinci, Akinci & Teschner 2013 (ACM TOG 32(6)), the cohesion term (eq. 1-2, the cohesion pass) "
      "plus the curvature term a_i = -gamma sum_j K_ij (n_i - n_j) (eq. 4-5) with the normals n_i = h sum_j m_j/rho_j "
-     "grad W (eq. 3, pointing into the fluid); gamma = surface_tension_coefficient; not with the effect cohesion"},
+     "grad W (eq. 3, pointing into the fluid); gamma = surface_tension_coefficient; not with the effect cohesion; "
+     "csf: a continuum surface force (Brackbill, Kothe & Zemach 1992; Morris 2000) a_i = sigma kappa_i grad c_i / "
+     "(B rho0) of the stated sigma, kappa the renormalised divergence of the unit normals, B the delta's integral "
+     "across a flat surface of the scene's lattice; csf is CPU only"},
     {"physics", "surface_tension_coefficient", SPH_KEY_FLOAT, S(surface_tension_coefficient), 0, 1e6, 0, 0, NULL, 0,
      "m^4/(kg s^2)", "1",
      "gamma of surface_tension = akinci (both terms; the paper's gamma, not a physical sigma: docs/accuracy.md "
@@ -169,6 +172,8 @@ const sph_key sph_scene_keys[] = {
     {"physics", "xsph", SPH_KEY_FLOAT, S(xsph), 0, 1, 0, 0, NULL, 0, "", "0",
      "epsilon of XSPH velocity smoothing (Monaghan 1989, J. Comput. Phys. 82:1): a_i = (epsilon / dt) sum_j m_j / "
      "((rho_i + rho_j)/2) (v_j - v_i) W_ij, so a step moves v_i towards its neighbours' average; 0: none"},
+    {"physics", "sigma", SPH_KEY_FLOAT, S(sigma), 0, 1e6, 0, 0, NULL, 0, "N/m", "0.0728",
+     "surface tension coefficient of surface_tension = csf (in 2D per metre of depth: N); water at 20 C: 0.0728"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "

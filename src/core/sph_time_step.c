@@ -11,6 +11,7 @@
  *                    pressure_solver = eos; c = 0 with pcisph or dfsph)
  *   forces:          dt <= cfl sqrt(h_s / |a|max)
  *   viscosity:       dt <= cfl h_s^2 / nu
+ *   capillary:       dt <= cfl sqrt(rho0 h_s^3 / (2 pi sigma))   (surface_tension = csf)
  * An explicit step longer than these lets a signal cross more than a particle
  * spacing in one step, and the scheme blows up. */
 float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which)
@@ -34,6 +35,12 @@ float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which)
     if ((def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity > 0 && cfl * hs * hs / def->viscosity < dt) {
         dt = cfl * hs * hs / def->viscosity;
         w = "viscosity: dt <= cfl (h/2)^2 / nu";
+    }
+    /* capillary waves as short as h_s (Brackbill, Kothe & Zemach 1992, eq. 61): their speed
+     * grows as 1/sqrt(wavelength), so no other condition bounds them */
+    if (def->surface_tension == SPH_STENSION_CSF && def->sigma > 0) {
+        double cap = cfl * sqrt(def->rest_density * hs * hs * hs / (2.0 * 3.14159265358979 * def->sigma));
+        if (cap < dt) dt = cap, w = "capillary: dt <= cfl sqrt(rho0 (h/2)^3 / (2 pi sigma))";
     }
     if (which) *which = w;
     return (float)dt;

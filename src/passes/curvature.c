@@ -23,7 +23,7 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    return def->surface_tension == SPH_STENSION_AKINCI ? NULL : "surface_tension is none";
+    return def->surface_tension == SPH_STENSION_AKINCI ? NULL : "surface_tension is not akinci";
 }
 
 static void describe(const sph_scene_def *def, char *out, int n)

@@ -16,7 +16,14 @@
  * the watchdog stopped it), where this sign keeps it round
  * (docs/accuracy.md, the drop). The kernel is the density's, so the colour
  * field is the one the density sum sees. Wall particles are left out of the
- * sum and get n = 0: the model's adhesion to walls is not implemented. */
+ * sum and get n = 0: the model's adhesion to walls is not implemented.
+ * surface_tension = csf reads the same field as h times the colour
+ * gradient (csf.c), summed with the volumes m_j / rho0 instead: with
+ * m_j / rho_j the outermost row's larger volumes (rho ~ 0.72 rho0 there)
+ * turn the second row's normal outwards (a disc of R = 20 spacings, cubic
+ * kernel at h = 3 spacings: |n| 1.27, 0.07 pointing out, 0.14 in), and the
+ * divergence of the unit normals across those rows read 30 times the
+ * disc's curvature. With m_j / rho0 |n| grows monotonically to the surface. */
 #include "sph_search.h"
 #include "sph_walls.h"
 
@@ -25,7 +32,7 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    return def->surface_tension == SPH_STENSION_AKINCI ? NULL : "surface_tension is none";
+    return def->surface_tension != SPH_STENSION_NONE ? NULL : "surface_tension is none";
 }
 
 static void describe(const sph_scene_def *def, char *out, int n)
@@ -42,6 +49,8 @@ static inline void normal_one(const sph_sim *sim, const sph_kernel *k, int i, co
     const float *per = sim->period, *iper = sim->inv_period;
     float xi[3], nf[3] = {0, 0, 0};
     double nd[3] = {0, 0, 0};
+    const bool csf = sim->def.surface_tension == SPH_STENSION_CSF;
+    const float inv_rho0 = 1.0f / sim->def.rest_density;
     if (sph_is_wall(P, i)) {
         for (int d = 0; d < dim; d++) P->normal[d][i] = 0.0f;
         return;
@@ -58,7 +67,7 @@ static inline void normal_one(const sph_sim *sim, const sph_kernel *k, int i, co
         }
         if (!(r2 > 0)) continue; /* coincident: no direction */
         float r = sqrtf(r2);
-        float c = P->vol[j] * sph_kernel_dw(k, r) / r;
+        float c = (csf ? P->mass[j] * inv_rho0 : P->vol[j]) * sph_kernel_dw(k, r) / r;
         for (int d = 0; d < dim; d++) {
             if (dbl) nd[d] += c * dx[d];
             else nf[d] += c * dx[d];
@@ -79,8 +88,8 @@ static void run(sph_sim *sim)
 
 const sph_pass sph_pass_normals = {
     .name = "normals",
-    .summary = "surface normals of Akinci's surface tension (dimensionless)",
-    .reads = SPH_BIT(PRED) | SPH_BIT(VOL) | SPH_RES_LISTS,
+    .summary = "surface normals of surface tension, h grad c (dimensionless)",
+    .reads = SPH_BIT(PRED) | SPH_BIT(VOL) | SPH_BIT(MASS) | SPH_RES_LISTS,
     .writes = SPH_BIT(NORMAL),
     .group = SPH_GROUP_FORCES,
     .highlight = "normal",

@@ -37,9 +37,10 @@ const val_problem val_problems[] = {
     {"couette", "start-up Couette flow: the top wall moves at U from t = 0",
      "series solution of the same diffusion problem", "velocity profile error <= 2 % of U at every sampled time",
      "particles across", {10, 20, 40}, 10, 4, 400, val_run_couette},
-    {"drop", "a 2D drop (a liquid cylinder) without gravity, held by surface_tension = akinci, oscillating in its n = 2 "
-             "mode",
-     "Rayleigh 1879: omega^2 = (n^3 - n) sigma / (rho R^3), sigma measured from the Laplace pressure of two drops",
+    {"drop", "a 2D drop (a liquid cylinder) without gravity, held by surface_tension = csf (sigma = 1 N per metre), "
+             "oscillating in its n = 2 mode",
+     "Rayleigh 1879: omega^2 = (n^3 - n) sigma / (rho R^3) at the stated sigma (akinci: sigma measured from the "
+     "Laplace pressure of two drops)",
      "period within 5 % of Rayleigh's at R / spacing = 20", "R / spacing", {10, 20, 40}, 10, 6, 200, val_run_drop},
     {"obstacle", "a dam break (column a x 2a) hitting a box obstacle across the tank at x = 2a: the force on it",
      "the hydrostatic force rho0 g d^2 / 2 of the water standing against it at rest (exact); the impact time "
