@@ -256,3 +256,20 @@ Test(ladder_fused, l10_kept_step_leaves_the_order)
     free(before);
     sph_sim_destroy(b);
 }
+
+/* A pass that walks the lists without skipping pairs beyond h is refused
+ * with a skin (XSPH would average over the margin's pairs), naming the key,
+ * its line and the pass; without a skin the same scene loads. */
+Test(ladder_fused, l10_refuses_a_pass_that_counts_the_margin)
+{
+    char ini[2048];
+    snprintf(ini, sizeof ini, "%s%s[physics]\nxsph = 0.5\n[search]\nskin = 0.05\n", DAM_2D, L7_KEYS);
+    sph_scene_def def = sph_default_scene_def();
+    sph_error err;
+    cr_assert_eq(sph_scene_load_string(ini, "skin.ini", &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_eq(sph_scene_validate(&def, &err), SPH_ERR_SCENE);
+    cr_expect(strstr(err.msg, "skin.ini:") && strstr(err.msg, "skin = 0.05") && strstr(err.msg, "xsph"), "%s",
+              err.msg);
+    def.skin = 0.0f;
+    cr_expect_eq(sph_scene_validate(&def, &err), SPH_ERR_OK, "%s", err.msg);
+}

@@ -29,9 +29,9 @@ const sph_level sph_levels[] = {
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
      "search.lists_in_place=on",
      0},
-    {"L10", "L9 + Verlet lists (skin 0.1 h)",
+    {"L10", "L9 + Verlet lists (skin 0.05 h)",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
-     "search.lists_in_place=on search.skin=0.1",
+     "search.lists_in_place=on search.skin=0.05",
      0},
     /* The seed's GPU steps: the passes as GLSL compute shaders (src/gpu/), on
      * whatever OpenGL 4.3 device EGL gives (llvmpipe without a GPU). */
