@@ -58,7 +58,7 @@ static void every_level_matches(const char *ini)
         sph_sim_destroy(sim);
         checked++;
     }
-    cr_expect_eq(checked, 10, "levels L0..L9");
+    cr_expect_eq(checked, 11, "levels L0..L10");
 }
 
 Test(levels, every_cpu_level_finds_brute_forces_sets_2d) { every_level_matches(scene_2d); }
@@ -125,4 +125,11 @@ Test(levels, level_of_the_ingredients)
     cr_expect_eq(def.fuse_forces, SPH_OFF);
     cr_expect_eq(def.lists_in_place, SPH_OFF);
     cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L7"));
+    /* L10 is L9 with a skin; down from L10 to L9 the lists are built every step again */
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L10")], &def, &err), SPH_ERR_OK);
+    cr_expect_gt(def.skin, 0.0f);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L10"));
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L9")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.skin, 0.0f);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L9"));
 }

@@ -1,5 +1,6 @@
 /* Validate mode: two runs of the same state compared (sph_compare.h). */
 #include "sph_compare.h"
+#include "sph_search.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -45,12 +46,25 @@ static bool sets_take(const sph_sim *sim, id_sets *s)
         return false;
     }
     for (uint32_t i = 0; i < n; i++) inv[sim->P.id[i]] = i;
+    /* only the entries within h count: Verlet lists ([search] skin) hold pairs
+     * out to h (1 + skin). The test is the search's own, in float, in its
+     * order, so a list built out to h keeps every entry. */
+    const float h2 = sim->def.h * sim->def.h;
     for (uint32_t k = 0; k < n; k++) {
         const uint32_t i = inv[k];
         const uint32_t len = ns ? ns[i + 1] - ns[i] : 0;
-        s->start[k + 1] = s->start[k] + len;
-        for (uint32_t e = 0; e < len; e++) s->nbr[s->start[k] + e] = sim->P.id[nb[ns[i] + e]];
-        qsort(s->nbr + s->start[k], len, sizeof *s->nbr, cmp_u32);
+        uint32_t kept = 0;
+        for (uint32_t e = 0; e < len; e++) {
+            const uint32_t j = nb[ns[i] + e];
+            float r2 = 0.0f;
+            for (int d = 0; d < sim->dim; d++) {
+                const float dx = sph_min_image(x[d][j] - x[d][i], sim->period[d], sim->inv_period[d]);
+                r2 += dx * dx;
+            }
+            if (r2 < h2) s->nbr[s->start[k] + kept++] = sim->P.id[j];
+        }
+        s->start[k + 1] = s->start[k] + kept;
+        qsort(s->nbr + s->start[k], kept, sizeof *s->nbr, cmp_u32);
         for (int d = 0; d < sim->dim; d++) s->pred[d][k] = x[d][i];
     }
     free(inv);

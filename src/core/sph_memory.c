@@ -90,7 +90,9 @@ void sph_memory_estimate(const sph_scene_def *def, sph_mem_estimate *out)
     }
     if (in[SPH_PASS_NEIGHBOURS]) {
         /* each row once in its thread's buffer and once in the merged lists */
-        double nb = fmin(sph_scene_neighbour_estimate(def), n); /* no particle has more neighbours than particles */
+        double nb = sph_scene_neighbour_estimate(def);
+        if (def->skin > 0) nb *= pow(1.0 + def->skin, def->dim); /* Verlet lists reach h (1 + skin) */
+        nb = fmin(nb, n); /* no particle has more neighbours than particles */
         add(out, "neighbour lists", n * nb * 2 * sizeof(uint32_t), "%.3g particles x %.3g neighbours", n, nb);
     }
     if (def->backend == SPH_BACKEND_GL) /* the device's copy (in host memory with llvmpipe) */

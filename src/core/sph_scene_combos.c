@@ -4,6 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "sph_fields.h"
+#include "sph_pass.h"
 #include "sph_scene.h"
 
 /* "file:line", "--set", or the file, for a top-level key. */
@@ -121,6 +123,19 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
                             a, def->blocks[k].name, (double)def->gravity_ramp,
                             key_where(def, "physics", "gravity_ramp", b, sizeof b));
     }
+    /* Verlet lists hold pairs out to h (1 + skin): only the passes whose
+     * kernels vanish beyond h (and whose vector loops mask r >= h) may walk
+     * them; the others would count the margin's pairs */
+    if (def->skin > 0)
+        for (int p = 0; p < SPH_PASS_COUNT; p++) {
+            if (!(sph_passes[p]->reads & SPH_RES_LISTS) || sph_passes[p]->skip_reason(def)) continue;
+            if (p == SPH_PASS_DENSITY || p == SPH_PASS_PRESSURE_FORCE || p == SPH_PASS_VISCOSITY) continue;
+            return sph_fail(err, SPH_ERR_SCENE,
+                            "%s: [search] skin = %g: the %s pass walks the neighbour lists and does not yet skip "
+                            "their pairs beyond h; Verlet lists run with density, pressure_force and viscosity only "
+                            "(accepted here: skin = 0)",
+                            key_where(def, "search", "skin", a, sizeof a), (double)def->skin, sph_passes[p]->name);
+        }
     /* field_pressure is the pressure of a velocity field: without one it would
      * do nothing, silently */
     for (int k = 0; k < def->n_blocks; k++)

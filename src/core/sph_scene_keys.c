@@ -216,6 +216,11 @@ const sph_key sph_scene_keys[] = {
      "on: the first thread writes its particles' neighbour lists straight into the joined array the other passes "
      "read, instead of into a buffer of its own that is then copied there (the same lists, one copy less of the "
      "first thread's share in memory and in time); off: every thread builds in its own buffer"},
+    {"search", "skin", SPH_KEY_FLOAT, S(skin), 0, 1, 0, 0, NULL, 0, "h", "0",
+     "Verlet lists: > 0 builds the neighbour lists out to h (1 + skin) and keeps them (no hash, sort, reorder or "
+     "search) over the following steps, until some particle has moved skin h / 2 since the build; the passes "
+     "that walk them count only pairs within h, so the results are those of lists rebuilt every step. In units "
+     "of h (0.1: a tenth of h); 0: the lists are built every step"},
 
     {"compute", "backend", SPH_KEY_CHOICE, S(backend), 0, 0, 0, 0, CH(sph_backend_names), "", "cpu",
      "where the passes run: cpu (C with OpenMP), or gl (GLSL compute shaders, OpenGL 4.3 through EGL: the GPU, or "

@@ -143,6 +143,13 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                             "%s: [domain] periodic %c: the domain is %g m long, less than 3 h = %g m (a particle "
                             "would meet its own image)",
                             loc, axes[a], len, 3.0 * def->h);
+        /* Verlet lists: three cells of h (1 + skin) must fit, or the stencil wraps onto itself */
+        const double reach = def->skin > 0 ? def->h * (1.0 + (double)def->skin) : 0.0;
+        if (reach > 0 && len < 3.0 * reach * (1.0 + 1.0 / 1024))
+            return sph_fail(err, SPH_ERR_RANGE,
+                            "%s: [domain] periodic %c: the domain is %g m long, less than 3 h (1 + skin) = %g m, "
+                            "three cells of the Verlet lists' reach ([search] skin = %g)",
+                            loc, axes[a], len, 3.0 * reach, (double)def->skin);
     }
     /* a moving top wall: only wall particles carry it, and they cannot move along their normal */
     if (def->wall_velocity[0] != 0 || def->wall_velocity[1] != 0 || def->wall_velocity[2] != 0) {

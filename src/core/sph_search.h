@@ -54,6 +54,13 @@ void sph_sort_qsort(sph_entry *e, uint32_t n);
  * SPH_EMPTY where no particle has key k (the seed's "liste des departs"). */
 void sph_offsets_build(const sph_entry *e, uint32_t n, uint32_t *start, uint32_t table_size);
 
+/* Verlet lists (sph_skin.c, [search] skin): the lists' reach, h (1 + skin);
+ * whether this step keeps the lists (decided once per step, by the first
+ * search pass that asks; false without a skin); and the mark a build leaves. */
+float sph_skin_radius(const sph_sim *sim);
+bool sph_skin_keep(sph_sim *sim);
+void sph_skin_mark(sph_sim *sim);
+
 /* Grid variant: cell index along one axis within the domain grid, clamped to
  * [0, dims). Clamping never moves two cells further apart, so particles
  * within h of each other stay in neighbouring cells even outside the domain. */

@@ -387,7 +387,8 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
         }
     if (sim->in_pipeline[SPH_PASS_HASH]) {
         sph_cells *g = &S->cells;
-        const double size = (double)def->h * (1.0 + 1.0 / 1024);
+        /* cells a hair above the lists' reach: h, or h (1 + skin) for Verlet lists */
+        const double size = (double)def->h * (1.0 + (def->skin > 0 ? (double)def->skin : 0.0)) * (1.0 + 1.0 / 1024);
         uint64_t cells = 1;
         g->dim = dim;
         g->dense = def->search == SPH_SEARCH_GRID;
@@ -429,6 +430,8 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
         S->n_threads = sim->threads;
         S->tbuf = alloc_zero((size_t)S->n_threads, sizeof *S->tbuf, &ok);
         S->tcap = alloc_zero((size_t)S->n_threads, sizeof *S->tcap, &ok);
+        if (def->skin > 0) /* Verlet lists: where each particle was at their build */
+            for (int d = 0; d < dim; d++) S->skin_ref[d] = alloc_zero(n, sizeof *S->skin_ref[d], &ok);
     }
     if (!ok) {
         sph_sim_destroy(sim);
@@ -489,6 +492,7 @@ void sph_sim_destroy(sph_sim *sim)
     for (int t = 0; S->tbuf && t < S->n_threads; t++) free(S->tbuf[t]);
     free(S->tbuf);
     free(S->tcap);
+    for (int d = 0; d < 3; d++) free(S->skin_ref[d]);
     free(sim);
 }
 

@@ -92,6 +92,14 @@ typedef struct sph_search_data {
     int n_threads;
     uint32_t **tbuf;
     size_t *tcap;
+    /* Verlet lists ([search] skin > 0, src/core/sph_skin.c): the predicted
+     * positions at the lists' build, and whether this step keeps them. */
+    float *skin_ref[3];   /* [n] [m] pred at the last build */
+    bool lists_built;     /* lists exist for the particles as they are stored now */
+    bool lists_kept;      /* this step keeps them: no hash, sort, reorder, offsets, search */
+    uint64_t kept_decided; /* sim->step + 1 of the step that decided lists_kept; 0: none yet */
+    uint64_t builds;      /* [1] lists built so far (every step without a skin) */
+    float skin_moved;     /* [m] the largest move since the build, as this step's decision saw it */
 } sph_search_data;
 
 /* A field of one simulation: its registry row's text and its arrays. */

@@ -33,6 +33,7 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const uint32_t T = S->table_size;
     sph_entry *restrict e = S->entries;
+    if (sph_skin_keep(sim)) return; /* Verlet lists kept: the cells of their build stay */
     S->reordered = false; /* until this step's reorder pass, if any */
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {

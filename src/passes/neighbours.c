@@ -1,7 +1,9 @@
 /* Pass: neighbour search. For each particle, the other particles closer than
  * h (r^2 < h^2) at the predicted positions, stored as compressed rows so the
  * density, pressure and viscosity passes reuse them instead of searching three
- * times as the seed's shaders do.
+ * times as the seed's shaders do. With Verlet lists ([search] skin > 0) the
+ * reach is h (1 + skin) and the lists are kept over several steps
+ * (src/core/sph_skin.c).
  *   hash:  visit the 3^dim cells around the particle's cell; for each, look up
  *          its key's run in the sorted entries through the offsets table and
  *          keep entries whose hash is the cell's (other cells share the key).
@@ -113,7 +115,7 @@ static void neighbours_of(const sph_sim *sim, const float *spos, list *out, uint
 {
     const sph_particles *P = &sim->P;
     const int dim = sim->dim;
-    const float h2 = sim->def.h * sim->def.h;
+    const float reach = sph_skin_radius(sim), h2 = reach * reach; /* h, or h (1 + skin) */
     float xi[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
     if (sim->def.search == SPH_SEARCH_BRUTE) {
@@ -280,7 +282,7 @@ static inline void rows_reordered(const sph_sim *sim, list *l, uint32_t lo, uint
                                   const bool periodic)
 {
     const sph_cells *g = &sim->S.cells;
-    const float h2 = sim->def.h * sim->def.h;
+    const float reach = sph_skin_radius(sim), h2 = reach * reach; /* h, or h (1 + skin) */
     run_range runs[27];
     int nruns = 0;
     int32_t cur[3] = {0, 0, 0};
@@ -314,6 +316,7 @@ static void run(sph_sim *sim)
     const int T = S->n_threads;
     size_t base[SPH_MAX_THREADS + 1];
     float *spos = S->spos;
+    if (sph_skin_keep(sim)) return; /* Verlet lists: the last build's still hold every pair within h */
     if (spos && !S->reordered && !S->next) { /* positions in sorted order, padded to 4 floats (z = 0 in 2D) */
         const int dim = sim->dim;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
@@ -382,6 +385,7 @@ static void run(sph_sim *sim)
         for (uint32_t i = lo; i < hi; i++) S->nbr_start[i + 1] += (uint32_t)base[t];
         if (l.len && !direct) memcpy(S->nbr + base[t], l.buf, l.len * sizeof *l.buf);
     }
+    sph_skin_mark(sim);
 }
 
 const sph_pass sph_pass_neighbours = {

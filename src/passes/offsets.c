@@ -46,6 +46,7 @@ void sph_offsets_build(const sph_entry *e, uint32_t n, uint32_t *start, uint32_t
 
 static void run(sph_sim *sim)
 {
+    if (sph_skin_keep(sim)) return; /* Verlet lists kept: no new cells */
     if (sim->def.sort == SPH_SORT_NONE)
         build_chains(sim->S.entries, sim->n, sim->S.start, sim->S.next, sim->S.table_size);
     else

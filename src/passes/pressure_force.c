@@ -168,6 +168,7 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
     const __m512 vzi = _mm512_set1_ps(dim == 3 ? P->vel[2][i] : 0.0f);
     float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
     const __m512 inv_hv = _mm512_set1_ps(kv->inv_h), one = _mm512_set1_ps(1.0f);
+    const __m512 h2 = _mm512_set1_ps(sim->def.h * sim->def.h);
     const __m512i vi = _mm512_set1_epi32(i);
     __m512 ax = zero, ay = zero, az = zero, bx = zero, by = zero, bz = zero;
     const uint32_t end = S->nbr_start[i + 1];
@@ -176,12 +177,14 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
         __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
         __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
         __m512 vol = sph_simd_gather(live, idx, P->vol);
-        /* viscosity first, from the true r^2 (the pressure term below moves coincident pairs) */
+        /* viscosity first, from the true r^2 (the pressure term below moves coincident pairs); pairs
+         * within h only, as in viscosity_one_avx512 */
+        const __mmask16 in = _mm512_mask_cmp_ps_mask(live, r2, h2, _CMP_LT_OQ);
         __m512 lap = _mm512_max_ps(_mm512_fnmadd_ps(_mm512_sqrt_ps(r2), inv_hv, one), zero); /* 1 - r/h */
         __m512 cv = _mm512_mul_ps(vol, lap);
-        bx = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(sph_simd_gather(live, idx, vj[0]), vxi), bx, live);
-        by = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(sph_simd_gather(live, idx, vj[1]), vyi), by, live);
-        if (dim == 3) bz = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(sph_simd_gather(live, idx, vj[2]), vzi), bz, live);
+        bx = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(sph_simd_gather(live, idx, vj[0]), vxi), bx, in);
+        by = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(sph_simd_gather(live, idx, vj[1]), vyi), by, in);
+        if (dim == 3) bz = _mm512_mask3_fmadd_ps(cv, _mm512_sub_ps(sph_simd_gather(live, idx, vj[2]), vzi), bz, in);
         __m512 dx = d3[0], dy = d3[1], dz = d3[2];
         __mmask16 close = _mm512_mask_cmp_ps_mask(live, r2, rmin2, _CMP_LT_OQ);
         if (close) { /* coincident pairs: pushed apart along x, as in pressure_one */

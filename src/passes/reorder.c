@@ -41,6 +41,7 @@ static void run(sph_sim *sim)
     sph_search_data *S = &sim->S;
     const int n = (int)sim->n;
     sph_entry *e = S->entries;
+    if (sph_skin_keep(sim)) return; /* the kept lists index the particles where they are */
     {
         const uint32_t *restrict src = P->id;
         uint32_t *restrict dst = S->spare_u;

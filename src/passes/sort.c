@@ -83,6 +83,7 @@ void sph_sort_qsort(sph_entry *e, uint32_t n)
 
 static void run(sph_sim *sim)
 {
+    if (sph_skin_keep(sim)) return; /* Verlet lists kept: no new cells */
     sph_search_data *S = &sim->S;
     switch (sim->def.sort) {
     case SPH_SORT_BITONIC: sph_sort_bitonic(S->entries, sim->n); break;

@@ -147,18 +147,22 @@ static inline void viscosity_one_avx512(const sph_sim *sim, const sph_kernel *k,
     const __m512 vzi = _mm512_set1_ps(dim == 3 ? P->vel[2][i] : 0.0f);
     float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
     const __m512 inv_h = _mm512_set1_ps(k->inv_h), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
+    const __m512 h2 = _mm512_set1_ps(sim->def.h * sim->def.h);
     __m512 ax = zero, ay = zero, az = zero;
     const uint32_t end = S->nbr_start[i + 1];
     for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
         __mmask16 live = sph_simd_live(e, end);
         __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
         __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
+        /* pairs within h only, as the search decides them: Verlet lists ([search] skin) hold more, where
+         * 1 - r/h can round to a hair above 0 */
+        const __mmask16 in = _mm512_mask_cmp_ps_mask(live, r2, h2, _CMP_LT_OQ);
         __m512 lap = _mm512_max_ps(_mm512_fnmadd_ps(_mm512_sqrt_ps(r2), inv_h, one), zero); /* 1 - r/h */
         __m512 coef = _mm512_mul_ps(sph_simd_gather(live, idx, P->vol), lap);
-        ax = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, vj[0]), vxi), ax, live);
-        ay = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, vj[1]), vyi), ay, live);
+        ax = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, vj[0]), vxi), ax, in);
+        ay = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, vj[1]), vyi), ay, in);
         if (dim == 3)
-            az = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, vj[2]), vzi), az, live);
+            az = _mm512_mask3_fmadd_ps(coef, _mm512_sub_ps(sph_simd_gather(live, idx, vj[2]), vzi), az, in);
     }
     const float c = k->sigma * k->inv_h * k->inv_h * (dim == 3 ? 6.0f : 1.0f);
     const float s = c * sim->def.viscosity * sim->def.rest_density / P->rho[i];
