@@ -158,6 +158,7 @@ int bench_cmd_solvers(bench_opts *o)
     int side[3];
     column_sides(n, side);
     const double count = (double)side[0] * side[1] * side[2];
+    setvbuf(stdout, NULL, _IOLBF, 0); /* each line as it comes: a long run into a file keeps what it measured */
     char date[64];
     double load0[3], load1[3];
     bench_now_iso(date, sizeof date);
