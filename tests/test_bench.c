@@ -352,3 +352,26 @@ Test(bench, unwritable_output_fails_before_measuring, .timeout = 30)
     int rc = test_sphlab("bench ladder --quick --quiet --out /proc/sphlab-bench", g_out, sizeof g_out);
     cr_assert_eq(rc, 1, "exit %d, want 1\n%s", rc, g_out);
 }
+
+/* `bench solvers --quick`: runs, finds a stiffness, and prints a row per
+ * pressure model whose errors are finite and whose solvers hold near the
+ * 0.1 % target (no timing is asserted: the machine is shared). */
+Test(bench, quick_solvers_runs, .timeout = 300)
+{
+    int rc = test_sphlab("bench solvers --quick", g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "exit %d\n%s", rc, g_out);
+    cr_assert(strstr(g_out, "holds it"), "no stiffness held the target:\n%s", g_out);
+    const char *names[] = {"\neos ", "\npcisph ", "\ndfsph "};
+    for (int s = 0; s < 3; s++) {
+        const char *row = strstr(g_out, names[s]);
+        cr_assert(row, "no row for%s\n%s", names[s], g_out);
+        char kk[32];
+        double err_max, step_max, err_mean, steps, dt_ms, its, ms, ratio;
+        cr_assert_eq(sscanf(row + 1, "%*s %31s %lf %lf %lf %lf %lf %lf %lf %lf", kk, &err_max, &step_max, &err_mean,
+                            &steps, &dt_ms, &its, &ms, &ratio),
+                     9, "row: %.120s", row + 1);
+        cr_assert(steps >= 1 && ms > 0 && isfinite(ratio));
+        cr_assert_leq(step_max, 0.1 * 1.01, "%s: each step's largest error %g %% on time mean", names[s] + 1, step_max);
+        if (s) cr_assert(its >= 1, "%s: %g iterations per step", names[s] + 1, its);
+    }
+}

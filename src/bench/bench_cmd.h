@@ -99,5 +99,7 @@ const char *bench_check_word(const level_result *r); /* PASS, FAIL, SKIP or - */
 
 /* `sphlab bench scaling` (bench_scaling.c). */
 int bench_cmd_scaling(bench_opts *o);
+/* `sphlab bench solvers` (bench_solvers.c). */
+int bench_cmd_solvers(bench_opts *o);
 
 #endif

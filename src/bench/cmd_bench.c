@@ -2,6 +2,7 @@
  *   ladder    per level: the largest N at F steps/s (bisection over block
  *             sizes), ms per pass at a fixed N, checks against a reference
  *   scaling   time per step against N for each level (log-log)
+ *   solvers   eos, pcisph and dfsph at equal density error (bench_solvers.c)
  *   machine   the machine's limits (memory bandwidth, float peak)
  *   levels    the level table and the scene keys of each level */
 #include <math.h>
@@ -24,6 +25,9 @@ static const app_cmd_spec spec = {
                 "              (bisection over block sizes, median of repeats), ms per pass at a fixed N,\n"
                 "              and a check against the reference level; table, CSV, JSON, chart\n"
                 "  scaling     time per step against N for each level (log-log): O(N^2) against O(N)\n"
+                "  solvers     3D dam break (--at N, default 50,000): eos at the stiffness that holds a 0.1 %\n"
+                "              density error, pcisph and dfsph at tolerance 0.1 %, interleaved repeats: error,\n"
+                "              steps, iterations, ms per simulated second (medians) and the ratios\n"
                 "  machine     the machine's limits: memory bandwidth (streaming loops), float peak (FMA loop)\n"
                 "  levels      the levels and the scene keys that make each\n"
                 "options:\n",
@@ -223,8 +227,9 @@ int cmd_bench(int argc, char **argv)
     if (rc >= 0) return rc;
     if (strcmp(o.what, "ladder") == 0) return cmd_ladder(&o, argc, argv);
     if (strcmp(o.what, "scaling") == 0) return bench_cmd_scaling(&o);
+    if (strcmp(o.what, "solvers") == 0) return bench_cmd_solvers(&o);
     if (strcmp(o.what, "machine") == 0) return cmd_machine(&o);
     if (strcmp(o.what, "levels") == 0) return cmd_levels(&o);
-    fprintf(stderr, "sphlab bench: unknown benchmark '%s' (ladder, scaling, machine, levels)\n", o.what);
+    fprintf(stderr, "sphlab bench: unknown benchmark '%s' (ladder, scaling, solvers, machine, levels)\n", o.what);
     return 2;
 }

@@ -319,6 +319,15 @@ double sph_stats_energy(const sph_stats *s);
  * the first step, as a fraction; NaN before the first step. */
 double sph_sim_energy_drift(const sph_sim *sim);
 
+/* After a step: the compression of the positions it reached, rho / rho_held - 1
+ * summed there over the step's lists; its largest over the fluid and the
+ * mean of its positive part [1] (src/passes/solver_reached.c). */
+void sph_sim_compression(const sph_sim *sim, double *largest, double *mean);
+/* The same against the lattice's rest density rho_rest with the solvers'
+ * walls (src/passes/solver.h) whatever the pressure model: one yardstick
+ * for the equation of state and the solvers (`sphlab bench solvers`). */
+void sph_sim_compression_lattice(sph_sim *sim, double *largest, double *mean);
+
 /* A field of the particles; false if the scene does not allocate it. */
 bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out);
 /* The watchdog's report: step, pass, particle, its values and neighbours. */

@@ -5,8 +5,8 @@
  * their fields), each iteration:
  *   1. pressure acceleration a_i = -(1/rho_r^2) sum_j m_j (p_i + p_j) grad W_ij (at the predicted positions of
  *      the step, x + dt v), walls pushing back with -(p_i / rho_r) grad(walls' share) (solver.h);
- *   2. predicted positions x*_i = x_i + dt v_i + dt^2 (a_i + the other accelerations): where integration
- *      will put the particle with this pressure;
+ *   2. predicted positions x*_i = x_i + dt v_i + dt^2 (a_i + the other accelerations), clamped into the box
+ *      as the walls pass will: where the step will put the particle with this pressure;
  *   3. predicted density rho*_i = sum_j m_j W(x*_i - x*_j) + rho_r (walls' share at x*_i), and the error
  *      max_i (rho*_i - rho_r) / rho_r over the fluid;
  *   4. if the error is above [physics] solver_tolerance (and the iteration cap is not reached):
@@ -107,10 +107,13 @@ static void force(sph_sim *sim)
             for (int d = 0; d < dim; d++) a[d] -= p_i * inv_r * grad[d];
         }
         sph_solver_other_acc(sim, i, other);
+        float x[3] = {0, 0, 0}, c[3];
         for (int d = 0; d < dim; d++) {
             P->acc_pci[d][i] = a[d];
-            P->x_pci[d][i] = P->pred[d][i] + dt * dt * (a[d] + other[d]);
+            x[d] = P->pred[d][i] + dt * dt * (a[d] + other[d]);
         }
+        sph_solver_clamped(sim, x, c); /* where the walls pass will put it (solver.h) */
+        for (int d = 0; d < dim; d++) P->x_pci[d][i] = c[d];
     }
 }
 

@@ -131,6 +131,29 @@ static inline float sph_solver_walls_pred(const sph_sim *sim, int i, float grad[
     return sph_solver_walls(sim, x, grad);
 }
 
+/* The minimum image along periodic axes (a no-op elsewhere). */
+static inline float sph_solver_dx(const sph_sim *sim, float dx, int d)
+{
+    return sim->period[d] > 0 ? sph_min_image(dx, sim->period[d], sim->inv_period[d]) : dx;
+}
+
+/* Where the walls pass will put a particle predicted at x: a position past
+ * a wall is put back on it (passes/walls.c); c receives it, and the result
+ * says whether it moved. A prediction that ignores this reads a particle
+ * past the wall as having left its neighbours, when the step then sets it
+ * on the wall among them (docs/accuracy.md, section 8). */
+static inline bool sph_solver_clamped(const sph_sim *sim, const float x[3], float c[3])
+{
+    bool moved = false;
+    for (int d = 0; d < 3; d++) {
+        c[d] = x[d];
+        if (d >= sim->dim || !(sim->def.effects & SPH_EFFECT(WALLS)) || sim->period[d] > 0) continue;
+        c[d] = fminf(fmaxf(x[d], (float)sim->def.domain_min[d]), (float)sim->def.domain_max[d]);
+        moved |= c[d] != x[d];
+    }
+    return moved;
+}
+
 /* A solve's iteration ends: another call of the pass, or the step's record. */
 static inline bool sph_solver_done(sph_sim *sim, double error, double tolerance)
 {
@@ -143,12 +166,6 @@ static inline bool sph_solver_done(sph_sim *sim, double error, double tolerance)
         return true;
     }
     return false;
-}
-
-/* The minimum image along periodic axes (a no-op elsewhere). */
-static inline float sph_solver_dx(const sph_sim *sim, float dx, int d)
-{
-    return sim->period[d] > 0 ? sph_min_image(dx, sim->period[d], sim->inv_period[d]) : dx;
 }
 
 #endif
