@@ -39,13 +39,17 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
 }
 #include_walk
 
-// x* = pred + dt^2 (a + the other accelerations), and a stored
+// x* = pred + dt^2 (a + the other accelerations), clamped into the box as
+// the walls pass will (sph_solver_clamped in src/passes/solver.h), and a stored
 void put_prediction(uint i, vec3 a)
 {
     for (int d = 0; d < DIM; d++) {
         uint k = uint(d) * N + i;
         acc_pci_[k] = a[d];
         precise float x = pred_[k] + u_dt * u_dt * (a[d] + ACC_OTHER(k));
+#if HAS_WALLS
+        if (PER[d] <= 0.0) x = min(max(x, DOM_MIN[d]), DOM_MAX[d]);
+#endif
         x_pci_[k] = x;
     }
 }

@@ -120,6 +120,7 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put_vec3(&t, "DOM_MIN", lo);
     put_vec3(&t, "DOM_MAX", hi);
     put(&t, "#define HAS_GRAVITY %d\n", (def->effects & SPH_EFFECT(GRAVITY)) != 0);
+    put(&t, "#define HAS_WALLS %d\n", (def->effects & SPH_EFFECT(WALLS)) != 0); /* the box reflects */
     put_vec3(&t, "GRAVITY", sim->def.gravity);
     put(&t, "#define WALL_VOLUME %d\n#define WALL_CORNER %d\n", sph_sim_wall_volume(sim), SPH_WALL_CORNER);
     put_float(&t, "WALL_FULL", sim->k_density.wall_lat_full);
