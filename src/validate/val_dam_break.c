@@ -190,6 +190,7 @@ int val_run_dam_break(const val_ctx *c, const val_problem *p)
     /* the verdict: every run at a/spacing >= 40, or the finest if none is;
      * the front by its mean and max, the column height by its mean */
     bool pass = done > 0, front_ok = true, column_ok = true;
+    for (int r = 0; r < done; r++) val_cost_error(r, err[r].mean); /* the front's mean error, beside its cost */
     int judged = 0;
     for (int r = 0; r < done; r++)
         if (c->res[r] >= 40) {

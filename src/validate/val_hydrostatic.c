@@ -159,6 +159,7 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
                 if (!isnan(mean[fr])) spread = fmax(spread, fabs(mean[fr] - sum / nf));
         }
         pass &= o->worst_p <= 0.01 && sp < 0.01;
+        val_cost_error(r, o->worst_p);
         val_append(trend, sizeof trend, "%sR=%d p %.2f%% speed %.2f%%", r ? ", " : "", c->res[r], 100 * o->worst_p, 100 * sp);
         val_append(detail, sizeof detail,
                    "%sR=%d p %.2f%% (row %d from the floor, y/H %.2f, t %.2f s; rows' bias up to %.2f%%, spread between "
