@@ -5,9 +5,13 @@
 // and FORCE_VISCOSITY (0 or 1) before "#include_forces", then its sph_pair
 // calls forces_pair and its main forces_begin, sph_walk and forces_end.
 #if FORCE_VISCOSITY && VFORM != VFORM_LAPLACIAN && VFORM != VFORM_SMOOTHING && VFORM != VFORM_MORRIS && \
-    VFORM != VFORM_ARTIFICIAL
+    VFORM != VFORM_ARTIFICIAL && VFORM != VFORM_MORRIS_ARTIFICIAL
 #error "a viscosity form this shader does not implement"
 #endif
+// morris-artificial: the sum of the two forms, Morris's scaled by nu and
+// Monaghan's kept apart in acc_av (viscosity.c adds them in that order)
+#define VISC_MORRIS (VFORM == VFORM_MORRIS || VFORM == VFORM_MORRIS_ARTIFICIAL)
+#define VISC_ARTIFICIAL (VFORM == VFORM_ARTIFICIAL || VFORM == VFORM_MORRIS_ARTIFICIAL)
 float rho_i; // the particle's density [kg/m^DIM]
 #if FORCE_PRESSURE
 vec3 acc_pf;       // sum of the pressure terms [m/s^2]
@@ -35,23 +39,31 @@ void pressure_pair(uint i, uint j, vec3 dx, float r2)
 #endif
 #if FORCE_VISCOSITY
 vec3 acc_vs, vi; // sum of the viscous terms (unscaled), the particle's velocity [m/s]
-// With wall particles the neighbours' velocities are vel_visc (the
-// wall_state pass: the fluid's own, a no-slip wall's mirrored).
-void viscosity_pair(uint i, uint j, vec3 dx, float r2)
+#if VISC_ARTIFICIAL
+vec3 acc_av; // sum of Monaghan's terms [m/s^2]
+// Monaghan 1992: -m_j Pi_ij grad W_ij for approaching pairs, along x_ij,
+// with the pressure kernel's gradient; the neighbour's own velocity
+void artificial_pair(uint j, vec3 dx, float r2, float r)
 {
-    float r = sqrt(r2);
-#if VFORM == VFORM_ARTIFICIAL
-    // Monaghan 1992: -m_j Pi_ij grad W_ij for approaching pairs, along x_ij,
-    // with the pressure kernel's gradient
     vec3 vj = VEL3(j);
     float vx = 0.0;
     for (int d = 0; d < DIM; d++) vx += (vi[d] - vj[d]) * dx[d];
     if (!(vx < 0.0) || r <= 0.0) return;
     float pi_ij = -AV_ACH * vx / (0.5 * (rho_i + rho_[j]) * (r2 + AV_EPS2));
     float f = -mass_[j] * pi_ij * kernel_dw(KP, SIG_P, r) / r;
-    for (int d = 0; d < DIM; d++) acc_vs[d] += f * dx[d];
-    return;
-#elif VFORM == VFORM_MORRIS
+    for (int d = 0; d < DIM; d++) acc_av[d] += f * dx[d];
+}
+#endif
+// With wall particles the neighbours' velocities are vel_visc (the
+// wall_state pass: the fluid's own, a no-slip wall's mirrored).
+void viscosity_pair(uint i, uint j, vec3 dx, float r2)
+{
+    float r = sqrt(r2);
+#if VISC_ARTIFICIAL
+    artificial_pair(j, dx, r2, r);
+#endif
+#if VFORM != VFORM_ARTIFICIAL
+#if VISC_MORRIS
     // -(x_ij . grad W) / (r^2 + eta^2), eta = 0.01 h, symmetrised in density (Morris 1997)
     float coef = -mass_[j] * (rho_i + rho_[j]) / (rho_i * rho_[j]) * r * kernel_dw(KV, SIG_V, r) / (r2 + 1e-4 * H2);
 #elif VFORM == VFORM_LAPLACIAN
@@ -59,7 +71,6 @@ void viscosity_pair(uint i, uint j, vec3 dx, float r2)
 #else
     float coef = vol_[j] * kernel_w(KV, SIG_V, r);
 #endif
-#if VFORM != VFORM_ARTIFICIAL
 #if HAS_VEL_VISC
     vec3 vj = LOAD3(vel_visc_, j);
 #else
@@ -110,6 +121,9 @@ void forces_begin(uint i)
 #endif
 #if FORCE_VISCOSITY
     acc_vs = vec3(0.0);
+#if VISC_ARTIFICIAL
+    acc_av = vec3(0.0);
+#endif
     vi = VEL3(i);
 #endif
 }
@@ -127,8 +141,11 @@ void forces_end(uint i, vec3 xi)
 #endif
 #if FORCE_VISCOSITY
 #if VFORM == VFORM_ARTIFICIAL
-    float s = 1.0;
-#elif VFORM == VFORM_MORRIS
+    for (int d = 0; d < DIM; d++) acc_v_[uint(d) * N + i] = acc_av[d];
+#elif VFORM == VFORM_MORRIS_ARTIFICIAL
+    for (int d = 0; d < DIM; d++) acc_v_[uint(d) * N + i] = NU * acc_vs[d] + acc_av[d];
+#else
+#if VFORM == VFORM_MORRIS
     float s = NU;
 #elif VFORM == VFORM_LAPLACIAN
     float s = NU * RHO0 / rho_[i];
@@ -136,5 +153,6 @@ void forces_end(uint i, vec3 xi)
     float s = NU * 2.0 * float(DIM) / M2_V;
 #endif
     for (int d = 0; d < DIM; d++) acc_v_[uint(d) * N + i] = s * acc_vs[d];
+#endif
 #endif
 }

@@ -151,9 +151,18 @@ else
     else
         bad "run --backend gl"; cat "$tmp/gl.txt"
     fi
-    # shifting = tvf (taylor-green) and delta_form = fourtakas (hydrostatic) on GL: 10 steps beside
-    # the CPU's, positions within 1e-5 m (measured: 1.2e-7 m and 0)
-    for args in "scenes/validate/taylor-green.ini" "scenes/validate/hydrostatic.ini --set physics.delta_form=fourtakas"; do
+    # --stats on GL: the hash health's columns, hash_share empty (no neighbour lists to count it from)
+    if sphe "$sw" run "$scene" --backend gl --steps 2 --quiet --stats "$tmp/hgl.csv" > "$tmp/gl.txt" 2>&1; then
+        head -1 "$tmp/hgl.csv" | grep -q ',hash_candidates,hash_share$' && tail -1 "$tmp/hgl.csv" | grep -Eq ',[0-9.e+-]+,$' &&
+            ok || { bad "run --backend gl --stats: want hash_share empty"; tail -2 "$tmp/hgl.csv"; }
+    else
+        bad "run --backend gl --stats"; cat "$tmp/gl.txt"
+    fi
+    # shifting = tvf (taylor-green), delta_form = fourtakas (hydrostatic), surface_tension = csf (drop)
+    # and viscosity_form = morris-artificial on GL: 10 steps beside the CPU's, positions within 1e-5 m
+    # (measured: 1.2e-7 m, 0, 0 (the drop settles, moving 2e-5 m; 6e-8 m in 50 steps) and 1.2e-7 m)
+    for args in "scenes/validate/taylor-green.ini" "scenes/validate/hydrostatic.ini --set physics.delta_form=fourtakas" \
+        "scenes/validate/drop.ini" "$scene --set physics.viscosity_form=morris-artificial --set kernels.viscosity=cubic"; do
         # shellcheck disable=SC2086 # args: a scene and its --set, split on purpose
         if sphe "$sw" run $args --backend gl --steps 10 --quiet --dump "$tmp/gl.csv" > "$tmp/gl.txt" 2>&1 &&
             sph run $args --steps 10 --quiet --dump "$tmp/cpu.csv" >> "$tmp/gl.txt" 2>&1; then

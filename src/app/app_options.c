@@ -67,7 +67,8 @@ const app_opt app_options[] = {
      "the force the fluid exerts on each, obstacle_NAME_fx,obstacle_NAME_fy(,_fz) [N, N/m in 2D],\n"
      "then with pressure_solver pcisph or dfsph: iterations,density_error,div_iterations,divergence_error,capped,\n"
      "then with a hash table, its health: hash_keys,hash_load,hash_occupied,hash_colliding,hash_longest_run,\n"
-     "hash_candidates,hash_share",
+     "hash_candidates,hash_share (empty with --backend gl,\n"
+     "which builds no neighbour lists to count)",
      RUN, STRING(stats)},
     {"--dump", NULL, "FILE.csv", "final particles: id,x,y,z,vx,vy,vz,rho,p, then every other field the scene computes", RUN,
      STRING(dump)},

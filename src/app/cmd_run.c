@@ -54,9 +54,13 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
                 sim->solver.div_iterations, sim->solver.divergence_error, (unsigned long long)sim->solver.capped);
     sph_hash_health hh;
     sph_sim_hash_health(sim, false, &hh);
-    if (hh.has_table)
-        fprintf(f, ",%u,%.6g,%u,%u,%u,%.6g,%.6g", hh.table_size, hh.load_factor, hh.occupied, hh.colliding,
-                hh.longest_run, hh.candidates, hh.share);
+    if (hh.has_table) {
+        fprintf(f, ",%u,%.6g,%u,%u,%u,%.6g,", hh.table_size, hh.load_factor, hh.occupied, hh.colliding,
+                hh.longest_run, hh.candidates);
+        /* the share needs the true neighbours, which the GL backend does not count (it builds no lists):
+         * an empty cell, not "nan", which CSV readers take for a number */
+        if (!isnan(hh.share)) fprintf(f, "%.6g", hh.share);
+    }
     fprintf(f, "\n");
 }
 

@@ -149,7 +149,7 @@ const sph_key sph_scene_keys[] = {
      "eos: pressure from the equation of state (weakly compressible, dt bound by the speed of sound); pcisph: "
      "predictive-corrective iterations (Solenthaler & Pajarola 2009); dfsph: divergence-free and constant-density "
      "solves (Bender & Koschier 2015/2017); both iterate until solver_tolerance, and dt follows the flow speed "
-     "(CPU only; walls: volume or reflect)"},
+     "(walls: volume or reflect)"},
     {"physics", "solver_tolerance", SPH_KEY_FLOAT, S(solver_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
      "pcisph, dfsph: the largest relative density error (rho - rho_rest) / rho_rest a step may end with"},
     {"physics", "solver_max_iterations", SPH_KEY_INT, S(solver_max_iterations), 1, 10000, 0, 0, NULL, 0, "", "100",
@@ -164,7 +164,7 @@ const sph_key sph_scene_keys[] = {
      "grad W (eq. 3, pointing into the fluid); gamma = surface_tension_coefficient; not with the effect cohesion; "
      "csf: a continuum surface force (Brackbill, Kothe & Zemach 1992; Morris 2000) a_i = sigma kappa_i grad c_i / "
      "(B rho0) of the stated sigma, kappa the renormalised divergence of the unit normals, B the delta's integral "
-     "across a flat surface of the scene's lattice; csf is CPU only"},
+     "across a flat surface of the scene's lattice"},
     {"physics", "surface_tension_coefficient", SPH_KEY_FLOAT, S(surface_tension_coefficient), 0, 1e6, 0, 0, NULL, 0,
      "m^4/(kg s^2)", "1",
      "gamma of surface_tension = akinci (both terms; the paper's gamma, not a physical sigma: docs/accuracy.md "

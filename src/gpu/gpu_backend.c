@@ -97,17 +97,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [search] skin = %g (Verlet lists) is not implemented by the GL backend (its passes "
                         "walk the cells every step and keep no lists; accepted there: 0)",
                         def->file, (double)def->skin);
-    if (def->viscosity_form == SPH_VFORM_MORRIS_ARTIFICIAL && (def->effects & SPH_EFFECT(VISCOSITY)))
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] viscosity_form = morris-artificial is not implemented by the GL backend yet "
-                        "(its viscosity shader runs one form at a time; accepted there: laplacian, smoothing, morris, "
-                        "artificial)",
-                        def->file);
-    if (def->surface_tension == SPH_STENSION_CSF)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] surface_tension = csf is not implemented by the GL backend yet (its csf pass "
-                        "runs on the CPU; accepted there: none, akinci, or the effect cohesion)",
-                        def->file);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)

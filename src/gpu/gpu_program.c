@@ -134,9 +134,9 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
      * stops with #error on any other, so a form added on the CPU is never
      * silently computed as another on GL */
     put(&t, "#define PFORM_SYM %d\n#define VFORM %d\n#define VFORM_LAPLACIAN %d\n#define VFORM_SMOOTHING %d\n"
-            "#define VFORM_MORRIS %d\n#define VFORM_ARTIFICIAL %d\n",
+            "#define VFORM_MORRIS %d\n#define VFORM_ARTIFICIAL %d\n#define VFORM_MORRIS_ARTIFICIAL %d\n",
         def->pressure_form == SPH_PFORM_SYMMETRIC, (int)def->viscosity_form, (int)SPH_VFORM_LAPLACIAN,
-        (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS, (int)SPH_VFORM_ARTIFICIAL);
+        (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS, (int)SPH_VFORM_ARTIFICIAL, (int)SPH_VFORM_MORRIS_ARTIFICIAL);
     put(&t, "#define DFORM_FOURTAKAS %d\n", def->delta_form == SPH_DFORM_FOURTAKAS);
     put_float(&t, "NU", def->viscosity);
     /* artificial viscosity: alpha c h_s as the CPU pass computes it in float */
@@ -147,6 +147,9 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     const bool akinci = def->surface_tension == SPH_STENSION_AKINCI;
     put_float(&t, "COHESION", akinci ? def->surface_tension_coefficient : def->cohesion);
     put_float(&t, "ST_GAMMA", def->surface_tension_coefficient); /* the curvature term's gamma [m/s^2] */
+    /* surface_tension = csf: the normals' volumes m_j / rho0 (normals.c), 1 / rho0 [m^dim/kg] in float */
+    put(&t, "#define ST_CSF %d\n", def->surface_tension == SPH_STENSION_CSF);
+    put_float(&t, "INV_RHO0", 1.0f / def->rest_density);
     put_float(&t, "DAMP", def->wall_damping);
     put_float(&t, "INTER_R", def->interaction_radius);
     /* the pressure solvers (src/passes/solver.h): the density they hold

@@ -19,14 +19,15 @@ GPU_SHADERS := $(wildcard shaders/gpu_*.comp shaders/gpu_*.glsl)
 $(BUILD)/gpu/gpu_shaders.h: $(GPU_SHADERS) src/gl/embed-shaders.sh | $(BUILD)/gpu
 	sh src/gl/embed-shaders.sh $(GPU_SHADERS) > $@.tmp && mv $@.tmp $@
 
-$(BUILD)/gpu/%.o: src/gpu/%.c src/gpu/*.h src/gl/*.h src/core/*.h src/passes/solver.h $(BUILD)/gpu/gpu_shaders.h | $(BUILD)/gpu
+$(BUILD)/gpu/%.o: src/gpu/%.c src/gpu/*.h src/gl/*.h src/core/*.h src/passes/solver.h src/passes/csf.h $(BUILD)/gpu/gpu_shaders.h | $(BUILD)/gpu
 	$(CC) $(CFLAGS) $(CORE_CFLAGS) $(GL_CFLAGS) -Isrc/gl -Isrc/passes -I$(BUILD)/gpu -c -o $@ $<
 
 $(BUILD)/gpu:
 	mkdir -p $@
 
 $(BUILD)/tests/test_gl_backend.o $(BUILD)/tests/test_gl_timing.o $(BUILD)/tests/test_gl_sort.o $(BUILD)/tests/test_gl_stats.o \
-    $(BUILD)/tests/test_gl_solvers.o $(BUILD)/tests/test_gl_fused.o $(BUILD)/tests/test_gl_health.o: CORE_CFLAGS += -Isrc/gpu
+    $(BUILD)/tests/test_gl_solvers.o $(BUILD)/tests/test_gl_fused.o $(BUILD)/tests/test_gl_health.o \
+    $(BUILD)/tests/test_gl_csf.o: CORE_CFLAGS += -Isrc/gpu
 
 # Warnings are errors under clang too.
 .PHONY: check-clang-gpu

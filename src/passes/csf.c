@@ -47,6 +47,7 @@
  * differs between particles), so momentum is conserved only as far as kappa
  * is uniform: tests/test_csf.c measures the net force on a disc. Wall
  * particles get none and are left out of the sums, as in the normals pass. */
+#include "csf.h"
 #include "sph_search.h"
 #include "sph_walls.h"
 
@@ -78,7 +79,6 @@ static double csf_spacing(const sph_scene_def *def)
  * spacing s filling the half-space below it (the rows at depth l s, l = 0
  * at the surface, each particle of volume s^dim as in the normals pass):
  * s times the sum over the rows of |grad c| where it passes the cut. */
-double sph_csf_delta_integral(const sph_kernel *k, int dim, double s);
 double sph_csf_delta_integral(const sph_kernel *k, int dim, double s)
 {
     const int reach = (int)ceil(k->h / s), ny = dim == 3 ? reach : 0;
@@ -185,15 +185,21 @@ static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float coef, 
     for (int d = 0; d < dim; d++) P->acc_s[d][i] = coef * kappa * ni[d];
 }
 
+/* a few hundred kernel values: cheaper to recompute each step than to keep */
+float sph_csf_coefficient(const sph_sim *sim)
+{
+    const sph_kernel *k = &sim->k_density;
+    const double B = sph_csf_delta_integral(k, sim->dim, csf_spacing(&sim->def));
+    return B > 0 ? (float)(sim->def.sigma / (B * k->h * sim->def.rest_density)) : 0.0f;
+}
+
 static void run(sph_sim *sim)
 {
     const sph_kernel k = sim->k_density;
     const int n = (int)sim->n, dim = sim->dim;
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
     const bool periodic = sph_sim_periodic(sim);
-    /* a few hundred kernel values: cheaper to recompute each step than to keep */
-    const double B = sph_csf_delta_integral(&k, dim, csf_spacing(&sim->def));
-    const float coef = B > 0 ? (float)(sim->def.sigma / (B * k.h * sim->def.rest_density)) : 0.0f;
+    const float coef = sph_csf_coefficient(sim);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, csf_one, sim, &k, coef, i);
 }
