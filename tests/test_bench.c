@@ -337,6 +337,14 @@ Test(bench, bad_command_lines_exit_2)
         "bench ladder --set search.sort=sideways",
         "bench ladder --bogus",
         "bench scaling extra",
+        "bench solvers --time 0",
+        "bench solvers --time -0.02",
+        "bench solvers --time abc",
+        "bench solvers --time 0.005",
+        "bench solvers --repeats 0",
+        "bench solvers --repeats 51",
+        "bench solvers --at 0",
+        "bench solvers --dim 2",
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         int rc = test_sphlab(bad[i], g_out, sizeof g_out);
@@ -374,4 +382,37 @@ Test(bench, quick_solvers_runs, .timeout = 300)
         cr_assert_leq(step_max, 0.1 * 1.01, "%s: each step's largest error %g %% on time mean", names[s] + 1, step_max);
         if (s) cr_assert(its >= 1, "%s: %g iterations per step", names[s] + 1, its);
     }
+}
+
+/* `bench solvers` at a tiny size, two rounds: the stiffness found holds the
+ * target, each row carries its median ratio and the rounds' least and
+ * largest (least <= median <= largest, all finite), and the summary names
+ * the window and both ratios (no timing is asserted). */
+Test(bench, tiny_solvers_ratios, .timeout = 300)
+{
+    int rc = test_sphlab("bench solvers --at 500 --time 0.006 --repeats 2", g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "exit %d\n%s", rc, g_out);
+    cr_assert(strstr(g_out, "window: 0 to 0.006 s simulated"), "no window line:\n%s", g_out);
+    cr_assert(strstr(g_out, "the least that holds it"), "no stiffness found:\n%s", g_out);
+    cr_assert(strstr(g_out, "at equal error (step max <= 0.1 % for all three): yes"), "not at equal error:\n%s", g_out);
+    const char *names[] = {"\neos ", "\npcisph ", "\ndfsph "};
+    for (int s = 0; s < 3; s++) {
+        const char *row = strstr(g_out, names[s]);
+        cr_assert(row, "no row for%s\n%s", names[s], g_out);
+        double v[9], lo, hi;
+        cr_assert_eq(sscanf(row + 1, "%*s %*s %lf %lf %lf %lf %lf %lf %lf %lf %lf-%lf", &v[0], &v[1], &v[2], &v[3],
+                            &v[4], &v[5], &v[6], &v[7], &lo, &hi),
+                     10, "row: %.160s", row + 1);
+        for (int c = 0; c < 8; c++) cr_assert(isfinite(v[c]), "%s: column %d not finite", names[s] + 1, c);
+        cr_assert_leq(v[1], 0.1 * (1 + 1e-6), "%s: the steps' errors' time mean %g %%", names[s] + 1, v[1]);
+        cr_assert(v[7] > 0 && lo > 0 && lo <= v[7] && v[7] <= hi && isfinite(hi), "%s: ratio %g (%g-%g)",
+                  names[s] + 1, v[7], lo, hi);
+    }
+    const char *sum = strstr(g_out, "ratio: eos / pcisph ");
+    cr_assert(sum, "no ratio line:\n%s", g_out);
+    double r[6];
+    cr_assert_eq(sscanf(sum, "ratio: eos / pcisph %lf (%lf-%lf), eos / dfsph %lf (%lf-%lf)", &r[0], &r[1], &r[2],
+                        &r[3], &r[4], &r[5]),
+                 6, "ratio line: %.160s", sum);
+    for (int i = 0; i < 6; i++) cr_assert(isfinite(r[i]) && r[i] > 0, "ratio line: %.160s", sum);
 }

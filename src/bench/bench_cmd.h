@@ -18,6 +18,8 @@
 typedef struct bench_opts {
     const char *what, *out, *levels;
     double fps, at;
+    double time;  /* [s] solvers: --time, the simulated window; < 0 if not given */
+    int repeats;  /* solvers: --repeats, interleaved rounds; < 0 if not given */
     bool quick, quiet, at_given, trace;
     bench_config cfg;
     int sel[BENCH_MAX_LEVELS], nsel;

@@ -70,6 +70,8 @@ void bench_opts_init(bench_opts *o, bool quick)
     o->quick = quick;
     o->out = ".";
     o->at = quick ? 6000 : 20000;
+    o->time = -1;
+    o->repeats = -1;
     for (int i = 0; i < bench_level_count && i < BENCH_MAX_LEVELS; i++) o->sel[o->nsel++] = i;
 }
 

@@ -1,22 +1,28 @@
 /* sphlab bench solvers: the pressure solvers side by side at equal density
- * error (issue 14's target): a 3D dam break of N particles (--at, at least
- * 50,000 by default) run for a short simulated time with
- *   eos     at the stiffness that holds the largest density error within
- *           the target (doubled from a start until a run holds it),
+ * error (issue 14's target): a 3D dam break of N particles (--at, 50,000 by
+ * default) run for T simulated seconds (--time, 0.02 s by default) from the
+ * same initial state with
+ *   eos     at the least stiffness that holds the target (bisection on
+ *           log k: doubled or halved from a start until the target is
+ *           bracketed, then split until the bracket is within 10 %; a try
+ *           stops as soon as its error can only end above the target, or
+ *           when the watchdog fires),
  *   pcisph  and dfsph at solver_tolerance = the target,
- * interleaved (eos, pcisph, dfsph, eos, ...) so that a change of the
- * machine's load hits all three alike; each setting's figures are the
- * medians over the repeats. The density error is the one the step reached
- * (sph_sim_compression_lattice: summed at the positions after the step,
- * against the lattice's rest density rho_rest = rho0 (1 + e), e = +1.2 % in
- * 3D at h = 2 spacings, the walls as the solvers count them), its largest
- * over the run, the time mean of each step's largest (what the stiffness
- * search holds to the target: the largest of the run is not a function of
- * the stiffness for the equation of state, see SOLVERS_TARGET) and the
- * time mean of the mean compression. One yardstick for the three: the
- * equation of state holds rho0 with the volume model's walls, so by its own
- * measure a block at rest on the lattice reads e (and 0.2 % more at the
- * walls) before anything moves, at any stiffness. */
+ * in R interleaved rounds (--repeats; eos, pcisph, dfsph, eos, ...) so that
+ * a change of the machine's load hits all three alike; each setting's
+ * figures are the medians over the rounds, each ratio the median of the
+ * rounds' own ratios with the least and the largest. The error is measured
+ * the same way for all three over the same window 0 to T: after every step
+ * the compression sph_sim_compression_lattice gives (summed at the positions
+ * after the step, against the lattice's rest density rho_rest = rho0 (1 + e),
+ * e = +1.2 % in 3D at h = 2 spacings, the walls as the solvers count them);
+ * its largest over the particles is a step's error, and the target holds
+ * the time mean of the steps' errors (each weighted by its dt). The largest
+ * over the particles and the steps is printed beside it: the equation of
+ * state cannot be held to it (see SOLVERS_TARGET). One yardstick for the
+ * three: the equation of state holds rho0 with the volume model's walls, so
+ * by its own measure a block at rest on the lattice reads e (and 0.2 % more
+ * at the walls) before anything moves, at any stiffness. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,8 +38,11 @@
 #define SOLVERS_TARGET 0.001
 #define SOLVERS_SPACING 0.01     /* [m] h = 2 spacings */
 #define SOLVERS_DT_CAP 0.002     /* [s] the step's cap; CFL 0.4 below it */
-#define SOLVERS_K_START 4000.0   /* [m^2/s^2] the first stiffness the search tries (c = 63 m/s) */
+#define SOLVERS_K_START 16000.0  /* [m^2/s^2] the first stiffness the search tries (c = 126 m/s) */
+#define SOLVERS_K_MIN 250.0      /* [m^2/s^2] the search goes no lower (c = 16 m/s) */
 #define SOLVERS_K_MAX 4.1e6      /* [m^2/s^2] the search gives up above (c = 2 km/s) */
+#define SOLVERS_K_RATIO 1.1      /* [1] the search stops when its bracket (held / not held) is this narrow */
+#define SOLVERS_ROUNDS_MAX 50    /* --repeats' bound */
 
 enum { SETTING_EOS, SETTING_PCISPH, SETTING_DFSPH, SETTINGS };
 static const char *const setting_names[SETTINGS] = {"eos", "pcisph", "dfsph"};
@@ -47,8 +56,13 @@ typedef struct solver_run {
     double iterations;  /* [1] per step, divergence solve included */
     double ms_per_s;    /* [ms] wall time in sph_sim_step per simulated second */
     double dt_mean;     /* [s] */
+    bool over;          /* not ok: stopped because the target could only end above (not the watchdog) */
+    double t_end;       /* [s] simulated time reached */
+    double wall_ms;     /* [ms] the whole run, the error's summation included */
     char why[1024];     /* if not ok */
 } solver_run;
+
+static bool g_trace; /* --trace: a line per run on stderr */
 
 /* The column: nx x ny x nz particles, the box 3 columns long and 1.5 high. */
 static void column_sides(double n, int side[3])
@@ -102,6 +116,7 @@ static void run_one(int setting, double n, double k, double duration, int thread
         return;
     }
     sim->watchdog = watch; /* off while timing, as the ladder (--watchdog keeps it) */
+    const double w0 = sph_now_ms();
     double wall = 0, its = 0, mean_dt = 0, max_dt = 0;
     long steps = 0;
     out->ok = true;
@@ -124,7 +139,8 @@ static void run_one(int setting, double n, double k, double duration, int thread
         steps++;
         if (stop_above > 0 && max_dt > stop_above * duration) { /* the time mean can only end above it */
             out->ok = false;
-            snprintf(out->why, sizeof out->why, "the time mean of each step's largest error is above %g %% by t = %.4g s",
+            out->over = true;
+            snprintf(out->why, sizeof out->why, "the time mean of the steps' errors is above %g %% by t = %.4g s",
                      100 * stop_above, sim->t);
             break;
         }
@@ -135,7 +151,15 @@ static void run_one(int setting, double n, double k, double duration, int thread
     out->err_step = sim->t > 0 ? max_dt / sim->t : 0;
     out->ms_per_s = sim->t > 0 ? wall / sim->t : 0;
     out->dt_mean = steps ? sim->t / (double)steps : 0;
+    out->t_end = sim->t;
     sph_sim_destroy(sim);
+    out->wall_ms = sph_now_ms() - w0;
+    if (g_trace)
+        fprintf(stderr,
+                "trace solvers %-6s k %-9g %6ld steps  t %.4g s  error: largest %.4f %%, steps' time mean %.4f %%  "
+                "%.0f ms per simulated s  %.1f s wall%s%s\n",
+                setting_names[setting], k, steps, out->t_end, 100 * out->err_max, 100 * out->err_step, out->ms_per_s,
+                1e-3 * out->wall_ms, out->ok ? "" : "  stopped: ", out->ok ? "" : out->why);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -150,58 +174,119 @@ static double median(double *v, int n)
     return n == 0 ? NAN : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+/* The least stiffness whose run holds the time mean of the steps' errors
+ * within the target (the eos's cheapest run at that error): bracketed by
+ * doubling or halving from SOLVERS_K_START, then bisected on log k. 0 if
+ * none from SOLVERS_K_MIN to SOLVERS_K_MAX holds; *k_over: the stiffest stopped by
+ * the target rather than the watchdog, 0 if none. */
+static double stiffness_search(const bench_opts *o, double count, double duration, int threads, int *tries,
+                               double *k_over)
+{
+    double k_hold = 0, k_low = 0; /* k_low: the stiffest below k_hold known not to hold */
+    *k_over = 0;
+    *tries = 0;
+    solver_run r;
+#define TRY(kk)                                                                                                       \
+    do {                                                                                                              \
+        bench_progress("eos: trying stiffness %g (try %d)", (kk), *tries + 1);                                       \
+        run_one(SETTING_EOS, count, (kk), duration, threads, SOLVERS_TARGET, true, &r);                              \
+        ++*tries;                                                                                                     \
+        if (r.over && (kk) > *k_over) *k_over = (kk);                                                                 \
+        if (!o->quiet)                                                                                                \
+            printf("  eos, stiffness %-9g %s (%.1f s)\n", (kk), r.ok ? "holds it" : r.why, 1e-3 * r.wall_ms);     \
+    } while (0)
+    double k = SOLVERS_K_START;
+    TRY(k);
+    if (r.ok) {
+        k_hold = k;
+        for (k = k_hold / 2; k >= SOLVERS_K_MIN; k /= 2) {
+            TRY(k);
+            if (!r.ok) {
+                k_low = k;
+                break;
+            }
+            k_hold = k;
+        }
+    } else {
+        k_low = k;
+        for (k = 2 * k_low; k <= SOLVERS_K_MAX; k *= 2) {
+            TRY(k);
+            if (r.ok) {
+                k_hold = k;
+                break;
+            }
+            k_low = k;
+        }
+    }
+    while (k_hold > 0 && k_low > 0 && k_hold / k_low > SOLVERS_K_RATIO) {
+        k = sqrt(k_hold * k_low);
+        TRY(k);
+        if (r.ok)
+            k_hold = k;
+        else
+            k_low = k; /* the watchdog too: not a stiffness that holds it */
+    }
+#undef TRY
+    return k_hold;
+}
+
 int bench_cmd_solvers(bench_opts *o)
 {
     const double n = o->at_given ? o->at : (o->quick ? 4000 : 50000);
-    const double duration = o->quick ? 0.01 : 0.02; /* [s] simulated: the column's first fall */
-    const int repeats = o->quick ? 1 : 3, threads = 2;
+    const double duration = o->time > 0 ? o->time : o->quick ? 0.01 : 0.02; /* [s] simulated: the column's first fall */
+    const int repeats = o->repeats > 0 ? o->repeats : o->quick ? 1 : 5, threads = 2;
+    if (o->cfg.dim != 3) {
+        fprintf(stderr, "sphlab bench solvers: --dim %d: the solver bench is a 3D dam break only\n", o->cfg.dim);
+        return 2;
+    }
+    const double cap_steps = duration / SOLVERS_DT_CAP;
+    if (fabs(cap_steps - round(cap_steps)) > 1e-6) { /* else the solvers' last step runs past T */
+        fprintf(stderr, "sphlab bench solvers: --time %g: want a whole number of the solvers' %g s steps\n", duration,
+                SOLVERS_DT_CAP);
+        return 2;
+    }
+    if (repeats > SOLVERS_ROUNDS_MAX) {
+        fprintf(stderr, "sphlab bench solvers: --repeats %d: at most %d\n", repeats, SOLVERS_ROUNDS_MAX);
+        return 2;
+    }
+    g_trace = o->trace;
     int side[3];
     column_sides(n, side);
     const double count = (double)side[0] * side[1] * side[2];
     setvbuf(stdout, NULL, _IOLBF, 0); /* each line as it comes: a long run into a file keeps what it measured */
     char date[64];
     double load0[3], load1[3];
+    const double t_start = sph_now_ms();
     bench_now_iso(date, sizeof date);
     bench_loadavg(load0);
     if (!o->quiet)
         printf("sphlab bench solvers: %s, load %.2f; 3D dam break, %.0f particles (%d x %d x %d, spacing %g m), "
-               "%g s simulated, %d threads, target: density error <= %g %% (each step's largest; eos: its time mean)\n",
-               date, load0[0], count, side[0], side[1], side[2], SOLVERS_SPACING, duration, threads,
-               100 * SOLVERS_TARGET);
+               "%d threads\nwindow: 0 to %g s simulated, the same initial state for all; a step's error: the largest "
+               "compression over the particles\ntarget: the time mean of the steps' errors <= %g %% (pcisph, dfsph: "
+               "solver_tolerance = %g %%, each step)\n",
+               date, load0[0], count, side[0], side[1], side[2], SOLVERS_SPACING, threads, duration,
+               100 * SOLVERS_TARGET, 100 * SOLVERS_TARGET);
 
-    /* the stiffness: doubled until a run holds the target; if none does
-     * before the watchdog stops the runs, the stiffest that ran is compared
-     * (the equation of state then at a larger error than the solvers) */
-    double k = SOLVERS_K_START, k_ran = 0;
-    bool held = false;
-    solver_run r;
-    for (; k <= SOLVERS_K_MAX; k *= 2) {
-        bench_progress("eos: trying stiffness %g", k);
-        run_one(SETTING_EOS, count, k, duration, threads, SOLVERS_TARGET, true, &r);
-        if (!o->quiet) printf("  eos, stiffness %-9g %s\n", k, r.ok ? "holds it" : r.why);
-        if (r.ok) {
-            held = true;
-            break;
-        }
-        if (strstr(r.why, "time mean")) k_ran = k; /* stopped by the target, not by the watchdog */
-    }
-    if (!held) {
-        if (!(k_ran > 0)) {
-            bench_progress_done();
-            fprintf(stderr, "sphlab bench solvers: no stiffness from %g to %g ran\n", SOLVERS_K_START, SOLVERS_K_MAX);
-            return 1;
-        }
-        k = k_ran;
-        if (!o->quiet)
-            printf("  no stiffness holds %g %%: eos is compared at %g, the stiffest that ran, at a larger error\n",
-                   100 * SOLVERS_TARGET, k);
-    }
+    int tries;
+    double k_over;
+    double k = stiffness_search(o, count, duration, threads, &tries, &k_over);
     bench_progress_done();
+    if (!(k > 0)) { /* no ratio at equal error: timing eos at a larger error would answer another question */
+        fprintf(stderr,
+                "sphlab bench solvers: no stiffness from %g to %g holds the time mean of the steps' errors within "
+                "%g %% over 0 to %g s (%d tries; the stiffest stopped by the target, not by the watchdog: %g); "
+                "no ratio at equal error\n",
+                SOLVERS_K_MIN, SOLVERS_K_MAX, 100 * SOLVERS_TARGET, duration, tries, k_over);
+        return 1;
+    }
+    if (!o->quiet)
+        printf("  eos at stiffness %g: the least that holds it, to a factor %g (%d tries, %.0f s)\n", k,
+               SOLVERS_K_RATIO, tries, 1e-3 * (sph_now_ms() - t_start));
 
-    solver_run runs[SETTINGS][8];
+    static solver_run runs[SETTINGS][SOLVERS_ROUNDS_MAX];
     for (int rep = 0; rep < repeats; rep++)
         for (int s = 0; s < SETTINGS; s++) {
-            bench_progress("repeat %d of %d: %s", rep + 1, repeats, setting_names[s]);
+            bench_progress("round %d of %d: %s", rep + 1, repeats, setting_names[s]);
             run_one(s, count, k, duration, threads, 0, o->cfg.watchdog, &runs[s][rep]);
             if (!runs[s][rep].ok) {
                 bench_progress_done();
@@ -212,29 +297,45 @@ int bench_cmd_solvers(bench_opts *o)
     bench_progress_done();
     bench_loadavg(load1);
 
-    double med[SETTINGS][7];
+    enum { C_MAX, C_MEAN, C_STEPS, C_ITS, C_MS, C_DT, C_STEP, C_RATIO, COLS };
+    double med[SETTINGS][COLS], lo[SETTINGS], hi[SETTINGS];
     for (int s = 0; s < SETTINGS; s++) {
-        double v[7][8];
+        double v[COLS][SOLVERS_ROUNDS_MAX];
         for (int rep = 0; rep < repeats; rep++) {
             const solver_run *x = &runs[s][rep];
-            const double f[7] = {x->err_max,    x->err_mean, x->steps,   x->iterations,
-                                 x->ms_per_s, x->dt_mean,  x->err_step};
-            for (int c = 0; c < 7; c++) v[c][rep] = f[c];
+            const double ratio = runs[SETTING_EOS][rep].ms_per_s / x->ms_per_s; /* this round's own */
+            const double f[COLS] = {x->err_max, x->err_mean, x->steps,    x->iterations,
+                                    x->ms_per_s, x->dt_mean, x->err_step, ratio};
+            for (int c = 0; c < COLS; c++) v[c][rep] = f[c];
         }
-        for (int c = 0; c < 7; c++) med[s][c] = median(v[c], repeats);
+        for (int c = 0; c < COLS; c++) med[s][c] = median(v[c], repeats); /* sorts: v[C_RATIO] ascending */
+        lo[s] = v[C_RATIO][0];
+        hi[s] = v[C_RATIO][repeats - 1];
     }
+    bool equal = true;
+    for (int s = 0; s < SETTINGS; s++) equal = equal && med[s][C_STEP] <= SOLVERS_TARGET * (1 + 1e-6);
     if (!o->quiet) {
-        printf("\n%-8s %-11s %-10s %-11s %-11s %-7s %-8s %-8s %-14s %s\n", "solver", "stiffness", "err max %",
-               "step max %", "err mean %", "steps", "dt ms", "it/step", "ms per sim. s", "eos / this");
+        printf("\n%-8s %-11s %-10s %-11s %-11s %-7s %-8s %-8s %-14s %-11s %s\n", "solver", "stiffness", "err max %",
+               "step max %", "err mean %", "steps", "dt ms", "it/step", "ms per sim. s", "eos / this", "least-largest");
         for (int s = 0; s < SETTINGS; s++) {
             char kk[32];
             snprintf(kk, sizeof kk, s == SETTING_EOS ? "%g" : "-", k);
-            printf("%-8s %-11s %-10.4f %-11.4f %-11.4f %-7.0f %-8.4f %-8.1f %-14.0f %.2f\n", setting_names[s], kk,
-                   100 * med[s][0], 100 * med[s][6], 100 * med[s][1], med[s][2], 1e3 * med[s][5], med[s][3],
-                   med[s][4], med[SETTING_EOS][4] / med[s][4]);
+            printf("%-8s %-11s %-10.4f %-11.4f %-11.4f %-7.0f %-8.4f %-8.1f %-14.0f %-11.2f %.2f-%.2f\n",
+                   setting_names[s], kk, 100 * med[s][C_MAX], 100 * med[s][C_STEP], 100 * med[s][C_MEAN],
+                   med[s][C_STEPS], 1e3 * med[s][C_DT], med[s][C_ITS], med[s][C_MS], med[s][C_RATIO], lo[s], hi[s]);
         }
-        printf("\nmedians of %d interleaved repeat(s); load %.2f at the start, %.2f at the end (1-minute averages)\n",
-               repeats, load0[0], load1[0]);
+        printf("\nerr max: the largest over the particles and the steps; step max: the time mean of the steps' "
+               "largest (the target);\nerr mean: the time mean of the mean compression; medians of %d interleaved "
+               "round(s); eos / this: the median of\nthe rounds' ratios of ms per simulated second, with the least "
+               "and the largest\n",
+               repeats);
+        printf("at equal error (step max <= %g %% for all three): %s\n", 100 * SOLVERS_TARGET,
+               equal ? "yes" : "NO");
+        printf("ratio: eos / pcisph %.2f (%.2f-%.2f), eos / dfsph %.2f (%.2f-%.2f); %.0f particles, %g s simulated\n",
+               med[SETTING_PCISPH][C_RATIO], lo[SETTING_PCISPH], hi[SETTING_PCISPH], med[SETTING_DFSPH][C_RATIO],
+               lo[SETTING_DFSPH], hi[SETTING_DFSPH], count, duration);
+        printf("load %.2f at the start, %.2f at the end (1-minute averages); %.0f s in all\n", load0[0], load1[0],
+               1e-3 * (sph_now_ms() - t_start));
     }
     return 0;
 }

@@ -26,8 +26,9 @@ static const app_cmd_spec spec = {
                 "              and a check against the reference level; table, CSV, JSON, chart\n"
                 "  scaling     time per step against N for each level (log-log): O(N^2) against O(N)\n"
                 "  solvers     3D dam break (--at N, default 50,000): eos at the stiffness that holds a 0.1 %\n"
-                "              density error, pcisph and dfsph at tolerance 0.1 %, interleaved repeats: error,\n"
-                "              steps, iterations, ms per simulated second (medians) and the ratios\n"
+                "              density error over --time T (the stiffness by bisection on log k), pcisph and\n"
+                "              dfsph at tolerance 0.1 %, --repeats R interleaved rounds: error, steps, iterations,\n"
+                "              ms per simulated second (medians), the ratios (median, least, largest)\n"
                 "  machine     the machine's limits: memory bandwidth (streaming loops), float peak (FMA loop)\n"
                 "  levels      the levels and the scene keys that make each\n"
                 "options:\n",
@@ -123,6 +124,8 @@ static int parse_args(int argc, char **argv, bench_opts *o)
     o->cfg.dim = (int)opt.dim;
     o->at_given = opt.at >= 0;
     o->at = (double)opt.at;
+    o->time = opt.time;
+    o->repeats = (int)opt.repeats;
     o->out = opt.out;
     o->levels = opt.levels;
     o->quick = opt.quick;
