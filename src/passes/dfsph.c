@@ -7,13 +7,25 @@
  *   divergence-free: D_i = sum_j m_j (v*_i - v*_j) . grad W_ij (+ rho_r grad(walls' share) . v*_i at walls, solver.h),
  *     kappa^v_i += max(D_i, 0) alpha_i / dt, until max dt D_i / rho_r <= divergence_tolerance (the density
  *     change the flow would make in one step, counted where rho_i >= rho_r);
- *   constant density: rho*_i = rho_i + dt^2 (sum_j m_j (a_i - a_j) . grad W_ij + rho_r grad(walls' share) . a_i),
- *     the density integration will reach (a: every acceleration), kappa_i += max(rho*_i - rho_r, 0) alpha_i / dt^2,
- *     until max (rho*_i - rho_r) / rho_r <= solver_tolerance;
+ *   constant density: rho*_i = sum_j m_j W(x*_i - x*_j) + rho_r (walls' share at x*_i), summed at the positions
+ *     x* = x + dt v* the step will reach, clamped into the box as the walls pass will (as PCISPH does, solver.h);
+ *     kappa_i = max(kappa_i + omega (rho*_i - rho_r) alpha_i / dt^2, -kappa^v_i), until
+ *     max (rho*_i - rho_r) / rho_r <= solver_tolerance: the largest error, not Bender & Koschier's average;
  * with the factor alpha_i = rho_r / (G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij),
  * G_i = sum_j m_j grad W_ij + rho_r grad(walls' share) (Bender & Koschier 2017, eq. 12 with rho_i = rho_r)
  * and the acceleration a_i = -sum_j m_j (K_i + K_j) / rho_r grad W^p_ij - K_i grad(walls' share),
- * K = kappa^v + kappa (eq. 10). Compressions only: a particle below rho_r (a free surface) pulls no one.
+ * K = kappa^v + kappa (eq. 10).
+ * Why the density solve differs from the paper's (rho* = rho + dt^2 sum_j m_j (a_i - a_j) . grad W_ij, eq. 11,
+ * and kappa only growing): the linearised rho* misses the second-order terms and the walls pass, and the 2D
+ * dam break of tests/test_solvers.c (dfsph_holds_reached_2d) ended 26 of 260 steps above its 0.1 % at the
+ * positions reached, up to 3.4 %. Summed at x*, a kappa that only grows ran away where a particle's own
+ * push cannot lower its density (pressed onto a wall) and, once past, stays: hence a step that can also
+ * lower kappa, relaxed by omega = 0.5 as Ihmsen et al. 2014 (IISPH, IEEE TVCG 20(3)) relax their Jacobi
+ * step (unrelaxed, the watchdog stopped both dam breaks of those tests within 2 steps). K stays >= 0 (no
+ * pull, as negative_pressure = clamp), and the bound is on K, not on kappa alone, so that the density solve
+ * can take back a divergence pressure that overshot: with kappa >= 0, lesson 11's dam break at a 1 % tolerance stopped the watchdog at step 210
+ * (near-coincident particles in the far corner driven apart by kappa^v up to 420 m^2/s^2), as the
+ * linearised solve did at step 176.
  * Bender & Koschier solve the divergence after moving the particles, with
  * new neighbours; here both solves use the step's lists, the divergence one
  * first, so the density solve accounts for the positions it changes. Warm
@@ -26,21 +38,21 @@
 #include <stdio.h>
 
 /* The share of the last step's kappa a solve starts from. 0: the warm start
- * is off. Why: correct() only adds (a particle's kappa grows while its
- * predicted density is above rho_r and never shrinks), so a start that
- * overestimates this step's pressure is applied whole, and nothing in the
- * solve can take it back: the error it measures only sees compressions.
- * Measured on the 2D dam break of tests/test_solvers.c (dt = 0.5 ms, 300
- * steps): share 0 ends with 511 J of kinetic energy (PCISPH: 516 J), 6.9
- * iterations per step; 0.5 with 646 J (+26 %, energy the stale pressure
- * put in) and 4.2 iterations; 1 (Bender & Koschier 2017, Algorithm 3's
- * sums) stops the watchdog at step 50 with every solve converged. Letting
- * correct() also subtract (kappa = max(kappa + excess alpha / dt^2, 0), a
- * projected Jacobi) diverges within 7 steps even from 0. Enabling it needs
- * a solve that can lower kappa and converges; kappa [m^2/s^2] holds 1/dt^2
+ * is off. Measured with the linearised density solve, whose kappa only grew
+ * (see the top), on the 2D dam break of tests/test_solvers.c (dt = 0.5 ms,
+ * 300 steps): share 0 ended with 511 J of kinetic energy (PCISPH: 516 J),
+ * 6.9 iterations per step; 0.5 with 646 J (+26 %, energy the stale pressure
+ * put in, which that solve could not take back) and 4.2 iterations; 1
+ * (Bender & Koschier 2017, Algorithm 3's sums) stopped the watchdog at step
+ * 50. Not remeasured with the density solve that can lower kappa; the
+ * divergence solve's kappa^v still only grows. kappa [m^2/s^2] holds 1/dt^2
  * too, so with a varying dt the start must also be scaled by
  * (dt_last / dt)^2. */
 #define SPH_DFSPH_WARM 0.0f
+
+/* The relaxation of the density solve's Jacobi step (see the top): 0.5, as
+ * Ihmsen et al. 2014 (IISPH, IEEE TVCG) relax theirs. */
+#define SPH_DFSPH_OMEGA 0.5f
 
 static const char *skip_reason(const sph_scene_def *def)
 {
@@ -144,11 +156,20 @@ static void force(sph_sim *sim, bool with_density)
     }
 }
 
-/* rho_df: dt D rho/Dt of v* (density false), or the predicted density rho*
- * (density true); returns the error: max dt D / rho_r, or max (rho* - rho_r) / rho_r.
- * The divergence counts only where the density is at least rho_r: a
- * particle below it (a free surface) may expand or approach, and one with a
- * thin neighbourhood (alpha small) could not be corrected anyway. */
+/* x*_i: where integration and the walls pass will put particle i with this
+ * iteration's dv_df (x + dt v* = pred + dt dv_df, clamped into the box). */
+static inline void reached(const sph_sim *sim, uint32_t i, float c[3])
+{
+    float x[3] = {0, 0, 0};
+    for (int d = 0; d < sim->dim; d++) x[d] = sim->P.pred[d][i] + sim->dt * sim->P.dv_df[d][i];
+    sph_solver_clamped(sim, x, c);
+}
+
+/* rho_df: dt D rho/Dt of v* (density false; linear, Bender & Koschier 2017 eq. 9), or the density rho* summed at
+ * the positions x* the step will reach (density true); returns the error: max dt D / rho_r, or
+ * max (rho* - rho_r) / rho_r. The divergence counts only where the density is at least rho_r: a particle below
+ * it (a free surface) may expand or approach, and one with a thin neighbourhood (alpha small) could not be
+ * corrected anyway. */
 static double measure(sph_sim *sim, bool density)
 {
     sph_particles *P = &sim->P;
@@ -159,18 +180,34 @@ static double measure(sph_sim *sim, bool density)
     float worst = 0.0f;
 #pragma omp parallel for schedule(static) reduction(max : worst) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (density) {
+            float xi[3];
+            reached(sim, (uint32_t)i, xi);
+            float rho = P->mass[i] * sph_kernel_w(&sim->k_density, 0.0f);
+            for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+                const uint32_t j = S->nbr[e];
+                float xj[3], r2 = 0;
+                reached(sim, j, xj);
+                for (int d = 0; d < dim; d++) {
+                    const float dx = sph_solver_dx(sim, xi[d] - xj[d], d);
+                    r2 += dx * dx;
+                }
+                rho += P->mass[j] * sph_kernel_w(&sim->k_density, sqrtf(r2));
+            }
+            if (walls) rho += rho_r * sph_solver_walls(sim, xi, NULL);
+            P->rho_df[i] = rho;
+            worst = fmaxf(worst, (rho - rho_r) / rho_r);
+            continue;
+        }
         float vi[3] = {0, 0, 0};
-        for (int d = 0; d < dim; d++) vi[d] = P->dv_df[d][i] + (density ? 0.0f : P->vel[d][i]);
+        for (int d = 0; d < dim; d++) vi[d] = P->dv_df[d][i] + P->vel[d][i];
         float sum = 0;
         for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
             const uint32_t j = S->nbr[e];
             float dx[3], r2;
             pair_dx(sim, i, j, dx, &r2);
             const float f = P->mass[j] * grad_factor(&sim->k_density, r2);
-            for (int d = 0; d < dim; d++) {
-                const float vj = P->dv_df[d][j] + (density ? 0.0f : P->vel[d][j]);
-                sum += f * (vi[d] - vj) * dx[d];
-            }
+            for (int d = 0; d < dim; d++) sum += f * (vi[d] - P->dv_df[d][j] - P->vel[d][j]) * dx[d];
         }
         float rho = P->rho[i];
         if (walls) {
@@ -180,18 +217,15 @@ static double measure(sph_sim *sim, bool density)
             /* the density pass counted the walls as the volume model does: count them as the solvers do */
             rho += rho_r * share - rho0 * sph_wall_hidden(sim, &sim->k_density, i, NULL);
         }
-        if (density) {
-            P->rho_df[i] = rho + dt * sum; /* sum: of dv, so dt sum is dt^2 sum of the accelerations */
-            worst = fmaxf(worst, (P->rho_df[i] - rho_r) / rho_r);
-        } else {
-            P->rho_df[i] = rho >= rho_r ? dt * sum : 0.0f;
-            worst = fmaxf(worst, P->rho_df[i] / rho_r);
-        }
+        P->rho_df[i] = rho >= rho_r ? dt * sum : 0.0f;
+        worst = fmaxf(worst, P->rho_df[i] / rho_r);
     }
     return worst;
 }
 
-/* kappa (or kappa^v) += the increment that cancels this particle's error. */
+/* The divergence: kappa^v += the increment that cancels this particle's
+ * error (Bender & Koschier 2017, Algorithm 2). The density: a relaxed,
+ * projected Jacobi step, kappa = max(kappa + omega alpha (rho* - rho_r) / dt^2, 0), see the top. */
 static void correct(sph_sim *sim, bool density)
 {
     sph_particles *P = &sim->P;
@@ -200,8 +234,10 @@ static void correct(sph_sim *sim, bool density)
     float *restrict k = density ? P->kappa : P->kappa_v;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
-        const float excess = density ? P->rho_df[i] - rho_r : P->rho_df[i]; /* dt D for the divergence */
-        k[i] += fmaxf(excess, 0.0f) * P->alpha[i] / (dt * dt);
+        if (density)
+            k[i] = fmaxf(k[i] + SPH_DFSPH_OMEGA * (P->rho_df[i] - rho_r) * P->alpha[i] / (dt * dt), -P->kappa_v[i]);
+        else
+            k[i] += fmaxf(P->rho_df[i], 0.0f) * P->alpha[i] / (dt * dt); /* rho_df: dt D */
     }
 }
 
