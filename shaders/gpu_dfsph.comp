@@ -5,14 +5,15 @@
 // CPU's lists). The force is gpu_dfsph_force.comp, a program of its own:
 // with every acceleration field this one would declare more than the 16
 // storage blocks a shader may have.
-//   0 factors: alpha_i = rho_r / (G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij), walls in G
+//   0 factors: alpha_i = rho_r / max(G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, DEN_FULL), walls in G
 //   1, 2 warm start: kappa_v (1) or kappa (2) *= u_value
 //   3 measure the divergence: rho_df = dt D rho/Dt of v + dv where rho >= rho_r (else 0), error rho_df / rho_r
 //   4 measure the density: rho_df = sum_j m_j W^rho(x*_i - x*_j) + rho_r (walls' share at x*_i) at the
 //     positions the step will reach, x* = pred + dt dv clamped into the box, error (rho_df - rho_r) / rho_r
-//     3 and 4 put the largest error, at least 0, into reduce_[2]: per work group in shared memory, then one
+//     4 puts the largest error, at least 0, into reduce_[2]: per work group in shared memory, then one
 //     atomicMax on the float's bits (non-negative floats order as their bits do; a NaN counts as 0, as fmaxf
-//     leaves it out on the CPU)
+//     leaves it out on the CPU); 3 the sum of max(error, 0), in units of 2^-28 N (so that the host reads the
+//     mean over the N particles as the count times 2^-28): per work group in shared memory, then one atomicAdd
 //   5 correct: kappa_v += max(dt D, 0) alpha / dt^2, u_value = dt^2
 //   6 correct: kappa = max(kappa + OMEGA (rho_df - rho_r) alpha / dt^2, -kappa_v) (a relaxed Jacobi step,
 //     kappa_v + kappa kept >= 0; src/passes/dfsph.c says why)
@@ -21,6 +22,7 @@ uniform uint u_count;
 uniform float u_dt;
 uniform float u_value;
 shared uint s_err[WG];
+shared float s_sum[WG];
 vec3 gr, gp, vi, xs;
 float dots, sum;
 const float OMEGA = 0.5; // SPH_DFSPH_OMEGA in src/passes/dfsph.c
@@ -100,7 +102,7 @@ void main()
                 gp[d] += RHO_R * g[d];
             }
 #endif
-            precise float den = dots + gr.x * gp.x + gr.y * gp.y + gr.z * gp.z;
+            precise float den = max(dots + gr.x * gp.x + gr.y * gp.y + gr.z * gp.z, DEN_FULL);
             alpha_[i] = den > ALPHA_MIN ? RHO_R / den : 0.0;
         } else if (u == 1u) {
             kappa_v_[i] *= u_value;
@@ -141,6 +143,16 @@ void main()
         }
     }
     if (u != 3u && u != 4u) return; // the same for the whole dispatch: no barrier skipped by part of a group
+    if (u == 3u) {
+        s_sum[l] = uintBitsToFloat(err);
+        barrier();
+        for (uint off = uint(WG) / 2u; off > 0u; off >>= 1) {
+            if (l < off) s_sum[l] += s_sum[l + off];
+            barrier();
+        }
+        if (l == 0u) atomicAdd(reduce_[2], uint(min(round(s_sum[0] * (268435456.0 / float(N))), 4294967040.0)));
+        return;
+    }
     s_err[l] = err;
     barrier();
     for (uint off = uint(WG) / 2u; off > 0u; off >>= 1) {

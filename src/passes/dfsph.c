@@ -5,27 +5,36 @@
  * (where the neighbour lists and the density were made), both on the
  * velocity v* = v + dt (other accelerations + this pass's a):
  *   divergence-free: D_i = sum_j m_j (v*_i - v*_j) . grad W_ij (+ rho_r grad(walls' share) . v*_i at walls, solver.h),
- *     kappa^v_i += max(D_i, 0) alpha_i / dt, until max dt D_i / rho_r <= divergence_tolerance (the density
- *     change the flow would make in one step, counted where rho_i >= rho_r);
+ *     kappa^v_i += max(D_i, 0) alpha_i / dt, until the mean of max(dt D_i, 0) / rho_r <= divergence_tolerance
+ *     (the density change the flow would make in one step, counted where rho_i >= rho_r; the average, as
+ *     Bender & Koschier's Algorithm 2);
  *   constant density: rho*_i = sum_j m_j W(x*_i - x*_j) + rho_r (walls' share at x*_i), summed at the positions
  *     x* = x + dt v* the step will reach, clamped into the box as the walls pass will (as PCISPH does, solver.h);
  *     kappa_i = max(kappa_i + omega (rho*_i - rho_r) alpha_i / dt^2, -kappa^v_i), until
  *     max (rho*_i - rho_r) / rho_r <= solver_tolerance: the largest error, not Bender & Koschier's average;
- * with the factor alpha_i = rho_r / (G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij),
+ * with the factor alpha_i = rho_r / max(G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, its full-lattice
+ * value, see below),
  * G_i = sum_j m_j grad W_ij + rho_r grad(walls' share) (Bender & Koschier 2017, eq. 12 with rho_i = rho_r)
  * and the acceleration a_i = -sum_j m_j (K_i + K_j) / rho_r grad W^p_ij - K_i grad(walls' share),
  * K = kappa^v + kappa (eq. 10).
- * Why the density solve differs from the paper's (rho* = rho + dt^2 sum_j m_j (a_i - a_j) . grad W_ij, eq. 11,
- * and kappa only growing): the linearised rho* misses the second-order terms and the walls pass, and the 2D
- * dam break of tests/test_solvers.c (dfsph_holds_reached_2d) ended 26 of 260 steps above its 0.1 % at the
- * positions reached, up to 3.4 %. Summed at x*, a kappa that only grows ran away where a particle's own
- * push cannot lower its density (pressed onto a wall) and, once past, stays: hence a step that can also
- * lower kappa, relaxed by omega = 0.5 as Ihmsen et al. 2014 (IISPH, IEEE TVCG 20(3)) relax their Jacobi
- * step (unrelaxed, the watchdog stopped both dam breaks of those tests within 2 steps). K stays >= 0 (no
- * pull, as negative_pressure = clamp), and the bound is on K, not on kappa alone, so that the density solve
- * can take back a divergence pressure that overshot: with kappa >= 0, lesson 11's dam break at a 1 % tolerance stopped the watchdog at step 210
- * (near-coincident particles in the far corner driven apart by kappa^v up to 420 m^2/s^2), as the
- * linearised solve did at step 176.
+ * Why the density solve differs from the paper's (rho* = rho + dt^2 sum_j m_j (a_i - a_j) . grad W_ij, eq. 11, and
+ * kappa only growing): the linearised rho* misses the second-order terms and the walls pass, and the 2D dam break
+ * of tests/test_solvers.c (dfsph_holds_reached_2d) ended 26 of 260 steps above its 0.1 % at the positions reached,
+ * up to 3.4 %. Summed at x*, a kappa that only grows ran away where a particle's own push cannot lower its density
+ * (pressed onto a wall) and, once past, stays: hence a step that can also lower kappa, relaxed by omega = 0.5 as
+ * Ihmsen et al. 2014 (IISPH, IEEE TVCG 20(3)) relax their Jacobi step (unrelaxed, the watchdog stopped both dam
+ * breaks of those tests within 2 steps). K stays >= 0 (no pull, as negative_pressure = clamp), and the bound is on
+ * K, not on kappa alone, so that the density solve can take back a divergence pressure that overshot: with kappa
+ * >= 0, lesson 11's dam break at a 1 % tolerance stopped the watchdog at step 210 (near-coincident particles in
+ * the far corner driven apart by kappa^v up to 420 m^2/s^2), as the linearised solve did at step 176. The
+ * divergence solve stops on the average as the paper's does: on the largest, at 0.1 % it ran to its cap of 100
+ * iterations where the front met the far wall, its kappa^v only growing (to 610 m^2/s^2), and pressed particles
+ * onto the wall so that the density solve, summing at positions the walls pass clamps, could not lower their
+ * density (lesson 11 at 0.1 %: 12 capped solves, one ending at 4.0 %; with the floor on alpha below, the watchdog
+ * at step 207).
+ * alpha's denominator is at least that of a particle with a full neighbourhood (sph_solver_lattice_dots): where a
+ * wall's gradient cancels the pairs' differently for the two kernels it fell to 0 or below, alpha read 0 and the
+ * particle was never corrected (lesson 11 at 0.1 %, step 106: 3 capped solves in a row).
  * Bender & Koschier solve the divergence after moving the particles, with
  * new neighbours; here both solves use the step's lists, the divergence one
  * first, so the density solve accounts for the positions it changes. Warm
@@ -94,6 +103,7 @@ static void factors(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const float rho_r = sim->solver.rho_rest;
     const bool walls = sph_sim_wall_volume(sim);
+    const float full = sim->solver.den_full;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         float gr[3] = {0, 0, 0}, gp[3] = {0, 0, 0}, dots = 0;
@@ -117,7 +127,7 @@ static void factors(sph_sim *sim)
                 gp[d] += rho_r * g[d];
             }
         }
-        const float den = dots + gr[0] * gp[0] + gr[1] * gp[1] + gr[2] * gp[2];
+        const float den = fmaxf(dots + gr[0] * gp[0] + gr[1] * gp[1] + gr[2] * gp[2], full);
         P->alpha[i] = den > 1e-6f * rho_r * rho_r / (sim->def.h * sim->def.h) ? rho_r / den : 0.0f;
     }
 }
@@ -166,10 +176,10 @@ static inline void reached(const sph_sim *sim, uint32_t i, float c[3])
 }
 
 /* rho_df: dt D rho/Dt of v* (density false; linear, Bender & Koschier 2017 eq. 9), or the density rho* summed at
- * the positions x* the step will reach (density true); returns the error: max dt D / rho_r, or
- * max (rho* - rho_r) / rho_r. The divergence counts only where the density is at least rho_r: a particle below
- * it (a free surface) may expand or approach, and one with a thin neighbourhood (alpha small) could not be
- * corrected anyway. */
+ * the positions x* the step will reach (density true); returns the error: the mean over the particles of
+ * max(dt D, 0) / rho_r (Bender & Koschier's average, Algorithm 2), or max (rho* - rho_r) / rho_r. The divergence
+ * counts only where the density is at least rho_r: a particle below it (a free surface) may expand or
+ * approach, and one with a thin neighbourhood (alpha small) could not be corrected anyway. */
 static double measure(sph_sim *sim, bool density)
 {
     sph_particles *P = &sim->P;
@@ -178,7 +188,8 @@ static double measure(sph_sim *sim, bool density)
     const float dt = sim->dt, rho_r = sim->solver.rho_rest, rho0 = sim->def.rest_density;
     const bool walls = sph_sim_wall_volume(sim);
     float worst = 0.0f;
-#pragma omp parallel for schedule(static) reduction(max : worst) if (n > SPH_PARALLEL_MIN)
+    double total = 0;
+#pragma omp parallel for schedule(static) reduction(max : worst) reduction(+ : total) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         if (density) {
             float xi[3];
@@ -219,8 +230,9 @@ static double measure(sph_sim *sim, bool density)
         }
         P->rho_df[i] = rho >= rho_r ? dt * sum : 0.0f;
         worst = fmaxf(worst, P->rho_df[i] / rho_r);
+        total += fmaxf(P->rho_df[i], 0.0f) / rho_r;
     }
-    return worst;
+    return density ? worst : total / n;
 }
 
 /* The divergence: kappa^v += the increment that cancels this particle's
@@ -252,6 +264,7 @@ static void run(sph_sim *sim)
     sph_particles *P = &sim->P;
     if (!(s->rho_rest > 0)) {
         s->rho_rest = sph_solver_rest_density(sim);
+        s->den_full = sph_solver_lattice_dots(sim);
         sph_solver_wall_table(sim);
     }
     if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */
