@@ -133,13 +133,13 @@ Test(solvers, iterations_are_passes)
 }
 
 /* A pool at rest (gravity, walls) stays nearly at rest: after 0.4 s its
- * rms speed is below 5 cm/s (measured: 2.9 cm/s pcisph, 4.1 cm/s dfsph; the
+ * rms speed is below 5 cm/s (measured: 2.9 cm/s with either solver; the
  * equation of state at its own CFL step: 8.7 cm/s, docs/accuracy.md), and
  * at no step does a particle move faster than a fall of one spacing,
  * sqrt(2 g 0.02) = 0.63 m/s. The particles in the bottom corners move most
  * (measured: 0.57 m/s at most with either solver, in the first 0.1 s); at
- * 0.4 s alone they read 0.12 to 0.20 m/s, but within the last 0.1 s up to
- * 0.53 m/s (pcisph) and 0.21 m/s (dfsph): a single instant says little. */
+ * 0.4 s alone they read 0.12 m/s, but within the last 0.1 s up to 0.53 m/s
+ * (pcisph) and 0.40 m/s (dfsph): a single instant says little. */
 Test(solvers, pool_stays_at_rest, .timeout = 120)
 {
     const char *solvers[] = {"pcisph", "dfsph"};
