@@ -232,7 +232,7 @@ static double measure(sph_sim *sim, bool density)
         worst = fmaxf(worst, P->rho_df[i] / rho_r);
         total += fmaxf(P->rho_df[i], 0.0f) / rho_r;
     }
-    return density ? worst : total / n;
+    return density ? worst : (n > 0 ? total / n : 0.0);
 }
 
 /* The divergence: kappa^v += the increment that cancels this particle's
