@@ -5,22 +5,27 @@
 // CPU's lists). The force is gpu_dfsph_force.comp, a program of its own:
 // with every acceleration field this one would declare more than the 16
 // storage blocks a shader may have.
-//   0 factors: alpha_i = rho_r / (G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij), walls in G
+//   0 factors: alpha_i = rho_r / max(G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, DEN_FULL), walls in G
 //   1, 2 warm start: kappa_v (1) or kappa (2) *= u_value
 //   3 measure the divergence: rho_df = dt D rho/Dt of v + dv where rho >= rho_r (else 0), error rho_df / rho_r
-//   4 measure the density: rho_df = rho + dt sum_j m_j (dv_i - dv_j) . grad W_ij (walls too), error
-//     (rho_df - rho_r) / rho_r
-//     3 and 4 put the largest error, at least 0, into reduce_[2]: per work group in shared memory, then one
+//   4 measure the density: rho_df = sum_j m_j W^rho(x*_i - x*_j) + rho_r (walls' share at x*_i) at the
+//     positions the step will reach, x* = pred + dt dv clamped into the box, error (rho_df - rho_r) / rho_r
+//     4 puts the largest error, at least 0, into reduce_[2]: per work group in shared memory, then one
 //     atomicMax on the float's bits (non-negative floats order as their bits do; a NaN counts as 0, as fmaxf
-//     leaves it out on the CPU)
-//   5, 6 correct: kappa_v (5) or kappa (6) += max(excess, 0) alpha / dt^2, u_value = dt^2
+//     leaves it out on the CPU); 3 the sum of max(error, 0), in units of 2^-28 N (so that the host reads the
+//     mean over the N particles as the count times 2^-28): per work group in shared memory, then one atomicAdd
+//   5 correct: kappa_v += max(dt D, 0) alpha / dt^2, u_value = dt^2
+//   6 correct: kappa = max(kappa + OMEGA (rho_df - rho_r) alpha / dt^2, -kappa_v) (a relaxed Jacobi step,
+//     kappa_v + kappa kept >= 0; src/passes/dfsph.c says why)
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;
 uniform float u_value;
 shared uint s_err[WG];
-vec3 gr, gp, vi;
+shared float s_sum[WG];
+vec3 gr, gp, vi, xs;
 float dots, sum;
+const float OMEGA = 0.5; // SPH_DFSPH_OMEGA in src/passes/dfsph.c
 
 float grad_factor(int kind, float s, float r2)
 {
@@ -36,9 +41,32 @@ vec3 velocity(uint j)
     return v;
 }
 
+// x* = pred + dt dv, clamped into the box as the walls pass will (sph_solver_clamped in src/passes/solver.h)
+vec3 reached(uint j)
+{
+    vec3 x = vec3(0.0);
+    for (int d = 0; d < DIM; d++) {
+        uint k = uint(d) * N + j;
+        precise float y = pred_[k] + u_dt * dv_df_[k];
+#if HAS_WALLS
+        if (PER[d] <= 0.0) y = min(max(y, DOM_MIN[d]), DOM_MAX[d]);
+#endif
+        x[d] = y;
+    }
+    return x;
+}
+
 void sph_pair(uint i, uint j, vec3 dx, float r2)
 {
-    if (u_count == 0u) {
+    if (u_count == 4u) {
+        vec3 xj = reached(j);
+        precise float q2 = 0.0;
+        for (int d = 0; d < DIM; d++) {
+            float e = xs[d] - xj[d];
+            q2 += e * e;
+        }
+        sum += mass_[j] * kernel_w(KD, SIG_D, sqrt(q2));
+    } else if (u_count == 0u) {
         float fr = mass_[j] * grad_factor(KD, SIG_D, r2), fp = mass_[j] * grad_factor(KP, SIG_P, r2);
         for (int d = 0; d < DIM; d++) {
             gr[d] += fr * dx[d];
@@ -61,7 +89,7 @@ void main()
         vec3 xi = PRED3(i), g = vec3(0.0);
         float share = 0.0;
 #if WALL_VOLUME
-        if (u == 0u || u == 3u || u == 4u) share = solver_walls(xi, g);
+        if (u == 0u || u == 3u) share = solver_walls(xi, g);
 #endif
         if (u == 0u) {
             gr = vec3(0.0);
@@ -74,13 +102,24 @@ void main()
                 gp[d] += RHO_R * g[d];
             }
 #endif
-            precise float den = dots + gr.x * gp.x + gr.y * gp.y + gr.z * gp.z;
+            precise float den = max(dots + gr.x * gp.x + gr.y * gp.y + gr.z * gp.z, DEN_FULL);
             alpha_[i] = den > ALPHA_MIN ? RHO_R / den : 0.0;
         } else if (u == 1u) {
             kappa_v_[i] *= u_value;
         } else if (u == 2u) {
             kappa_[i] *= u_value;
-        } else if (u == 3u || u == 4u) {
+        } else if (u == 4u) {
+            xs = reached(i);
+            sum = mass_[i] * kernel_w(KD, SIG_D, 0.0);
+            sph_walk(i, xi);
+#if WALL_VOLUME
+            vec3 gs;
+            sum += RHO_R * solver_walls(xs, gs);
+#endif
+            rho_df_[i] = sum;
+            float e = (sum - RHO_R) / RHO_R;
+            err = e > 0.0 ? floatBitsToUint(e) : 0u;
+        } else if (u == 3u) {
             vi = velocity(i);
             sum = 0.0;
             sph_walk(i, xi);
@@ -91,27 +130,29 @@ void main()
             vec3 gh;
             rho += RHO_R * share - RHO0 * wall_hidden(xi, gh);
 #endif
-            float e;
-            if (u == 4u) {
-                precise float r = rho + u_dt * sum; // sum: of dv, so dt sum is dt^2 sum of the accelerations
-                rho_df_[i] = r;
-                e = (r - RHO_R) / RHO_R;
-            } else {
-                float r = rho >= RHO_R ? u_dt * sum : 0.0;
-                rho_df_[i] = r;
-                e = r / RHO_R;
-            }
+            float r = rho >= RHO_R ? u_dt * sum : 0.0;
+            rho_df_[i] = r;
+            float e = r / RHO_R;
             err = e > 0.0 ? floatBitsToUint(e) : 0u;
+        } else if (u == 6u) {
+            precise float k = kappa_[i] + OMEGA * (rho_df_[i] - RHO_R) * alpha_[i] / u_value;
+            kappa_[i] = max(k, -kappa_v_[i]);
         } else {
-            float excess = u == 6u ? rho_df_[i] - RHO_R : rho_df_[i]; // dt D for the divergence
-            precise float add = max(excess, 0.0) * alpha_[i] / u_value;
-            if (u == 6u)
-                kappa_[i] += add;
-            else
-                kappa_v_[i] += add;
+            precise float add = max(rho_df_[i], 0.0) * alpha_[i] / u_value; // rho_df: dt D
+            kappa_v_[i] += add;
         }
     }
     if (u != 3u && u != 4u) return; // the same for the whole dispatch: no barrier skipped by part of a group
+    if (u == 3u) {
+        s_sum[l] = uintBitsToFloat(err);
+        barrier();
+        for (uint off = uint(WG) / 2u; off > 0u; off >>= 1) {
+            if (l < off) s_sum[l] += s_sum[l + off];
+            barrier();
+        }
+        if (l == 0u) atomicAdd(reduce_[2], uint(min(round(s_sum[0] * (268435456.0 / float(N))), 4294967040.0)));
+        return;
+    }
     s_err[l] = err;
     barrier();
     for (uint off = uint(WG) / 2u; off > 0u; off >>= 1) {

@@ -60,7 +60,8 @@ Test(solvers, pcisph_delta_3d) { check_delta(3); }
  * same dt reads several percent or stops. How many solves reach the cap is
  * a property of the trajectory, not of the solver: with the same code, dt =
  * 0.40, 0.45, 0.50, 0.55, 0.60 ms gave 0, 2, 2, 7, 6 capped PCISPH solves
- * (largest capped error 0.136 %) and 8, 1, 0, 1, 0 DFSPH ones. */
+ * (largest capped error 0.136 %) and 8, 1, 0, 1, 0 DFSPH ones; DFSPH now
+ * (dfsph.c) 4, 2, 2, 6, 5 (largest 0.145 %). */
 static void check_dam(const char *solver)
 {
     sph_sim *sim = dam(solver);
@@ -133,9 +134,13 @@ Test(solvers, iterations_are_passes)
 }
 
 /* A pool at rest (gravity, walls) stays nearly at rest: after 0.4 s its
- * rms speed is below 5 cm/s (measured: 2.8 cm/s pcisph, 3.4 cm/s dfsph; the
- * equation of state at its own CFL step: 8.7 cm/s, docs/accuracy.md) and no
- * particle moves faster than a fall of 2 mm, sqrt(2 g 0.002) = 0.2 m/s. */
+ * rms speed is below 5 cm/s (measured: 2.9 cm/s with either solver; the
+ * equation of state at its own CFL step: 8.7 cm/s, docs/accuracy.md), and
+ * at no step does a particle move faster than a fall of one spacing,
+ * sqrt(2 g 0.02) = 0.63 m/s. The particles in the bottom corners move most
+ * (measured: 0.57 m/s at most with either solver, in the first 0.1 s); at
+ * 0.4 s alone they read 0.12 m/s, but within the last 0.1 s up to 0.53 m/s
+ * (pcisph) and 0.40 m/s (dfsph): a single instant says little. */
 Test(solvers, pool_stays_at_rest, .timeout = 120)
 {
     const char *solvers[] = {"pcisph", "dfsph"};
@@ -147,7 +152,11 @@ Test(solvers, pool_stays_at_rest, .timeout = 120)
                  "pressure_solver = %s\n[kernels]\nh = 0.04\n[time]\ndt = 0.001\ncfl = 0\n",
                  solvers[k]);
         sph_sim *sim = test_sim(ini, 2);
-        for (int s = 0; s < 400 && !sim->alarm.raised; s++) sph_sim_step(sim);
+        float fastest = 0;
+        for (int s = 0; s < 400 && !sim->alarm.raised; s++) {
+            sph_sim_step(sim);
+            fastest = fmaxf(fastest, sim->max_speed);
+        }
         cr_assert(!sim->alarm.raised, "%s", solvers[k]);
         sph_stats st;
         sph_sim_stats(sim, &st);
@@ -155,7 +164,7 @@ Test(solvers, pool_stays_at_rest, .timeout = 120)
         for (uint32_t i = 0; i < sim->n; i++) mass += sim->P.mass[i];
         double rms = sqrt(2 * st.ekin / mass);
         cr_assert_lt(rms, 0.05, "%s: rms speed %g m/s after 0.4 s", solvers[k], rms);
-        cr_assert_lt(st.max_speed, 0.2, "%s: max speed %g m/s after 0.4 s", solvers[k], st.max_speed);
+        cr_assert_lt(fastest, sqrtf(2 * 9.81f * 0.02f), "%s: max speed %g m/s within 0.4 s", solvers[k], fastest);
         sph_sim_destroy(sim);
     }
 }
@@ -204,7 +213,9 @@ static void check_reached(const char *ini, int steps)
 {
     sph_sim *sim = test_sim(ini, 2);
     const double tol = sim->def.solver_tolerance;
-    int converged = 0;
+    int converged = 0, over = 0, first = -1;
+    long iterations = 0;
+    double worst = 0;
     for (int s = 0; s < steps && !sim->alarm.raised; s++) {
         uint64_t capped = sim->solver.capped;
         sph_sim_step(sim);
@@ -217,31 +228,46 @@ static void check_reached(const char *ini, int steps)
         cr_assert_geq(mean, 0.0);
         if (sim->solver.capped != capped) continue;
         converged++;
-        cr_assert_leq(full, tol * 1.001, "%dD step %d (t = %g s): %g at the reached positions, the solver said %g",
-                      sim->dim, s, sim->t, full, sim->solver.density_error);
+        iterations += sim->solver.iterations + sim->solver.div_iterations;
+        if (full > tol * 1.001 && over++ == 0) first = s;
+        worst = fmax(worst, full);
     }
+    cr_log_info("%s: %d of %d steps converged, %d above the tolerance (the first: step %d), largest %.4g %%, "
+                "%.1f iterations per step", sim->def.pressure_solver == SPH_PSOLVER_DFSPH ? "dfsph" : "pcisph",
+                converged, steps, over, first, 100 * worst, converged ? (double)iterations / converged : 0.0);
+    cr_assert_eq(over, 0, "%dD: %d converged steps above %g at the reached positions (the first: step %d), up to %g",
+                 sim->dim, over, tol, first, worst);
     cr_assert(!sim->alarm.raised, "the watchdog stopped step %llu", (unsigned long long)sim->step);
     cr_assert_geq(converged, steps * 9 / 10, "%d of %d solves converged", converged, steps);
     sph_sim_destroy(sim);
 }
 
 /* lessons/11-incompressible's dam break (625 particles, 0.5 s, dt <= 2 ms). */
-Test(solvers, pcisph_holds_reached_2d, .timeout = 120)
-{
-    check_reached("[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\n"
-                  "max = 1.5 0.8\nwall_damping = 0.3\n[fluid column]\nmin = 0 0\nmax = 0.5 0.5\nspacing = 0.02\n"
-                  "[physics]\nviscosity = 0.002\nnegative_pressure = clamp\npressure_solver = pcisph\n"
-                  "solver_tolerance = 0.001\n[kernels]\nh = 0.04\n[time]\ndt = 0.002\ncfl = 0.4\n",
-                  260);
-}
+#define REACHED_2D                                                                                               \
+    "[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 1.5 0.8\n"    \
+    "wall_damping = 0.3\n[fluid column]\nmin = 0 0\nmax = 0.5 0.5\nspacing = 0.02\n[physics]\nviscosity = 0.002\n"  \
+    "negative_pressure = clamp\nsolver_tolerance = 0.001\n[kernels]\nh = 0.04\n[time]\ndt = 0.002\ncfl = 0.4\n"
 
 /* A 3D dam break of 1000 particles, 0.2 s. */
-Test(solvers, pcisph_holds_reached_3d, .timeout = 120)
+#define REACHED_3D                                                                                               \
+    "[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0 0\n"                \
+    "max = 0.9 0.6 0.3\nwall_damping = 0.3\n[fluid column]\nmin = 0 0 0\nmax = 0.3 0.3 0.3\nspacing = 0.03\n"      \
+    "[physics]\nviscosity = 0.002\nnegative_pressure = clamp\nsolver_tolerance = 0.001\n[kernels]\nh = 0.06\n"    \
+    "[time]\ndt = 0.002\ncfl = 0.4\n"
+
+static void check_reached_with(const char *scene, const char *solver, int steps)
 {
-    check_reached("[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0 0\n"
-                  "max = 0.9 0.6 0.3\nwall_damping = 0.3\n[fluid column]\nmin = 0 0 0\nmax = 0.3 0.3 0.3\n"
-                  "spacing = 0.03\n[physics]\nviscosity = 0.002\nnegative_pressure = clamp\n"
-                  "pressure_solver = pcisph\nsolver_tolerance = 0.001\n[kernels]\nh = 0.06\n[time]\ndt = 0.002\n"
-                  "cfl = 0.4\n",
-                  100);
+    char ini[1024];
+    snprintf(ini, sizeof ini, "%s[physics]\npressure_solver = %s\n", scene, solver);
+    check_reached(ini, steps);
 }
+
+Test(solvers, pcisph_holds_reached_2d, .timeout = 120) { check_reached_with(REACHED_2D, "pcisph", 260); }
+Test(solvers, pcisph_holds_reached_3d, .timeout = 120) { check_reached_with(REACHED_3D, "pcisph", 100); }
+
+/* DFSPH the same: it predicts the density at the positions integration and
+ * the walls pass will reach (dfsph.c). Its linearised prediction (Bender &
+ * Koschier 2017, eq. 11) ended 30 of 259 steps of the 2D one above 0.1 %,
+ * up to 1.46 %. */
+Test(solvers, dfsph_holds_reached_2d, .timeout = 120) { check_reached_with(REACHED_2D, "dfsph", 260); }
+Test(solvers, dfsph_holds_reached_3d, .timeout = 120) { check_reached_with(REACHED_3D, "dfsph", 100); }

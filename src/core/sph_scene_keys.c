@@ -155,8 +155,9 @@ const sph_key sph_scene_keys[] = {
     {"physics", "solver_max_iterations", SPH_KEY_INT, S(solver_max_iterations), 1, 10000, 0, 0, NULL, 0, "", "100",
      "pcisph, dfsph: iterations a solve takes at most; a step that reaches it is counted (HUD, --stats)"},
     {"physics", "divergence_tolerance", SPH_KEY_FLOAT, S(divergence_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
-     "dfsph: the largest dt |D rho/Dt| / rho_rest (the density change the flow makes in one step) the "
-     "divergence-free solve may leave, where rho >= rho_rest"},
+     "dfsph: the mean over the particles of max(dt D rho/Dt, 0) / rho_rest (the density change the flow makes "
+     "in one step, counted where rho >= rho_rest; Bender & Koschier's average) the divergence-free solve may "
+     "leave"},
     {"physics", "surface_tension", SPH_KEY_CHOICE, S(surface_tension), 0, 0, 0, 0, CH(sph_surface_tension_names), "",
      "none",
      "none; akinci: Akinci, Akinci & Teschner 2013 (ACM TOG 32(6)), the cohesion term (eq. 1-2, the cohesion pass) "

@@ -207,10 +207,11 @@ typedef struct sph_solver_state {
     int iterations;          /* [1] the last complete step: iterations of the constant-density solve */
     int div_iterations;      /* [1] the last complete step: iterations of the divergence-free solve (dfsph) */
     double density_error;    /* [1] the last complete step: the density error reached */
-    double divergence_error; /* [1] the last complete step: max dt |D rho/Dt| / rho_rest reached (dfsph) */
+    double divergence_error; /* [1] the last complete step: mean of max(dt D rho/Dt, 0) / rho_rest (dfsph) */
     uint64_t capped;         /* [1] solves that stopped at solver_max_iterations, since the start */
     float rho_rest;          /* [kg/m^dim] the density held: the sum a particle of the initial lattice reads */
     float delta;             /* [m^2] pcisph: delta at dt = 1 s (delta(dt) = delta / dt^2, in m^2/s^2) */
+    float den_full;          /* [kg^2/m^(2 dim + 2)] dfsph: alpha's least denominator, a full neighbourhood's */
     /* The walls as the lattice continued behind them (src/passes/solver.h):
      * at distance d = i h / SPH_SOLVER_WALL_SAMPLES from a wall, the share of
      * rho_rest the rows behind it add, and its derivative in d. */

@@ -307,6 +307,18 @@ static double solver_measure(gpu *g, sph_sim *sim, int p, uint32_t stage)
     return e;
 }
 
+/* The same for a stage that sums the error in units of 2^-28 N (DFSPH's
+ * divergence, gpu_dfsph.comp): the mean over the particles. */
+static double solver_mean(gpu *g, sph_sim *sim, int p, uint32_t stage)
+{
+    static const uint32_t zero = 0;
+    gpu_send(g, g->buf[B_REDUCE], 2 * sizeof zero, sizeof zero, &zero);
+    solver_stage(g, sim, p, stage, 0.0f);
+    uint32_t count = 0;
+    gpu_get(g, g->buf[B_REDUCE], 2 * sizeof count, sizeof count, &count);
+    return ldexp((double)count, -28);
+}
+
 enum { PCI_START, PCI_FORCE, PCI_PREDICT, PCI_CORRECT, PCI_STARTUP }; /* shaders/gpu_pcisph.comp's stages */
 
 static void run_pcisph(gpu *g, sph_sim *sim)
@@ -363,7 +375,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
         dfsph_force(g, sim, false, false);
     }
     if (s->phase == 0) {
-        const double error = solver_measure(g, sim, p, DF_MEASURE_V);
+        const double error = solver_mean(g, sim, p, DF_MEASURE_V);
         if (!sph_solver_done(sim, error, sim->def.divergence_tolerance)) {
             solver_stage(g, sim, p, DF_CORRECT_V, dt2);
             dfsph_force(g, sim, false, false);

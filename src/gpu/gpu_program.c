@@ -153,7 +153,7 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put_float(&t, "DAMP", def->wall_damping);
     put_float(&t, "INTER_R", def->interaction_radius);
     /* the pressure solvers (src/passes/solver.h): the density they hold
-     * [kg/m^dim] and its inverses as their passes compute them, alpha's floor
+     * [kg/m^dim] and its inverses as their passes compute them, alpha's floors
      * (dfsph.c), their wall table's place in B_WALL and scale [1/m], and the
      * accelerations other than theirs, summed as sph_solver_other_acc does */
     const float rho_r = sim->solver.rho_rest;
@@ -161,6 +161,7 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put_float(&t, "INV_RHO_R", rho_r > 0 ? 1.0f / rho_r : 0.0f);
     put_float(&t, "INV_RHO_R2", rho_r > 0 ? 1.0f / (rho_r * rho_r) : 0.0f);
     put_float(&t, "ALPHA_MIN", 1e-6f * rho_r * rho_r / (def->h * def->h));
+    put_float(&t, "DEN_FULL", sim->solver.den_full);
     put(&t, "#define SOLVER_WALL_AT %d\n#define SOLVER_WALL_SAMPLES %d\n", GPU_WALL_FLOATS, SPH_SOLVER_WALL_SAMPLES);
     put_float(&t, "SOLVER_WALL_SCALE", (float)SPH_SOLVER_WALL_SAMPLES / def->h);
     put(&t, "#define ACC_OTHER(k) (0.0");

@@ -5,15 +5,36 @@
  * (where the neighbour lists and the density were made), both on the
  * velocity v* = v + dt (other accelerations + this pass's a):
  *   divergence-free: D_i = sum_j m_j (v*_i - v*_j) . grad W_ij (+ rho_r grad(walls' share) . v*_i at walls, solver.h),
- *     kappa^v_i += max(D_i, 0) alpha_i / dt, until max dt D_i / rho_r <= divergence_tolerance (the density
- *     change the flow would make in one step, counted where rho_i >= rho_r);
- *   constant density: rho*_i = rho_i + dt^2 (sum_j m_j (a_i - a_j) . grad W_ij + rho_r grad(walls' share) . a_i),
- *     the density integration will reach (a: every acceleration), kappa_i += max(rho*_i - rho_r, 0) alpha_i / dt^2,
- *     until max (rho*_i - rho_r) / rho_r <= solver_tolerance;
- * with the factor alpha_i = rho_r / (G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij),
+ *     kappa^v_i += max(D_i, 0) alpha_i / dt, until the mean of max(dt D_i, 0) / rho_r <= divergence_tolerance
+ *     (the density change the flow would make in one step, counted where rho_i >= rho_r; the average, as
+ *     Bender & Koschier's Algorithm 2);
+ *   constant density: rho*_i = sum_j m_j W(x*_i - x*_j) + rho_r (walls' share at x*_i), summed at the positions
+ *     x* = x + dt v* the step will reach, clamped into the box as the walls pass will (as PCISPH does, solver.h);
+ *     kappa_i = max(kappa_i + omega (rho*_i - rho_r) alpha_i / dt^2, -kappa^v_i), until
+ *     max (rho*_i - rho_r) / rho_r <= solver_tolerance: the largest error, not Bender & Koschier's average;
+ * with the factor alpha_i = rho_r / max(G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, its full-lattice
+ * value, see below),
  * G_i = sum_j m_j grad W_ij + rho_r grad(walls' share) (Bender & Koschier 2017, eq. 12 with rho_i = rho_r)
  * and the acceleration a_i = -sum_j m_j (K_i + K_j) / rho_r grad W^p_ij - K_i grad(walls' share),
- * K = kappa^v + kappa (eq. 10). Compressions only: a particle below rho_r (a free surface) pulls no one.
+ * K = kappa^v + kappa (eq. 10).
+ * Why the density solve differs from the paper's (rho* = rho + dt^2 sum_j m_j (a_i - a_j) . grad W_ij, eq. 11, and
+ * kappa only growing): the linearised rho* misses the second-order terms and the walls pass, and the 2D dam break
+ * of tests/test_solvers.c (dfsph_holds_reached_2d) ended 26 of 260 steps above its 0.1 % at the positions reached,
+ * up to 3.4 %. Summed at x*, a kappa that only grows ran away where a particle's own push cannot lower its density
+ * (pressed onto a wall) and, once past, stays: hence a step that can also lower kappa, relaxed by omega = 0.5 as
+ * Ihmsen et al. 2014 (IISPH, IEEE TVCG 20(3)) relax their Jacobi step (unrelaxed, the watchdog stopped both dam
+ * breaks of those tests within 2 steps). K stays >= 0 (no pull, as negative_pressure = clamp), and the bound is on
+ * K, not on kappa alone, so that the density solve can take back a divergence pressure that overshot: with kappa
+ * >= 0, lesson 11's dam break at a 1 % tolerance stopped the watchdog at step 210 (near-coincident particles in
+ * the far corner driven apart by kappa^v up to 420 m^2/s^2), as the linearised solve did at step 176. The
+ * divergence solve stops on the average as the paper's does: on the largest, at 0.1 % it ran to its cap of 100
+ * iterations where the front met the far wall, its kappa^v only growing (to 610 m^2/s^2), and pressed particles
+ * onto the wall so that the density solve, summing at positions the walls pass clamps, could not lower their
+ * density (lesson 11 at 0.1 %: 12 capped solves, one ending at 4.0 %; with the floor on alpha below, the watchdog
+ * at step 207).
+ * alpha's denominator is at least that of a particle with a full neighbourhood (sph_solver_lattice_dots): where a
+ * wall's gradient cancels the pairs' differently for the two kernels it fell to 0 or below, alpha read 0 and the
+ * particle was never corrected (lesson 11 at 0.1 %, step 106: 3 capped solves in a row).
  * Bender & Koschier solve the divergence after moving the particles, with
  * new neighbours; here both solves use the step's lists, the divergence one
  * first, so the density solve accounts for the positions it changes. Warm
@@ -26,21 +47,21 @@
 #include <stdio.h>
 
 /* The share of the last step's kappa a solve starts from. 0: the warm start
- * is off. Why: correct() only adds (a particle's kappa grows while its
- * predicted density is above rho_r and never shrinks), so a start that
- * overestimates this step's pressure is applied whole, and nothing in the
- * solve can take it back: the error it measures only sees compressions.
- * Measured on the 2D dam break of tests/test_solvers.c (dt = 0.5 ms, 300
- * steps): share 0 ends with 511 J of kinetic energy (PCISPH: 516 J), 6.9
- * iterations per step; 0.5 with 646 J (+26 %, energy the stale pressure
- * put in) and 4.2 iterations; 1 (Bender & Koschier 2017, Algorithm 3's
- * sums) stops the watchdog at step 50 with every solve converged. Letting
- * correct() also subtract (kappa = max(kappa + excess alpha / dt^2, 0), a
- * projected Jacobi) diverges within 7 steps even from 0. Enabling it needs
- * a solve that can lower kappa and converges; kappa [m^2/s^2] holds 1/dt^2
+ * is off. Measured with the linearised density solve, whose kappa only grew
+ * (see the top), on the 2D dam break of tests/test_solvers.c (dt = 0.5 ms,
+ * 300 steps): share 0 ended with 511 J of kinetic energy (PCISPH: 516 J),
+ * 6.9 iterations per step; 0.5 with 646 J (+26 %, energy the stale pressure
+ * put in, which that solve could not take back) and 4.2 iterations; 1
+ * (Bender & Koschier 2017, Algorithm 3's sums) stopped the watchdog at step
+ * 50. Not remeasured with the density solve that can lower kappa; the
+ * divergence solve's kappa^v still only grows. kappa [m^2/s^2] holds 1/dt^2
  * too, so with a varying dt the start must also be scaled by
  * (dt_last / dt)^2. */
 #define SPH_DFSPH_WARM 0.0f
+
+/* The relaxation of the density solve's Jacobi step (see the top): 0.5, as
+ * Ihmsen et al. 2014 (IISPH, IEEE TVCG) relax theirs. */
+#define SPH_DFSPH_OMEGA 0.5f
 
 static const char *skip_reason(const sph_scene_def *def)
 {
@@ -82,6 +103,7 @@ static void factors(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const float rho_r = sim->solver.rho_rest;
     const bool walls = sph_sim_wall_volume(sim);
+    const float full = sim->solver.den_full;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         float gr[3] = {0, 0, 0}, gp[3] = {0, 0, 0}, dots = 0;
@@ -105,7 +127,7 @@ static void factors(sph_sim *sim)
                 gp[d] += rho_r * g[d];
             }
         }
-        const float den = dots + gr[0] * gp[0] + gr[1] * gp[1] + gr[2] * gp[2];
+        const float den = fmaxf(dots + gr[0] * gp[0] + gr[1] * gp[1] + gr[2] * gp[2], full);
         P->alpha[i] = den > 1e-6f * rho_r * rho_r / (sim->def.h * sim->def.h) ? rho_r / den : 0.0f;
     }
 }
@@ -144,11 +166,20 @@ static void force(sph_sim *sim, bool with_density)
     }
 }
 
-/* rho_df: dt D rho/Dt of v* (density false), or the predicted density rho*
- * (density true); returns the error: max dt D / rho_r, or max (rho* - rho_r) / rho_r.
- * The divergence counts only where the density is at least rho_r: a
- * particle below it (a free surface) may expand or approach, and one with a
- * thin neighbourhood (alpha small) could not be corrected anyway. */
+/* x*_i: where integration and the walls pass will put particle i with this
+ * iteration's dv_df (x + dt v* = pred + dt dv_df, clamped into the box). */
+static inline void reached(const sph_sim *sim, uint32_t i, float c[3])
+{
+    float x[3] = {0, 0, 0};
+    for (int d = 0; d < sim->dim; d++) x[d] = sim->P.pred[d][i] + sim->dt * sim->P.dv_df[d][i];
+    sph_solver_clamped(sim, x, c);
+}
+
+/* rho_df: dt D rho/Dt of v* (density false; linear, Bender & Koschier 2017 eq. 9), or the density rho* summed at
+ * the positions x* the step will reach (density true); returns the error: the mean over the particles of
+ * max(dt D, 0) / rho_r (Bender & Koschier's average, Algorithm 2), or max (rho* - rho_r) / rho_r. The divergence
+ * counts only where the density is at least rho_r: a particle below it (a free surface) may expand or
+ * approach, and one with a thin neighbourhood (alpha small) could not be corrected anyway. */
 static double measure(sph_sim *sim, bool density)
 {
     sph_particles *P = &sim->P;
@@ -157,20 +188,37 @@ static double measure(sph_sim *sim, bool density)
     const float dt = sim->dt, rho_r = sim->solver.rho_rest, rho0 = sim->def.rest_density;
     const bool walls = sph_sim_wall_volume(sim);
     float worst = 0.0f;
-#pragma omp parallel for schedule(static) reduction(max : worst) if (n > SPH_PARALLEL_MIN)
+    double total = 0;
+#pragma omp parallel for schedule(static) reduction(max : worst) reduction(+ : total) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (density) {
+            float xi[3];
+            reached(sim, (uint32_t)i, xi);
+            float rho = P->mass[i] * sph_kernel_w(&sim->k_density, 0.0f);
+            for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
+                const uint32_t j = S->nbr[e];
+                float xj[3], r2 = 0;
+                reached(sim, j, xj);
+                for (int d = 0; d < dim; d++) {
+                    const float dx = sph_solver_dx(sim, xi[d] - xj[d], d);
+                    r2 += dx * dx;
+                }
+                rho += P->mass[j] * sph_kernel_w(&sim->k_density, sqrtf(r2));
+            }
+            if (walls) rho += rho_r * sph_solver_walls(sim, xi, NULL);
+            P->rho_df[i] = rho;
+            worst = fmaxf(worst, (rho - rho_r) / rho_r);
+            continue;
+        }
         float vi[3] = {0, 0, 0};
-        for (int d = 0; d < dim; d++) vi[d] = P->dv_df[d][i] + (density ? 0.0f : P->vel[d][i]);
+        for (int d = 0; d < dim; d++) vi[d] = P->dv_df[d][i] + P->vel[d][i];
         float sum = 0;
         for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
             const uint32_t j = S->nbr[e];
             float dx[3], r2;
             pair_dx(sim, i, j, dx, &r2);
             const float f = P->mass[j] * grad_factor(&sim->k_density, r2);
-            for (int d = 0; d < dim; d++) {
-                const float vj = P->dv_df[d][j] + (density ? 0.0f : P->vel[d][j]);
-                sum += f * (vi[d] - vj) * dx[d];
-            }
+            for (int d = 0; d < dim; d++) sum += f * (vi[d] - P->dv_df[d][j] - P->vel[d][j]) * dx[d];
         }
         float rho = P->rho[i];
         if (walls) {
@@ -180,18 +228,16 @@ static double measure(sph_sim *sim, bool density)
             /* the density pass counted the walls as the volume model does: count them as the solvers do */
             rho += rho_r * share - rho0 * sph_wall_hidden(sim, &sim->k_density, i, NULL);
         }
-        if (density) {
-            P->rho_df[i] = rho + dt * sum; /* sum: of dv, so dt sum is dt^2 sum of the accelerations */
-            worst = fmaxf(worst, (P->rho_df[i] - rho_r) / rho_r);
-        } else {
-            P->rho_df[i] = rho >= rho_r ? dt * sum : 0.0f;
-            worst = fmaxf(worst, P->rho_df[i] / rho_r);
-        }
+        P->rho_df[i] = rho >= rho_r ? dt * sum : 0.0f;
+        worst = fmaxf(worst, P->rho_df[i] / rho_r);
+        total += fmaxf(P->rho_df[i], 0.0f) / rho_r;
     }
-    return worst;
+    return density ? worst : (n > 0 ? total / n : 0.0);
 }
 
-/* kappa (or kappa^v) += the increment that cancels this particle's error. */
+/* The divergence: kappa^v += the increment that cancels this particle's
+ * error (Bender & Koschier 2017, Algorithm 2). The density: a relaxed,
+ * projected Jacobi step, kappa = max(kappa + omega alpha (rho* - rho_r) / dt^2, 0), see the top. */
 static void correct(sph_sim *sim, bool density)
 {
     sph_particles *P = &sim->P;
@@ -200,8 +246,10 @@ static void correct(sph_sim *sim, bool density)
     float *restrict k = density ? P->kappa : P->kappa_v;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
-        const float excess = density ? P->rho_df[i] - rho_r : P->rho_df[i]; /* dt D for the divergence */
-        k[i] += fmaxf(excess, 0.0f) * P->alpha[i] / (dt * dt);
+        if (density)
+            k[i] = fmaxf(k[i] + SPH_DFSPH_OMEGA * (P->rho_df[i] - rho_r) * P->alpha[i] / (dt * dt), -P->kappa_v[i]);
+        else
+            k[i] += fmaxf(P->rho_df[i], 0.0f) * P->alpha[i] / (dt * dt); /* rho_df: dt D */
     }
 }
 
@@ -216,6 +264,7 @@ static void run(sph_sim *sim)
     sph_particles *P = &sim->P;
     if (!(s->rho_rest > 0)) {
         s->rho_rest = sph_solver_rest_density(sim);
+        s->den_full = sph_solver_lattice_dots(sim);
         sph_solver_wall_table(sim);
     }
     if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */

@@ -40,6 +40,29 @@ static inline float sph_solver_rest_density(const sph_sim *sim)
     return (float)sum;
 }
 
+/* sum_j m_j^2 grad W^rho_ij . grad W^p_ij over the finest block's full
+ * lattice [kg^2/m^(2 dim + 2)]: DFSPH's alpha denominator for a particle
+ * whose neighbourhood is full (the sum of gradients is 0 there), the
+ * prototype particle with a filled neighbourhood of Solenthaler & Pajarola
+ * 2009 (section 3.2). Computed from the kernels and the lattice. */
+static inline float sph_solver_lattice_dots(const sph_sim *sim)
+{
+    const sph_scene_def *def = &sim->def;
+    const float s = sph_solver_spacing(def);
+    if (!(s > 0)) return 0.0f;
+    const int dim = sim->dim, r = (int)ceilf(def->h / s);
+    const double m = def->rest_density * (dim == 3 ? (double)s * s * s : (double)s * s);
+    double sum = 0;
+    for (int z = dim == 3 ? -r : 0; z <= (dim == 3 ? r : 0); z++)
+        for (int y = -r; y <= r; y++)
+            for (int x = -r; x <= r; x++) {
+                float d = s * sqrtf((float)(x * x + y * y + z * z));
+                if (d > 0 && d < def->h)
+                    sum += m * m * sph_kernel_dw(&sim->k_density, d) * sph_kernel_dw(&sim->k_pressure, d);
+            }
+    return (float)sum;
+}
+
 /* The accelerations other than pressure at particle i (viscosity, cohesion,
  * the mouse; gravity is in the velocity already): every acceleration field
  * of the registry except the solvers' own. */
