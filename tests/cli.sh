@@ -89,6 +89,23 @@ for solver in pcisph dfsph; do
         bad "run $scene with pressure_solver = $solver"; cat "$tmp/err.txt"
     fi
 done
+# The dump's p column is the pressure the solver applied, not 0: PCISPH's p_pci; DFSPH's rho (kappa + kappa_v)
+sph run "$scene" --steps 20 --quiet --set physics.pressure_solver=pcisph --dump "$tmp/pd.csv" > "$tmp/err.txt" 2>&1
+awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next }
+         { if ($col["p"] != $col["p_pci"]) bad = 1; if ($col["p"] > 0) nz++ } END { exit bad || nz == 0 }' "$tmp/pd.csv" &&
+    ok || { bad "pcisph: the dump's p column is not p_pci"; cat "$tmp/err.txt"; head -2 "$tmp/pd.csv"; }
+sph run "$scene" --steps 20 --quiet --set physics.pressure_solver=dfsph --dump "$tmp/pd.csv" > "$tmp/err.txt" 2>&1
+awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next }
+         { want = $col["rho"] * ($col["kappa"] + $col["kappa_v"]); d = $col["p"] - want; if (d < 0) d = -d
+           if (d > 1e-5 * (want < 0 ? -want : want) + 1e-6) bad = 1; if ($col["p"] > 0) nz++ }
+         END { exit bad || nz == 0 }' "$tmp/pd.csv" &&
+    ok || { bad "dfsph: the dump's p column is not rho (kappa + kappa_v)"; cat "$tmp/err.txt"; head -2 "$tmp/pd.csv"; }
+# a study of the hydrostatic tank across the pressure solvers (it read the equation of state's p, absent: a crash)
+sph study lessons/scenes/study-hydrostatic-2d.ini --steps 20 --repeats 1 --threads 1 --quiet \
+    --vary physics.pressure_solver=eos,pcisph,dfsph --out "$tmp/ps" > "$tmp/err.txt" 2>&1 &&
+    awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next } { if (!($col["error"] > 0)) bad = 1; n++ }
+             END { exit bad || n != 3 }' "$tmp/ps/study.csv" &&
+    ok || { bad "study hydrostatic --vary pressure_solver: want 3 rows with an error"; cat "$tmp/err.txt"; cat "$tmp/ps/study.csv"; }
 sph run "$scene" --set compute.backend=opencl --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "\[compute\] backend = 'opencl'" "$tmp/gl.txt" && ok || { bad "compute.backend=opencl: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
 

@@ -69,8 +69,10 @@ const app_opt app_options[] = {
      "then with a hash table, its health: hash_keys,hash_load,hash_occupied,hash_colliding,hash_longest_run,\n"
      "hash_candidates,hash_share",
      RUN, STRING(stats)},
-    {"--dump", NULL, "FILE.csv", "final particles: id,x,y,z,vx,vy,vz,rho,p, then every other field the scene computes", RUN,
-     STRING(dump)},
+    {"--dump", NULL, "FILE.csv",
+     "final particles: id,x,y,z,vx,vy,vz,rho,p (the pressure the last step applied: the equation of state's, "
+     "PCISPH's p_pci or DFSPH's rho (kappa + kappa_v)), then every other field the scene computes",
+     RUN, STRING(dump)},
     {"--out", NULL, "DIR", "where the frames go, DIR/frame_NNNNN.png (made if missing)", RENDER, STRING(out)},
     {"--vtk", NULL, "DIR", "particles and all their fields as DIR/particles_NNNNN.vtk (ParaView)", RUN | RENDER,
      STRING(vtk)},
