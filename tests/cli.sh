@@ -127,6 +127,11 @@ sph run $S/dam-break-2d.ini --set "fluid column.field_pressure=on" --steps 1 > "
 [ $? -eq 1 ] && grep -q "field_pressure = on needs a velocity field with a pressure" "$tmp/combo.txt" && ok || { bad "field_pressure without a field: want exit 1"; cat "$tmp/combo.txt"; }
 sph lesson 10 --export --quick > "$tmp/combo.txt" 2>&1
 [ $? -eq 2 ] && grep -q "needs a value (DIR) before the option '--quick'" "$tmp/combo.txt" && [ ! -e ./--quick ] && ok || { bad "lesson --export --quick: want exit 2, no folder named --quick"; cat "$tmp/combo.txt"; }
+# an --export folder that cannot be made is named as --export (it read "--out", an option lesson has not)
+: > "$tmp/afile"
+sph lesson 1 --export "$tmp/afile/l" --quick --quiet > "$tmp/combo.txt" 2>&1
+[ $? -eq 1 ] && grep -q "^sphlab lesson: --export $tmp/afile/l: $tmp/afile/l: cannot create the directory" "$tmp/combo.txt" && ok ||
+    { bad "lesson --export under a file: want exit 1 naming --export"; cat "$tmp/combo.txt"; }
 # lesson 10's table gives the front at t = 0.1 s as its CSV has it there (interpolated), not a sample early
 sph lesson 10 --export "$tmp/l10" --quick --quiet > "$tmp/l10.txt" 2>&1
 want=$(awk -F, '$1 == "particles" { if ($2 + 0 <= 0.1) { t0 = $2; x0 = $3 } else if (!done) { done = 1; printf "%.3f", x0 + (0.1 - t0) / ($2 - t0) * ($3 - x0) } }' "$tmp/l10/dam-front.csv")
