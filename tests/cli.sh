@@ -326,6 +326,18 @@ sph check "$tmp/typo2.ini" 2>&1 | grep -q "unknown key 'methd' in \[search\] (di
     bad "a misspelt key: no nearest name"
 sph check --set search.reordr=off lessons/scenes/drop-2d.ini 2>&1 | grep -q "did you mean 'reorder'" && ok ||
     bad "a misspelt --set key: no nearest name"
+# a 2D scene ignores z, and says so when a vector has a non-zero one (a 3D scene written without
+# dimension = 3; gravity along -z, which ran with no gravity at all, unsaid)
+printf '[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.5 0.5\n[physics]\ngravity = 0 0 -9.81\n' > "$tmp/gz.ini"
+sph run "$tmp/gz.ini" --steps 1 --quiet > "$tmp/gz.txt" 2>&1 &&
+    grep -q "warning: .*gz.ini:8: \[physics\] gravity has a z component (-9.81), which a 2D scene ignores" "$tmp/gz.txt" &&
+    ok || { bad "2D scene with gravity along z: want the warning naming the line"; cat "$tmp/gz.txt"; }
+printf '[domain]\nmin = 0 0 0\nmax = 1 1 1\n[fluid a]\nmin = 0 0 0\nmax = 0.5 0.5 0.5\n' > "$tmp/gz.ini"
+sph check "$tmp/gz.ini" > "$tmp/gz.txt" 2>&1 &&
+    grep -q "warning: .*gz.ini:3: \[domain\] max has a z component (1), which a 2D scene ignores" "$tmp/gz.txt" && ok ||
+    { bad "a 3D domain without dimension = 3: want the warning naming the line"; cat "$tmp/gz.txt"; }
+sph check "$tmp/gz.ini" --set scene.dimension=3 > "$tmp/gz.txt" 2>&1 && ! grep -q "z component" "$tmp/gz.txt" && ok ||
+    { bad "the same scene in 3D: no warning"; cat "$tmp/gz.txt"; }
 # the GL levels are G0-G3 (bench ladder's table): the README and lesson 8 name them all
 for f in README.md lessons/08-optimisation-ladder/README.md; do
     grep -q "G3" "$f" && ! grep -q "G0-G2\|G0, G1, G2 |" "$f" && ok || bad "$f: the GL levels are G0-G3"
