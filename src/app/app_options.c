@@ -88,7 +88,11 @@ const app_opt app_options[] = {
     {"--size", NULL, "WxH", "image size in pixels (default: render 800x600, view 1024x720)", RENDER | VIEW,
      SIZE(size, 64, 8192)},
     {"--color", "--colour", "FIELD",
-     "colour by: density pressure speed key neighbours pressure-acc viscosity-acc", RENDER | VIEW, STRING(color)},
+     "colour by: density pressure speed key neighbours, or a field of a pass the scene runs: pressure-acc "
+     "viscosity-acc cohesion-acc normal curvature-acc curvature csf-acc xsph-acc density-rate pcisph-pressure "
+     "pcisph-density pcisph-acc dfsph-density dfsph-acc (with pressure_solver = pcisph, pcisph-pressure is the "
+     "pressure)",
+     RENDER | VIEW, STRING(color)},
     {"--range", NULL, "LO,HI",
      "fixed colour range (LO:HI also); render: 'run' (default): one range for the whole\n"
      "run, found by simulating it once before drawing; 'frame': each frame's own min and max\n"
