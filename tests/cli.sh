@@ -342,6 +342,11 @@ sph check "$tmp/gz.ini" > "$tmp/gz.txt" 2>&1 &&
     { bad "a 3D domain without dimension = 3: want the warning naming the line"; cat "$tmp/gz.txt"; }
 sph check "$tmp/gz.ini" --set scene.dimension=3 > "$tmp/gz.txt" 2>&1 && ! grep -q "z component" "$tmp/gz.txt" && ok ||
     { bad "the same scene in 3D: no warning"; cat "$tmp/gz.txt"; }
+# check --save-scene into a path that cannot be written: exit 1, the option named, no "ok" before it
+: > "$tmp/afile2"
+sph check lessons/scenes/drop-2d.ini --save-scene "$tmp/afile2/x.ini" > "$tmp/ss.txt" 2>&1
+[ $? -eq 1 ] && grep -q "^sphlab check: --save-scene $tmp/afile2/x.ini: cannot write" "$tmp/ss.txt" && ! grep -q '^ok$' "$tmp/ss.txt" &&
+    ok || { bad "check --save-scene unwritable: want exit 1, the option named, no ok"; cat "$tmp/ss.txt"; }
 # the GL levels are G0-G3 (bench ladder's table): the README and lesson 8 name them all
 for f in README.md lessons/08-optimisation-ladder/README.md; do
     grep -q "G3" "$f" && ! grep -q "G0-G2\|G0, G1, G2 |" "$f" && ok || bad "$f: the GL levels are G0-G3"
