@@ -347,6 +347,10 @@ sph check "$tmp/gz.ini" --set scene.dimension=3 > "$tmp/gz.txt" 2>&1 && ! grep -
 sph check lessons/scenes/drop-2d.ini --save-scene "$tmp/afile2/x.ini" > "$tmp/ss.txt" 2>&1
 [ $? -eq 1 ] && grep -q "^sphlab check: --save-scene $tmp/afile2/x.ini: cannot write" "$tmp/ss.txt" && ! grep -q '^ok$' "$tmp/ss.txt" &&
     ok || { bad "check --save-scene unwritable: want exit 1, the option named, no ok"; cat "$tmp/ss.txt"; }
+# hardcases --only with an unknown name: exit 2 and the reason, no table header printed as if a run began
+sph hardcases --only nosuch > "$tmp/hc.txt" 2>&1
+[ $? -eq 2 ] && grep -q "no case named 'nosuch'" "$tmp/hc.txt" && ! grep -q '^case ' "$tmp/hc.txt" && ok ||
+    { bad "hardcases --only nosuch: want exit 2 and no table header"; cat "$tmp/hc.txt"; }
 # the GL levels are G0-G3 (bench ladder's table): the README and lesson 8 name them all
 for f in README.md lessons/08-optimisation-ladder/README.md; do
     grep -q "G3" "$f" && ! grep -q "G0-G2\|G0, G1, G2 |" "$f" && ok || bad "$f: the GL levels are G0-G3"
