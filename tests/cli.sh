@@ -351,6 +351,10 @@ sph check lessons/scenes/drop-2d.ini --save-scene "$tmp/afile2/x.ini" > "$tmp/ss
 sph hardcases --only nosuch > "$tmp/hc.txt" 2>&1
 [ $? -eq 2 ] && grep -q "no case named 'nosuch'" "$tmp/hc.txt" && ! grep -q '^case ' "$tmp/hc.txt" && ok ||
     { bad "hardcases --only nosuch: want exit 2 and no table header"; cat "$tmp/hc.txt"; }
+# render --color pressure with PCISPH: refused, naming the colour that shows its pressure
+sph render lessons/scenes/drop-2d.ini --set physics.pressure_solver=pcisph --steps 1 --color pressure --out "$tmp/rp" > "$tmp/rp.txt" 2>&1
+[ $? -eq 2 ] && grep -q "cannot colour by pressure: .*--color pcisph-pressure" "$tmp/rp.txt" && ok ||
+    { bad "render --color pressure with pcisph: want exit 2 naming pcisph-pressure"; cat "$tmp/rp.txt"; }
 # the GL levels are G0-G3 (bench ladder's table): the README and lesson 8 name them all
 for f in README.md lessons/08-optimisation-ladder/README.md; do
     grep -q "G3" "$f" && ! grep -q "G0-G2\|G0, G1, G2 |" "$f" && ok || bad "$f: the GL levels are G0-G3"
