@@ -89,6 +89,23 @@ for solver in pcisph dfsph; do
         bad "run $scene with pressure_solver = $solver"; cat "$tmp/err.txt"
     fi
 done
+# The dump's p column is the pressure the solver applied, not 0: PCISPH's p_pci; DFSPH's rho (kappa + kappa_v)
+sph run "$scene" --steps 20 --quiet --set physics.pressure_solver=pcisph --dump "$tmp/pd.csv" > "$tmp/err.txt" 2>&1
+awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next }
+         { if ($col["p"] != $col["p_pci"]) bad = 1; if ($col["p"] > 0) nz++ } END { exit bad || nz == 0 }' "$tmp/pd.csv" &&
+    ok || { bad "pcisph: the dump's p column is not p_pci"; cat "$tmp/err.txt"; head -2 "$tmp/pd.csv"; }
+sph run "$scene" --steps 20 --quiet --set physics.pressure_solver=dfsph --dump "$tmp/pd.csv" > "$tmp/err.txt" 2>&1
+awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next }
+         { want = $col["rho"] * ($col["kappa"] + $col["kappa_v"]); d = $col["p"] - want; if (d < 0) d = -d
+           if (d > 1e-5 * (want < 0 ? -want : want) + 1e-6) bad = 1; if ($col["p"] > 0) nz++ }
+         END { exit bad || nz == 0 }' "$tmp/pd.csv" &&
+    ok || { bad "dfsph: the dump's p column is not rho (kappa + kappa_v)"; cat "$tmp/err.txt"; head -2 "$tmp/pd.csv"; }
+# a study of the hydrostatic tank across the pressure solvers (it read the equation of state's p, absent: a crash)
+sph study lessons/scenes/study-hydrostatic-2d.ini --steps 20 --repeats 1 --threads 1 --quiet \
+    --vary physics.pressure_solver=eos,pcisph,dfsph --out "$tmp/ps" > "$tmp/err.txt" 2>&1 &&
+    awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next } { if (!($col["error"] > 0)) bad = 1; n++ }
+             END { exit bad || n != 3 }' "$tmp/ps/study.csv" &&
+    ok || { bad "study hydrostatic --vary pressure_solver: want 3 rows with an error"; cat "$tmp/err.txt"; cat "$tmp/ps/study.csv"; }
 sph run "$scene" --set compute.backend=opencl --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "\[compute\] backend = 'opencl'" "$tmp/gl.txt" && ok || { bad "compute.backend=opencl: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
 
@@ -110,6 +127,15 @@ sph run $S/dam-break-2d.ini --set "fluid column.field_pressure=on" --steps 1 > "
 [ $? -eq 1 ] && grep -q "field_pressure = on needs a velocity field with a pressure" "$tmp/combo.txt" && ok || { bad "field_pressure without a field: want exit 1"; cat "$tmp/combo.txt"; }
 sph lesson 10 --export --quick > "$tmp/combo.txt" 2>&1
 [ $? -eq 2 ] && grep -q "needs a value (DIR) before the option '--quick'" "$tmp/combo.txt" && [ ! -e ./--quick ] && ok || { bad "lesson --export --quick: want exit 2, no folder named --quick"; cat "$tmp/combo.txt"; }
+# an --export folder that cannot be made is named as --export (it read "--out", an option lesson has not)
+: > "$tmp/afile"
+sph lesson 1 --export "$tmp/afile/l" --quick --quiet > "$tmp/combo.txt" 2>&1
+[ $? -eq 1 ] && grep -q "^sphlab lesson: --export $tmp/afile/l: $tmp/afile/l: cannot create the directory" "$tmp/combo.txt" && ok ||
+    { bad "lesson --export under a file: want exit 1 naming --export"; cat "$tmp/combo.txt"; }
+# a lesson's runs put their scene warnings in their logs, not on the terminal (lesson 3 runs without viscosity)
+sph lesson 3 --export "$tmp/l3" --quick --quiet > "$tmp/l3.txt" 2>&1
+[ $? -eq 0 ] && ! grep -q "warning" "$tmp/l3.txt" && grep -q "warning: no viscosity" "$tmp"/l3/logs/*.txt &&
+    ok || { bad "lesson 3 --quiet: scene warnings on the terminal or not in logs/"; cat "$tmp/l3.txt"; ls "$tmp/l3/logs"; }
 # lesson 10's table gives the front at t = 0.1 s as its CSV has it there (interpolated), not a sample early
 sph lesson 10 --export "$tmp/l10" --quick --quiet > "$tmp/l10.txt" 2>&1
 want=$(awk -F, '$1 == "particles" { if ($2 + 0 <= 0.1) { t0 = $2; x0 = $3 } else if (!done) { done = 1; printf "%.3f", x0 + (0.1 - t0) / ($2 - t0) * ($3 - x0) } }' "$tmp/l10/dam-front.csv")
@@ -313,6 +339,31 @@ sph check "$tmp/typo2.ini" 2>&1 | grep -q "unknown key 'methd' in \[search\] (di
     bad "a misspelt key: no nearest name"
 sph check --set search.reordr=off lessons/scenes/drop-2d.ini 2>&1 | grep -q "did you mean 'reorder'" && ok ||
     bad "a misspelt --set key: no nearest name"
+# a 2D scene ignores z, and says so when a vector has a non-zero one (a 3D scene written without
+# dimension = 3; gravity along -z, which ran with no gravity at all, unsaid)
+printf '[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.5 0.5\n[physics]\ngravity = 0 0 -9.81\n' > "$tmp/gz.ini"
+sph run "$tmp/gz.ini" --steps 1 --quiet > "$tmp/gz.txt" 2>&1 &&
+    grep -q "warning: .*gz.ini:8: \[physics\] gravity has a z component (-9.81), which a 2D scene ignores" "$tmp/gz.txt" &&
+    ok || { bad "2D scene with gravity along z: want the warning naming the line"; cat "$tmp/gz.txt"; }
+printf '[domain]\nmin = 0 0 0\nmax = 1 1 1\n[fluid a]\nmin = 0 0 0\nmax = 0.5 0.5 0.5\n' > "$tmp/gz.ini"
+sph check "$tmp/gz.ini" > "$tmp/gz.txt" 2>&1 &&
+    grep -q "warning: .*gz.ini:3: \[domain\] max has a z component (1), which a 2D scene ignores" "$tmp/gz.txt" && ok ||
+    { bad "a 3D domain without dimension = 3: want the warning naming the line"; cat "$tmp/gz.txt"; }
+sph check "$tmp/gz.ini" --set scene.dimension=3 > "$tmp/gz.txt" 2>&1 && ! grep -q "z component" "$tmp/gz.txt" && ok ||
+    { bad "the same scene in 3D: no warning"; cat "$tmp/gz.txt"; }
+# check --save-scene into a path that cannot be written: exit 1, the option named, no "ok" before it
+: > "$tmp/afile2"
+sph check lessons/scenes/drop-2d.ini --save-scene "$tmp/afile2/x.ini" > "$tmp/ss.txt" 2>&1
+[ $? -eq 1 ] && grep -q "^sphlab check: --save-scene $tmp/afile2/x.ini: cannot write" "$tmp/ss.txt" && ! grep -q '^ok$' "$tmp/ss.txt" &&
+    ok || { bad "check --save-scene unwritable: want exit 1, the option named, no ok"; cat "$tmp/ss.txt"; }
+# hardcases --only with an unknown name: exit 2 and the reason, no table header printed as if a run began
+sph hardcases --only nosuch > "$tmp/hc.txt" 2>&1
+[ $? -eq 2 ] && grep -q "no case named 'nosuch'" "$tmp/hc.txt" && ! grep -q '^case ' "$tmp/hc.txt" && ok ||
+    { bad "hardcases --only nosuch: want exit 2 and no table header"; cat "$tmp/hc.txt"; }
+# render --color pressure with PCISPH: refused, naming the colour that shows its pressure
+sph render lessons/scenes/drop-2d.ini --set physics.pressure_solver=pcisph --steps 1 --color pressure --out "$tmp/rp" > "$tmp/rp.txt" 2>&1
+[ $? -eq 2 ] && grep -q "cannot colour by pressure: .*--color pcisph-pressure" "$tmp/rp.txt" && ok ||
+    { bad "render --color pressure with pcisph: want exit 2 naming pcisph-pressure"; cat "$tmp/rp.txt"; }
 # the GL levels are G0-G3 (bench ladder's table): the README and lesson 8 name them all
 for f in README.md lessons/08-optimisation-ladder/README.md; do
     grep -q "G3" "$f" && ! grep -q "G0-G2\|G0, G1, G2 |" "$f" && ok || bad "$f: the GL levels are G0-G3"

@@ -155,6 +155,17 @@ static char *check_report(const char *dir, int num, const char *title, const cha
     cr_expect(!strstr(fr, "| wall model |") && !strstr(fr, "| particle |") && !strstr(fr, "| level |") &&
                   !strstr(fr, "| pass |") && !strstr(fr, "Pareto front"),
               "report.fr.md has an English table header");
+    /* the list of figures and the busy-machine note are French too: no caption with an English article */
+    cr_expect(!strstr(fr, "The machine was busy"), "report.fr.md has the busy-machine note in English");
+    for (const char *l = strstr(fr, "\n- `"); l; l = strstr(l + 1, "\n- `")) {
+        const char *e = strchr(l + 1, '\n');
+        int len = e ? (int)(e - l - 1) : (int)strlen(l + 1);
+        char line[1024];
+        snprintf(line, sizeof line, "%.*s ", len, l + 1);
+        cr_expect(!strstr(line, " the ") && !strstr(line, " of ") && !strstr(line, " and ") &&
+                      !strstr(line, "beside it"),
+                  "report.fr.md: a figure's caption in English: %s", line);
+    }
     free(fr);
     return text;
 }

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../src/overlay/sph_overlay.h"
 #include "app_options.h"
 #include "test_util.h"
 
@@ -229,4 +230,25 @@ Test(options, docs_name_only_known_options)
     }
     globfree(&g);
     cr_assert_gt(files, 5, "README.md and docs/*.md not found");
+}
+
+/* --color's help names every colour the renderer accepts (it named 7 of 21:
+ * pcisph-pressure, the pressure of a PCISPH run, could only be guessed). */
+Test(options, color_help_names_every_colour)
+{
+    const app_opt *color = NULL;
+    for (int k = 0; k < app_option_count; k++)
+        if (strcmp(app_options[k].name, "--color") == 0) color = &app_options[k];
+    cr_assert(color, "no --color option");
+    for (int c = 0; c < SPH_COLOR_COUNT; c++) {
+        const char *name = sph_color_field_names[c];
+        if (!name || !*name) continue;
+        char word[64];
+        snprintf(word, sizeof word, " %s ", name);
+        char help[1024];
+        snprintf(help, sizeof help, " %s ", color->help);
+        for (char *p = help; *p; p++)
+            if (*p == ',' || *p == ':' || *p == '(' || *p == ')') *p = ' ';
+        cr_expect(strstr(help, word), "--color's help does not name '%s': %s", name, color->help);
+    }
 }

@@ -70,8 +70,10 @@ const app_opt app_options[] = {
      "hash_candidates,hash_share (empty with --backend gl,\n"
      "which builds no neighbour lists to count)",
      RUN, STRING(stats)},
-    {"--dump", NULL, "FILE.csv", "final particles: id,x,y,z,vx,vy,vz,rho,p, then every other field the scene computes", RUN,
-     STRING(dump)},
+    {"--dump", NULL, "FILE.csv",
+     "final particles: id,x,y,z,vx,vy,vz,rho,p (the pressure the last step applied: the equation of state's, "
+     "PCISPH's p_pci or DFSPH's rho (kappa + kappa_v)), then every other field the scene computes",
+     RUN, STRING(dump)},
     {"--out", NULL, "DIR", "where the frames go, DIR/frame_NNNNN.png (made if missing)", RENDER, STRING(out)},
     {"--vtk", NULL, "DIR", "particles and all their fields as DIR/particles_NNNNN.vtk (ParaView)", RUN | RENDER,
      STRING(vtk)},
@@ -87,7 +89,11 @@ const app_opt app_options[] = {
     {"--size", NULL, "WxH", "image size in pixels (default: render 800x600, view 1024x720)", RENDER | VIEW,
      SIZE(size, 64, 8192)},
     {"--color", "--colour", "FIELD",
-     "colour by: density pressure speed key neighbours pressure-acc viscosity-acc", RENDER | VIEW, STRING(color)},
+     "colour by: density pressure speed key neighbours, or a field of a pass the scene runs: pressure-acc "
+     "viscosity-acc cohesion-acc normal curvature-acc curvature csf-acc xsph-acc density-rate pcisph-pressure "
+     "pcisph-density pcisph-acc dfsph-density dfsph-acc (with pressure_solver = pcisph, pcisph-pressure is the "
+     "pressure)",
+     RENDER | VIEW, STRING(color)},
     {"--range", NULL, "LO,HI",
      "fixed colour range (LO:HI also); render: 'run' (default): one range for the whole\n"
      "run, found by simulating it once before drawing; 'frame': each frame's own min and max\n"

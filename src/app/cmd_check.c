@@ -111,15 +111,16 @@ int cmd_check(int argc, char **argv)
         fprintf(stderr, "sphlab: %s\n", err.msg);
         return app_error_status(err.code);
     }
+    /* saved before the report: a scene that cannot be saved must not end
+     * with the report's "ok" above the error */
+    char msg[1200];
+    if (opt.save_scene && !sph_io_save_scene(opt.save_scene, &def, msg, sizeof msg)) {
+        fprintf(stderr, "sphlab check: --save-scene %s\n", msg);
+        sph_sim_destroy(sim);
+        return 1;
+    }
     app_check_report(stdout, o.path, sim);
     sph_sim_destroy(sim);
-    if (opt.save_scene) {
-        char msg[1200];
-        if (!sph_io_save_scene(opt.save_scene, &def, msg, sizeof msg)) {
-            fprintf(stderr, "sphlab check: %s\n", msg);
-            return 1;
-        }
-        printf("saved %s\n", opt.save_scene);
-    }
+    if (opt.save_scene) printf("saved %s\n", opt.save_scene);
     return 0;
 }

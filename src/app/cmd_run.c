@@ -77,8 +77,9 @@ void app_dump_write(FILE *f, const sph_sim *sim)
     }
     for (uint32_t i = 0; i < sim->n; i++) order[P->id[i]] = i;
     /* the first columns are fixed (id, position, velocity, density, pressure:
-     * 0 where not computed); then every other field the scene computes, in
-     * the registry's order, a vector as NAME_x,NAME_y,NAME_z */
+     * the one the step applied, whichever pass made it, sph_sim_pressure; 0
+     * where none did); then every other field the scene computes, in the
+     * registry's order, a vector as NAME_x,NAME_y,NAME_z */
     fprintf(f, "id,x,y,z,vx,vy,vz,rho,p");
     const char axis[3] = {'x', 'y', 'z'};
     for (int fi = 0; fi < SPH_FIELD_COUNT; fi++) {
@@ -102,7 +103,8 @@ void app_dump_write(FILE *f, const sph_sim *sim)
             v[d] = P->vel[d][i];
         }
         fprintf(f, far ? "%u,%.15g,%.15g,%.15g" : "%u,%.9g,%.9g,%.9g", P->id[i], x[0], x[1], x[2]);
-        fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g", v[0], v[1], v[2], P->rho ? P->rho[i] : 0.0f, P->p ? P->p[i] : 0.0f);
+        fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g", v[0], v[1], v[2], P->rho ? P->rho[i] : 0.0f,
+                sph_sim_pressure(sim, i));
         for (int fi = 0; fi < SPH_FIELD_COUNT; fi++) {
             if (fi == SPH_FIELD_POS || fi == SPH_FIELD_VEL || fi == SPH_FIELD_RHO || fi == SPH_FIELD_P ||
                 !P->field[fi][0])

@@ -675,6 +675,48 @@ static const char *origin_text(const sph_scene_def *def, int line, char *buf, si
     return buf;
 }
 
+/* The z component of a vector or point key as stored at base. */
+static double key_z(const sph_key *k, const void *base)
+{
+    const char *field = (const char *)base + k->offset;
+    return k->type == SPH_KEY_POINT ? ((const double *)(const void *)field)[2]
+                                    : (double)((const float *)(const void *)field)[2];
+}
+
+/* Said, not refused: 2D ignoring z is documented (a scene may be written for
+ * both), but a non-zero z is most often a 3D scene run in 2D by mistake. */
+const char *sph_scene_ignored_z(const sph_scene_def *def, char *buf, size_t n)
+{
+    if (def->dim == 3) return NULL;
+    for (int i = 0; i < sph_scene_key_count; i++) {
+        const sph_key *k = &sph_scene_keys[i];
+        if (k->type != SPH_KEY_VEC && k->type != SPH_KEY_POINT) continue;
+        const group *g = section_group(k->section);
+        char loc[300];
+        if (g) {
+            int slot = fluid_slot(i);
+            for (int b = 0; b < *group_count(g, def); b++) {
+                char *rec = group_item(g, (sph_scene_def *)def, b);
+                const sph_origin *o = &item_origin(g, rec)[slot];
+                if (o->line != 0 && o->ncomp == 3 && key_z(k, rec) != 0.0) {
+                    snprintf(buf, n,
+                             "%s: [%s %s] %s has a z component (%g), which a 2D scene ignores; for 3D, set [scene] "
+                             "dimension = 3",
+                             origin_text(def, o->line, loc, sizeof loc), g->kind, item_name(g, rec), k->name,
+                             key_z(k, rec));
+                    return buf;
+                }
+            }
+        } else if (def->origin[i].line != 0 && def->origin[i].ncomp == 3 && key_z(k, def) != 0.0) {
+            snprintf(buf, n, "%s: [%s] %s has a z component (%g), which a 2D scene ignores; for 3D, set [scene] "
+                             "dimension = 3",
+                     origin_text(def, def->origin[i].line, loc, sizeof loc), k->section, k->name, key_z(k, def));
+            return buf;
+        }
+    }
+    return NULL;
+}
+
 sph_error_code sph_scene_check_components(const sph_scene_def *def, sph_error *err)
 {
     if (def->dim != 3) return SPH_ERR_OK;

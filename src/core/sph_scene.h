@@ -276,6 +276,10 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
 /* Its first check (sph_scene.c, where the parser records the components):
  * in a 3D scene every vector given has 3 components. */
 sph_error_code sph_scene_check_components(const sph_scene_def *def, sph_error *err);
+/* In a 2D scene, the first vector the file or --set gave with a non-zero z
+ * (which 2D ignores: a 3D scene without dimension = 3, gravity along -z),
+ * as "file:line: [section] key has a z component ..." in buf; NULL if none. */
+const char *sph_scene_ignored_z(const sph_scene_def *def, char *buf, size_t n);
 
 /* Number of particles the blocks make (a double: counts can be absurd before validation). */
 double sph_scene_particle_count(const sph_scene_def *def);

@@ -43,6 +43,7 @@ double sph_scene_neighbour_estimate(const sph_scene_def *def)
 
 const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n)
 {
+    if (sph_scene_ignored_z(def, buf, n)) return buf; /* first: the scene is not the one written */
     double nb = sph_scene_neighbour_estimate(def);
     double count = sph_scene_particle_count(def);
     if (def->n_blocks == 0 || !(def->effects & (SPH_EFFECT(DENSITY) | SPH_EFFECT(PRESSURE) | SPH_EFFECT(VISCOSITY))))

@@ -728,6 +728,17 @@ double sph_stats_energy(const sph_stats *s)
     return s->ekin + s->epot + s->eint;
 }
 
+float sph_sim_pressure(const sph_sim *sim, uint32_t i)
+{
+    const sph_particles *P = &sim->P;
+    switch (sim->def.pressure_solver) {
+    case SPH_PSOLVER_PCISPH: return P->p_pci ? P->p_pci[i] : 0.0f;
+    case SPH_PSOLVER_DFSPH:
+        return P->kappa && P->kappa_v && P->rho ? P->rho[i] * (P->kappa[i] + P->kappa_v[i]) : 0.0f;
+    default: return P->p ? P->p[i] : 0.0f;
+    }
+}
+
 double sph_sim_energy_drift(const sph_sim *sim)
 {
     if (sim->step < 1) return NAN;

@@ -329,6 +329,13 @@ void sph_sim_compression(const sph_sim *sim, double *largest, double *mean);
  * for the equation of state and the solvers (`sphlab bench solvers`). */
 void sph_sim_compression_lattice(sph_sim *sim, double *largest, double *mean);
 
+/* The pressure [Pa, N/m in 2D] particle i (storage index) felt in the last
+ * step, whatever made it: the equation of state's p; PCISPH's p_pci; DFSPH's
+ * rho (kappa + kappa_v), its two solves' stiffness as a pressure (Bender &
+ * Koschier 2017: kappa = p / rho). 0 where no pass makes one (no pressure
+ * effect). --dump's p column and the study's pressure read it: the field p
+ * exists only with the equation of state. */
+float sph_sim_pressure(const sph_sim *sim, uint32_t i);
 /* A field of the particles; false if the scene does not allocate it. */
 bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out);
 /* The watchdog's report: step, pass, particle, its values and neighbours. */

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "../io/io.h"
 #include "app.h"
 #include "commands.h"
 #include "lesson_steps.h"
@@ -273,7 +274,11 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
         return 1;
     }
     plot_out_command("lesson");
-    if (!plot_out_dir(dir)) return 1;
+    char dir_err[1200];
+    if (!sph_mkdir_p(dir, dir_err, sizeof dir_err)) { /* named as the option the user gave */
+        fprintf(stderr, "sphlab lesson: --export %s: %s\n", dir, dir_err);
+        return 1;
+    }
     /* paths as given (they show in the commands and the logs); absolute
      * ones only where a command runs in another directory (lx_abs) */
     snprintf(x.dir, sizeof x.dir, "%s", dir);
@@ -330,10 +335,14 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
     double others = strtod(load0, NULL);
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     if (strcmp(load0, "unknown") != 0 && cores > 0 && others > 0.25 * (double)cores)
-        lx_md(&x, "> **The machine was busy**: load average %.2f on %ld cores before this export. Every timing below "
-                  "(milliseconds per pass, steps per second, speed-ups) ran beside that load and is slower and noisier "
-                  "than on an idle machine; export again when it is idle to compare.\n\n",
-              others, cores);
+        lx_md(&x, "> {{@**The machine was busy**: load average %.2f on %ld cores before this export. Every timing "
+                  "below (milliseconds per pass, steps per second, speed-ups) ran beside that load and is slower and "
+                  "noisier than on an idle machine; export again when it is idle to compare.|**La machine était "
+                  "occupée** : charge moyenne %.2f sur %ld cœurs avant cet export. Chaque temps ci-dessous "
+                  "(millisecondes par passe, pas par seconde, accélérations) a tourné à côté de cette charge et est "
+                  "plus lent et plus bruité que sur une machine au repos ; exportez de nouveau quand elle est au "
+                  "repos pour comparer.}}\n\n",
+              others, cores, others, cores);
     for (int i = 0; i < x.nfig; i++) {
         lx_md(&x, "- %s\n", x.figs[i]);
         /* a single PNG that exists is shown, with its caption as alt text */

@@ -23,11 +23,13 @@ int lx_lesson1(lx *x)
     for (int dim = 2; dim <= 3; dim++)
         lx_plot(x, lx_fmt("plot-kernels-%dd", dim),
                 &(plot_opts){.what = "kernels", .dim = dim, .h = h0, .out = x->dir, .quiet = true});
-    lx_fig(x, "kernels-2d.png", "the five kernels in 2D: W, dW/dr and the Laplacian against r/h (PDF and CSV "
-                                       "beside it)");
-    lx_fig(x, "kernels-3d.png", "the same in 3D");
+    lx_fig(x, "kernels-2d.png", "{{@the five kernels in 2D: W, dW/dr and the Laplacian against r/h (PDF and CSV "
+                                "beside it)|les cinq noyaux en 2D : W, dW/dr et le laplacien en fonction de r/h "
+                                "(PDF et CSV à côté)}}");
+    lx_fig(x, "kernels-3d.png", "{{@the same in 3D|la même chose en 3D}}");
     lx_fig(x, "kernel-NAME-2d.png, kernel-NAME-3d.png",
-                  "each kernel on its own, NAME = poly6, spiky, viscosity, cubic, wendland (PDF, CSV)");
+           "{{@each kernel on its own, NAME = poly6, spiky, viscosity, cubic, wendland (PDF, CSV)|chaque noyau seul, "
+           "NAME = poly6, spiky, viscosity, cubic, wendland (PDF, CSV)}}");
     plot_table kt;
     double w0_csv[SPH_KERNEL_COUNT];
     for (int k = 0; k < SPH_KERNEL_COUNT; k++) w0_csv[k] = NAN;
@@ -65,16 +67,20 @@ int lx_lesson1(lx *x)
             const char *nq, *nf; /* the --n lists of --quick and of a full export */
             double q[3], full[3];
             int nnq, nnf;
-            const char *what;
+            const char *what, *what_fr;
         } est[3] = {
             {"estimate-1d", 1, STUDY_SAMPLES_RANDOM, "100,1000", "100,1000,10000", {100, 1000}, {100, 1000, 10000}, 2,
              3,
              "1D: error of the estimate of sin(2 pi x) from n random samples against h (log-log), with the "
-             "predicted bias"},
+             "predicted bias",
+             "1D : erreur de l'estimation de sin(2 pi x) par n échantillons aléatoires en fonction de h (log-log), "
+             "avec le biais prédit"},
             {"estimate-2d", 2, STUDY_SAMPLES_JITTER, "50,100", "50,100,200", {50, 100}, {50, 100, 200}, 2, 3,
-             "2D: the same from a lattice jittered by 0.3 spacing, n x n samples"},
+             "2D: the same from a lattice jittered by 0.3 spacing, n x n samples",
+             "2D : la même chose sur un réseau perturbé de 0.3 pas, n x n échantillons"},
             {"estimate-2d-lattice", 2, STUDY_SAMPLES_LATTICE, "50,100", "50,100,200", {50, 100}, {50, 100, 200}, 2, 3,
-             "2D: the same from a perfect lattice: no noise, only the bias"},
+             "2D: the same from a perfect lattice: no noise, only the bias",
+             "2D : la même chose sur un réseau parfait : pas de bruit, seulement le biais"},
         };
         for (int e = 0; e < 3; e++) {
             /* `sphlab estimate --dim D --samples S --n N --out DIR --name NAME --quiet`, in process */
@@ -91,16 +97,18 @@ int lx_lesson1(lx *x)
                 lx_md(x, "\n**`sphlab estimate` failed** for `%s`.\n\n", est[e].name);
                 continue;
             }
-            lx_fig(x, lx_fmt("%s.png", est[e].name), lx_fmt("%s (PDF and CSV beside it)", est[e].what));
+            lx_fig(x, lx_fmt("%s.png", est[e].name),
+                   lx_fmt("{{@%s (PDF and CSV beside it)|%s (PDF et CSV à côté)}}", est[e].what, est[e].what_fr));
             plot_table t;
             if (!lx_table(x, &t, lx_out(x, lx_fmt("%s.csv", est[e].name)))) continue;
             const double *n = lx_col(x, &t, "n"), *h = lx_col(x, &t, "h"), *hs = lx_col(x, &t, "h_over_spacing"),
                          *nb = lx_col(x, &t, "neighbours"), *err = lx_col(x, &t, "error"),
                          *bias = lx_col(x, &t, "bias_predicted");
             if (n && h && hs && nb && err && bias) {
-                lx_md(x, "`sphlab estimate --dim %d --samples %s` (%s): for each sample count, the error at each h "
-                         "and the best h.\n\n| n | h | h / spacing | neighbours | rms error | predicted bias |\n"
-                         "|---|---|---|---|---|---|\n",
+                lx_md(x, "`sphlab estimate --dim %d --samples %s` (%s){{@: for each sample count, the error at each h "
+                         "and the best h| : pour chaque nombre d'échantillons, l'erreur à chaque h et le meilleur h}}."
+                         "\n\n| n | h | {{@h / spacing|h / pas}} | {{@neighbours|voisins}} | {{@rms error|erreur rms}} "
+                         "| {{@predicted bias|biais prédit}} |\n|---|---|---|---|---|---|\n",
                       est[e].dim, study_samples_names[est[e].samples], est[e].name);
                 for (size_t i = 0; i < t.nrows; i++) {
                     bool best = true;
@@ -165,7 +173,10 @@ int lx_lesson1(lx *x)
         lx_md(x, "| %g | %g | %.1f | %.2f%% | %.1f | %.1f%% |\n", hl[k], h, mean, rms, tmean, def_pc);
     }
     lx_block_end(x);
-    if (f) lx_csv_close(x, f, "density-vs-h.csv", "the slab's interior noise and surface deficit against h");
+    if (f)
+        lx_csv_close(x, f, "density-vs-h.csv",
+                     "{{@the slab's interior noise and surface deficit against h|le bruit intérieur de la tranche et "
+                     "son déficit en surface en fonction de h}}");
     plot_lines L3 = {0};
     snprintf(L3.title, sizeof L3.title, "Density of a jittered slab: noise inside, deficit at the surface");
     snprintf(L3.subtitle, sizeof L3.subtitle, "sphlab run lesson.ini --steps 1 --set kernels.h=H; jitter 0.3 spacing");
@@ -175,7 +186,9 @@ int lx_lesson1(lx *x)
     L3.p[0].n = 2;
     L3.p[0].s[0] = (plot_series){"interior rms error", xs, noise, (size_t)good, 0, false};
     L3.p[0].s[1] = (plot_series){"top row deficit", xs, deficit, (size_t)good, 1, false};
-    lx_chart(x, PLOT_LINES, &L3, "density-vs-h", 1000, 650, "the slab's interior noise and surface deficit against h");
+    lx_chart(x, PLOT_LINES, &L3, "density-vs-h", 1000, 650,
+             "{{@the slab's interior noise and surface deficit against h|le bruit intérieur de la tranche et son "
+             "déficit en surface en fonction de h}}");
 
     /* 4. two pictures */
     const double pics[2] = {1.5, 4};
@@ -189,9 +202,10 @@ int lx_lesson1(lx *x)
                       "900x650", LX_END) == 0 &&
             lx_take(x, sub, "frame_00001.png", lx_fmt("density-h%g.png", pics[k])))
             lx_fig(x, lx_fmt("density-h%g.png", pics[k]),
-                   lx_fmt("the slab coloured by density (600 to 1400 kg/m^2) with h = %g spacings, particle 625's "
-                          "neighbours and weights",
-                          pics[k]));
+                   lx_fmt("{{@the slab coloured by density (600 to 1400 kg/m^2) with h = %g spacings, particle 625's "
+                          "neighbours and weights|la tranche colorée par la densité (600 à 1400 kg/m^2) avec h = %g "
+                          "pas, les voisins de la particule 625 et leurs poids}}",
+                          pics[k], pics[k]));
     }
     return 0;
 }
@@ -287,14 +301,19 @@ int lx_lesson2(lx *x)
         lx_md(x, "\n");
     }
     lx_block_end(x);
-    if (f) lx_csv_close(x, f, "density-points.csv", "the density at the interior, surfaces, walls and corners");
+    if (f)
+        lx_csv_close(x, f, "density-points.csv",
+                     "{{@the density at the interior, surfaces, walls and corners|la densité à l'intérieur, aux "
+                     "surfaces, aux parois et aux coins}}");
 
     /* the profile up the middle column */
     f = lx_csv_open(x, "density-profile.csv");
     if (f) {
         fprintf(f, "y,rho_volume,rho_reflect\n");
         for (int r = 0; r < nprof; r++) fprintf(f, "%.4f,%.3f,%.3f\n", prof_y[r], prof[0][r], prof[1][r]);
-        lx_csv_close(x, f, "density-profile.csv", "the density up the middle column, both wall models");
+        lx_csv_close(x, f, "density-profile.csv",
+                     "{{@the density up the middle column, both wall models|la densité le long de la colonne du "
+                     "milieu, les deux modèles de paroi}}");
     }
     double flat[64];
     for (int r = 0; r < nprof; r++) flat[r] = rho0;
@@ -309,7 +328,8 @@ int lx_lesson2(lx *x)
     L.p[0].s[1] = (plot_series){"reflect only (the seed)", prof_y, prof[1], (size_t)nprof, 1, false};
     L.p[0].s[2] = (plot_series){"rest density", prof_y, flat, (size_t)nprof, 6, false};
     lx_chart(x, PLOT_LINES, &L, "density-profile", 1000, 650,
-             "the density up the middle column, with and without the walls' share");
+             "{{@the density up the middle column, with and without the walls' share|la densité le long de la "
+             "colonne du milieu, avec et sans la part des parois}}");
 
     /* 2. the walls decide whether a pool can rest */
     const char *pool = lx_src(x, "pool.ini");
@@ -338,7 +358,9 @@ int lx_lesson2(lx *x)
             P.p[0].s[0] = (plot_series){"walls count (volume)", t0, e0, pt[0].nrows, 0, false};
             P.p[0].s[1] = (plot_series){"reflect only (the seed)", t1, e1, pt[1].nrows, 1, false};
             lx_chart(x, PLOT_LINES, &P, "pool-walls", 1000, 600,
-                     "a pool at rest: kinetic energy over time with volume walls and with the seed's reflecting walls");
+                     "{{@a pool at rest: kinetic energy over time with volume walls and with the seed's reflecting "
+                     "walls|un bassin au repos : énergie cinétique au cours du temps avec les parois volume et avec "
+                     "les parois réfléchissantes du TIPE}}");
             size_t a = pt[0].nrows - 1, b = pt[1].nrows - 1;
             lx_val(x, "pool_t", "%.3g", t0[a]);
             lx_val(x, "ekin_volume", "%.4g", e0[a]);
@@ -360,9 +382,10 @@ int lx_lesson2(lx *x)
                       lx_fmt("%u", lx_lattice_id(&def, cols / 2, rows - 1)), "--size", "1000x640", LX_END) == 0 &&
             lx_take(x, sub, "frame_00001.png", name))
             lx_fig(x, name,
-                   lx_fmt("the block coloured by density (600 to 1100 kg/m^2), %s walls, the search grid and the "
-                          "neighbours of a particle of the top row",
-                          models[m]));
+                   lx_fmt("{{@the block coloured by density (600 to 1100 kg/m^2), %s walls, the search grid and the "
+                          "neighbours of a particle of the top row|le bloc coloré par la densité (600 à 1100 kg/m^2), "
+                          "parois %s, la grille de recherche et les voisins d'une particule de la rangée du haut}}",
+                          models[m], models[m]));
     }
     return 0;
 }

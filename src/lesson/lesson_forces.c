@@ -67,7 +67,8 @@ int lx_lesson3(lx *x)
         have_stats[e] = true;
         if (e < 2) have[e] = lx_read_dump(x, dpath, &pool[e]);
     }
-    if (have_stats[0]) lx_fig(x, "pool-stats.csv", "the pool's per-step statistics (sphlab run --stats)");
+    if (have_stats[0]) lx_fig(x, "pool-stats.csv", "{{@the pool's per-step statistics (sphlab run --stats)|les "
+                                                      "statistiques du bassin à chaque pas (sphlab run --stats)}}");
     if (have_stats[0] && have_stats[2]) {
         plot_table ta, tb;
         if (lx_table(x, &ta, statp[0])) {
@@ -88,7 +89,9 @@ int lx_lesson3(lx *x)
                              sph_kernel_names[def.kernel_density], sph_kernel_names[def.kernel_pressure]);
                     L.p[0].s[1] = (plot_series){"poly6 / spiky", t1, e1, tb.nrows, 1, false};
                     lx_chart(x, PLOT_LINES, &L, "pool-energy", 1000, 600,
-                             "the pool's kinetic energy over time: one kernel against Mueller's pair, no viscosity");
+                             "{{@the pool's kinetic energy over time: one kernel against Mueller's pair, no "
+                             "viscosity|l'énergie cinétique du bassin au cours du temps : un seul noyau contre la "
+                             "paire de Müller, sans viscosité}}");
                     lx_val(x, "pool_t", "%.3g", t0[ta.nrows - 1]);
                     lx_val(x, "pool_ekin", "%.4g", e0[ta.nrows - 1]);
                     lx_val(x, "kernel_density", "%s", sph_kernel_names[def.kernel_density]);
@@ -135,7 +138,8 @@ int lx_lesson3(lx *x)
         if (f) {
             fprintf(f, "y,p_sph,p_hydrostatic\n");
             for (int b = 0; b < m; b++) fprintf(f, "%.4f,%.3f,%.3f\n", by[b], bp[b], hyd[b]);
-            lx_csv_close(x, f, "pressure-depth.csv", "the pool's mean pressure per layer and rho0 g (H - y)");
+            lx_csv_close(x, f, "pressure-depth.csv", "{{@the pool's mean pressure per layer and rho0 g (H - y)|la "
+                                                         "pression moyenne du bassin par couche et rho0 g (H - y)}}");
         }
         plot_lines L = {0};
         snprintf(L.title, sizeof L.title, "Pressure against height in the pool");
@@ -147,7 +151,9 @@ int lx_lesson3(lx *x)
         L.p[0].n = 2;
         L.p[0].s[0] = (plot_series){"SPH, mean of each layer", by, bp, (size_t)m, 0, false};
         L.p[0].s[1] = (plot_series){"#gr#d0#u g (H - y)", by, hyd, (size_t)m, 1, false};
-        lx_chart(x, PLOT_LINES, &L, "pressure-depth", 1000, 650, "the pool's pressure against height, and rho0 g (H - y)");
+        lx_chart(x, PLOT_LINES, &L, "pressure-depth", 1000, 650,
+                 "{{@the pool's pressure against height, and rho0 g (H - y)|la pression du bassin en fonction de la "
+                 "hauteur, et rho0 g (H - y)}}");
         lx_val(x, "depth", "%.3f", H);
         lx_val(x, "dpdy", "%.0f", dpdy);
         lx_val(x, "dpdy_hydrostatic", "%.0f", -rho0 * g);
@@ -177,7 +183,9 @@ int lx_lesson3(lx *x)
             if (f) {
                 fprintf(f, "rho_linear,p_linear,rho_tait,p_tait\n");
                 for (size_t i = 0; i < n; i++) fprintf(f, "%.3f,%.3f,%.3f,%.3f\n", xl[i], yl[i], xt[i], yt[i]);
-                lx_csv_close(x, f, "eos.csv", "pressure against density of every particle, linear and Tait");
+                lx_csv_close(x, f, "eos.csv",
+                             "{{@pressure against density of every particle, linear and Tait|la pression "
+                                            "en fonction de la densité de chaque particule, linéaire et Tait}}");
             }
             plot_lines L = {0};
             snprintf(L.title, sizeof L.title, "The equation of state as the pressure pass computed it");
@@ -190,7 +198,9 @@ int lx_lesson3(lx *x)
             L.p[0].n = 2;
             L.p[0].s[0] = (plot_series){"linear: k (#gr - #gr#d0#u)", xl, yl, n, 0, false};
             L.p[0].s[1] = (plot_series){"Tait, #gg = 7", xt, yt, n, 1, false};
-            lx_chart(x, PLOT_LINES, &L, "eos", 1000, 650, "pressure against density of every particle: linear and Tait");
+            lx_chart(x, PLOT_LINES, &L, "eos", 1000, 650,
+                     "{{@pressure against density of every particle: linear and Tait|la pression en fonction de la "
+                     "densité de chaque particule : linéaire et Tait}}");
             lx_val(x, "rho_densest_linear", "%.1f", xl[n - 1]);
             lx_val(x, "p_densest_linear", "%.0f", yl[n - 1]);
             lx_val(x, "rho_densest_tait", "%.1f", xt[n - 1]);
@@ -246,7 +256,9 @@ int lx_lesson3(lx *x)
                         ch);
         }
         lx_block_end(x);
-        if (f) lx_csv_close(x, f, "energy.csv", "energy change of the collapsing column per kernel pair and form");
+        if (f) lx_csv_close(x, f, "energy.csv",
+                                "{{@energy change of the collapsing column per kernel pair and form|variation "
+                                          "d'énergie de la colonne qui s'effondre par paire de noyaux et par forme}}");
     }
 
     /* 3. momentum in the open */
@@ -284,7 +296,9 @@ int lx_lesson3(lx *x)
             if (f) fprintf(f, "%s,%s,%.6g,%.6g,%.6g\n", forms[c], nsteps, sum, P, sum > 0 ? P / sum : 0);
         }
         lx_block_end(x);
-        if (f) lx_csv_close(x, f, "momentum.csv", "total momentum after the open block's run, both forms");
+        if (f) lx_csv_close(x, f, "momentum.csv",
+                                "{{@total momentum after the open block's run, both forms|quantité de "
+                                            "mouvement totale après le calcul du bloc ouvert, les deux formes}}");
     }
 
     /* 4. a picture */
@@ -295,9 +309,10 @@ int lx_lesson3(lx *x)
                   "--steps", psteps, "--every", psteps, "--threads", "1", "--quiet", "--color", "pressure", "--overlay",
                   "forces,hud,legend", "--size", "1000x560", LX_END) == 0 &&
         lx_take(x, "render-pressure", "frame_00001.png", "pressure.png"))
-        lx_fig(x, "pressure.png", lx_fmt("the pool after %s steps, coloured by pressure, with the force arrows "
-                                         "(pressure red, gravity green)",
-                                         psteps));
+        lx_fig(x, "pressure.png", lx_fmt("{{@the pool after %s steps, coloured by pressure, with the force arrows "
+                                         "(pressure red, gravity green)|le bassin après %s pas, coloré par la "
+                                         "pression, avec les flèches des forces (pression en rouge, gravité en vert)}}",
+                                         psteps, psteps));
     return 0;
 }
 
@@ -356,7 +371,10 @@ int lx_lesson4(lx *x)
               rate0, 100 * (rates[r] / rate0 - 1));
     }
     lx_block_end(x);
-    if (f) lx_csv_close(x, f, "taylor-green.csv", "kinetic energy over time of each run, and the analytic law");
+    if (f)
+        lx_csv_close(x, f, "taylor-green.csv",
+                     "{{@kinetic energy over time of each run, and the analytic law|énergie cinétique au cours du "
+                     "temps de chaque calcul, et la loi analytique}}");
     plot_lines C = {0};
     snprintf(C.title, sizeof C.title, "Taylor-Green vortex: viscous decay of the kinetic energy");
     snprintf(C.subtitle, sizeof C.subtitle, "%dx%d particles, #gn = %g m#u2#d/s; analytic exp(-4#gnk#u2#dt)",
@@ -386,7 +404,9 @@ int lx_lesson4(lx *x)
     if (an) {
         C.p[0].s[C.p[0].n++] = (plot_series){"analytic", tan_, an, nan_, 6, false};
         lx_chart(x, PLOT_LINES, &C, "taylor-green", 1000, 650,
-                 "kinetic energy over time: the Laplacian and the seed's smoothing form against exp(-4 nu k^2 t)");
+                 "{{@kinetic energy over time: the Laplacian and the seed's smoothing form against exp(-4 nu k^2 t)|"
+                 "l'énergie cinétique au cours du temps : le laplacien et la forme lissante du TIPE contre "
+                 "exp(-4 nu k^2 t)}}");
     }
     free(an);
     for (int r = 0; r < nr; r++) {
@@ -400,7 +420,9 @@ int lx_lesson4(lx *x)
                     &(plot_opts){.what = "kernel", .input = "viscosity", .dim = dim, .h = def.h, .out = x->dir,
                                  .quiet = true}))
             lx_fig(x, lx_fmt("kernel-viscosity-%dd.png", dim),
-                   lx_fmt("the viscosity kernel in %dD: W, dW/dr, Laplacian (PDF, CSV beside it)", dim));
+                   lx_fmt("{{@the viscosity kernel in %dD: W, dW/dr, Laplacian (PDF, CSV beside it)|le noyau de "
+                          "viscosité en %dD : W, dW/dr, laplacien (PDF, CSV à côté)}}",
+                          dim, dim));
     plot_table kt;
     if (lx_table(x, &kt, lx_out(x, "kernel-viscosity-2d.csv"))) {
         const double *q = lx_col(x, &kt, "r_over_h"), *lap = lx_col(x, &kt, "lap");
@@ -420,6 +442,8 @@ int lx_lesson4(lx *x)
                   "50", "--every", "50", "--threads", "1", "--quiet", "--color", "speed", "--overlay",
                   "forces,hud,legend", "--size", "800x700", LX_END) == 0 &&
         lx_take(x, "render-speed", "frame_00001.png", "speed.png"))
-        lx_fig(x, "speed.png", "the vortex after 50 steps coloured by speed, with the viscous force arrows (blue)");
+        lx_fig(x, "speed.png", "{{@the vortex after 50 steps coloured by speed, with the viscous force arrows (blue)|"
+                               "le tourbillon après 50 pas coloré par la vitesse, avec les flèches de la force "
+                               "visqueuse (en bleu)}}");
     return 0;
 }

@@ -28,8 +28,10 @@ int lx_lesson7(lx *x)
                     &r))
         return 1;
     int rc;
-    lx_fig(x, "stats.csv", "one row per step: t, dt, energy, density, max speed, ms of each pass");
-    lx_fig(x, "final.csv", "the particles at the end: id, position, velocity, density, pressure");
+    lx_fig(x, "stats.csv", "{{@one row per step: t, dt, energy, density, max speed, ms of each pass|une ligne par "
+                           "pas : t, dt, énergie, densité, vitesse maximale, ms de chaque passe}}");
+    lx_fig(x, "final.csv", "{{@the particles at the end: id, position, velocity, density, pressure|les particules à la "
+                           "fin : id, position, vitesse, densité, pression}}");
     lx_val(x, "particles", "%ld", r.particles);
     lx_val(x, "steps", "%ld", r.steps);
     lx_val(x, "t_sim", "%.3f", r.t_sim);
@@ -55,13 +57,18 @@ int lx_lesson7(lx *x)
 
     if (lx_plot(x, "plot-passes",
                 &(plot_opts){.what = "passes", .input = lx_out(x, "stats.csv"), .out = x->dir, .quiet = true})) {
-        lx_fig(x, "passes.png", "median milliseconds per step of each pass (PDF, CSV beside it)");
-        lx_fig(x, "passes-time.png", "the passes' time stacked over the run (PDF, CSV beside it)");
+        lx_fig(x, "passes.png", "{{@median milliseconds per step of each pass (PDF, CSV beside it)|millisecondes "
+                                "médianes par pas de chaque passe (PDF, CSV à côté)}}");
+        lx_fig(x, "passes-time.png", "{{@the passes' time stacked over the run (PDF, CSV beside it)|le temps des "
+                                     "passes "
+                                     "empilé au cours du calcul (PDF, CSV à côté)}}");
     }
     if (lx_plot(x, "plot-series",
                 &(plot_opts){.what = "series", .input = lx_out(x, "stats.csv"), .ycols = "ekin,rho_min,rho_mean,rho_max",
                              .dim = 2, .name = "energy-density", .out = x->dir, .quiet = true}))
-        lx_fig(x, "energy-density.png", "kinetic energy and density (min, mean, max) over time (PDF, CSV beside it)");
+        lx_fig(x, "energy-density.png", "{{@kinetic energy and density (min, mean, max) over time (PDF, CSV beside "
+                                        "it)|énergie cinétique et densité (min, moyenne, max) au cours du temps (PDF, "
+                                        "CSV à côté)}}");
 
     /* 2. the dam break over time */
     const char *every = x->quick ? "50" : "400";
@@ -75,9 +82,10 @@ int lx_lesson7(lx *x)
                               "hud,legend", "--size", "960x520", LX_END);
     if (rc == 0) {
         int nf = lx_take_all(x, "frames");
-        lx_fig(x, "frames/frame_NNNNN.png", lx_fmt("%d frames of the dam break, one every %s steps, coloured by speed "
-                                                   "(0 to 4 m/s)",
-                                                   nf, every));
+        lx_fig(x, "frames/frame_NNNNN.png", lx_fmt("{{@%d frames of the dam break, one every %s steps, coloured by "
+                                                   "speed (0 to 4 m/s)|%d images de la rupture de barrage, une tous "
+                                                   "les %s pas, colorées par la vitesse (0 à 4 m/s)}}",
+                                                   nf, every, nf, every));
         lx_val(x, "every", "%s", every);
         lx_val(x, "frames", "%d", nf);
     }
@@ -101,9 +109,11 @@ int lx_lesson7(lx *x)
         for (int i = 0; i < np; i++) {
             const char *name = lx_fmt("pass-%02d-%s.png", i + 1, passes[i]);
             if (lx_take(x, "view", lx_fmt("sphlab-%04d.png", i), name))
-                lx_fig(x, name, lx_fmt("after the %s pass of the step after the first %s (the window recolours by "
-                                       "the field the pass wrote; the HUD names it)",
-                                       passes[i], before));
+                lx_fig(x, name, lx_fmt("{{@after the %s pass of the step after the first %s (the window recolours "
+                                       "by the field the pass wrote; the HUD names it)|après la passe %s du pas qui "
+                                       "suit les %s premiers (la fenêtre recolore selon le champ que la passe a écrit "
+                                       "; l'affichage le nomme)}}",
+                                       passes[i], before, passes[i], before));
         }
         lx_val(x, "view_before", "%s", before);
     }
@@ -219,7 +229,7 @@ int lx_lesson8(lx *x)
             N = r.particles;
             double sp0 = ms[0] / ms[i], spp = i ? ms[i - 1] / ms[i] : 1;
             lx_md(x, "| %s | %s | %d | %.3f | %.3f | %.2f | %.2f | %.0f | %s |\n", L->name, L->about, r.threads,
-                  ms[i], nbm[i], sp0, spp, 1000 / ms[i], 1000 / ms[i] >= 60 ? "yes" : "no");
+                  ms[i], nbm[i], sp0, spp, 1000 / ms[i], 1000 / ms[i] >= 60 ? "{{@yes|oui}}" : "{{@no|non}}");
             if (f)
                 fprintf(f, "%s,%d,%ld,%.4f,%.4f,%.4f,%.2f\n", L->name, r.threads, r.particles, ms[i], nbm[i], sp0,
                         1000 / ms[i]);
@@ -231,14 +241,18 @@ int lx_lesson8(lx *x)
             good++;
         }
         lx_block_end(x);
-        if (f) lx_csv_close(x, f, "levels.csv", "milliseconds per step of each level on the lesson's scene");
+        if (f) lx_csv_close(x, f, "levels.csv",
+                                "{{@milliseconds per step of each level on the lesson's scene|millisecondes "
+                                         "par pas de chaque niveau sur la scène de la leçon}}");
         if (good) {
             snprintf(B.title, sizeof B.title, "The optimisation ladder on %ld particles (3D)", N);
             snprintf(B.subtitle, sizeof B.subtitle, "sphlab run lesson.ini --steps %s with each level's keys; "
                                                     "speedup over L0",
                      steps);
             snprintf(B.xlabel, sizeof B.xlabel, "time per step [ms]");
-            lx_chart(x, PLOT_BARS, &B, "levels", 1000, 600, "milliseconds per step of each level, with its speedup");
+            lx_chart(x, PLOT_BARS, &B, "levels", 1000, 600,
+                     "{{@milliseconds per step of each level, with its speedup|millisecondes par pas de chaque "
+                     "niveau, avec son accélération}}");
         }
         /* 3. the ladder: the largest N at 60 steps/s */
         lx_val(x, "ladder_skipped", "%s", x->quick ? "yes" : "");
@@ -266,8 +280,9 @@ int lx_lesson8(lx *x)
                 for (int k = 0; k < 4; k++)
                     if (lx_take(x, "bench", lx_fmt("ladder-3d.%s", ext[k]), lx_fmt("ladder-3d.%s", ext[k])))
                         lx_fig(x, lx_fmt("ladder-3d.%s", ext[k]),
-                               k == 0 ? "sphlab bench ladder --quick: the largest N at 60 steps/s per level"
-                                      : "the same (PDF, CSV, JSON)");
+                               k == 0 ? "sphlab bench ladder --quick{{@: the largest N at 60 steps/s per level| : le "
+                                        "plus grand N à 60 pas/s par niveau}}"
+                                      : "{{@the same (PDF, CSV, JSON)|la même chose (PDF, CSV, JSON)}}");
                 ladder_table(x, &lo, &lad);
             } else {
                 x->failed++;
@@ -286,7 +301,9 @@ int lx_lesson8(lx *x)
                                   "--steps", psteps, "--every", psteps, "--quiet", "--color", "neighbours",
                                   "--overlay", "hud,legend", "--size", "900x700", LX_END);
     if (rc == 0 && lx_take(x, "render", "frame_00001.png", "block.png"))
-        lx_fig(x, "block.png", lx_fmt("the block after %s steps, coloured by neighbour count", psteps));
+        lx_fig(x, "block.png", lx_fmt("{{@the block after %s steps, coloured by neighbour count|le bloc après %s pas, "
+                                      "coloré par le nombre de voisins}}",
+                                      psteps, psteps));
     return 0;
 }
 
@@ -337,7 +354,8 @@ static void study_table(lx *x, const char *csv)
         lx_md(x, "|");
         for (int i = 1; i < c_part; i++) lx_md(x, " %s |", f[i]);
         lx_md(x, " %s | %.2f%% | %.3f | %.3f | %s |\n", f[c_part], 100 * strtod(f[c_err], NULL),
-              c_ms >= 0 ? strtod(f[c_ms], NULL) : NAN, strtod(f[c_s], NULL), c_front >= 0 && atoi(f[c_front]) ? "yes" : "");
+              c_ms >= 0 ? strtod(f[c_ms], NULL) : NAN, strtod(f[c_s], NULL),
+              c_front >= 0 && atoi(f[c_front]) ? "{{@yes|oui}}" : "");
     }
     lx_md(x, "\n");
     free(text);
@@ -432,8 +450,9 @@ int lx_lesson9(lx *x)
             lx_block_end(x);
             lx_fig(x, lx_fmt("%s.png", st[q].name),
                    lx_fmt("{{@%s (PDF and CSV beside it)|%s (PDF et CSV à côté)}}", st[q].what, st[q].what_fr));
-            lx_fig(x, lx_fmt("%s.csv", st[q].name), "one row per combination: knobs, error, ms per step, run time, "
-                                                     "on the front or not");
+            lx_fig(x, lx_fmt("%s.csv", st[q].name), "{{@one row per combination: knobs, error, ms per step, run "
+                                                     "time, on the front or not|une ligne par combinaison : réglages, "
+                                                     "erreur, ms par pas, durée du calcul, sur le front ou non}}");
         }
         return 0;
     }
@@ -491,13 +510,17 @@ int lx_lesson9(lx *x)
     for (int i = 0; i < nr; i++) {
         acc_run *R = &runs[i];
         lx_md(x, "| %g | %g | %s | %ld | %ld | %.3f | %.4f | %.2f%% | %s |\n", R->spacing, R->h_over_s,
-              R->dbl ? "double" : "float", R->n, R->steps, R->wall_s, R->rate, 100 * R->err, R->pareto ? "yes" : "");
+              R->dbl ? "double" : "float", R->n, R->steps, R->wall_s, R->rate, 100 * R->err,
+              R->pareto ? "{{@yes|oui}}" : "");
         if (f)
             fprintf(f, "%g,%g,%s,%ld,%ld,%.4f,%.6f,%.6f,%.4f,%d\n", R->spacing, R->h_over_s,
                     R->dbl ? "double" : "float", R->n, R->steps, R->wall_s, R->rate, rate0, 100 * R->err, R->pareto);
     }
     lx_block_end(x);
-    if (f) lx_csv_close(x, f, "accuracy.csv", "error and wall time of every run, and whether it is on the Pareto front");
+    if (f)
+        lx_csv_close(x, f, "accuracy.csv",
+                     "{{@error and wall time of every run, and whether it is on the Pareto front|erreur et temps de "
+                     "calcul de chaque calcul, et s'il est sur le front de Pareto}}");
 
     /* chart: one series per h/s (over spacing), plus the front */
     plot_lines C = {0};
@@ -538,8 +561,10 @@ int lx_lesson9(lx *x)
             yv[4][j] = 100 * runs[i].err;
         }
     if (m) C.p[0].s[C.p[0].n++] = (plot_series){"Pareto front", xv[4], yv[4], m, 6, false};
-    if (nr >= 2) lx_chart(x, PLOT_LINES, &C, "accuracy", 1000, 650, "error against wall time of every run, with the "
-                                                                    "Pareto front");
+    if (nr >= 2)
+        lx_chart(x, PLOT_LINES, &C, "accuracy", 1000, 650,
+                 "{{@error against wall time of every run, with the Pareto front|l'erreur en fonction du temps de "
+                 "calcul de chaque calcul, avec le front de Pareto}}");
     return 0;
 }
 #include "../io/io.h"

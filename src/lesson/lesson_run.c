@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../io/io.h"
 #include "app.h"
 #include "lesson.h"
 
@@ -82,6 +83,26 @@ static bool run_failed(lx *x, const char *log_path, const char *const *argv, con
     return false;
 }
 
+/* The scene with its overrides, as `sphlab run` loads it, but its error or
+ * warning goes into the run's log: a lesson's export prints only the
+ * commands (none with --quiet), and the log is where a run's words go. */
+static bool load_into_log(const app_scene_opts *so, sph_scene_def *def, FILE *lf)
+{
+    sph_error err;
+    *def = sph_default_scene_def();
+    sph_io_add_input(so->path);
+    bool ok = sph_scene_load(so->path, def, &err) == SPH_ERR_OK;
+    for (int i = 0; ok && i < so->n_sets; i++) ok = sph_scene_set(def, so->sets[i], &err) == SPH_ERR_OK;
+    ok = ok && sph_scene_validate(def, &err) == SPH_ERR_OK;
+    if (!ok) {
+        fprintf(lf, "sphlab: %s\n", err.msg);
+        return false;
+    }
+    char warning[512];
+    if (sph_scene_warning(def, warning, sizeof warning)) fprintf(lf, "sphlab: warning: %s\n", warning);
+    return true;
+}
+
 bool lx_run_sim(lx *x, const char *log, const lx_run_opts *o, lx_run *r)
 {
     const char *argv[2 * LX_RUN_MAX_SETS + 16];
@@ -97,7 +118,7 @@ bool lx_run_sim(lx *x, const char *log, const lx_run_opts *o, lx_run *r)
     sph_sim *sim = NULL;
     sph_error err;
     const char *why = NULL;
-    if (!app_load_scene(&so, &def)) why = "the scene does not load";
+    if (!load_into_log(&so, &def, lf)) why = "the scene does not load";
     else if (sph_sim_create(&def, o->threads, &sim, &err) != SPH_ERR_OK) {
         fprintf(lf, "sphlab: %s\n", err.msg);
         why = "the simulation cannot be made";

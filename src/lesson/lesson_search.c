@@ -46,7 +46,10 @@ int lx_lesson5(lx *x)
                     rows[i].hash, rows[i].key);
     }
     lx_block_end(x);
-    if (f) lx_csv_close(x, f, "hash-example.csv", "cell, hash and key of each of the ten particles");
+    if (f)
+        lx_csv_close(x, f, "hash-example.csv",
+                     "{{@cell, hash and key of each of the ten particles|case, hachage et clé de chacune des dix "
+                     "particules}}");
     if (n > 7) {
         lx_val(x, "p7_cell", "(%d, %d)", rows[7].cx, rows[7].cy);
         lx_val(x, "p7_hash", "%u", rows[7].hash);
@@ -62,8 +65,10 @@ int lx_lesson5(lx *x)
                   "grid,keys,collisions,neighbours,index,hud,legend", "--select", "7", "--size", "1100x760",
                   LX_END) == 0 &&
         lx_take(x, sub, "frame_00001.png", "hash.png"))
-        lx_fig(x, "hash.png", "the ten particles coloured by key: cells, keys, colliding cells (red), particle 7's "
-                              "neighbours, and the sorted index with its start table under the view");
+        lx_fig(x, "hash.png", "{{@the ten particles coloured by key: cells, keys, colliding cells (red), particle 7's "
+                              "neighbours, and the sorted index with its start table under the view|les dix "
+                              "particules colorées par clé : cases, clés, cases en collision (en rouge), les voisins "
+                              "de la particule 7, et l'index trié avec sa table des débuts sous la vue}}");
 
     /* 2. the traps */
     lx_block(x, "floor_table");
@@ -83,8 +88,8 @@ int lx_lesson5(lx *x)
     lx_val(x, "xb", "%.3g", xb);
     lx_val(x, "h6", "%g", h6);
     lx_val(x, "gap", "%.10g", (double)xa - (double)xb);
-    lx_val(x, "cells_exact", "%d and %d", sph_cell_coord(xa, inv_h), sph_cell_coord(xb, inv_h));
-    lx_val(x, "cells_wider", "%d and %d", sph_cell_coord(xa, inv_c), sph_cell_coord(xb, inv_c));
+    lx_val(x, "cells_exact", "%d {{@and|et}} %d", sph_cell_coord(xa, inv_h), sph_cell_coord(xb, inv_h));
+    lx_val(x, "cells_wider", "%d {{@and|et}} %d", sph_cell_coord(xa, inv_c), sph_cell_coord(xb, inv_c));
 
     /* 3. collisions and the table size */
     const char *block = lx_src(x, "block.ini");
@@ -116,13 +121,17 @@ int lx_lesson5(lx *x)
         if (f) fprintf(f, "%u,%u,%d,%d,%.4f,%.4f\n", ts[i], keys, c, cc, nb, lx_run_pass(&r, "density"));
     }
     lx_block_end(x);
-    if (f) lx_csv_close(x, f, "collisions.csv", "occupied and colliding cells and the neighbour pass's time per table size");
+    if (f)
+        lx_csv_close(x, f, "collisions.csv",
+                     "{{@occupied and colliding cells and the neighbour pass's time per table size|cases occupées et "
+                     "en collision et temps de la passe des voisins par taille de table}}");
     sub = "render-collisions";
     if (lx_sphlab(x, sub, NULL, NULL, NULL, "render", block, "--out", lx_work(x, sub), "--steps", "1", "--every", "1",
                   "--threads", "1", "--quiet", "--set", "search.table_size=16", "--color", "key", "--overlay",
                   "grid,keys,collisions,hud,legend", "--size", "1000x640", LX_END) == 0 &&
         lx_take(x, sub, "frame_00001.png", "collisions.png"))
-        lx_fig(x, "collisions.png", "the block with a table of 16 keys: cells that share a key are red");
+        lx_fig(x, "collisions.png", "{{@the block with a table of 16 keys: cells that share a key are red|le bloc avec "
+                                    "une table de 16 clés : les cases qui partagent une clé sont en rouge}}");
 
     /* 4. the hard cases that check the hash */
     /* a child process: the hard cases are the command's own end-to-end checks,
@@ -181,7 +190,8 @@ static void offsets_table(lx *x, const uint32_t *keys, uint32_t n, uint32_t T, c
             if (start[k] == SPH_EMPTY) fprintf(f, "%u,%u,inf\n", k, c);
             else fprintf(f, "%u,%u,%u\n", k, c, start[k]);
         }
-        lx_csv_close(x, f, csv_name, "per key: its count and its start in the sorted entries (inf: empty)");
+        lx_csv_close(x, f, csv_name, "{{@per key: its count and its start in the sorted entries (inf: empty)|par clé : "
+                                 "son nombre et son début dans les entrées triées (inf : vide)}}");
     }
 }
 
@@ -202,7 +212,9 @@ int lx_lesson6(lx *x)
     if (b.csv) fprintf(b.csv, "stage,step,w,kind,swaps,k0,k1,k2,k3,k4,k5,k6,k7,k8,k9\n");
     int steps = lx_bitonic_steps(slide, 10, bitonic_row, &b);
     lx_block_end(x);
-    if (b.csv) lx_csv_close(x, b.csv, "bitonic-steps.csv", "the keys after each step of the bitonic network");
+    if (b.csv) lx_csv_close(x, b.csv, "bitonic-steps.csv",
+                                  "{{@the keys after each step of the bitonic network|les clés "
+                                                         "après chaque étape du réseau bitonique}}");
     /* the core's own sorts give the same order */
     sph_entry e1[10], e2[10], sc[10];
     uint32_t cnt[11];
@@ -256,9 +268,11 @@ int lx_lesson6(lx *x)
             for (int i = 0; i < upto; i++) {
                 const char *name = lx_fmt("pass-%d-%s.png", i + 1, passes[i]);
                 if (lx_take(x, "view", lx_fmt("sphlab-%04d.png", i), name))
-                    lx_fig(x, name, lx_fmt("the window after the %s pass of the first step (index strip: entries "
-                                           "and start table as they are in memory then)",
-                                           passes[i]));
+                    lx_fig(x, name, lx_fmt("{{@the window after the %s pass of the first step (index strip: "
+                                           "entries and start table as they are in memory then)|la fenêtre après la "
+                                           "passe %s du premier pas (bande d'index : les entrées et la table des "
+                                           "débuts telles qu'elles sont alors en mémoire)}}",
+                                           passes[i], passes[i]));
             }
             lx_val(x, "view_ok", "yes");
         }
@@ -299,7 +313,10 @@ int lx_lesson6(lx *x)
         good++;
     }
     lx_block_end(x);
-    if (f) lx_csv_close(x, f, "sort-time.csv", "the sort pass's milliseconds per step per sort and particle count");
+    if (f)
+        lx_csv_close(x, f, "sort-time.csv",
+                     "{{@the sort pass's milliseconds per step per sort and particle count|les millisecondes par pas "
+                     "de la passe de tri, par tri et par nombre de particules}}");
     if (good >= 2) {
         plot_lines L = {0};
         snprintf(L.title, sizeof L.title, "What the sort costs: bitonic network, counting sort, qsort");
@@ -310,7 +327,9 @@ int lx_lesson6(lx *x)
         for (int k = 0; k < 3; k++)
             L.p[0].s[L.p[0].n++] = (plot_series){"", N, ms[k], (size_t)good, k, false};
         for (int k = 0; k < 3; k++) snprintf(L.p[0].s[k].label, sizeof L.p[0].s[k].label, "%s", sorts[k]);
-        lx_chart(x, PLOT_LINES, &L, "sort-time", 1000, 650, "the sort pass's time against the particle count");
+        lx_chart(x, PLOT_LINES, &L, "sort-time", 1000, 650,
+                 "{{@the sort pass's time against the particle count|le temps de la passe de tri en fonction du "
+                 "nombre de particules}}");
     }
     return 0;
 }

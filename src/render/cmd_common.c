@@ -135,7 +135,10 @@ bool view_opts_apply(const view_opts *o, const char *cmd, const sph_sim *sim, sp
         v->field = (sph_color_field)sph_color_field_find(o->color);
         const char *why = sph_color_field_missing(sim, v->field);
         if (why) {
-            fprintf(stderr, "sphlab %s: cannot colour by %s: %s\n", cmd, o->color, why);
+            /* the solver's own pressure has a colour: name it */
+            const bool pci = v->field == SPH_COLOR_PRESSURE && sim->def.pressure_solver == SPH_PSOLVER_PCISPH;
+            fprintf(stderr, "sphlab %s: cannot colour by %s: %s%s\n", cmd, o->color, why,
+                    pci ? " (PCISPH's pressure: --color pcisph-pressure)" : "");
             return false;
         }
     }

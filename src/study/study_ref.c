@@ -262,7 +262,7 @@ static void probe_step(probe *pr, const sph_sim *sim, double done)
         const sph_particles *P = &sim->P;
         for (uint32_t i = 0; i < sim->n; i++) {
             uint32_t id = P->id[i];
-            pr->sum_p[id] += P->p[i];
+            pr->sum_p[id] += sph_sim_pressure(sim, i); /* p of the equation of state or of the solver */
             for (int d = 0; d < sim->dim; d++) pr->sum_x[d][id] += P->pos[d][i];
         }
         pr->samples++;
