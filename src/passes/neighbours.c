@@ -98,6 +98,20 @@ static inline void scan_cell(const sph_sim *sim, const float *spos, list *out, u
     list_reserve(out, end - e);
     uint32_t *buf = out->buf;
     size_t len = out->len;
+    if (!spos) { /* no sorted copy (a level that reorders, before its first reorder): read by index */
+        const float *px = sim->P.pred[0], *py = sim->P.pred[1], *pz = sim->dim == 3 ? sim->P.pred[2] : NULL;
+        for (; e < end; e++) {
+            uint32_t j = en[e].index;
+            float dx = sph_min_image(px[j] - xi[0], per[0], iper[0]);
+            float dy = sph_min_image(py[j] - xi[1], per[1], iper[1]);
+            float dz = pz ? sph_min_image(pz[j] - xi[2], per[2], iper[2]) : 0.0f;
+            float r2 = dx * dx + dy * dy + dz * dz;
+            buf[len] = j;
+            len += (en[e].hash == hash) & (j != i) & (r2 < h2);
+        }
+        out->len = len;
+        return;
+    }
     for (; e < end; e++) {
         const float *xj = spos + 4 * (size_t)e;
         float dx = sph_min_image(xj[0] - xi[0], per[0], iper[0]);
