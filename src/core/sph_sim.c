@@ -426,6 +426,7 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     }
     if (sim->in_pipeline[SPH_PASS_NEIGHBOURS]) {
         S->nbr_start = alloc_zero((size_t)n + 1, sizeof *S->nbr_start, &ok);
+        S->compact = def->compact_lists == SPH_ON;
         S->n_threads = sim->threads;
         S->tbuf = alloc_zero((size_t)S->n_threads, sizeof *S->tbuf, &ok);
         S->tcap = alloc_zero((size_t)S->n_threads, sizeof *S->tcap, &ok);

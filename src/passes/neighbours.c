@@ -11,12 +11,15 @@
  *   brute: every pair, O(N^2): the reference the others are tested against.
  * The stencil's cells have distinct hashes (tests/test_search.c checks the
  * primes), so no entry is visited twice. Every variant gives the same sets. */
+#define _DEFAULT_SOURCE /* madvise */
 #include "sph_memory.h"
 #include "sph_search.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <unistd.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -61,6 +64,56 @@ static void list_grow(list *l, size_t need)
 static inline void list_reserve(list *l, size_t more)
 {
     if (l->len + more > l->cap) list_grow(l, l->len + more);
+}
+
+/* [search] compact_lists: a thread's rows as 16-bit words (sph_sim.h). */
+typedef struct words {
+    uint16_t *buf;
+    size_t len, cap; /* words; cap even, so that a buffer holds whole 32-bit words */
+} words;
+
+static inline void words_reserve(words *c, size_t more)
+{
+    if (c->len + more <= c->cap) return;
+    size_t cap = c->cap ? c->cap : 8192;
+    while (cap < c->len + more) cap *= 2;
+    uint16_t *b = realloc(c->buf, cap * sizeof *b);
+    if (!b) {
+        char size[32];
+        sph_memory_fail("a thread's neighbour list could not grow to %s (%s)",
+                        sph_memory_text((double)cap * sizeof *b, size, sizeof size), SPH_LISTS_WHY);
+    }
+    c->buf = b;
+    c->cap = cap;
+}
+
+/* Appends row i (its m neighbours j[]) to c: the offsets j - i if all lie
+ * within +-SPH_NBR_NEAR, else the marker and the 32-bit indices. In cell
+ * order the neighbours of i lie within a few layers of cells of i, so rows
+ * are narrow unless a layer holds more than about 32,000 particles. */
+static inline void words_row(words *c, const uint32_t *j, size_t m, uint32_t i)
+{
+    bool near = true;
+    for (size_t k = 0; k < m; k++) near &= j[k] - i + (uint32_t)SPH_NBR_NEAR <= 2u * SPH_NBR_NEAR;
+    if (near) {
+        words_reserve(c, m);
+        for (size_t k = 0; k < m; k++) c->buf[c->len + k] = (uint16_t)(j[k] - i); /* read back as int16 */
+        c->len += m;
+        return;
+    }
+    words_reserve(c, 1 + 2 * m);
+    c->buf[c->len++] = SPH_NBR_WIDE;
+    for (size_t k = 0; k < m; k++, c->len += 2) memcpy(c->buf + c->len, j + k, sizeof *j);
+}
+
+/* The end of row i, just built in l: plain lists keep it where it is;
+ * compact ones move it into c and empty l for the next row. */
+static inline uint32_t row_done(list *l, words *c, uint32_t i)
+{
+    if (!c) return (uint32_t)l->len;
+    words_row(c, l->buf, l->len, i);
+    l->len = 0;
+    return (uint32_t)c->len;
 }
 
 /* Appends the neighbours of i found in the run of one cell's key. The run is
@@ -292,7 +345,7 @@ static inline size_t scan_run(const sph_sim *sim, const run_range *r, uint32_t i
 }
 
 /* Rows of particles [lo, hi) of a reordered index; row ends (local) in nbr_start[i + 1]. */
-static inline void rows_reordered(const sph_sim *sim, list *l, uint32_t lo, uint32_t hi, const int dim,
+static inline void rows_reordered(const sph_sim *sim, list *l, words *cw, uint32_t lo, uint32_t hi, const int dim,
                                   const bool periodic)
 {
     const sph_cells *g = &sim->S.cells;
@@ -317,7 +370,29 @@ static inline void rows_reordered(const sph_sim *sim, list *l, uint32_t lo, uint
             list_reserve(l, runs[k].end - runs[k].start + 16); /* + a vector's slack */
             l->len = scan_run(sim, &runs[k], i, xi, h2, l->buf, l->len, dim, periodic);
         }
-        sim->S.nbr_start[i + 1] = (uint32_t)l->len;
+        sim->S.nbr_start[i + 1] = row_done(l, cw, i);
+    }
+}
+
+/* Copies a thread's rows into the joined lists and hands the copied pages of
+ * its buffer back to the system as it goes (their contents are not needed
+ * again: the next build writes the buffer from its start, and a released page
+ * reads as zeros), so that a step's peak holds the lists once, not once and a
+ * half with two threads. */
+static void copy_releasing(void *dst, void *src, size_t bytes)
+{
+    const size_t chunk = (size_t)1 << 20;
+    const long ps = sysconf(_SC_PAGESIZE);
+    const uintptr_t page = ps > 0 ? (uintptr_t)ps : 4096;
+    uintptr_t done = ((uintptr_t)src + page - 1) & ~(page - 1); /* the first page not yet released */
+    for (size_t off = 0; off < bytes; off += chunk) {
+        const size_t m = bytes - off < chunk ? bytes - off : chunk;
+        memcpy((char *)dst + off, (char *)src + off, m);
+        const uintptr_t end = ((uintptr_t)src + off + m) & ~(page - 1); /* pages wholly copied */
+        if (end > done) {
+            (void)madvise((void *)done, end - done, MADV_DONTNEED); /* only a hint if it fails */
+            done = end;
+        }
     }
 }
 
@@ -354,27 +429,48 @@ static void run(sph_sim *sim)
         uint32_t hi = (uint32_t)((uint64_t)n * (uint64_t)(t + 1) / (uint64_t)nt);
         /* in place: thread 0's rows start the joined array, so it builds there */
         const bool direct = sim->def.lists_in_place == SPH_ON && t == 0;
-        list l = direct ? (list){S->nbr, 0, S->nbr_cap} : (list){S->tbuf[t], 0, S->tcap[t]};
+        /* compact: each row is built in l (32-bit, one row at a time), then stored in cw as words */
+        const bool compact = S->compact;
+        list l = {0};
+        words c = {0}, *cw = NULL;
+        if (compact) {
+            c = direct ? (words){(uint16_t *)(void *)S->nbr, 0, 2 * S->nbr_cap}
+                       : (words){(uint16_t *)(void *)S->tbuf[t], 0, S->tcap[t]};
+            cw = &c;
+        } else {
+            l = direct ? (list){S->nbr, 0, S->nbr_cap} : (list){S->tbuf[t], 0, S->tcap[t]};
+        }
         if (S->reordered) {
             const bool periodic = sim->period[0] > 0 || sim->period[1] > 0 || sim->period[2] > 0;
             if (sim->dim == 2)
-                periodic ? rows_reordered(sim, &l, lo, hi, 2, true) : rows_reordered(sim, &l, lo, hi, 2, false);
+                periodic ? rows_reordered(sim, &l, cw, lo, hi, 2, true) : rows_reordered(sim, &l, cw, lo, hi, 2, false);
             else
-                periodic ? rows_reordered(sim, &l, lo, hi, 3, true) : rows_reordered(sim, &l, lo, hi, 3, false);
+                periodic ? rows_reordered(sim, &l, cw, lo, hi, 3, true) : rows_reordered(sim, &l, cw, lo, hi, 3, false);
         } else {
             for (uint32_t i = lo; i < hi; i++) {
                 neighbours_of(sim, spos, &l, i);
-                S->nbr_start[i + 1] = (uint32_t)l.len; /* local end of row i, made global below */
+                S->nbr_start[i + 1] = row_done(&l, cw, i); /* local end of row i, made global below */
             }
         }
-        if (direct) {
+        size_t len = l.len; /* in the lists' unit: 32-bit indices, or words */
+        if (compact) {
+            free(l.buf);
+            len = c.len;
+            if (direct) {
+                S->nbr = (uint32_t *)(void *)c.buf;
+                S->nbr_cap = c.cap / 2;
+            } else {
+                S->tbuf[t] = (uint32_t *)(void *)c.buf;
+                S->tcap[t] = c.cap;
+            }
+        } else if (direct) {
             S->nbr = l.buf;
             S->nbr_cap = l.cap;
         } else {
             S->tbuf[t] = l.buf;
             S->tcap[t] = l.cap;
         }
-        base[t + 1] = l.len;
+        base[t + 1] = len;
 #pragma omp barrier
 #pragma omp single
         {
@@ -383,8 +479,9 @@ static void run(sph_sim *sim)
             for (int k = nt + 1; k <= T; k++) base[k] = base[nt];
             if (base[nt] > UINT32_MAX) /* row offsets are 32-bit */
                 sph_memory_fail("%.3g neighbour pairs, more than the lists' 2^32", (double)base[nt]);
-            if (base[nt] > S->nbr_cap) {
-                size_t cap = base[nt] + base[nt] / 4 + 1024;
+            const size_t need = compact ? (base[nt] + 1) / 2 : base[nt]; /* 32-bit words */
+            if (need > S->nbr_cap) {
+                size_t cap = need + need / 4 + 1024;
                 uint32_t *b = realloc(S->nbr, cap * sizeof *b); /* keeps thread 0's rows if built in place */
                 if (!b) {
                     char size[32];
@@ -397,7 +494,12 @@ static void run(sph_sim *sim)
             S->nbr_start[0] = 0;
         }
         for (uint32_t i = lo; i < hi; i++) S->nbr_start[i + 1] += (uint32_t)base[t];
-        if (l.len && !direct) memcpy(S->nbr + base[t], l.buf, l.len * sizeof *l.buf);
+        if (len && !direct) {
+            if (compact)
+                copy_releasing((uint16_t *)(void *)S->nbr + base[t], c.buf, len * sizeof *c.buf);
+            else
+                copy_releasing(S->nbr + base[t], l.buf, len * sizeof *l.buf);
+        }
     }
     sph_skin_mark(sim);
 }
