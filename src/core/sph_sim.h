@@ -95,6 +95,7 @@ typedef struct sph_search_data {
      * Read rows through sph_nbr_row_of / sph_nbr_at. nbr_cap stays in 32-bit words. */
     bool compact;
     /* One growable buffer per thread while the lists are built (compact: 16-bit words, tcap in words). */
+    size_t nbr_first;     /* [B] thread 0's rows at the last build, built in place (lists_in_place) */
     int n_threads;
     uint32_t **tbuf;
     size_t *tcap;

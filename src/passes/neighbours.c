@@ -374,6 +374,22 @@ static inline void rows_reordered(const sph_sim *sim, list *l, words *cw, uint32
     }
 }
 
+/* Hands the pages wholly inside [p, p + bytes) back to the system: their
+ * contents are not needed again (a released page reads as zeros). Only a
+ * hint: if it fails, the pages stay. */
+static uintptr_t page_size(void)
+{
+    const long ps = sysconf(_SC_PAGESIZE);
+    return ps > 0 ? (uintptr_t)ps : 4096;
+}
+
+static void release_pages(void *p, size_t bytes)
+{
+    const uintptr_t page = page_size();
+    const uintptr_t a = ((uintptr_t)p + page - 1) & ~(page - 1), b = ((uintptr_t)p + bytes) & ~(page - 1);
+    if (b > a) (void)madvise((void *)a, b - a, MADV_DONTNEED);
+}
+
 /* Copies a thread's rows into the joined lists and hands the copied pages of
  * its buffer back to the system as it goes (their contents are not needed
  * again: the next build writes the buffer from its start, and a released page
@@ -382,17 +398,14 @@ static inline void rows_reordered(const sph_sim *sim, list *l, words *cw, uint32
 static void copy_releasing(void *dst, void *src, size_t bytes)
 {
     const size_t chunk = (size_t)1 << 20;
-    const long ps = sysconf(_SC_PAGESIZE);
-    const uintptr_t page = ps > 0 ? (uintptr_t)ps : 4096;
-    uintptr_t done = ((uintptr_t)src + page - 1) & ~(page - 1); /* the first page not yet released */
+    const uintptr_t page = page_size();
+    uintptr_t done = (uintptr_t)src; /* released up to here */
     for (size_t off = 0; off < bytes; off += chunk) {
         const size_t m = bytes - off < chunk ? bytes - off : chunk;
         memcpy((char *)dst + off, (char *)src + off, m);
-        const uintptr_t end = ((uintptr_t)src + off + m) & ~(page - 1); /* pages wholly copied */
-        if (end > done) {
-            (void)madvise((void *)done, end - done, MADV_DONTNEED); /* only a hint if it fails */
-            done = end;
-        }
+        const uintptr_t end = (uintptr_t)src + off + m;
+        release_pages((void *)done, end - done);
+        if ((end & ~(page - 1)) > done) done = end & ~(page - 1);
     }
 }
 
@@ -406,6 +419,14 @@ static void run(sph_sim *sim)
     size_t base[SPH_MAX_THREADS + 1];
     float *spos = S->spos;
     if (sph_skin_keep(sim)) return; /* Verlet lists: the last build's still hold every pair within h */
+    /* With thread 0 building in place and others copying in: the joined
+     * lists past thread 0's rows are dead until the copies, so they are
+     * released now and the other threads' buffers as they are copied; a
+     * step's peak then holds the lists once (not once and a half with two
+     * threads), for some page faults on the copied share at each build. */
+    const bool release = sim->def.lists_in_place == SPH_ON && T > 1 && n > SPH_PARALLEL_MIN;
+    if (release && S->nbr && S->nbr_first < S->nbr_cap * sizeof *S->nbr)
+        release_pages((char *)S->nbr + S->nbr_first, S->nbr_cap * sizeof *S->nbr - S->nbr_first);
     if (spos && !S->reordered && !S->next) { /* positions in sorted order, padded to 4 floats (z = 0 in 2D) */
         const int dim = sim->dim;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
@@ -471,6 +492,7 @@ static void run(sph_sim *sim)
             S->tcap[t] = l.cap;
         }
         base[t + 1] = len;
+        if (direct) S->nbr_first = len * (compact ? sizeof *c.buf : sizeof *l.buf);
 #pragma omp barrier
 #pragma omp single
         {
@@ -495,10 +517,13 @@ static void run(sph_sim *sim)
         }
         for (uint32_t i = lo; i < hi; i++) S->nbr_start[i + 1] += (uint32_t)base[t];
         if (len && !direct) {
-            if (compact)
-                copy_releasing((uint16_t *)(void *)S->nbr + base[t], c.buf, len * sizeof *c.buf);
+            void *to = compact ? (void *)((uint16_t *)(void *)S->nbr + base[t]) : (void *)(S->nbr + base[t]);
+            void *from = compact ? (void *)c.buf : (void *)l.buf;
+            const size_t bytes = len * (compact ? sizeof *c.buf : sizeof *l.buf);
+            if (release)
+                copy_releasing(to, from, bytes);
             else
-                copy_releasing(S->nbr + base[t], l.buf, len * sizeof *l.buf);
+                memcpy(to, from, bytes);
         }
     }
     sph_skin_mark(sim);
