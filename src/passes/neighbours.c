@@ -374,15 +374,15 @@ static inline void rows_reordered(const sph_sim *sim, list *l, words *cw, uint32
     }
 }
 
-/* Hands the pages wholly inside [p, p + bytes) back to the system: their
- * contents are not needed again (a released page reads as zeros). Only a
- * hint: if it fails, the pages stay. */
 static uintptr_t page_size(void)
 {
     const long ps = sysconf(_SC_PAGESIZE);
     return ps > 0 ? (uintptr_t)ps : 4096;
 }
 
+/* Hands the pages wholly inside [p, p + bytes) back to the system: their
+ * contents are not needed again (a released page reads as zeros). Only a
+ * hint: if it fails, the pages stay. */
 static void release_pages(void *p, size_t bytes)
 {
     const uintptr_t page = page_size();
