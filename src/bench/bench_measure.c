@@ -178,14 +178,16 @@ static bool sets_by_id(const sph_sim *sim, bench_state *s)
     if (!S->nbr_start || !sim->P.pred[0]) return true; /* no neighbour lists: nothing to compare */
     for (uint32_t i = 0; i < n; i++) {
         uint32_t len = 0;
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) len += within_h(sim, i, S->nbr[e]);
+        const sph_nbr_row r = sph_nbr_row_of(S, i);
+        for (uint32_t e = 0; e < r.n; e++) len += within_h(sim, i, sph_nbr_at(&r, e));
         s->nbr_start[sim->P.id[i] + 1] = len;
     }
     for (uint32_t id = 0; id < n; id++) s->nbr_start[id + 1] += s->nbr_start[id];
     for (uint32_t i = 0; i < n; i++) {
         uint32_t *row = s->nbr + s->nbr_start[sim->P.id[i]], len = 0;
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++)
-            if (within_h(sim, i, S->nbr[e])) row[len++] = sim->P.id[S->nbr[e]];
+        const sph_nbr_row r = sph_nbr_row_of(S, i);
+        for (uint32_t e = 0; e < r.n; e++)
+            if (within_h(sim, i, sph_nbr_at(&r, e))) row[len++] = sim->P.id[sph_nbr_at(&r, e)];
         qsort(row, len, sizeof *row, cmp_u32);
     }
     return true;

@@ -32,8 +32,8 @@ static bool sets_take(const sph_sim *sim, id_sets *s)
     const uint32_t n = sim->n;
     memset(s, 0, sizeof *s);
     sph_sim_sync(sim, SPH_SYNC_ALL);
-    const uint32_t *ns = sim->S.nbr_start, *nb = sim->S.nbr;
-    const size_t total = ns ? ns[n] : 0;
+    const uint32_t *ns = sim->S.nbr_start;
+    const size_t total = ns ? ns[n] : 0; /* entries, or compact lists' words: at least the entries */
     uint32_t *inv = malloc((size_t)n * sizeof *inv);
     s->start = calloc((size_t)n + 1, sizeof *s->start);
     s->nbr = malloc((total ? total : 1) * sizeof *s->nbr);
@@ -52,10 +52,10 @@ static bool sets_take(const sph_sim *sim, id_sets *s)
     const float h2 = sim->def.h * sim->def.h;
     for (uint32_t k = 0; k < n; k++) {
         const uint32_t i = inv[k];
-        const uint32_t len = ns ? ns[i + 1] - ns[i] : 0;
+        const sph_nbr_row row = ns ? sph_nbr_row_of(&sim->S, i) : (sph_nbr_row){0};
         uint32_t kept = 0;
-        for (uint32_t e = 0; e < len; e++) {
-            const uint32_t j = nb[ns[i] + e];
+        for (uint32_t e = 0; e < row.n; e++) {
+            const uint32_t j = sph_nbr_at(&row, e);
             float r2 = 0.0f;
             for (int d = 0; d < sim->dim; d++) {
                 const float dx = sph_min_image(x[d][j] - x[d][i], sim->period[d], sim->inv_period[d]);

@@ -33,6 +33,10 @@ const sph_level sph_levels[] = {
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
      "search.lists_in_place=on search.skin=0.05",
      0},
+    {"L11", "L10 + compact lists (16-bit offsets)",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
+     "search.lists_in_place=on search.skin=0.05 search.compact_lists=on",
+     0},
     /* The seed's GPU steps: the passes as GLSL compute shaders (src/gpu/), on
      * whatever OpenGL 4.3 device EGL gives (llvmpipe without a GPU). */
     {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0},
@@ -63,6 +67,7 @@ sph_error_code sph_level_apply(const sph_level *L, sph_scene_def *def, sph_error
      * from L8 down to L7 (in the window) leaves no fused walk behind */
     def->fuse_forces = SPH_OFF;
     def->lists_in_place = SPH_OFF;
+    def->compact_lists = SPH_OFF;
     def->skin = 0.0f;
     char buf[512];
     snprintf(buf, sizeof buf, "%s", L->sets);
@@ -87,7 +92,7 @@ int sph_level_of(const sph_scene_def *def, int threads, int cores)
         if (sph_level_apply(L, &at, &err) != SPH_ERR_OK) continue;
         if (at.search == def->search && at.sort == def->sort && at.reorder == def->reorder &&
             at.vector == def->vector && at.backend == def->backend && at.fuse_forces == def->fuse_forces &&
-            at.lists_in_place == def->lists_in_place && at.skin == def->skin)
+            at.lists_in_place == def->lists_in_place && at.skin == def->skin && at.compact_lists == def->compact_lists)
             return i;
     }
     return -1;

@@ -70,9 +70,11 @@ void sph_memory_estimate(const sph_scene_def *def, sph_mem_estimate *out)
     double index = 0, table = 0;
     if (in[SPH_PASS_HASH]) {
         const double entry = 3 * sizeof(uint32_t);
-        index = n * (entry + 4 * f); /* entries, and predicted positions in sorted order */
+        index = n * entry;
+        if (!in[SPH_PASS_REORDER]) index += n * 4 * f; /* predicted positions in sorted order */
         if (def->sort == SPH_SORT_NONE) index += n * sizeof(uint32_t);
-        if (def->sort == SPH_SORT_COUNTING) index += n * entry;
+        /* the counting sort's scratch, unless it borrows the lists' buffer (sort.c) */
+        if (def->sort == SPH_SORT_COUNTING && !in[SPH_PASS_NEIGHBOURS]) index += n * entry;
         if (in[SPH_PASS_REORDER]) index += n * (2 * sizeof(uint32_t) + f);
         add(out, "search index", index, "%.3g entries", n, 0);
         /* the start table, and the counting sort's histogram of the same size */

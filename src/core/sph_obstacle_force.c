@@ -85,8 +85,9 @@ int sph_obstacle_forces(const sph_sim *sim, double force[][3])
     for (uint32_t w = 0; w < sim->n; w++) {
         int k = (int)P->obstacle[w] - 1;
         if (k < 0 || k >= no) continue;
-        for (uint32_t e = S->nbr_start[w]; e < S->nbr_start[w + 1]; e++) {
-            uint32_t f = S->nbr[e];
+        const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)(w));
+        for (uint32_t e = 0; e < row.n; e++) {
+            uint32_t f = sph_nbr_at(&row, e);
             if (sph_is_wall(P, f)) continue; /* walls do not push walls */
             float vf[3] = {0, 0, 0};
             for (int d = 0; d < sim->dim; d++) {

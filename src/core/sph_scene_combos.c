@@ -136,6 +136,18 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
                             "(accepted here: skin = 0)",
                             key_where(def, "search", "skin", a, sizeof a), (double)def->skin, sph_passes[p]->name);
         }
+    /* compact lists are read by the passes of the ladder's levels (density and the
+     * forces); the others are not tried with them */
+    if (def->compact_lists == SPH_ON)
+        for (int p = 0; p < SPH_PASS_COUNT; p++) {
+            if (!(sph_passes[p]->reads & SPH_RES_LISTS) || sph_passes[p]->skip_reason(def)) continue;
+            if (p == SPH_PASS_DENSITY || p == SPH_PASS_PRESSURE_FORCE || p == SPH_PASS_VISCOSITY) continue;
+            return sph_fail(err, SPH_ERR_SCENE,
+                            "%s: [search] compact_lists = on: the %s pass walks the neighbour lists and is not "
+                            "measured with compact ones; they run with density, pressure_force and viscosity only "
+                            "(accepted here: off)",
+                            key_where(def, "search", "compact_lists", a, sizeof a), sph_passes[p]->name);
+        }
     /* field_pressure is the pressure of a velocity field: without one it would
      * do nothing, silently */
     for (int k = 0; k < def->n_blocks; k++)

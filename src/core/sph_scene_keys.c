@@ -217,6 +217,11 @@ const sph_key sph_scene_keys[] = {
      "on: the first thread writes its particles' neighbour lists straight into the joined array the other passes "
      "read, instead of into a buffer of its own that is then copied there (the same lists, one copy less of the "
      "first thread's share in memory and in time); off: every thread builds in its own buffer"},
+    {"search", "compact_lists", SPH_KEY_CHOICE, S(compact_lists), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: the neighbour lists hold each neighbour j of particle i as the 16-bit offset j - i (in cell order the "
+     "neighbours lie near i), half the memory of 32-bit indices; a row with a neighbour more than 32,767 places "
+     "away is stored wide (32-bit indices behind a marker); the same neighbours and results; off: 32-bit indices. "
+     "With density, pressure_force and viscosity only"},
     {"search", "skin", SPH_KEY_FLOAT, S(skin), 0, 1, 0, 0, NULL, 0, "h", "0",
      "Verlet lists: > 0 builds the neighbour lists out to h (1 + skin) and keeps them (no hash, sort, reorder or "
      "search) over the following steps, until some particle has moved skin h / 2 since the build; the passes "

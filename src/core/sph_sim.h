@@ -5,6 +5,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "sph_fields.h"
 #include "sph_kernel.h"
@@ -88,7 +89,13 @@ typedef struct sph_search_data {
     uint32_t *nbr_start;  /* [n + 1] */
     uint32_t *nbr;        /* [nbr_cap] */
     size_t nbr_cap;
-    /* One growable buffer per thread while the lists are built. */
+    /* [search] compact_lists: nbr holds 16-bit words (nbr_start counts words):
+     * row i is the offsets j - i as int16, or, behind the marker
+     * SPH_NBR_WIDE, its indices as 32-bit values (two words each, unaligned).
+     * Read rows through sph_nbr_row_of / sph_nbr_at. nbr_cap stays in 32-bit words. */
+    bool compact;
+    /* One growable buffer per thread while the lists are built (compact: 16-bit words, tcap in words). */
+    size_t nbr_first;     /* [B] thread 0's rows at the last build, built in place (lists_in_place) */
     int n_threads;
     uint32_t **tbuf;
     size_t *tcap;
@@ -101,6 +108,47 @@ typedef struct sph_search_data {
     uint64_t builds;      /* [1] lists built so far (every step without a skin) */
     float skin_moved;     /* [m] the largest move since the build, as this step's decision saw it */
 } sph_search_data;
+
+/* The first word of a compact row stored wide: no offset j - i is -32768. */
+#define SPH_NBR_WIDE 0x8000u
+#define SPH_NBR_NEAR 32767 /* the largest |j - i| a compact row stores as an offset */
+
+/* One row of the neighbour lists, whatever their storage. */
+typedef struct sph_nbr_row {
+    const uint32_t *w; /* plain lists: the indices */
+    const int16_t *o;  /* compact row: the offsets j - i */
+    const uint16_t *x; /* compact row stored wide: each index as two words (memcpy) */
+    uint32_t n;        /* neighbours */
+    uint32_t i;        /* the row's particle */
+} sph_nbr_row;
+
+static inline sph_nbr_row sph_nbr_row_of(const sph_search_data *S, uint32_t i)
+{
+    const uint32_t b = S->nbr_start[i], e = S->nbr_start[i + 1];
+    sph_nbr_row r = {NULL, NULL, NULL, e - b, i};
+    if (!S->compact) {
+        r.w = S->nbr + b;
+        return r;
+    }
+    const uint16_t *h = (const uint16_t *)(const void *)S->nbr + b;
+    if (e > b && h[0] == SPH_NBR_WIDE) {
+        r.x = h + 1;
+        r.n = (e - b - 1) / 2;
+    } else {
+        r.o = (const int16_t *)(const void *)h;
+    }
+    return r;
+}
+
+/* The k-th neighbour of the row. */
+static inline uint32_t sph_nbr_at(const sph_nbr_row *r, uint32_t k)
+{
+    if (r->w) return r->w[k];
+    if (r->o) return r->i + (uint32_t)(int32_t)r->o[k];
+    uint32_t j;
+    memcpy(&j, r->x + 2 * (size_t)k, sizeof j);
+    return j;
+}
 
 /* A field of one simulation: its registry row's text and its arrays. */
 typedef struct sph_field {

@@ -170,10 +170,10 @@ void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n)
     append(out, n, &used, "\n");
     const sph_search_data *S = &sim->S;
     if (S->nbr_start) {
-        uint32_t b = S->nbr_start[i], e = S->nbr_start[i + 1];
-        append(out, n, &used, "  %u neighbours%s\n", e - b, e - b > 8 ? " (first 8)" : "");
-        for (uint32_t k = b; k < e && k < b + 8; k++) {
-            uint32_t j = S->nbr[k];
+        const sph_nbr_row row = sph_nbr_row_of(S, i);
+        append(out, n, &used, "  %u neighbours%s\n", row.n, row.n > 8 ? " (first 8)" : "");
+        for (uint32_t k = 0; k < row.n && k < 8; k++) {
+            uint32_t j = sph_nbr_at(&row, k);
             float r2 = 0;
             for (int d = 0; d < sim->dim; d++) {
                 float dx = sim->P.pred[d][j] - sim->P.pred[d][i];

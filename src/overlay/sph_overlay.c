@@ -371,9 +371,14 @@ static void build_neighbours(builder *b, const sph_sim *sim, const sph_overlay_o
     if (!sph_ov_lists_built(sim)) {
         note(ov, "no neighbour lists yet (or the scene has none)");
     } else {
-        uint32_t s = sim->S.nbr_start[i], e = sim->S.nbr_start[i + 1];
-        ov->nbr = sim->S.nbr + s;
-        ov->n_nbr = (int)(e - s);
+        const sph_nbr_row row = sph_nbr_row_of(&sim->S, i);
+        ov->n_nbr = (int)row.n;
+        if (!grow((void **)&ov->nbr_rows, &ov->cap_nbr, ov->n_nbr + 1, sizeof *ov->nbr_rows)) {
+            b->ok = false;
+            return;
+        }
+        for (int m = 0; m < ov->n_nbr; m++) ov->nbr_rows[m] = sph_nbr_at(&row, (uint32_t)m); /* compact lists too */
+        ov->nbr = ov->nbr_rows;
         if (!grow((void **)&ov->weights, &ov->cap_weights, ov->n_nbr + 1, sizeof *ov->weights)) {
             b->ok = false;
             return;
@@ -594,5 +599,6 @@ void sph_overlay_free(sph_overlay *ov)
     free(ov->labels);
     free(ov->cells);
     free(ov->weights);
+    free(ov->nbr_rows);
     memset(ov, 0, sizeof *ov);
 }

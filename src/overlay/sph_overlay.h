@@ -162,8 +162,10 @@ typedef struct sph_overlay {
     int32_t selected;       /* -1: none */
     int32_t sel_cell[3];
     uint32_t sel_key;       /* key of the selected particle's cell */
-    const uint32_t *nbr;    /* the selected particle's neighbour row, as in sim->S.nbr */
+    const uint32_t *nbr;    /* the selected particle's neighbours (indices, whatever the lists' storage) */
     int n_nbr;
+    uint32_t *nbr_rows;     /* [cap_nbr] where nbr points: the row copied out of the lists */
+    int cap_nbr;
     float *weights;         /* [n_nbr] W(r_ij) / W(0) of the density kernel */
     int cap_weights;
     uint32_t strip_first_entry, strip_first_key; /* windows of the index strip */

@@ -67,8 +67,9 @@ static inline void cohesion_one(const sph_sim *sim, int i, const int dim, const 
     float xi[3], af[3] = {0, 0, 0};
     double ad[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         float dx[3], r2 = 0;
         for (int d = 0; d < dim; d++) {
             dx[d] = xi[d] - P->pred[d][j];

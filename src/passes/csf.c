@@ -155,8 +155,9 @@ static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float coef, 
     float xi[3];
     const double inv_rho0 = 1.0 / sim->def.rest_density;
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         if (j == (uint32_t)i || sph_is_wall(P, j)) continue;
         float nj[3], len_j = 0;
         for (int d = 0; d < dim; d++) nj[d] = P->normal[d][j], len_j += nj[d] * nj[d];

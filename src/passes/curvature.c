@@ -44,8 +44,9 @@ static inline void curvature_one(const sph_sim *sim, int i, const int dim, const
         return;
     }
     for (int d = 0; d < dim; d++) ni[d] = P->normal[d][i];
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         if (j == (uint32_t)i || sph_is_wall(P, j)) continue;
         float k_ij = 2.0f * rho0 / (rho_i + P->rho[j]);
         for (int d = 0; d < dim; d++) {

@@ -36,8 +36,9 @@ static inline void density_one(const sph_sim *sim, const sph_kernel *k, int i, c
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
     float sf = P->mass[i] * sph_kernel_w(k, 0.0f);
     double sd = sf;
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         float r2 = 0;
         for (int d = 0; d < dim; d++) {
             float dx = xi[d] - P->pred[d][j];
@@ -64,10 +65,11 @@ static inline void density_one_avx512(const sph_sim *sim, const sph_kernel *k, i
     __m512 xi[3], d3[3];
     sph_simd_centre(P, i, dim, xi);
     __m512 acc = _mm512_setzero_ps();
-    const uint32_t end = S->nbr_start[i + 1];
-    for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    const uint32_t end = row.n;
+    for (uint32_t e = 0; e < end; e += 16) {
         __mmask16 live = sph_simd_live(e, end);
-        __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
+        __m512i idx = sph_simd_nbr(&row, e, live);
         __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
         __m512 d = _mm512_max_ps(_mm512_sub_ps(h2, r2), _mm512_setzero_ps());
         __m512 w = _mm512_mul_ps(_mm512_mul_ps(d, d), d);

@@ -81,8 +81,9 @@ static inline void gradient_one(sph_sim *sim, const sph_kernel *k, int i, const 
     const float *per = sim->period, *iper = sim->inv_period;
     const float rho_i = sph_rho_diffused(P, i);
     double M[3][3] = {{0}}, b[3] = {0, 0, 0};
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         float dx[3], r2 = 0;
         for (int d = 0; d < dim; d++) {
             dx[d] = P->pred[d][i] - P->pred[d][j]; /* x_ij */

@@ -107,8 +107,9 @@ static void factors(sph_sim *sim)
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         float gr[3] = {0, 0, 0}, gp[3] = {0, 0, 0}, dots = 0;
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-            const uint32_t j = S->nbr[e];
+        const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+        for (uint32_t e = 0; e < row.n; e++) {
+            const uint32_t j = sph_nbr_at(&row, e);
             float dx[3], r2;
             pair_dx(sim, i, j, dx, &r2);
             const float fr = P->mass[j] * grad_factor(&sim->k_density, r2);
@@ -144,8 +145,9 @@ static void force(sph_sim *sim, bool with_density)
     for (int i = 0; i < n; i++) {
         const float k_i = P->kappa_v[i] + (with_density ? P->kappa[i] : 0.0f);
         float a[3] = {0, 0, 0};
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-            const uint32_t j = S->nbr[e];
+        const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+        for (uint32_t e = 0; e < row.n; e++) {
+            const uint32_t j = sph_nbr_at(&row, e);
             float dx[3], r2;
             pair_dx(sim, i, j, dx, &r2);
             const float k_j = P->kappa_v[j] + (with_density ? P->kappa[j] : 0.0f);
@@ -213,8 +215,9 @@ static double measure(sph_sim *sim, bool density)
         float vi[3] = {0, 0, 0};
         for (int d = 0; d < dim; d++) vi[d] = P->dv_df[d][i] + P->vel[d][i];
         float sum = 0;
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-            const uint32_t j = S->nbr[e];
+        const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+        for (uint32_t e = 0; e < row.n; e++) {
+            const uint32_t j = sph_nbr_at(&row, e);
             float dx[3], r2;
             pair_dx(sim, i, j, dx, &r2);
             const float f = P->mass[j] * grad_factor(&sim->k_density, r2);

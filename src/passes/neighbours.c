@@ -11,12 +11,15 @@
  *   brute: every pair, O(N^2): the reference the others are tested against.
  * The stencil's cells have distinct hashes (tests/test_search.c checks the
  * primes), so no entry is visited twice. Every variant gives the same sets. */
+#define _DEFAULT_SOURCE /* madvise */
 #include "sph_memory.h"
 #include "sph_search.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <unistd.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -63,6 +66,56 @@ static inline void list_reserve(list *l, size_t more)
     if (l->len + more > l->cap) list_grow(l, l->len + more);
 }
 
+/* [search] compact_lists: a thread's rows as 16-bit words (sph_sim.h). */
+typedef struct words {
+    uint16_t *buf;
+    size_t len, cap; /* words; cap even, so that a buffer holds whole 32-bit words */
+} words;
+
+static inline void words_reserve(words *c, size_t more)
+{
+    if (c->len + more <= c->cap) return;
+    size_t cap = c->cap ? c->cap : 8192;
+    while (cap < c->len + more) cap *= 2;
+    uint16_t *b = realloc(c->buf, cap * sizeof *b);
+    if (!b) {
+        char size[32];
+        sph_memory_fail("a thread's neighbour list could not grow to %s (%s)",
+                        sph_memory_text((double)cap * sizeof *b, size, sizeof size), SPH_LISTS_WHY);
+    }
+    c->buf = b;
+    c->cap = cap;
+}
+
+/* Appends row i (its m neighbours j[]) to c: the offsets j - i if all lie
+ * within +-SPH_NBR_NEAR, else the marker and the 32-bit indices. In cell
+ * order the neighbours of i lie within a few layers of cells of i, so rows
+ * are narrow unless a layer holds more than about 32,000 particles. */
+static inline void words_row(words *c, const uint32_t *j, size_t m, uint32_t i)
+{
+    bool near = true;
+    for (size_t k = 0; k < m; k++) near &= j[k] - i + (uint32_t)SPH_NBR_NEAR <= 2u * SPH_NBR_NEAR;
+    if (near) {
+        words_reserve(c, m);
+        for (size_t k = 0; k < m; k++) c->buf[c->len + k] = (uint16_t)(j[k] - i); /* read back as int16 */
+        c->len += m;
+        return;
+    }
+    words_reserve(c, 1 + 2 * m);
+    c->buf[c->len++] = SPH_NBR_WIDE;
+    for (size_t k = 0; k < m; k++, c->len += 2) memcpy(c->buf + c->len, j + k, sizeof *j);
+}
+
+/* The end of row i, just built in l: plain lists keep it where it is;
+ * compact ones move it into c and empty l for the next row. */
+static inline uint32_t row_done(list *l, words *c, uint32_t i)
+{
+    if (!c) return (uint32_t)l->len;
+    words_row(c, l->buf, l->len, i);
+    l->len = 0;
+    return (uint32_t)c->len;
+}
+
 /* Appends the neighbours of i found in the run of one cell's key. The run is
  * scanned without branches on the distance test (each candidate is written,
  * and kept by advancing the length only if it passes), as that test is a coin
@@ -98,6 +151,20 @@ static inline void scan_cell(const sph_sim *sim, const float *spos, list *out, u
     list_reserve(out, end - e);
     uint32_t *buf = out->buf;
     size_t len = out->len;
+    if (!spos) { /* no sorted copy (a level that reorders, before its first reorder): read by index */
+        const float *px = sim->P.pred[0], *py = sim->P.pred[1], *pz = sim->dim == 3 ? sim->P.pred[2] : NULL;
+        for (; e < end; e++) {
+            uint32_t j = en[e].index;
+            float dx = sph_min_image(px[j] - xi[0], per[0], iper[0]);
+            float dy = sph_min_image(py[j] - xi[1], per[1], iper[1]);
+            float dz = pz ? sph_min_image(pz[j] - xi[2], per[2], iper[2]) : 0.0f;
+            float r2 = dx * dx + dy * dy + dz * dz;
+            buf[len] = j;
+            len += (en[e].hash == hash) & (j != i) & (r2 < h2);
+        }
+        out->len = len;
+        return;
+    }
     for (; e < end; e++) {
         const float *xj = spos + 4 * (size_t)e;
         float dx = sph_min_image(xj[0] - xi[0], per[0], iper[0]);
@@ -278,7 +345,7 @@ static inline size_t scan_run(const sph_sim *sim, const run_range *r, uint32_t i
 }
 
 /* Rows of particles [lo, hi) of a reordered index; row ends (local) in nbr_start[i + 1]. */
-static inline void rows_reordered(const sph_sim *sim, list *l, uint32_t lo, uint32_t hi, const int dim,
+static inline void rows_reordered(const sph_sim *sim, list *l, words *cw, uint32_t lo, uint32_t hi, const int dim,
                                   const bool periodic)
 {
     const sph_cells *g = &sim->S.cells;
@@ -303,7 +370,42 @@ static inline void rows_reordered(const sph_sim *sim, list *l, uint32_t lo, uint
             list_reserve(l, runs[k].end - runs[k].start + 16); /* + a vector's slack */
             l->len = scan_run(sim, &runs[k], i, xi, h2, l->buf, l->len, dim, periodic);
         }
-        sim->S.nbr_start[i + 1] = (uint32_t)l->len;
+        sim->S.nbr_start[i + 1] = row_done(l, cw, i);
+    }
+}
+
+static uintptr_t page_size(void)
+{
+    const long ps = sysconf(_SC_PAGESIZE);
+    return ps > 0 ? (uintptr_t)ps : 4096;
+}
+
+/* Hands the pages wholly inside [p, p + bytes) back to the system: their
+ * contents are not needed again (a released page reads as zeros). Only a
+ * hint: if it fails, the pages stay. */
+static void release_pages(void *p, size_t bytes)
+{
+    const uintptr_t page = page_size();
+    const uintptr_t a = ((uintptr_t)p + page - 1) & ~(page - 1), b = ((uintptr_t)p + bytes) & ~(page - 1);
+    if (b > a) (void)madvise((void *)a, b - a, MADV_DONTNEED);
+}
+
+/* Copies a thread's rows into the joined lists and hands the copied pages of
+ * its buffer back to the system as it goes (their contents are not needed
+ * again: the next build writes the buffer from its start, and a released page
+ * reads as zeros), so that a step's peak holds the lists once, not once and a
+ * half with two threads. */
+static void copy_releasing(void *dst, void *src, size_t bytes)
+{
+    const size_t chunk = (size_t)1 << 20;
+    const uintptr_t page = page_size();
+    uintptr_t done = (uintptr_t)src; /* released up to here */
+    for (size_t off = 0; off < bytes; off += chunk) {
+        const size_t m = bytes - off < chunk ? bytes - off : chunk;
+        memcpy((char *)dst + off, (char *)src + off, m);
+        const uintptr_t end = (uintptr_t)src + off + m;
+        release_pages((void *)done, end - done);
+        if ((end & ~(page - 1)) > done) done = end & ~(page - 1);
     }
 }
 
@@ -317,6 +419,14 @@ static void run(sph_sim *sim)
     size_t base[SPH_MAX_THREADS + 1];
     float *spos = S->spos;
     if (sph_skin_keep(sim)) return; /* Verlet lists: the last build's still hold every pair within h */
+    /* With thread 0 building in place and others copying in: the joined
+     * lists past thread 0's rows are dead until the copies, so they are
+     * released now and the other threads' buffers as they are copied; a
+     * step's peak then holds the lists once (not once and a half with two
+     * threads), for some page faults on the copied share at each build. */
+    const bool release = sim->def.lists_in_place == SPH_ON && T > 1 && n > SPH_PARALLEL_MIN;
+    if (release && S->nbr && S->nbr_first < S->nbr_cap * sizeof *S->nbr)
+        release_pages((char *)S->nbr + S->nbr_first, S->nbr_cap * sizeof *S->nbr - S->nbr_first);
     if (spos && !S->reordered && !S->next) { /* positions in sorted order, padded to 4 floats (z = 0 in 2D) */
         const int dim = sim->dim;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
@@ -340,27 +450,49 @@ static void run(sph_sim *sim)
         uint32_t hi = (uint32_t)((uint64_t)n * (uint64_t)(t + 1) / (uint64_t)nt);
         /* in place: thread 0's rows start the joined array, so it builds there */
         const bool direct = sim->def.lists_in_place == SPH_ON && t == 0;
-        list l = direct ? (list){S->nbr, 0, S->nbr_cap} : (list){S->tbuf[t], 0, S->tcap[t]};
+        /* compact: each row is built in l (32-bit, one row at a time), then stored in cw as words */
+        const bool compact = S->compact;
+        list l = {0};
+        words c = {0}, *cw = NULL;
+        if (compact) {
+            c = direct ? (words){(uint16_t *)(void *)S->nbr, 0, 2 * S->nbr_cap}
+                       : (words){(uint16_t *)(void *)S->tbuf[t], 0, S->tcap[t]};
+            cw = &c;
+        } else {
+            l = direct ? (list){S->nbr, 0, S->nbr_cap} : (list){S->tbuf[t], 0, S->tcap[t]};
+        }
         if (S->reordered) {
             const bool periodic = sim->period[0] > 0 || sim->period[1] > 0 || sim->period[2] > 0;
             if (sim->dim == 2)
-                periodic ? rows_reordered(sim, &l, lo, hi, 2, true) : rows_reordered(sim, &l, lo, hi, 2, false);
+                periodic ? rows_reordered(sim, &l, cw, lo, hi, 2, true) : rows_reordered(sim, &l, cw, lo, hi, 2, false);
             else
-                periodic ? rows_reordered(sim, &l, lo, hi, 3, true) : rows_reordered(sim, &l, lo, hi, 3, false);
+                periodic ? rows_reordered(sim, &l, cw, lo, hi, 3, true) : rows_reordered(sim, &l, cw, lo, hi, 3, false);
         } else {
             for (uint32_t i = lo; i < hi; i++) {
                 neighbours_of(sim, spos, &l, i);
-                S->nbr_start[i + 1] = (uint32_t)l.len; /* local end of row i, made global below */
+                S->nbr_start[i + 1] = row_done(&l, cw, i); /* local end of row i, made global below */
             }
         }
-        if (direct) {
+        size_t len = l.len; /* in the lists' unit: 32-bit indices, or words */
+        if (compact) {
+            free(l.buf);
+            len = c.len;
+            if (direct) {
+                S->nbr = (uint32_t *)(void *)c.buf;
+                S->nbr_cap = c.cap / 2;
+            } else {
+                S->tbuf[t] = (uint32_t *)(void *)c.buf;
+                S->tcap[t] = c.cap;
+            }
+        } else if (direct) {
             S->nbr = l.buf;
             S->nbr_cap = l.cap;
         } else {
             S->tbuf[t] = l.buf;
             S->tcap[t] = l.cap;
         }
-        base[t + 1] = l.len;
+        base[t + 1] = len;
+        if (direct) S->nbr_first = len * (compact ? sizeof *c.buf : sizeof *l.buf);
 #pragma omp barrier
 #pragma omp single
         {
@@ -369,8 +501,9 @@ static void run(sph_sim *sim)
             for (int k = nt + 1; k <= T; k++) base[k] = base[nt];
             if (base[nt] > UINT32_MAX) /* row offsets are 32-bit */
                 sph_memory_fail("%.3g neighbour pairs, more than the lists' 2^32", (double)base[nt]);
-            if (base[nt] > S->nbr_cap) {
-                size_t cap = base[nt] + base[nt] / 4 + 1024;
+            const size_t need = compact ? (base[nt] + 1) / 2 : base[nt]; /* 32-bit words */
+            if (need > S->nbr_cap) {
+                size_t cap = need + need / 4 + 1024;
                 uint32_t *b = realloc(S->nbr, cap * sizeof *b); /* keeps thread 0's rows if built in place */
                 if (!b) {
                     char size[32];
@@ -383,7 +516,15 @@ static void run(sph_sim *sim)
             S->nbr_start[0] = 0;
         }
         for (uint32_t i = lo; i < hi; i++) S->nbr_start[i + 1] += (uint32_t)base[t];
-        if (l.len && !direct) memcpy(S->nbr + base[t], l.buf, l.len * sizeof *l.buf);
+        if (len && !direct) {
+            void *to = compact ? (void *)((uint16_t *)(void *)S->nbr + base[t]) : (void *)(S->nbr + base[t]);
+            void *from = compact ? (void *)c.buf : (void *)l.buf;
+            const size_t bytes = len * (compact ? sizeof *c.buf : sizeof *l.buf);
+            if (release)
+                copy_releasing(to, from, bytes);
+            else
+                memcpy(to, from, bytes);
+        }
     }
     sph_skin_mark(sim);
 }

@@ -85,8 +85,9 @@ static void force(sph_sim *sim)
     for (int i = 0; i < n; i++) {
         float a[3] = {0, 0, 0}, other[3];
         const float p_i = P->p_pci[i];
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-            const uint32_t j = S->nbr[e];
+        const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+        for (uint32_t e = 0; e < row.n; e++) {
+            const uint32_t j = sph_nbr_at(&row, e);
             float dx[3] = {0, 0, 0}, r2 = 0;
             for (int d = 0; d < dim; d++) {
                 dx[d] = sph_solver_dx(sim, P->pred[d][i] - P->pred[d][j], d);
@@ -131,8 +132,9 @@ static double predict(sph_sim *sim)
         float xi[3] = {0, 0, 0};
         for (int d = 0; d < dim; d++) xi[d] = P->x_pci[d][i];
         float rho = P->mass[i] * sph_kernel_w(&sim->k_density, 0.0f);
-        for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-            const uint32_t j = S->nbr[e];
+        const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+        for (uint32_t e = 0; e < row.n; e++) {
+            const uint32_t j = sph_nbr_at(&row, e);
             float r2 = 0;
             for (int d = 0; d < dim; d++) {
                 const float dx = sph_solver_dx(sim, xi[d] - P->x_pci[d][j], d);

@@ -45,8 +45,9 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
     float xi[3], af[3] = {0, 0, 0};
     double ad[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         float dx[3], r2 = 0;
         for (int d = 0; d < dim; d++) {
             dx[d] = xi[d] - P->pred[d][j];
@@ -107,10 +108,11 @@ static inline void pressure_one_avx512(const sph_sim *sim, const sph_kernel *k, 
     const __m512 half_over_rho = _mm512_set1_ps(0.5f / P->rho[i]), zero = _mm512_setzero_ps();
     const __m512i vi = _mm512_set1_epi32(i);
     __m512 ax = zero, ay = zero, az = zero;
-    const uint32_t end = S->nbr_start[i + 1];
-    for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    const uint32_t end = row.n;
+    for (uint32_t e = 0; e < end; e += 16) {
         __mmask16 live = sph_simd_live(e, end);
-        __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
+        __m512i idx = sph_simd_nbr(&row, e, live);
         __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
         __m512 dx = d3[0], dy = d3[1], dz = d3[2];
         __mmask16 close = _mm512_mask_cmp_ps_mask(live, r2, rmin2, _CMP_LT_OQ);
@@ -171,10 +173,11 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
     const __m512 h2 = _mm512_set1_ps(sim->def.h * sim->def.h);
     const __m512i vi = _mm512_set1_epi32(i);
     __m512 ax = zero, ay = zero, az = zero, bx = zero, by = zero, bz = zero;
-    const uint32_t end = S->nbr_start[i + 1];
-    for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    const uint32_t end = row.n;
+    for (uint32_t e = 0; e < end; e += 16) {
         __mmask16 live = sph_simd_live(e, end);
-        __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
+        __m512i idx = sph_simd_nbr(&row, e, live);
         __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
         __m512 vol = sph_simd_gather(live, idx, P->vol);
         /* viscosity first, from the true r^2 (the pressure term below moves coincident pairs); pairs

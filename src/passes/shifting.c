@@ -58,8 +58,9 @@ static inline void surface_one(sph_sim *sim, const sph_kernel *k, int i, const i
     const float *per = sim->period, *iper = sim->inv_period;
     const float r_min = SPH_KERNEL_R_MIN * k->h;
     float div = 0.0f;
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         float r2 = 0;
         for (int d = 0; d < dim; d++) {
             float dx = P->pred[d][i] - P->pred[d][j];
@@ -86,8 +87,9 @@ static inline void shift_one(sph_sim *sim, const sph_kernel *k, float a_h_dt, in
     const float dp = powf(P->mass[i] / P->rho[i], 1.0f / (float)dim);
     const float inv_wdp = 1.0f / fmaxf(sph_kernel_w(k, dp), 1e-30f);
     float g[3] = {0, 0, 0};
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         if (P->surface[j] != 0.0f) return; /* near the free surface: no shift */
         float dx[3], r2 = 0;
         for (int d = 0; d < dim; d++) {

@@ -22,6 +22,23 @@ static inline __mmask16 sph_simd_live(uint32_t e, uint32_t end)
     return left >= 16 ? (__mmask16)0xFFFF : (__mmask16)((1u << left) - 1);
 }
 
+/* The row's neighbours k .. k + 15 (dead lanes 0), whatever the lists' storage. */
+static inline __m512i sph_simd_nbr(const sph_nbr_row *r, uint32_t k, __mmask16 live)
+{
+    if (r->w) return _mm512_maskz_loadu_epi32(live, r->w + k);
+    if (r->o) { /* 16 offsets, sign-extended, plus i */
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+        const __m256i o = _mm256_maskz_loadu_epi16(live, r->o + k);
+#else /* no masked 16-bit load: copy the live offsets first (never read past the row) */
+        int16_t t[16] = {0};
+        memcpy(t, r->o + k, (size_t)__builtin_popcount((unsigned)live) * sizeof *t);
+        const __m256i o = _mm256_loadu_si256((const __m256i *)(const void *)t);
+#endif
+        return _mm512_maskz_add_epi32(live, _mm512_cvtepi16_epi32(o), _mm512_set1_epi32((int)r->i));
+    }
+    return _mm512_maskz_loadu_epi32(live, r->x + 2 * (size_t)k);
+}
+
 /* Gathers a[idx] in the live lanes (0 elsewhere). */
 static inline __m512 sph_simd_gather(__mmask16 live, __m512i idx, const float *a)
 {

@@ -28,16 +28,16 @@ static void compression(const sph_sim *sim, bool solver, double *largest, double
         float xi[3] = {0, 0, 0};
         for (int d = 0; d < dim; d++) xi[d] = P->pos[d][i];
         double rho = P->mass[i] * sph_kernel_w(&sim->k_density, 0.0f);
-        if (S->nbr_start)
-            for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-                const uint32_t j = S->nbr[e];
-                float r2 = 0;
-                for (int d = 0; d < dim; d++) {
-                    const float dx = sph_solver_dx(sim, xi[d] - P->pos[d][j], d);
-                    r2 += dx * dx;
-                }
-                if (r2 < sim->def.h * sim->def.h) rho += P->mass[j] * sph_kernel_w(&sim->k_density, sqrtf(r2));
+        const sph_nbr_row row = S->nbr_start ? sph_nbr_row_of(S, (uint32_t)i) : (sph_nbr_row){0};
+        for (uint32_t e = 0; e < row.n; e++) {
+            const uint32_t j = sph_nbr_at(&row, e);
+            float r2 = 0;
+            for (int d = 0; d < dim; d++) {
+                const float dx = sph_solver_dx(sim, xi[d] - P->pos[d][j], d);
+                r2 += dx * dx;
             }
+            if (r2 < sim->def.h * sim->def.h) rho += P->mass[j] * sph_kernel_w(&sim->k_density, sqrtf(r2));
+        }
         if (walls)
             rho += solver ? held * sph_solver_walls(sim, xi, NULL)
                           : held * sph_wall_hidden_at(sim, &sim->k_density, xi, NULL);

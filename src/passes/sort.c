@@ -4,6 +4,7 @@
  * pattern of compare-exchanges, O(N log^2 N)), a counting sort (O(N + keys),
  * the fastest here) and the C library's qsort (the reference). All three
  * order by (key, index), so they give the same array. */
+#include "sph_memory.h"
 #include "sph_search.h"
 
 #include <stdio.h>
@@ -81,13 +82,55 @@ void sph_sort_qsort(sph_entry *e, uint32_t n)
     qsort(e, n, sizeof *e, entry_cmp);
 }
 
+/* The counting sort's scratch (12 bytes a particle) and histogram. When the
+ * neighbour lists are rebuilt after this sort (every step, or a Verlet
+ * rebuild), their buffer is dead from here to the neighbours pass (the
+ * reorder moves the particles they index), so the sort borrows it: a step's
+ * peak then holds the lists or the scratch, not both (12-16 bytes a particle
+ * less at 1,000,000). The rows are emptied first, so that nothing in between
+ * (the watchdog's report, the window) reads the borrowed words as indices. */
+static void counting_buffers(sph_sim *sim, sph_entry **scratch, uint32_t **count)
+{
+    sph_search_data *S = &sim->S;
+    const size_t keys = (size_t)S->table_size + 1, need = 3 * (size_t)sim->n + keys; /* uint32 words */
+    char size[32];
+    if (sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->enabled[SPH_PASS_NEIGHBOURS] && S->nbr_start) {
+        if (S->nbr_cap < need) { /* nothing in it to keep */
+            free(S->nbr);
+            S->nbr = malloc(need * sizeof *S->nbr);
+            S->nbr_cap = S->nbr ? need : 0;
+            if (!S->nbr)
+                sph_memory_fail("the counting sort's scratch could not be made (%s)",
+                                sph_memory_text((double)need * sizeof *S->nbr, size, sizeof size));
+        }
+        memset(S->nbr_start, 0, ((size_t)sim->n + 1) * sizeof *S->nbr_start);
+        S->lists_built = false;
+        *count = S->nbr;
+        *scratch = (sph_entry *)(void *)(S->nbr + keys);
+        return;
+    }
+    if (!S->scratch) S->scratch = malloc((sim->n ? sim->n : 1) * sizeof *S->scratch);
+    if (!S->count) S->count = malloc(keys * sizeof *S->count);
+    if (!S->scratch || !S->count)
+        sph_memory_fail("the counting sort's scratch could not be made (%s)",
+                        sph_memory_text((double)need * sizeof(uint32_t), size, sizeof size));
+    *scratch = S->scratch;
+    *count = S->count;
+}
+
 static void run(sph_sim *sim)
 {
     if (sph_skin_keep(sim)) return; /* Verlet lists kept: no new cells */
     sph_search_data *S = &sim->S;
     switch (sim->def.sort) {
     case SPH_SORT_BITONIC: sph_sort_bitonic(S->entries, sim->n); break;
-    case SPH_SORT_COUNTING: sph_sort_counting(S->entries, S->scratch, S->count, sim->n, S->table_size); break;
+    case SPH_SORT_COUNTING: {
+        sph_entry *scratch;
+        uint32_t *count;
+        counting_buffers(sim, &scratch, &count);
+        sph_sort_counting(S->entries, scratch, count, sim->n, S->table_size);
+        break;
+    }
     default: sph_sort_qsort(S->entries, sim->n); break;
     }
 }

@@ -60,8 +60,9 @@ static inline void drift_one(sph_sim *sim, const sph_kernel *k, float c_i, int i
     const float r_min = SPH_KERNEL_R_MIN * k->h;
     const float vi = P->mass[i] / P->rho[i];
     float g[3] = {0, 0, 0};
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         float dx[3], r2 = 0;
         for (int d = 0; d < dim; d++) {
             dx[d] = P->pred[d][i] - P->pred[d][j];

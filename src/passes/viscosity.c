@@ -90,8 +90,9 @@ static inline void viscosity_one(const sph_sim *sim, const sph_kernel *k, int i,
         xi[d] = P->pred[d][i];
         vi[d] = P->vel[d][i];
     }
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         float r2 = 0, dx[3];
         for (int d = 0; d < dim; d++) {
             dx[d] = xi[d] - P->pred[d][j];
@@ -149,10 +150,11 @@ static inline void viscosity_one_avx512(const sph_sim *sim, const sph_kernel *k,
     const __m512 inv_h = _mm512_set1_ps(k->inv_h), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
     const __m512 h2 = _mm512_set1_ps(sim->def.h * sim->def.h);
     __m512 ax = zero, ay = zero, az = zero;
-    const uint32_t end = S->nbr_start[i + 1];
-    for (uint32_t e = S->nbr_start[i]; e < end; e += 16) {
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    const uint32_t end = row.n;
+    for (uint32_t e = 0; e < end; e += 16) {
         __mmask16 live = sph_simd_live(e, end);
-        __m512i idx = _mm512_maskz_loadu_epi32(live, S->nbr + e);
+        __m512i idx = sph_simd_nbr(&row, e, live);
         __m512 r2 = sph_simd_offsets(P, live, idx, xi, dim, d3);
         /* pairs within h only, as the search decides them: Verlet lists ([search] skin) hold more, where
          * 1 - r/h can round to a hair above 0 */

@@ -62,8 +62,9 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
     const sph_kernel *k = &sim->k_density;
     const float *per = sim->period, *iper = sim->inv_period;
     double sw = 0, sp = 0, srr[3] = {0, 0, 0}, sv[3] = {0, 0, 0};
-    for (uint32_t e = S->nbr_start[w]; e < S->nbr_start[w + 1]; e++) {
-        uint32_t f = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)(w));
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t f = sph_nbr_at(&row, e);
         if (sph_is_wall(P, f)) continue;
         float dx[3], r2 = 0;
         for (int d = 0; d < dim; d++) {

@@ -46,8 +46,9 @@ static inline void xsph_one(const sph_sim *sim, const sph_kernel *k, float s, in
         xi[d] = P->pred[d][i];
         vi[d] = P->vel[d][i];
     }
-    for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-        uint32_t j = S->nbr[e];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
         if (j == (uint32_t)i || sph_is_wall(P, j)) continue;
         float dx[3], r2 = 0;
         for (int d = 0; d < dim; d++) {
