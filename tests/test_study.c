@@ -519,3 +519,48 @@ Test(study, command_rejects_bad_input)
     snprintf(rm, sizeof rm, "rm -rf %s", dir);
     cr_assert_eq(system(rm), 0);
 }
+
+/* A knob is inert only when every pair of rows that differ in it alone
+ * agrees bit for bit; one differing pair, or no pair that decides, is not. */
+Test(study, knob_inert_needs_every_pair_equal)
+{
+    study_plan p;
+    memset(&p, 0, sizeof p);
+    char why[512];
+    cr_assert(study_plan_add(&p, "physics.surface_tension=none,akinci", why, sizeof why), "%s", why);
+    cr_assert(study_plan_add(&p, "fluid.spacing=0.04,0.02", why, sizeof why), "%s", why);
+    study_row rows[4];
+    memset(rows, 0, sizeof rows);
+    for (long c = 0; c < 4; c++) {
+        study_plan_combo(&p, c, rows[c].idx);
+        rows[c].r.particles = rows[c].idx[1] ? 400 : 100; /* spacing acts */
+        rows[c].r.steps = 10;
+        rows[c].r.error = rows[c].idx[1] ? 0.01 : 0.04;
+    }
+    cr_assert(study_knob_inert(&p, rows, 4, 0), "surface_tension changed nothing and is not called inert");
+    cr_assert_not(study_knob_inert(&p, rows, 4, 1), "spacing changed the particles and is called inert");
+    rows[3].r.error = 0.0100001;
+    cr_assert_not(study_knob_inert(&p, rows, 4, 0), "one pair differs: not inert");
+    rows[3].r.error = 0.01;
+    rows[2].r.stopped = rows[3].r.stopped = true; /* no pair decides */
+    cr_assert_not(study_knob_inert(&p, rows, 4, 0), "no deciding pair: not inert");
+}
+
+/* The command says so when a varied key does not act on the scene. */
+Test(study, command_warns_of_a_key_that_does_not_act)
+{
+    char dir[] = "/tmp/sphlab-study-XXXXXX";
+    cr_assert(mkdtemp(dir));
+    char args[1024], out[16384];
+    /* effects = density: no pressure pass, whatever the solver */
+    snprintf(args, sizeof args,
+             "study lessons/scenes/study-density-2d.ini --vary physics.pressure_solver=eos,pcisph "
+             "--vary h_over_spacing=2,3 --out %s --repeats 1 --threads 1 --quiet",
+             dir);
+    int rc = test_sphlab(args, out, sizeof out);
+    cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
+    cr_assert(strstr(out, "--vary physics.pressure_solver: every value gave the same"), "no warning: %s", out);
+    cr_assert_null(strstr(out, "--vary h_over_spacing: every value"), "h acts, yet: %s", out);
+    snprintf(args, sizeof args, "rm -rf %s", dir);
+    cr_assert_eq(system(args), 0);
+}

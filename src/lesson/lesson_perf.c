@@ -456,7 +456,7 @@ int lx_lesson9(lx *x)
         }
         return 0;
     }
-    lx_missing(x, "`sphlab study` is not in this build (issue 5): no study CSV and no log-log chart with the "
+    lx_missing(x, "`sphlab study` is not in this build: no study CSV and no log-log chart with the "
                   "Pareto front; the table and chart below are a stand-in measured with `sphlab run`");
 
     lx_val(x, "nu", "%g", nu);

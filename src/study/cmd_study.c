@@ -240,6 +240,12 @@ int study_cmd_run(const study_cmd *cmd)
         }
     }
     if (pc.on) fprintf(stderr, "\r%100s\r", "");
+    for (int k = 0; k < plan.n_knobs && !code; k++)
+        if (study_knob_inert(&plan, rows, combos, k))
+            fprintf(stderr,
+                    "sphlab study: warning: --vary %s: every value gave the same particles, steps and error: the key "
+                    "does not act on this scene (its effects or pressure_solver leave out the passes that read it)\n",
+                    plan.knob[k].key);
     if (code) {
         free(rows);
         free(walls);

@@ -207,6 +207,15 @@ typedef struct study_row {
     bool front;
 } study_row;
 
+/* True if knob k acted on nothing: it has two or more values, and every pair
+ * of rows that differ only in k's value has the same particles, steps and
+ * error (bit for bit; rows that stopped or have no finite error decide
+ * nothing, and a knob with no deciding pair is not called inert). A study
+ * that varies a key the scene's pipeline never reads (surface_tension on a
+ * scene whose effects are density only) is told so rather than charting
+ * identical points as if they were a finding. */
+bool study_knob_inert(const study_plan *p, const study_row *rows, long n, int k);
+
 /* Writes the CSV: combo, the knob keys, particles, steps, t_end, error,
  * ms_per_step, total_s, pareto, stopped, then the metric's extras. */
 bool study_write_csv(FILE *f, const study_plan *p, study_metric m, const study_row *rows, int n);

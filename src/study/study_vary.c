@@ -301,3 +301,25 @@ bool study_write_csv(FILE *f, const study_plan *p, study_metric m, const study_r
     }
     return !ferror(f);
 }
+
+bool study_knob_inert(const study_plan *p, const study_row *rows, long n, int k)
+{
+    if (k < 0 || k >= p->n_knobs || p->knob[k].n < 2) return false;
+    long pairs = 0;
+    for (long a = 0; a < n; a++) {
+        const study_row *ra = &rows[a];
+        if (ra->r.stopped || !isfinite(ra->r.error)) continue;
+        for (long b = a + 1; b < n; b++) {
+            const study_row *rb = &rows[b];
+            bool others_same = ra->idx[k] != rb->idx[k];
+            for (int o = 0; o < p->n_knobs && others_same; o++)
+                if (o != k && ra->idx[o] != rb->idx[o]) others_same = false;
+            if (!others_same || rb->r.stopped || !isfinite(rb->r.error)) continue;
+            if (ra->r.particles != rb->r.particles || ra->r.steps != rb->r.steps ||
+                memcmp(&ra->r.error, &rb->r.error, sizeof ra->r.error) != 0)
+                return false;
+            pairs++;
+        }
+    }
+    return pairs > 0;
+}
