@@ -54,7 +54,7 @@ static float eos_density(const sph_scene_def *def, float p)
 }
 
 /* gscale: the share of g of the step under way (gravity_ramp; 0 without gravity) */
-static inline void wall_one(sph_sim *sim, int w, const int dim, const bool periodic, const float gscale)
+static inline void wall_one(sph_sim *sim, int w, const int dim, const bool periodic, const float gscale, const float *kick)
 {
     sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
@@ -92,8 +92,10 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
     P->rho[w] = rho;
     P->p_rho2[w] = p / (rho * rho);
     P->vol[w] = P->mass[w] / rho;
+    /* the mirror about the wall's velocity in the step's frame, v_w + g dt (kick): the fluid's v already
+     * carries this step's gravity kick, which its pressure force is about to take back */
     for (int d = 0; d < dim; d++)
-        P->vel_visc[d][w] = P->slip[w] != 0.0f ? vt[d] : 2.0f * P->vel[d][w] - vt[d];
+        P->vel_visc[d][w] = P->slip[w] != 0.0f ? vt[d] : 2.0f * (P->vel[d][w] + kick[d]) - vt[d];
 }
 
 static void run(sph_sim *sim)
@@ -105,14 +107,16 @@ static void run(sph_sim *sim)
      * share of g (sph_start.h), so the wall's hydrostatic term matches the
      * fluid's weight; the full g there pushed the first rows up */
     const float gscale = (sim->def.effects & SPH_EFFECT(GRAVITY)) ? sph_start_gravity_scale(sim) : 0.0f;
+    float kick[3];
+    sph_wall_kick(sim, kick);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         if (!sph_is_wall(P, i)) {
             for (int d = 0; d < dim; d++) P->vel_visc[d][i] = P->vel[d][i];
         } else if (periodic) {
-            wall_one(sim, i, dim, true, gscale);
+            wall_one(sim, i, dim, true, gscale, kick);
         } else {
-            wall_one(sim, i, dim, false, gscale);
+            wall_one(sim, i, dim, false, gscale, kick);
         }
     }
 }
