@@ -399,7 +399,8 @@ Test(wall_particles, column_at_rest_stays_at_rest, .timeout = 120)
     const char *ini = "[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n"
                       "[domain]\nmin=0 0\nmax=0.3 0.5\nwall_model=particles\nwall_slip=no\n"
                       "[fluid water]\nmin=0 0\nmax=0.3 0.3\nspacing=0.015\n"
-                      "[physics]\nrest_density=1000\neos=linear\nstiffness=400\nnegative_pressure=clamp\nviscosity_form=morris\n"
+                      "[physics]\nrest_density=1000\neos=linear\nstiffness=400\nnegative_pressure=clamp\n"
+                      "viscosity_form=morris\n"
                       "viscosity=0.05\ngravity_ramp=0.3\n"
                       "density_method=continuity\ndelta=0.1\n"
                       "[kernels]\nh=0.03\ndensity=cubic\npressure=cubic\nviscosity=cubic\n[time]\ncfl=0.25\ndt=0.001\n";

@@ -454,7 +454,8 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     place_particles(sim);
     if (P->fixed) sph_wall_particles_place(sim, (uint32_t)sph_scene_particle_count(&sim->def));
     if (P->rho_c) { /* the carried density exists from the start (place_particles); walls: wall_state's */
-        for (uint32_t i = (uint32_t)sph_scene_particle_count(&sim->def); i < sim->n; i++) P->rho_c[i] = def->rest_density;
+        for (uint32_t i = (uint32_t)sph_scene_particle_count(&sim->def); i < sim->n; i++)
+            P->rho_c[i] = def->rest_density;
         sim->rho_carried = true;
     }
     measure_start(sim);

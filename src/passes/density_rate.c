@@ -16,9 +16,11 @@
  *
  * The design, kept simple: the carried density is the state field rho_c
  * (moved by reorder, carried over by sph_sim_reconfigure).
- *   - in the first step (or the first after a reconfiguration that switched
- *     continuity on) this pass writes drho = 0 and the density pass sums as
- *     usual; rho_c starts from that sum (sim->rho_carried becomes true);
+ *   - rho_c starts from the lattice's density m / s^dim (sph_sim.c,
+ *     place_particles: the summation misses a free surface's outside, and its
+ *     top row started 16 % light); only the first step after a
+ *     reconfiguration that switched continuity on has this pass write
+ *     drho = 0 while the density pass sums, and rho_c starts from that sum;
  *   - from then on this pass, run before density, makes drho from rho_c and
  *     the velocities of this step, and the density pass advances
  *     rho_c += dt drho and sets rho = rho_c, so pressure and every later pass
