@@ -44,8 +44,10 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
 #else
     bool wall_j = false;
 #endif
-    if (wall_j)
+    if (wall_j) { // the wall's velocity in the step's frame, v_w + g dt (density_rate.c)
         for (int d = 0; d < DIM; d++) vx -= u_kick[d] * dx[d];
+        t = mass_[j] * vx * dw_over_r;
+    }
     if (u_value != 0.0 && !wall_j) {
         float psi = -2.0 * (rho_c_[j] - rho_i);
 #if HAS_GRAD_RHO
