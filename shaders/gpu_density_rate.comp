@@ -15,6 +15,7 @@
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_value;
+uniform vec3 u_kick; // [m/s] the wall particles' velocity in the step's frame, g dt (density_rate.c)
 #if DFORM_FOURTAKAS
 uniform vec3 u_g0;
 // rho^H_ji [kg/m^dim] for the pressure ph = rho0 g . x_ji [Pa] (density_rate.c's hydro_density)
@@ -43,6 +44,10 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
 #else
     bool wall_j = false;
 #endif
+    if (wall_j) { // the wall's velocity in the step's frame, v_w + g dt (density_rate.c)
+        for (int d = 0; d < DIM; d++) vx -= u_kick[d] * dx[d];
+        t = mass_[j] * vx * dw_over_r;
+    }
     if (u_value != 0.0 && !wall_j) {
         float psi = -2.0 * (rho_c_[j] - rho_i);
 #if HAS_GRAD_RHO

@@ -13,6 +13,7 @@
 // fluid's weight in this step, as on the CPU.
 layout(local_size_x = WG) in;
 uniform float u_gscale;
+uniform vec3 u_kick; // [m/s] the wall's velocity in the step's frame, g dt (wall_state.c)
 float sw, sp;
 vec3 srr, sv;
 void sph_pair(uint i, uint j, vec3 dx, float r2)
@@ -72,6 +73,6 @@ void main()
     bool free_slip = slip_[i] != 0.0;
     for (int d = 0; d < DIM; d++) {
         uint k = uint(d) * N + i;
-        vel_visc_[k] = free_slip ? vt[d] : 2.0 * vel_[k] - vt[d];
+        vel_visc_[k] = free_slip ? vt[d] : 2.0 * (vel_[k] + u_kick[d]) - vt[d];
     }
 }

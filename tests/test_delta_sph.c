@@ -1,5 +1,5 @@
 /* density_method = continuity with density diffusion (src/passes/density_rate.c,
- * Molteni & Colagrossi 2009): it starts from the summation and stays near it
+ * Molteni & Colagrossi 2009): it starts from the lattice's density m / s^dim and stays near the summation
  * in a gentle flow; the diffusion term moves no mass and the mean density of a
  * closed box does not drift; a hydrostatic column's rows are smoother with
  * delta = 0.1 than with delta = 0; momentum is still conserved. */
@@ -36,7 +36,7 @@ static float *rho_by_id(const sph_sim *sim)
     return r;
 }
 
-Test(delta_sph, starts_from_the_summation_and_stays_close)
+Test(delta_sph, starts_from_the_lattice_and_stays_close)
 {
     sph_sim *sum = box("summation", 0.0, 0.0), *con = box("continuity", 0.1, 0.0);
     cr_assert_null(sum->P.rho_c, "summation allocates no carried density");
@@ -49,7 +49,9 @@ Test(delta_sph, starts_from_the_summation_and_stays_close)
         float *a = rho_by_id(sum), *b = rho_by_id(con);
         double w = 0;
         for (uint32_t i = 0; i < sum->n; i++) w = fmax(w, fabs(a[i] - b[i]) / 1000.0);
-        if (s == 0) cr_assert_eq(w, 0.0, "step 0: continuity sums like summation (off by %g rho0)", w);
+        if (s == 0) /* the lattice's m / s^2 = rho0, not the sum (1 - 5.5e-4 rho0 here, cubic at h = 2.5 s) */
+            for (uint32_t i = 0; i < con->n; i++)
+                cr_assert_float_eq(b[i], 1000.0f, 0.2f, "step 0: carried density %g, not the lattice's", b[i]);
         worst = fmax(worst, w);
         free(a);
         free(b);

@@ -383,3 +383,40 @@ Test(wall_particles, reconfigure_keeps_the_wall_marks)
     cr_assert_neq(sph_sim_reconfigure(sim, &def, &err), SPH_ERR_OK);
     sph_sim_destroy(sim);
 }
+
+/* A column at rest stays at rest: the tank of `sphlab validate hydrostatic`
+ * (water 0.3 m deep, 0.3 m wide, 20 rows, continuity with Molteni's
+ * diffusion, 0.3 s gravity ramp), whose largest fluid speed after t = 1 s
+ * must stay below 1e-3 sqrt(g H). The external pass adds g dt to the fluid's
+ * velocity before the forces, and the pressure force takes it back from a
+ * fluid at rest; the rates that compare the fluid with the wall particles
+ * (continuity, the no-slip mirror of wall_state) must see the wall in the
+ * same frame. Compared with the wall at rest (the old code), the column
+ * read as flowing into the floor at g dt: the rows next to the side walls
+ * were dragged up by the mirror and the tank turned over, 2.8e-3 sqrt(g H). */
+Test(wall_particles, column_at_rest_stays_at_rest, .timeout = 120)
+{
+    const char *ini = "[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n"
+                      "[domain]\nmin=0 0\nmax=0.3 0.5\nwall_model=particles\nwall_slip=no\n"
+                      "[fluid water]\nmin=0 0\nmax=0.3 0.3\nspacing=0.015\n"
+                      "[physics]\nrest_density=1000\neos=linear\nstiffness=400\nnegative_pressure=clamp\n"
+                      "viscosity_form=morris\n"
+                      "viscosity=0.05\ngravity_ramp=0.3\n"
+                      "density_method=continuity\ndelta=0.1\n"
+                      "[kernels]\nh=0.03\ndensity=cubic\npressure=cubic\nviscosity=cubic\n[time]\ncfl=0.25\ndt=0.001\n";
+    sph_sim *sim = test_sim(ini, 2);
+    double worst = 0;
+    while (sim->t < 1.2 && !sim->alarm.raised) {
+        sph_sim_step(sim);
+        if (sim->t < 1.0) continue;
+        for (uint32_t i = 0; i < sim->n; i++) {
+            if (sph_is_wall(&sim->P, i)) continue;
+            worst = fmax(worst, hypot(sim->P.vel[0][i], sim->P.vel[1][i]));
+        }
+    }
+    cr_assert(!sim->alarm.raised);
+    const double scale = sqrt(9.81 * 0.3);
+    cr_log_info("column at rest, 1 to 1.2 s: max speed %.3g m/s = %.3g sqrt(gH)", worst, worst / scale);
+    cr_assert_lt(worst, 1e-3 * scale, "max speed %.3g sqrt(gH) after settling", worst / scale);
+    sph_sim_destroy(sim);
+}

@@ -124,7 +124,8 @@ const sph_key sph_scene_keys[] = {
      "removed at t = 0 and none at T, so an initial state settles; 0: no damping"},
     {"physics", "density_method", SPH_KEY_CHOICE, S(density_method), 0, 0, 0, 0, CH(sph_density_method_names), "",
      "summation",
-     "summation: rho = sum_j m_j W_ij every step; continuity: rho summed at the start, then carried by "
+     "summation: rho = sum_j m_j W_ij every step; continuity: rho starts from the lattice's m / spacing^dim "
+     "(summed after a reconfiguration that switches it on), then carried by "
      "drho/dt = sum_j m_j v_ij . grad W_ij plus the density diffusion term of delta (Molteni & Colagrossi 2009)"},
     {"physics", "delta", SPH_KEY_FLOAT, S(delta), 0, 1, 0, 0, NULL, 0, "", "0.1",
      "delta of density_method = continuity's diffusion term delta (h/2) c sum_j psi_ij . grad W_ij V_j, "

@@ -205,6 +205,11 @@ static void place_particles(sph_sim *sim)
                             P->mass[i] = (float)(rest_density_at(def, p) * (sim->dim == 3 ? s * s * s : s * s));
                         }
                     }
+                    /* density_method = continuity starts from the lattice's density, m / s^dim, not
+                     * from the summation, which misses a free surface's outside: the top row of a
+                     * column read 16 % light (cubic, h = 2 s), a volume the column then lost
+                     * (docs/accuracy.md, "hydrostatic") */
+                    if (P->rho_c) P->rho_c[i] = P->mass[i] / (sim->dim == 3 ? s * s * s : s * s);
                 }
     }
 }
@@ -448,6 +453,11 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     }
     place_particles(sim);
     if (P->fixed) sph_wall_particles_place(sim, (uint32_t)sph_scene_particle_count(&sim->def));
+    if (P->rho_c) { /* the carried density exists from the start (place_particles); walls: wall_state's */
+        for (uint32_t i = (uint32_t)sph_scene_particle_count(&sim->def); i < sim->n; i++)
+            P->rho_c[i] = def->rest_density;
+        sim->rho_carried = true;
+    }
     measure_start(sim);
     set_bounds(sim);
     sim->dt = sph_time_step_choose(sim);

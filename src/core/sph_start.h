@@ -38,4 +38,16 @@ static inline float sph_start_damping(const sph_sim *sim)
     return sph_start_ramp(sim->def.damping_time, sim->t + 0.5 * sim->dt);
 }
 
+/* [m/s] the velocity the external pass has just added to every fluid particle in the step under way,
+ * g dt (ramped; zero without gravity). Wall particles do not get it, but the fluid's pressure force is
+ * about to take it back from a fluid at rest, so a rate that compares the fluid's velocity with a wall
+ * particle's (the continuity equation, the no-slip mirror) adds it to the wall's: else a column at
+ * rest reads as flowing into the floor at g dt (docs/accuracy.md, "hydrostatic"). */
+static inline void sph_wall_kick(const sph_sim *sim, float kick[3])
+{
+    const bool g = sim->def.effects & SPH_EFFECT(GRAVITY);
+    const float gdt = g ? sph_start_gravity_scale(sim) * sim->dt : 0.0f;
+    for (int d = 0; d < 3; d++) kick[d] = d < sim->dim ? sim->def.gravity[d] * gdt : 0.0f;
+}
+
 #endif

@@ -239,6 +239,14 @@ static void run_density(gpu *g, sph_sim *sim)
     if (!carried && sim->P.rho_c) sim->rho_carried = sim->dt > 0.0f; /* as density.c's start_carrying */
 }
 
+/* The wall particles' velocity in the step's frame, g dt (sph_wall_kick, sph_start.h). */
+static void set_kick(gpu *g, const sph_sim *sim, int p)
+{
+    float kick[3];
+    sph_wall_kick(sim, kick);
+    if (g->loc[p][U_kick] >= 0) g->gl.Uniform3f(g->loc[p][U_kick], kick[0], kick[1], kick[2]);
+}
+
 static void run_density_rate(gpu *g, sph_sim *sim)
 {
     const int p = SPH_PASS_DENSITY_RATE;
@@ -253,6 +261,7 @@ static void run_density_rate(gpu *g, sph_sim *sim)
         for (int d = 0; d < sim->dim; d++) g0[d] = sim->def.rest_density * sim->def.gravity[d] * gs;
     }
     if (g->loc[p][U_g0] >= 0) g->gl.Uniform3f(g->loc[p][U_g0], g0[0], g0[1], g0[2]);
+    set_kick(g, sim, p);
     gpu_dispatch(g, g->n);
 }
 
@@ -447,6 +456,7 @@ static void run_wall_state(gpu *g, sph_sim *sim)
     const int p = SPH_PASS_WALL_STATE;
     use_walk(g, sim, p);
     gpu_set_f(g, p, U_gscale, sph_start_gravity_scale(sim));
+    set_kick(g, sim, p);
     gpu_dispatch(g, g->n);
 }
 

@@ -82,8 +82,9 @@ static inline void density_one_avx512(const sph_sim *sim, const sph_kernel *k, i
 }
 #endif
 
-/* density_method = continuity, at the start: the carried density starts
- * from this sum. The start-up evaluation (dt = 0, sph_sim_create) sums at x,
+/* density_method = continuity switched on by a reconfiguration (a new
+ * simulation starts from the lattice's density, sph_sim.c): the carried
+ * density starts from this sum. The start-up evaluation (dt = 0, sph_sim_create) sums at x,
  * not at the predicted x + v dt that every step's sum sees: only the first
  * step of some length hands its sum on, so its density is exactly the
  * summation's. */

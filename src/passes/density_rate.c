@@ -16,9 +16,11 @@
  *
  * The design, kept simple: the carried density is the state field rho_c
  * (moved by reorder, carried over by sph_sim_reconfigure).
- *   - in the first step (or the first after a reconfiguration that switched
- *     continuity on) this pass writes drho = 0 and the density pass sums as
- *     usual; rho_c starts from that sum (sim->rho_carried becomes true);
+ *   - rho_c starts from the lattice's density m / s^dim (sph_sim.c,
+ *     place_particles: the summation misses a free surface's outside, and its
+ *     top row started 16 % light); only the first step after a
+ *     reconfiguration that switched continuity on has this pass write
+ *     drho = 0 while the density pass sums, and rho_c starts from that sum;
  *   - from then on this pass, run before density, makes drho from rho_c and
  *     the velocities of this step, and the density pass advances
  *     rho_c += dt drho and sets rho = rho_c, so pressure and every later pass
@@ -95,8 +97,8 @@ static inline float hydro_density(const sph_scene_def *def, float ph)
 /* The rate for one particle; dim and dbl are constants (SPH_SPECIALISE_P).
  * g0: rho0 times the step's gravity [kg/(m^dim s^2)], with delta_form =
  * fourtakas (else NULL). */
-static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffusion, const float *g0, int i,
-                            const int dim, const bool dbl, const bool periodic)
+static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffusion, const float *g0,
+                            const float *kick, int i, const int dim, const bool dbl, const bool periodic)
 {
     sph_particles *P = (sph_particles *)&sim->P;
     const sph_search_data *S = &sim->S;
@@ -125,7 +127,10 @@ static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffu
             r2 += dx[d] * dx[d];
         }
         if (r2 < r_min * r_min) continue;
-        for (int d = 0; d < dim; d++) vx += (vi[d] - P->vel[d][j]) * dx[d];
+        if (sph_is_wall(P, j)) /* the wall's velocity in the step's frame (sph_wall_kick) */
+            for (int d = 0; d < dim; d++) vx += (vi[d] - P->vel[d][j] - kick[d]) * dx[d];
+        else
+            for (int d = 0; d < dim; d++) vx += (vi[d] - P->vel[d][j]) * dx[d];
         const float r = sqrtf(r2);
         const float dw_over_r = sph_kernel_dw(k, r) / r; /* grad_i W_ij = dw_over_r x_ij */
         float t = P->mass[j] * vx * dw_over_r;
@@ -167,13 +172,15 @@ static void run(sph_sim *sim)
     const float diffusion = sim->def.delta * 0.5f * sim->def.h * sqrtf(sim->def.stiffness); /* delta h_s c [m^2/s] */
     float g0[3] = {0, 0, 0}; /* rho0 g of the step, for delta_form = fourtakas */
     const bool fourtakas = sim->def.delta_form == SPH_DFORM_FOURTAKAS;
+    float kick[3];
+    sph_wall_kick(sim, kick);
     if (fourtakas && (sim->def.effects & SPH_EFFECT(GRAVITY))) {
         const float gs = sph_start_gravity_scale(sim);
         for (int d = 0; d < dim; d++) g0[d] = sim->def.rest_density * sim->def.gravity[d] * gs;
     }
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++)
-        SPH_SPECIALISE_P(dim, dbl, periodic, rate_one, sim, &k, diffusion, fourtakas ? g0 : NULL, i);
+        SPH_SPECIALISE_P(dim, dbl, periodic, rate_one, sim, &k, diffusion, fourtakas ? g0 : NULL, kick, i);
 }
 
 const sph_pass sph_pass_density_rate = {

@@ -9,7 +9,9 @@
  *   rho_w = the equation of state solved for the density at p_w,
  *   v~_w  = sum_f v_f W_wf / sum_f W_wf, and the velocity the viscous term
  *           sees, vel_visc = 2 v_w - v~_w (no-slip: the velocity mirrored
- *           about the wall's own, zero at the wall) or v~_w (free-slip).
+ *           about the wall's own, zero at the wall) or v~_w (free-slip);
+ *           v_w taken in the step's frame, v_w + g dt, as the fluid's v
+ *           already carries this step's gravity kick (sph_wall_kick).
  * A wall particle with no fluid in reach keeps p = 0 at rest density.
  * Fluid particles get vel_visc = their velocity. The pass runs after the
  * equation of state: it overwrites the pressure and density that summation
@@ -53,8 +55,10 @@ static float eos_density(const sph_scene_def *def, float p)
     return fmaxf(rho0 + p / k, 1e-3f * rho0);
 }
 
-/* gscale: the share of g of the step under way (gravity_ramp; 0 without gravity) */
-static inline void wall_one(sph_sim *sim, int w, const int dim, const bool periodic, const float gscale)
+/* gscale: the share of g of the step under way (gravity_ramp; 0 without gravity); kick: g dt of
+ * the step (sph_wall_kick) */
+static inline void wall_one(sph_sim *sim, int w, const int dim, const bool periodic, const float gscale,
+                            const float *kick)
 {
     sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
@@ -93,8 +97,10 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
     P->rho[w] = rho;
     P->p_rho2[w] = p / (rho * rho);
     P->vol[w] = P->mass[w] / rho;
+    /* the mirror about the wall's velocity in the step's frame, v_w + g dt (kick): the fluid's v already
+     * carries this step's gravity kick, which its pressure force is about to take back */
     for (int d = 0; d < dim; d++)
-        P->vel_visc[d][w] = P->slip[w] != 0.0f ? vt[d] : 2.0f * P->vel[d][w] - vt[d];
+        P->vel_visc[d][w] = P->slip[w] != 0.0f ? vt[d] : 2.0f * (P->vel[d][w] + kick[d]) - vt[d];
 }
 
 static void run(sph_sim *sim)
@@ -106,14 +112,16 @@ static void run(sph_sim *sim)
      * share of g (sph_start.h), so the wall's hydrostatic term matches the
      * fluid's weight; the full g there pushed the first rows up */
     const float gscale = (sim->def.effects & SPH_EFFECT(GRAVITY)) ? sph_start_gravity_scale(sim) : 0.0f;
+    float kick[3];
+    sph_wall_kick(sim, kick);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         if (!sph_is_wall(P, i)) {
             for (int d = 0; d < dim; d++) P->vel_visc[d][i] = P->vel[d][i];
         } else if (periodic) {
-            wall_one(sim, i, dim, true, gscale);
+            wall_one(sim, i, dim, true, gscale, kick);
         } else {
-            wall_one(sim, i, dim, false, gscale);
+            wall_one(sim, i, dim, false, gscale, kick);
         }
     }
 }
