@@ -104,6 +104,13 @@ static double field_error(const sph_sim *c, const sph_sim *g, sph_field_id f, do
             err = fmax(err, fabs((double)fg.c[k][i] - fc.c[k][i]));
             big = fmax(big, fabs((double)fc.c[k][i]));
         }
+    /* the pressure is the density through the equation of state, whose
+     * (rho/rho0)^gamma - 1 cancels near rest: its rounding is a few ulps of
+     * k rho0 whatever p is, so that is its least scale (a quiet start keeps
+     * |p| far below it) */
+    const double k_rho0 = (double)c->def.stiffness * c->def.rest_density;
+    if (f == SPH_FIELD_P) big = fmax(big, k_rho0);
+    if (f == SPH_FIELD_PRHO2) big = fmax(big, k_rho0 / ((double)c->def.rest_density * c->def.rest_density));
     *scale = big;
     return err;
 }
