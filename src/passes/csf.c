@@ -243,7 +243,7 @@ static void run(sph_sim *sim)
 
 const sph_pass sph_pass_csf = {
     .name = "csf",
-    .summary = "continuum surface force, sigma kappa grad c (acceleration)",
+    .summary = "continuum surface force, sigma kappa per unit area of surface (acceleration)",
     .reads = SPH_BIT(PRED) | SPH_BIT(NORMAL) | SPH_BIT(MASS) | SPH_RES_LISTS,
     .writes = SPH_BIT(CURV) | SPH_BIT(ACC_S),
     .group = SPH_GROUP_FORCES,
