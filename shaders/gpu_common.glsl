@@ -49,6 +49,11 @@ layout(std430, binding = B_SCAN) buffer BufScan { uint scan_[]; };
 #if USE_SUMS
 layout(std430, binding = B_SUMS) buffer BufSums { uint sums_[]; };
 #endif
+#if USE_CSF
+// the csf pass's sweeps (shaders/gpu_csf.comp): each particle's surface
+// density lam [1/m^(DIM-1)] at i, its raw curvature [1/m] at N + i
+layout(std430, binding = B_CSF) buffer BufCsf { float csf_[]; };
+#endif
 
 #define EMPTY 0xFFFFFFFFu
 

@@ -1,21 +1,20 @@
-// uses: PRED MASS NORMAL CURV ACC_S FIXED ENTRIES START
-// Pass csf (src/passes/csf.c): the continuum surface force of
+// uses: PRED MASS NORMAL FIXED ENTRIES START CSF
+// Pass csf (src/passes/csf.c), sweep 1 of 2: the continuum surface force of
 // surface_tension = csf (Brackbill, Kothe & Zemach 1992, J. Comput. Phys.
-// 100:335, eq. 4-5; Morris 2000, Int. J. Numer. Meth. Fluids 33:333),
-//   a_i = sigma kappa_i grad c_i / (B rho0),   grad c_i = normal_i / h,
-// for particles whose |normal| passes the cut, kappa_i the divergence of the
-// outward unit normals over the neighbours above the cut, renormalised on
-// the tangent plane: kappa = trace(A_t^-1 S_t). As on the CPU, A and S are
-// summed in double (A is inverted); u_value is sigma / (B h rho0), which the
-// host computes as the CPU pass does (gpu_passes.c). Wall particles neither
-// get nor give any.
+// 100:335, eq. 4-5; Morris 2000, Int. J. Numer. Meth. Fluids 33:333). For
+// each particle whose |normal| passes the cut, with w = |normal| - cut:
+// its raw curvature, the divergence of the outward unit normals over the
+// neighbours above the cut weighed by w_j, renormalised on the tangent plane
+// (kappa = trace(A_t^-1 S_t)), and its surface density
+//   lam_i = sum_j w_j W_{DIM-1}(tangential distance) / w_i   (self included),
+// written to the scratch csf_: lam at i, the raw curvature at N + i (0 for a
+// particle below the cut or a wall). gpu_csf_force.comp then averages the
+// curvature and makes the force. As on the CPU, A, S and lam's sum are in
+// double (A is inverted). Wall particles neither get nor give any.
 layout(local_size_x = WG) in;
-uniform float u_value; // sigma / (B h rho0) [m^2/s^2], csf.c's coef
 
-#define CSF_SUPPORT_MIN 0.1lf // the least eigenvalue of A_t (1 in a full support)
-#define CSF_NORMAL_MIN 0.3    // |h grad c| a particle needs to feel the force
-
-dmat3 A, S;     // A = sum V_j grad_i W_ij (x_j - x_i)^T, S = sum V_j grad_i W_ij (u_j - u_i)^T
+dmat3 A, S;     // A = sum w_j V_j grad_i W_ij (x_j - x_i)^T, S = sum w_j V_j grad_i W_ij (u_j - u_i)^T
+double ls;      // sum_j w_j W_{DIM-1}(r_t), self included
 vec3 ni;        // the particle's normal
 float len_i;    // its length
 bool is_wall(uint i)
@@ -26,6 +25,17 @@ bool is_wall(uint i)
     return false;
 #endif
 }
+
+// The cubic B-spline of support radius H in DIM - 1 dimensions (1D: 4/(3h),
+// 2D: 40/(7 pi h^2)), csf.c's csf_w_surface.
+double csf_w_surface(double r)
+{
+    double h = double(H), q = r / h;
+    if (q >= 1.0lf) return 0.0lf;
+    double f = q <= 0.5lf ? 1.0lf - 6.0lf * q * q + 6.0lf * q * q * q : 2.0lf * (1.0lf - q) * (1.0lf - q) * (1.0lf - q);
+    return (DIM == 2 ? 4.0lf / (3.0lf * h) : 40.0lf / (7.0lf * 3.14159265358979lf * h * h)) * f;
+}
+
 void sph_pair(uint i, uint j, vec3 dx, float r2)
 {
     if (is_wall(j)) return;
@@ -35,8 +45,13 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
     len_j = sqrt(len_j);
     if (!(len_j > CSF_NORMAL_MIN) || !(r2 > 0.0)) return;
     float r = sqrt(r2);
-    // V_j grad_i W_ij = g x_ij, V_j = m_j / rho0 (as the normals)
-    double g = double(mass_[j]) * (1.0lf / double(RHO0)) * double(kernel_dw(KD, SIG_D, r)) / double(r);
+    // the tangential distance: x_ij less its part along the normal (in float, as the CPU's)
+    precise float xnf = dx[0] * ni[0] + dx[1] * ni[1] + (DIM == 3 ? dx[2] * ni[2] : 0.0);
+    double xn = double(xnf / len_i);
+    double wj = double(len_j - CSF_NORMAL_MIN);
+    ls += wj * csf_w_surface(sqrt(max(double(r2) - xn * xn, 0.0lf)));
+    // w_j V_j grad_i W_ij = g x_ij, V_j = m_j / rho0 (as the normals)
+    double g = wj * double(mass_[j]) * (1.0lf / double(RHO0)) * double(kernel_dw(KD, SIG_D, r)) / double(r);
     for (int a = 0; a < DIM; a++)
         for (int b = 0; b < DIM; b++) {
             // x_j - x_i = -x_ij; u = -n / |n| outward
@@ -93,16 +108,18 @@ void main()
     len_i = 0.0;
     for (int d = 0; d < DIM; d++) len_i += ni[d] * ni[d];
     len_i = sqrt(len_i);
-    float kappa = 0.0;
+    float kappa = 0.0, lam = 0.0;
     if (!is_wall(i) && len_i > CSF_NORMAL_MIN) {
+        double wi = double(len_i - CSF_NORMAL_MIN);
         A = dmat3(0.0lf);
         S = dmat3(0.0lf);
+        ls = wi * csf_w_surface(0.0lf);
         sph_walk(i, PRED3(i));
         // the outward unit normal, in float as the CPU's
         vec3 uf = vec3(-ni[0] / len_i, -ni[1] / len_i, DIM == 3 ? -ni[2] / len_i : 0.0);
         kappa = float(csf_div(dvec3(uf)));
+        lam = float(ls / wi);
     }
-    curv_[i] = kappa;
-    // grad c = n / h; into the fluid for kappa > 0
-    for (int d = 0; d < DIM; d++) acc_s_[uint(d) * N + i] = u_value * kappa * ni[d];
+    csf_[i] = lam;
+    csf_[N + i] = kappa;
 }

@@ -54,7 +54,7 @@
       "curvature of the surface (surface_tension = csf): the renormalised divergence of the outward unit "      \
       "normal, positive on a convex surface; 0 where the normal is too short to have a direction")          \
     X(ACC_S, acc_s, V, "m/s^2", "m/s^2", ACCELERATION, CSF, NONE, "csf-acc", "a csf",                            \
-      "continuum surface force of surface_tension = csf per unit mass, sigma kappa grad c / (B rho0)")        \
+      "continuum surface force of surface_tension = csf per unit mass, sigma kappa s_i n / m_i")               \
     X(ACC_X, acc_x, V, "m/s^2", "m/s^2", ACCELERATION, XSPH, NONE, "xsph-acc", "a xsph",                        \
       "XSPH velocity smoothing as an acceleration, (eps / dt) sum_j m_j / rho_ij (v_j - v_i) W_ij")            \
     X(ACC_I, acc_i, V, "m/s^2", "m/s^2", ACCELERATION, INTERACTION, NONE, "", "a mouse", "interaction acceleration") \

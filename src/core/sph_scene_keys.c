@@ -164,9 +164,9 @@ const sph_key sph_scene_keys[] = {
      "none; akinci: Akinci, Akinci & Teschner 2013 (ACM TOG 32(6)), the cohesion term (eq. 1-2, the cohesion pass) "
      "plus the curvature term a_i = -gamma sum_j K_ij (n_i - n_j) (eq. 4-5) with the normals n_i = h sum_j m_j/rho_j "
      "grad W (eq. 3, pointing into the fluid); gamma = surface_tension_coefficient; not with the effect cohesion; "
-     "csf: a continuum surface force (Brackbill, Kothe & Zemach 1992; Morris 2000) a_i = sigma kappa_i grad c_i / "
-     "(B rho0) of the stated sigma, kappa the renormalised divergence of the unit normals, B the delta's integral "
-     "across a flat surface of the scene's lattice"},
+     "csf: a continuum surface force (Brackbill, Kothe & Zemach 1992; Morris 2000) a_i = sigma kappa_i s_i n_i / "
+     "m_i of the stated sigma, kappa the renormalised divergence of the unit normals (Shepard-averaged), s_i the "
+     "particle's share of the surface (a partition of unity along it)"},
     {"physics", "surface_tension_coefficient", SPH_KEY_FLOAT, S(surface_tension_coefficient), 0, 1e6, 0, 0, NULL, 0,
      "m^4/(kg s^2)", "1",
      "gamma of surface_tension = akinci (both terms; the paper's gamma, not a physical sigma: docs/accuracy.md "

@@ -145,6 +145,8 @@ static bool make_buffers(gpu *g, const sph_sim *sim)
         }
     }
     if (sim->in_pipeline[SPH_PASS_REORDER]) g->spare = new_buffer(g, vec, NULL);
+    /* surface_tension = csf: its first sweep's two values per particle for the second (gpu_csf.comp) */
+    if (sim->in_pipeline[SPH_PASS_CSF]) g->buf[B_CSF] = new_buffer(g, 2 * row, NULL);
     /* totals of each level of the prefix sum over table + 1 counts */
     uint32_t level = g->table + 1;
     for (int l = 0; l < MAX_SCAN_LEVELS; l++) {

@@ -20,10 +20,11 @@
 /* Binding points of the shader storage buffers. The first ones are the
  * registry's fields, one buffer each, in SPH_FIELDS order (B_POS = 0 ...: a
  * field's binding is its number); then the ids, the index and its scratch,
- * the reductions, the wall table, and SRC, DST, SCAN and SUMS, bound to
- * whichever buffer a gather or prefix sum works on. */
+ * the reductions, the wall table, SRC, DST, SCAN and SUMS, bound to
+ * whichever buffer a gather or prefix sum works on, and CSF, the csf pass's
+ * scratch between its two sweeps (surface density, raw curvature). */
 #define GPU_OTHER_BINDINGS(X) \
-    X(ID) X(ENTRIES) X(SCRATCH) X(START) X(COUNT) X(REDUCE) X(WALL) X(SRC) X(DST) X(SCAN) X(SUMS)
+    X(ID) X(ENTRIES) X(SCRATCH) X(START) X(COUNT) X(REDUCE) X(WALL) X(SRC) X(DST) X(SCAN) X(SUMS) X(CSF)
 enum {
 #define GPU_FIELD_B(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) B_##ID,
     SPH_FIELDS(GPU_FIELD_B)
@@ -40,7 +41,7 @@ extern const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT]; /* 
  * number), then the helpers several passes share (shaders/gpu_NAME.comp). */
 #define GPU_HELPERS(X) \
     X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range) \
-    X(bitonic_local) X(stats) X(stats_sum) X(dfsph_force) X(forces) X(health)
+    X(bitonic_local) X(stats) X(stats_sum) X(dfsph_force) X(forces) X(health) X(csf_force)
 enum {
 #define GPU_H_ENUM(name) H_##name,
     GPU_HELPERS(GPU_H_ENUM)

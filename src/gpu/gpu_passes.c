@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "csf.h"
 #include "gpu_internal.h"
 #include "gpu_shaders.h"
 #include "solver.h"
@@ -460,13 +459,23 @@ static void run_wall_state(gpu *g, sph_sim *sim)
     gpu_dispatch(g, g->n);
 }
 
-/* surface_tension = csf: sigma / (B h rho0) [m^2/s^2], as csf.c computes it */
+/* surface_tension = csf, csf.c's two sweeps: each surface particle's raw
+ * curvature and surface density into the scratch (gpu_csf.comp), then the
+ * averaged curvature and the force, sigma [N/m] (gpu_csf_force.comp) */
 static void run_csf(gpu *g, sph_sim *sim)
 {
-    const int p = SPH_PASS_CSF;
-    use_walk(g, sim, p);
-    gpu_set_f(g, p, U_value, sph_csf_coefficient(sim));
+    use_walk(g, sim, SPH_PASS_CSF);
     gpu_dispatch(g, g->n);
+    const int p = PROG_H(csf_force);
+    use_walk(g, sim, p);
+    gpu_set_f(g, p, U_value, sim->def.sigma);
+    gpu_dispatch(g, g->n);
+}
+
+static unsigned csf_helpers(const sph_scene_def *def)
+{
+    (void)def;
+    return HELPER_BIT(csf_force);
 }
 
 /* XSPH's epsilon / dt [1/s], as xsph.c computes it (0 before the first step). */
@@ -509,7 +518,7 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_COHESION] = {.source = shader_gpu_cohesion_comp},
     [SPH_PASS_NORMALS] = {.source = shader_gpu_normals_comp},
     [SPH_PASS_CURVATURE] = {.source = shader_gpu_curvature_comp},
-    [SPH_PASS_CSF] = {.source = shader_gpu_csf_comp, .run = run_csf},
+    [SPH_PASS_CSF] = {.source = shader_gpu_csf_comp, .run = run_csf, .helpers = csf_helpers},
     [SPH_PASS_XSPH] = {.source = shader_gpu_xsph_comp, .run = run_xsph},
     [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
     [SPH_PASS_PCISPH] = {.source = shader_gpu_pcisph_comp, .run = run_pcisph},

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "csf.h"
 #include "gpu_internal.h"
 
 const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT] = {
@@ -150,6 +151,12 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     /* surface_tension = csf: the normals' volumes m_j / rho0 (normals.c), 1 / rho0 [m^dim/kg] in float */
     put(&t, "#define ST_CSF %d\n", def->surface_tension == SPH_STENSION_CSF);
     put_float(&t, "INV_RHO0", 1.0f / def->rest_density);
+    /* csf's cuts (src/passes/csf.h): |h grad c| in float, the least tangential support in double */
+    put_float(&t, "CSF_NORMAL_MIN", SPH_CSF_NORMAL_MIN);
+    const double support_min = SPH_CSF_SUPPORT_MIN;
+    uint32_t sm[2];
+    memcpy(sm, &support_min, sizeof sm);
+    put(&t, "#define CSF_SUPPORT_MIN packDouble2x32(uvec2(0x%08xu, 0x%08xu))\n", sm[0], sm[1]);
     put_float(&t, "DAMP", def->wall_damping);
     put_float(&t, "INTER_R", def->interaction_radius);
     /* the pressure solvers (src/passes/solver.h): the density they hold

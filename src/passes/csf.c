@@ -13,49 +13,63 @@
  * Which particles. Morris (his eq. 20-21) keeps only the particles whose
  * normal is long enough to have a direction, |grad c| > 0.01 / h. In a free
  * drop that cut let the disordered interior's normals (0.01 to 0.3) in,
- * whose curvatures were noise and whose forces stirred the drop until it
- * flew apart; at 0.1 and 0.3 the second row (|h grad c| 0.29 on a lattice,
- * cubic kernel at h = 3 spacings) flickered across the cut and the surface
- * frayed within a period (0.1) or two (0.3, cut 0.6: sooner). The cut is
- * 0.3, so that on a lattice the force acts on the outermost row (|n| 1.23)
- * alone; a drop of R = 20 spacings still frays after about one period
- * (docs/accuracy.md, the drop): this is not solved.
+ * whose curvatures were noise. Here a particle has a curvature where
+ * |n| = |h grad c| > 0.3 (on a lattice, cubic kernel at h = 3 spacings, the
+ * outermost row: 1.23; the second: 0.29), and every sum over such particles
+ * weighs them by w = |n| - 0.3, so that a particle crossing the cut enters
+ * the sums at zero weight instead of all at once (with a weight of 1 the
+ * second row flickered across the cut and the surface frayed).
  *
  * Curvature: the divergence of the outward unit normal u = -normal/|normal|
- * over the neighbours above the cut, renormalised (Bonet & Lok 1999) on the
+ * over those neighbours, renormalised (Bonet & Lok 1999) on the
  * tangent plane of u_i: with
- *   A = sum_j V_j grad_i W_ij (x_j - x_i)^T,  S = sum_j V_j grad_i W_ij (u_j - u_i)^T,
+ *   A = sum_j w_j V_j grad_i W_ij (x_j - x_i)^T,  S = sum_j w_j V_j grad_i W_ij (u_j - u_i)^T,
  * projected on the tangents t_p (A_t = t_p.A.t_q), kappa_i = trace(A_t^-1 S_t).
- * The unit normal of a curved surface does not change along itself (u.du = 0
- * and, for concentric surfaces, du/dn = 0), so the tangential part is the
- * whole divergence, and it needs no support across the surface, where the
- * rows are few (the full matrix's inverse there amplified the normals' noise
- * and gave a disc of 20 spacings curvatures of -50 to 300 1/m for 10). A
- * particle whose tangential support is below 0.1 (1 in a full support) gets
- * no curvature.
+ * The unit normal of a curved surface does not change along itself (u.du = 0),
+ * so the tangential part is the whole divergence, and it needs no support
+ * across the surface, where the rows are few (the full matrix's inverse there
+ * amplified the normals' noise). A particle whose tangential support is below
+ * 0.1 (1 in a full support) gets no curvature. The curvature is then averaged
+ * over the particles that have one (a Shepard average, weights w_j W_ij; the
+ * smoothing over h of the normals' own particle-scale noise, as Morris 2000,
+ * sec. 3, and Adami, Hu & Adams 2010, J. Comput. Phys. 229:5011, eq. 20,
+ * average over the particles with a well-defined normal); a circle's kappa
+ * is unchanged by it.
  *
- * The delta. At a free surface the particles carry only the fluid's side of
- * the colour jump: across a flat surface s sum_rows |grad c| is B (0.41 for
- * the cubic kernel at h = 3 spacings with the cut), not 1. The force is
- * divided by B, computed on the scene's lattice (a half-space of the finest
- * block's spacing, the density kernel, volumes s^dim, the same cut), so that
- * a flat-lattice surface feels sigma kappa per unit area. This is the
- * discretisation's own constant, not a fit to any result.
+ * The delta: sigma kappa per unit area of surface, shared out. At a free
+ * surface the particles carry only the fluid's side of the colour jump, and
+ * how much of |grad c| the rows hold depends on how close the outer row sits
+ * to the next (the force itself presses it in): a constant calibrated on a
+ * flat lattice (this pass's earlier form, B = 0.41) gave a drop of R = 10
+ * spacings a Laplace pressure 27 % above sigma / R. Instead each particle
+ * taking the force gets the share s_i = w_i / sum_j w_j W_{dim-1}(|x_ij|_t)
+ * of the surface's area (2D: length), the sum over the particles taking it
+ * (self included), W_{dim-1} the cubic spline of support h in dim - 1
+ * dimensions of the tangential distance |x_ij - (x_ij.u_i) u_i|: a partition
+ * of unity along the surface (Shepard), whatever the depths and weights, so
+ * the shares of a stretch of surface add up to its area. Then
  *
- * Per unit mass: a_i = sigma kappa_i grad c_i / (B rho0), only for
- * particles above the cut. A pair's terms are not equal and opposite (kappa
- * differs between particles), so momentum is conserved only as far as kappa
- * is uniform: tests/test_csf.c measures the net force on a disc. Wall
- * particles get none and are left out of the sums, as in the normals pass. */
+ *   a_i = sigma kappa_i s_i n_hat_i / m_i,   n_hat into the fluid,
+ *
+ * and the inward force over a closed drop is sigma kappa times its area, the
+ * Laplace jump (measured: 10.20 N/m at R = 0.0987 m, sigma/R = 10.13; 10.59
+ * at R = 0.0959 m, 10.43). A pair's terms are not equal and opposite, so
+ * momentum is conserved only as far as kappa is uniform: tests/test_csf.c
+ * measures the net force on a disc. Wall particles get none and are left out
+ * of the sums, as in the normals pass. */
 #include "csf.h"
 #include "sph_search.h"
 #include "sph_walls.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
-#define CSF_SUPPORT_MIN 0.1 /* the tangential renormalisation's least eigenvalue (1 in a full support) */
-#define CSF_NORMAL_MIN 0.3f /* |h grad c| a particle needs to feel the force (Morris 2000: 0.01; see above) */
+#define CSF_SUPPORT_MIN SPH_CSF_SUPPORT_MIN
+#define CSF_NORMAL_MIN SPH_CSF_NORMAL_MIN
+/* |h grad c| a particle needs to share the force: the same cut (spreading the force over the second row too,
+ * 0.05, read the R/10 drop's period 10.9 % short, its amplitude growing, where 0.3 read it 10.4 % long) */
+#define CSF_FORCE_MIN CSF_NORMAL_MIN
 
 static const char *skip_reason(const sph_scene_def *def)
 {
@@ -67,36 +81,14 @@ static void describe(const sph_scene_def *def, char *out, int n)
     snprintf(out, (size_t)n, "continuum surface force (Brackbill 1992, Morris 2000), sigma %g N/m", def->sigma);
 }
 
-/* The finest block's spacing [m]: the lattice of the delta's integral B. */
-static double csf_spacing(const sph_scene_def *def)
+/* The cubic B-spline of support radius h in dim - 1 dimensions (1D: 4/(3h), 2D: 40/(7 pi h^2)): the
+ * particles' density along the surface. */
+static inline double csf_w_surface(double r, double h, int dim)
 {
-    double s = def->n_blocks ? def->blocks[0].spacing : def->h / 2;
-    for (int b = 1; b < def->n_blocks; b++) s = fmin(s, def->blocks[b].spacing);
-    return s;
-}
-
-/* B, the integral of |grad c| across a flat surface, on a lattice of
- * spacing s filling the half-space below it (the rows at depth l s, l = 0
- * at the surface, each particle of volume s^dim as in the normals pass):
- * s times the sum over the rows of |grad c| where it passes the cut. */
-double sph_csf_delta_integral(const sph_kernel *k, int dim, double s)
-{
-    const int reach = (int)ceil(k->h / s), ny = dim == 3 ? reach : 0;
-    if (!(s > 0) || reach > 1000) return 0.0;
-    const double vol0 = pow(s, dim);
-    double B = 0;
-    for (int l = 0; l <= reach; l++) { /* deeper rows have a full support: no normal */
-        double g = 0;
-        for (int m = l > reach ? l - reach : 0; m <= l + reach; m++)
-            for (int a = -reach; a <= reach; a++)
-                for (int b = -ny; b <= ny; b++) {
-                    double dz = (double)(m - l) * s, r = sqrt(dz * dz + (double)(a * a + b * b) * s * s);
-                    if (r >= k->h || !(r > 0)) continue;
-                    g += vol0 * sph_kernel_dw(k, (float)r) * (-dz) / r; /* x_ij along the depth: -dz */
-                }
-        if (fabs(g) * k->h > CSF_NORMAL_MIN) B += s * fabs(g);
-    }
-    return B;
+    double q = r / h, f;
+    if (q >= 1) return 0.0;
+    f = q <= 0.5 ? 1 - 6 * q * q + 6 * q * q * q : 2 * (1 - q) * (1 - q) * (1 - q);
+    return (dim == 2 ? 4.0 / (3.0 * h) : 40.0 / (7.0 * 3.14159265358979 * h * h)) * f;
 }
 
 /* kappa = trace(A_t^-1 S_t), A and S projected on the tangent plane of the
@@ -138,7 +130,10 @@ static inline float csf_div(const double A[3][3], const double S[3][3], const do
     return (float)(k / det);
 }
 
-static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float coef, int i, const int dim, const bool dbl,
+/* Sweep 1: the raw curvature of a particle whose normal has a direction (|n| > CSF_NORMAL_MIN), and, for
+ * every particle that takes a share of the force (|n| > CSF_FORCE_MIN), the surface density lam_i =
+ * sum_j w_j W_{dim-1}(tangential distance) / w_i of the particles sharing it, w = |n| - CSF_FORCE_MIN. */
+static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float *lam, int i, const int dim, const bool dbl,
                            const bool periodic)
 {
     (void)dbl; /* the sums are in double: a few surface particles, and A is inverted */
@@ -149,9 +144,11 @@ static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float coef, 
     for (int d = 0; d < dim; d++) ni[d] = P->normal[d][i], len_i += ni[d] * ni[d];
     len_i = sqrtf(len_i);
     P->curv[i] = 0.0f;
-    for (int d = 0; d < dim; d++) P->acc_s[d][i] = 0.0f;
-    if (sph_is_wall(P, i) || !(len_i > CSF_NORMAL_MIN)) return;
-    double A[3][3] = {{0}}, Sm[3][3] = {{0}};
+    lam[i] = 0.0f;
+    if (sph_is_wall(P, i) || !(len_i > CSF_FORCE_MIN)) return;
+    const bool curved = len_i > CSF_NORMAL_MIN;
+    const double wi = len_i - CSF_FORCE_MIN;
+    double A[3][3] = {{0}}, Sm[3][3] = {{0}}, ls = wi * csf_w_surface(0.0, k->h, dim);
     float xi[3];
     const double inv_rho0 = 1.0 / sim->def.rest_density;
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
@@ -162,7 +159,7 @@ static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float coef, 
         float nj[3], len_j = 0;
         for (int d = 0; d < dim; d++) nj[d] = P->normal[d][j], len_j += nj[d] * nj[d];
         len_j = sqrtf(len_j);
-        if (!(len_j > CSF_NORMAL_MIN)) continue;
+        if (!(len_j > CSF_FORCE_MIN)) continue;
         float dx[3], r2 = 0;
         for (int d = 0; d < dim; d++) {
             dx[d] = xi[d] - P->pred[d][j];
@@ -171,7 +168,11 @@ static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float coef, 
         }
         if (!(r2 > 0)) continue;
         float r = sqrtf(r2);
-        double g = (double)P->mass[j] * inv_rho0 * sph_kernel_dw(k, r) / r; /* V_j grad_i W_ij = g x_ij */
+        double xn = (dx[0] * ni[0] + dx[1] * ni[1] + (dim == 3 ? dx[2] * ni[2] : 0.0f)) / len_i;
+        ls += (len_j - CSF_FORCE_MIN) * csf_w_surface(sqrt(fmax(r2 - xn * xn, 0.0)), k->h, dim);
+        if (!curved || !(len_j > CSF_NORMAL_MIN)) continue;
+        /* w_j V_j grad_i W_ij = g x_ij */
+        double g = (len_j - CSF_NORMAL_MIN) * (double)P->mass[j] * inv_rho0 * sph_kernel_dw(k, r) / r;
         for (int a = 0; a < dim; a++)
             for (int b = 0; b < dim; b++) {
                 /* x_j - x_i = -x_ij; u = -n / |n| outward */
@@ -180,18 +181,49 @@ static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float coef, 
             }
     }
     const double u[3] = {-ni[0] / len_i, -ni[1] / len_i, dim == 3 ? -ni[2] / len_i : 0.0};
-    const float kappa = csf_div(A, Sm, u, dim);
-    P->curv[i] = kappa;
-    /* grad c = n / h; force per unit volume sigma kappa grad c / B, into the fluid for kappa > 0 */
-    for (int d = 0; d < dim; d++) P->acc_s[d][i] = coef * kappa * ni[d];
+    if (curved) P->curv[i] = csf_div(A, Sm, u, dim);
+    lam[i] = (float)(ls / wi);
 }
 
-/* a few hundred kernel values: cheaper to recompute each step than to keep */
-float sph_csf_coefficient(const sph_sim *sim)
+/* Sweep 2: the curvature averaged (Shepard) over the neighbours that have one, weights (|n| - CSF_NORMAL_MIN) W,
+ * and the force, sigma kappa per unit area of surface shared as w_i / lam_i. */
+static inline void csf_force(const sph_sim *sim, const sph_kernel *k, const float *lam, float *kap, int i,
+                             const int dim, const bool dbl, const bool periodic)
 {
-    const sph_kernel *k = &sim->k_density;
-    const double B = sph_csf_delta_integral(k, sim->dim, csf_spacing(&sim->def));
-    return B > 0 ? (float)(sim->def.sigma / (B * k->h * sim->def.rest_density)) : 0.0f;
+    (void)dbl;
+    const sph_particles *P = &sim->P;
+    const sph_search_data *S = &sim->S;
+    const float *per = sim->period, *iper = sim->inv_period;
+    for (int d = 0; d < dim; d++) P->acc_s[d][i] = 0.0f;
+    kap[i] = 0.0f;
+    if (!(lam[i] > 0)) return;
+    float ni[3], len_i = 0;
+    for (int d = 0; d < dim; d++) ni[d] = P->normal[d][i], len_i += ni[d] * ni[d];
+    len_i = sqrtf(len_i);
+    double sw = 0, sk = 0;
+    if (len_i > CSF_NORMAL_MIN) sw = sph_kernel_w(k, 0.0f) * (len_i - CSF_NORMAL_MIN), sk = sw * P->curv[i];
+    const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+    for (uint32_t e = 0; e < row.n; e++) {
+        uint32_t j = sph_nbr_at(&row, e);
+        if (j == (uint32_t)i || sph_is_wall(P, j)) continue;
+        float r2 = 0, lj = 0;
+        for (int d = 0; d < dim; d++) lj += P->normal[d][j] * P->normal[d][j];
+        lj = sqrtf(lj);
+        if (!(lj > CSF_NORMAL_MIN)) continue;
+        for (int d = 0; d < dim; d++) {
+            float dx = P->pred[d][i] - P->pred[d][j];
+            if (periodic) dx = sph_min_image(dx, per[d], iper[d]);
+            r2 += dx * dx;
+        }
+        double w = sph_kernel_w(k, sqrtf(r2)) * (lj - CSF_NORMAL_MIN);
+        sw += w, sk += w * P->curv[j];
+    }
+    if (!(sw > 0)) return;
+    const double kappa = sk / sw;
+    kap[i] = (float)kappa;
+    /* sigma kappa times the particle's share of the surface 1 / lam_i, per unit mass, into the fluid */
+    const double a = sim->def.sigma * kappa / ((double)lam[i] * P->mass[i] * len_i);
+    for (int d = 0; d < dim; d++) P->acc_s[d][i] = (float)(a * ni[d]);
 }
 
 static void run(sph_sim *sim)
@@ -200,14 +232,19 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
     const bool periodic = sph_sim_periodic(sim);
-    const float coef = sph_csf_coefficient(sim);
+    float *lam = malloc(sizeof(float) * (size_t)(2 * n + 1)), *kap = lam + n;
+    if (!lam) return;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, csf_one, sim, &k, coef, i);
+    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, csf_one, sim, &k, lam, i);
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, csf_force, sim, &k, lam, kap, i);
+    for (int i = 0; i < n; i++) sim->P.curv[i] = kap[i];
+    free(lam);
 }
 
 const sph_pass sph_pass_csf = {
     .name = "csf",
-    .summary = "continuum surface force, sigma kappa grad c (acceleration)",
+    .summary = "continuum surface force, sigma kappa per unit area of surface (acceleration)",
     .reads = SPH_BIT(PRED) | SPH_BIT(NORMAL) | SPH_BIT(MASS) | SPH_RES_LISTS,
     .writes = SPH_BIT(CURV) | SPH_BIT(ACC_S),
     .group = SPH_GROUP_FORCES,

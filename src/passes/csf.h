@@ -1,15 +1,13 @@
-/* What surface_tension = csf's pass (csf.c) gives the GL backend's csf
- * shader and the tests: the delta's integral B and the force's factor. */
+/* What surface_tension = csf's pass (csf.c) shares with the GL backend's
+ * csf shaders (shaders/gpu_csf.comp, gpu_csf_force.comp), which take these
+ * as #defines (gpu_program.c), so that both backends cut at the same place. */
 #ifndef SPH_CSF_H
 #define SPH_CSF_H
 
-#include "sph_sim.h"
-
-/* B, the integral of |grad c| across a flat surface on a lattice of spacing
- * s [m] (dimensionless: s times the rows' |grad c| [1/m]). */
-double sph_csf_delta_integral(const sph_kernel *k, int dim, double s);
-
-/* sigma / (B h rho0) [m^2/s^2]: a_s = this kappa normal (0 where B is 0). */
-float sph_csf_coefficient(const sph_sim *sim);
+/* |h grad c| a particle needs to have a curvature and to share the force
+ * (Morris 2000: 0.01; csf.c says why 0.3) */
+#define SPH_CSF_NORMAL_MIN 0.3f
+/* the tangential renormalisation's least eigenvalue (1 in a full support) */
+#define SPH_CSF_SUPPORT_MIN 0.1
 
 #endif

@@ -1,4 +1,5 @@
-/* validate drop: a drop without gravity, held by surface_tension = akinci,
+/* validate drop: a drop without gravity, held by surface tension (the scene's
+ * surface_tension = csf at a stated sigma; akinci, whose sigma is measured),
  * oscillating in its fundamental mode, against Rayleigh's frequency
  * (scenes/validate/drop.ini, 2D: a liquid cylinder; drop-3d.ini: a sphere).
  *
@@ -26,9 +27,9 @@
  * disc or sphere with the same second moment; smooth, where max x - min x
  * moves by whole particles), is recorded for 3 s (R = 0.1 m; scaled as
  * R^1.5) after the kick and compared with Rayleigh's period at the measured
- * sigma. The period is twice the mean time between the
- * crossings of D_x - D_y (3D: D_x minus the mean of D_y and D_z) through its
- * mean: that difference is the n = 2 moment sum r^2 cos(2 theta) alone, free
+ * sigma. The period is twice the mean time between the first and the last
+ * crossing, over an even number of half periods (val_period_crossings), of
+ * D_x - D_y (3D: D_x minus the mean of D_y and D_z) through its mean: that difference is the n = 2 moment sum r^2 cos(2 theta) alone, free
  * of the breathing and the slow settling that move D_x and D_y together, and
  * of the n = 4 mode the square leaves. The target: the period within 5 % of
  * Rayleigh's at R / spacing = 20 (2D) or 10 (3D). */
@@ -132,6 +133,12 @@ static bool drop_settle(const val_ctx *c, const sph_scene_def *def, const char *
     }
     const double t_end = def->damping_time, spacing = def->blocks[0].spacing;
     drop_make_disc(sim, &def->blocks[0], spacing);
+    if (sim->P.rho_c) { /* density_method = continuity: the liquid starts at its rest density up to the surface
+                         * (a sum there reads the kernel's truncation, 0.7 rho0 on the outer ring, as a
+                         * deficit the carried density would keep, and the surface force would crush) */
+        for (uint32_t i = 0; i < sim->n; i++) sim->P.rho_c[i] = def->rest_density;
+        sim->rho_carried = true;
+    }
     double sum = 0;
     int count = 0;
     if (!c->quiet) fprintf(stderr, "  %s: settling to t = %g s\n", label, t_end);
@@ -147,25 +154,6 @@ static bool drop_settle(const val_ctx *c, const sph_scene_def *def, const char *
     *p_in = count ? sum / count : NAN;
     *out = sim;
     return true;
-}
-
-/* Twice the mean time between the crossings of y through its mean; the count in *k. */
-static double drop_period(const val_series *s, int *k)
-{
-    double mean = 0;
-    for (size_t i = 0; i < s->n; i++) mean += s->y[i];
-    mean /= (double)(s->n ? s->n : 1);
-    double first = NAN, last = NAN;
-    *k = 0;
-    for (size_t i = 1; i < s->n; i++) {
-        double a = s->y[i - 1] - mean, b = s->y[i] - mean;
-        if ((a < 0) == (b < 0) || a == b) continue;
-        double t = s->x[i - 1] + (s->x[i] - s->x[i - 1]) * a / (a - b);
-        if (*k == 0) first = t;
-        last = t;
-        (*k)++;
-    }
-    return *k >= 2 ? 2.0 * (last - first) / (*k - 1) : NAN;
 }
 
 /* One resolution: sigma from two drops, then the oscillation. */
@@ -235,7 +223,7 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
     }
     sph_sim_destroy(sim);
     if (!ok) return false;
-    o->T = drop_period(&o->aniso, &o->crossings);
+    o->T = val_period_crossings(o->aniso.x, o->aniso.y, o->aniso.n, &o->crossings);
     /* Rayleigh's curve: D0 + a sin(omega t), a the largest |D_x - D0| of the measured first half
      * period (the amplitude is only for the chart); D0 where sigma is not measurable */
     const double omega = isfinite(o->T_ray) ? 2.0 * PI / o->T_ray : 0.0;
@@ -324,7 +312,7 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
     for (int r = 1; r < done; r++)
         if (abs(c->res[r] - target_res) < abs(c->res[at] - target_res)) at = r;
     double err = done ? fabs(obs[at].T / obs[at].T_ray - 1) : NAN;
-    bool pass = done > 0 && err <= TARGET && obs[at].crossings >= 2; /* false for a NaN */
+    bool pass = done > 0 && err <= TARGET && obs[at].crossings >= 3; /* false for a NaN */
     char judged[64];
     snprintf(judged, sizeof judged, "R/%d%s", done ? c->res[at] : 0,
              done && c->res[at] != target_res ? ", the run nearest the target's" : "");

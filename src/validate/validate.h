@@ -126,4 +126,10 @@ typedef struct val_problem {
 extern const val_problem val_problems[];
 extern const int val_problem_count;
 
+/* The period of an oscillation (x time, increasing) from the crossings of y through its mean: twice
+ * the mean time between the first and the last crossing over an even number of half periods (a record
+ * that does not hold whole periods has its mean off the centre line, which makes the half periods
+ * alternate short and long); the crossings counted in *k; NaN below 3 crossings. (validate drop) */
+double val_period_crossings(const double *x, const double *y, size_t n, int *k);
+
 #endif

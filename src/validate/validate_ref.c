@@ -121,3 +121,21 @@ double val_order(double r1, double e1, double r2, double e2)
     if (!(e1 > 0) || !(e2 > 0) || !(r1 > 0) || !(r2 > 0) || r1 == r2) return NAN;
     return log(e1 / e2) / log(r2 / r1);
 }
+
+double val_period_crossings(const double *x, const double *y, size_t n, int *k)
+{
+    double mean = 0;
+    for (size_t i = 0; i < n; i++) mean += y[i];
+    mean /= (double)(n ? n : 1);
+    double first = NAN, last_even = NAN;
+    *k = 0;
+    for (size_t i = 1; i < n; i++) {
+        double a = y[i - 1] - mean, b = y[i] - mean;
+        if ((a < 0) == (b < 0) || a == b) continue;
+        double t = x[i - 1] + (x[i] - x[i - 1]) * a / (a - b);
+        if (*k == 0) first = t;
+        if (*k % 2 == 0) last_even = t; /* an even number of half periods after the first */
+        (*k)++;
+    }
+    return *k >= 3 ? 2.0 * (last_even - first) / (double)(2 * ((*k - 1) / 2)) : NAN;
+}
