@@ -215,7 +215,7 @@ static void run(sph_sim *sim)
     sph_solver_state *s = &sim->solver;
     sph_particles *P = &sim->P;
     if (!(s->rho_rest > 0)) {
-        s->rho_rest = sph_solver_rest_density(sim);
+        s->rho_rest = sph_sim_lattice_rest_density(sim);
         sph_solver_wall_table(sim);
     }
     if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */

@@ -58,7 +58,7 @@ void sph_sim_compression(const sph_sim *sim, double *largest, double *mean)
 void sph_sim_compression_lattice(sph_sim *sim, double *largest, double *mean)
 {
     if (!(sim->solver.rho_rest > 0)) { /* no solver made them: what the solvers would hold */
-        sim->solver.rho_rest = sph_solver_rest_density(sim);
+        sim->solver.rho_rest = sph_sim_lattice_rest_density(sim);
         sph_solver_wall_table(sim);
     }
     compression(sim, true, largest, mean);
