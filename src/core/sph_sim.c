@@ -204,7 +204,8 @@ static void place_particles(sph_sim *sim)
                         if (sim->dim == 3) P->vel[2][i] = 0.0f;
                         if (blk->field_pressure == SPH_ON) {
                             double p = -0.25 * def->rest_density * U * U * (cos(2 * k * px) + cos(2 * k * py));
-                            /* of the lattice's own density: the particle sums to rest_density_at */
+                            /* the lattice sums eos_rho0 / rest_density times mass / volume,
+                             * so the particle sums to rest_density_at */
                             const double r0 = sim->eos_rho0, r = rest_density_at(def, r0, p) * (def->rest_density / r0);
                             P->mass[i] = (float)(r * (sim->dim == 3 ? s * s * s : s * s));
                         }
