@@ -22,7 +22,7 @@ uniform vec3 u_g0;
 float hydro_density(float ph)
 {
 #if EOS_TAIT
-    return RHO0 * (pow(max(1.0 + ph / TAIT_B, 1e-3), 1.0 / GAMMA) - 1.0);
+    return EOS_RHO0 * (pow(max(1.0 + ph / TAIT_B, 1e-3), 1.0 / GAMMA) - 1.0);
 #else
     return ph / STIFF;
 #endif

@@ -7,9 +7,9 @@ void main()
     if (i >= N) return;
     float rho = rho_[i], p;
 #if EOS_TAIT
-    p = TAIT_B * (pow(rho * (1.0 / RHO0), GAMMA) - 1.0);
+    p = TAIT_B * (pow(rho * (1.0 / EOS_RHO0), GAMMA) - 1.0);
 #else
-    p = STIFF * (rho - RHO0);
+    p = STIFF * (rho - EOS_RHO0);
 #endif
 #if CLAMP_NEG
     p = max(0.0, p);

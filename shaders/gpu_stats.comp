@@ -16,8 +16,8 @@ shared float s[STATS_Q][WG];
 // there its Taylor series is summed instead.
 float eos_energy(float rho)
 {
-    if (CLAMP_NEG != 0 && rho < RHO0) return 0.0;
-    float z = (rho - RHO0) / RHO0;
+    if (CLAMP_NEG != 0 && rho < EOS_RHO0) return 0.0;
+    float z = (rho - EOS_RHO0) / EOS_RHO0;
 #if EOS_TAIT
     // B / rho0 ((x^(g-1) - 1) / (g-1) + 1/x - 1), x = 1 + z
     float a = GAMMA - 1.0;
@@ -28,10 +28,10 @@ float eos_energy(float rho)
             c *= (a - float(n)) / float(n + 1);
             zn *= z;
         }
-        return TAIT_B / RHO0 * sum;
+        return TAIT_B / EOS_RHO0 * sum;
     }
     float x = 1.0 + z;
-    return TAIT_B / RHO0 * ((pow(x, a) - 1.0) / a + 1.0 / x - 1.0);
+    return TAIT_B / EOS_RHO0 * ((pow(x, a) - 1.0) / a + 1.0 / x - 1.0);
 #else
     // k (log x + 1/x - 1) = k sum over n >= 2 of (-1)^n (n - 1) / n z^n
     if (abs(z) < 0.1) {

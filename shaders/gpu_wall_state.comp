@@ -34,9 +34,9 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
 float eos_density(float p)
 {
 #if EOS_TAIT
-    return RHO0 * pow(max(1.0 + p / TAIT_B, 1e-3), 1.0 / GAMMA);
+    return EOS_RHO0 * pow(max(1.0 + p / TAIT_B, 1e-3), 1.0 / GAMMA);
 #else
-    return max(RHO0 + p / STIFF, 1e-3 * RHO0);
+    return max(EOS_RHO0 + p / STIFF, 1e-3 * EOS_RHO0);
 #endif
 }
 void main()

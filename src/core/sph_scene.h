@@ -46,6 +46,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 
 /* The choices of each switchable method, as enums with their names. */
 #define SPH_EOS_CHOICES(X) X(LINEAR, "linear") X(TAIT, "tait")
+#define SPH_EOS_REST_CHOICES(X) X(REST_DENSITY, "rest_density") X(LATTICE, "lattice")
 #define SPH_PFORM_CHOICES(X) X(SYMMETRIC, "symmetric") X(SHARED, "shared")
 #define SPH_VFORM_CHOICES(X) X(LAPLACIAN, "laplacian") X(SMOOTHING, "smoothing") X(MORRIS, "morris") X(ARTIFICIAL, "artificial") \
     X(MORRIS_ARTIFICIAL, "morris-artificial")
@@ -70,6 +71,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
     typedef enum type { LIST(SPH_CHOICE_ITEM_##PREFIX) PREFIX##_COUNT } type;
 #define SPH_CHOICE_ITEM_SPH_EOS(id, name) SPH_EOS_##id,
+#define SPH_CHOICE_ITEM_SPH_EOSREST(id, name) SPH_EOSREST_##id,
 #define SPH_CHOICE_ITEM_SPH_PFORM(id, name) SPH_PFORM_##id,
 #define SPH_CHOICE_ITEM_SPH_VFORM(id, name) SPH_VFORM_##id,
 #define SPH_CHOICE_ITEM_SPH_SEARCH(id, name) SPH_SEARCH_##id,
@@ -90,6 +92,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_PSOLVER(id, name) SPH_PSOLVER_##id,
 #define SPH_CHOICE_ITEM_SPH_STENSION(id, name) SPH_STENSION_##id,
 SPH_DECLARE_CHOICES(sph_eos, SPH_EOS, SPH_EOS_CHOICES)
+SPH_DECLARE_CHOICES(sph_eos_rest, SPH_EOSREST, SPH_EOS_REST_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_form, SPH_PFORM, SPH_PFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_viscosity_form, SPH_VFORM, SPH_VFORM_CHOICES)
 SPH_DECLARE_CHOICES(sph_search, SPH_SEARCH, SPH_SEARCH_CHOICES)
@@ -111,6 +114,7 @@ SPH_DECLARE_CHOICES(sph_pressure_solver, SPH_PSOLVER, SPH_PSOLVER_CHOICES)
 SPH_DECLARE_CHOICES(sph_surface_tension, SPH_STENSION, SPH_STENSION_CHOICES)
 
 extern const char *const sph_eos_names[SPH_EOS_COUNT];
+extern const char *const sph_eos_rest_names[SPH_EOSREST_COUNT];
 extern const char *const sph_pressure_form_names[SPH_PFORM_COUNT];
 extern const char *const sph_viscosity_form_names[SPH_VFORM_COUNT];
 extern const char *const sph_search_names[SPH_SEARCH_COUNT];
@@ -204,6 +208,7 @@ typedef struct sph_scene_def {
     float h;            /* [m] kernel support radius (= cell size of the search) */
     float rest_density; /* [kg/m^dim] rho0 */
     sph_eos eos;
+    sph_eos_rest eos_rest; /* the density the equation of state holds: rest_density, or the finest lattice's */
     float stiffness;    /* [m^2/s^2] k in p = k (rho - rho0); c = sqrt(k) is the speed of sound */
     float tait_gamma;   /* [1] exponent of the Tait equation */
     sph_negative_pressure negative_pressure;

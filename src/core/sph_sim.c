@@ -121,10 +121,11 @@ static float rng_symmetric(uint64_t *s) /* uniform in [-1, 1) */
 }
 
 /* The density the equation of state gives for pressure p [Pa]: its inverse,
- * so a block started with a pressure field has it from the first density sum. */
-static double rest_density_at(const sph_scene_def *def, double p)
+ * so a block started with a pressure field has it from the first density sum.
+ * rho0: the equation of state's reference, sim->eos_rho0 [kg/m^dim]. */
+static double rest_density_at(const sph_scene_def *def, double rho0, double p)
 {
-    const double rho0 = def->rest_density, k = def->stiffness;
+    const double k = def->stiffness;
     if (!(def->effects & SPH_EFFECT(PRESSURE)) || k <= 0) return rho0;
     if (def->eos == SPH_EOS_TAIT) return rho0 * pow(1.0 + def->tait_gamma * p / (k * rho0), 1.0 / def->tait_gamma);
     return rho0 + p / k;
@@ -137,7 +138,8 @@ static double rest_density_at(const sph_scene_def *def, double p)
  * that density (rho spacing^dim), so the summed density, and the carried
  * one that starts from it, start at the hydrostatic pressure, whichever
  * density_method; the lattice stays as it is. */
-static double hydrostatic_share(const sph_scene_def *def, const sph_block_def *blk, const double x[3])
+static double hydrostatic_share(const sph_scene_def *def, double eos_rho0, const sph_block_def *blk,
+                                const double x[3])
 {
     double g2 = 0, top = -INFINITY, height = 0;
     for (int d = 0; d < def->dim; d++) g2 += (double)def->gravity[d] * def->gravity[d];
@@ -150,7 +152,7 @@ static double hydrostatic_share(const sph_scene_def *def, const sph_block_def *b
     }
     for (int d = 0; d < def->dim; d++) height -= def->gravity[d] / gn * x[d];
     const double p = def->rest_density * gn * fmax(top - height, 0.0); /* [Pa] */
-    return rest_density_at(def, p) / def->rest_density;
+    return rest_density_at(def, eos_rho0, p) / eos_rho0; /* of the lattice's own density, whichever eos_rest */
 }
 
 static void place_particles(sph_sim *sim)
@@ -181,7 +183,7 @@ static void place_particles(sph_sim *sim)
                     if (blk->initial_pressure == SPH_INITP_HYDROSTATIC) {
                         double at[3] = {0, 0, 0};
                         for (int d = 0; d < sim->dim; d++) at[d] = blk->min[d] + ((float)node[d] + 0.5f) * s;
-                        P->mass[i] = (float)(mass * hydrostatic_share(def, blk, at));
+                        P->mass[i] = (float)(mass * hydrostatic_share(def, sim->eos_rho0, blk, at));
                     }
                     for (int d = 0; d < sim->dim; d++) {
                         float jit = def->jitter > 0 ? def->jitter * s * rng_symmetric(&rng) : 0.0f;
@@ -202,7 +204,10 @@ static void place_particles(sph_sim *sim)
                         if (sim->dim == 3) P->vel[2][i] = 0.0f;
                         if (blk->field_pressure == SPH_ON) {
                             double p = -0.25 * def->rest_density * U * U * (cos(2 * k * px) + cos(2 * k * py));
-                            P->mass[i] = (float)(rest_density_at(def, p) * (sim->dim == 3 ? s * s * s : s * s));
+                            /* the lattice sums eos_rho0 / rest_density times mass / volume,
+                             * so the particle sums to rest_density_at */
+                            const double r0 = sim->eos_rho0, r = rest_density_at(def, r0, p) * (def->rest_density / r0);
+                            P->mass[i] = (float)(r * (sim->dim == 3 ? s * s * s : s * s));
                         }
                     }
                     /* density_method = continuity starts from the lattice's density, m / s^dim, not
@@ -374,6 +379,7 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     for (int b = 0; b < def->n_blocks; b++)
         if (wall_s == 0.0f || def->blocks[b].spacing < wall_s) wall_s = def->blocks[b].spacing;
     sph_kernel_wall_lattice(&sim->k_density, wall_s);
+    sim->eos_rho0 = def->eos_rest == SPH_EOSREST_LATTICE ? sph_sim_lattice_rest_density(sim) : def->rest_density;
 
     /* Only the buffers of passes in the pipeline are allocated. */
     uint32_t n = sim->n;
@@ -722,9 +728,9 @@ double sph_sim_step_ms(const sph_sim *sim, int *steps)
 /* Internal energy per unit mass that the equation of state stores at density
  * rho: e = integral from rho0 to rho of p / rho'^2. With it, kinetic +
  * gravitational + internal energy is what the pressure force conserves. */
-static double eos_energy(const sph_scene_def *def, double rho)
+static double eos_energy(const sph_scene_def *def, double r0, double rho)
 {
-    double r0 = def->rest_density, k = def->stiffness;
+    double k = def->stiffness;
     if (def->negative_pressure == SPH_NEGP_CLAMP && rho < r0) return 0.0;
     if (def->eos == SPH_EOS_TAIT) {
         double g = def->tait_gamma, B = k * r0 / g;
@@ -787,7 +793,7 @@ void sph_sim_stats(const sph_sim *sim, sph_stats *out)
         if (sim->def.effects & SPH_EFFECT(GRAVITY))
             for (int d = 0; d < sim->dim; d++)
                 out->epot -= P->mass[i] * sim->def.gravity[d] * ((double)P->pos[d][i] - sim->def.domain_min[d]);
-        if (P->p && P->rho[i] > 0) out->eint += P->mass[i] * eos_energy(&sim->def, P->rho[i]);
+        if (P->p && P->rho[i] > 0) out->eint += P->mass[i] * eos_energy(&sim->def, sim->eos_rho0, P->rho[i]);
         if (v2 > out->max_speed) out->max_speed = v2;
         if (P->rho) {
             double r = P->rho[i];

@@ -284,6 +284,8 @@ struct sph_sim {
                              internal energy, first exists): what the HUD's energy drift is measured from */
     bool rho_carried;     /* density_method = continuity: rho_c holds the carried density (set by the
                              density_rate pass's first run); until then the density pass sums */
+    float eos_rho0;       /* [kg/m^dim] the density at which the equation of state gives p = 0: rest_density,
+                             or the finest lattice's (eos_rest = lattice); its inverse and the energy use it too */
     float period[3];      /* [m] domain length on periodic axes, 0 on others */
     float inv_period[3];  /* [1/m] 1 / period, 0 on non-periodic axes */
 
@@ -324,6 +326,10 @@ struct sph_sim {
      * back (sph_sim_abs). */
     double origin[3];     /* [m] absolute position of the simulation frame's zero */
 };
+
+/* [kg/m^dim] The density a particle of the scene's finest lattice sums to at
+ * rest, its whole support in the fluid (sph_kernel.c): rest_density (1 + e). */
+float sph_sim_lattice_rest_density(const sph_sim *sim);
 
 /* threads <= 0: one per core; at most SPH_MAX_THREADS. */
 sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **out, sph_error *err);

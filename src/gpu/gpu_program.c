@@ -130,7 +130,10 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put(&t, "#define EOS_TAIT %d\n#define CLAMP_NEG %d\n", def->eos == SPH_EOS_TAIT,
         def->negative_pressure == SPH_NEGP_CLAMP);
     put_float(&t, "GAMMA", def->tait_gamma);
-    put_float(&t, "TAIT_B", def->stiffness * def->rest_density / def->tait_gamma);
+    /* the equation of state's reference (sim->eos_rho0: rest_density, or the lattice's with eos_rest =
+     * lattice), for the pressure, its inverse at the walls, the internal energy and Fourtakas's term */
+    put_float(&t, "EOS_RHO0", sim->eos_rho0);
+    put_float(&t, "TAIT_B", def->stiffness * sim->eos_rho0 / def->tait_gamma);
     /* the form as its enum value: the shader names each one it implements and
      * stops with #error on any other, so a form added on the CPU is never
      * silently computed as another on GL */

@@ -85,11 +85,11 @@ static void describe(const sph_scene_def *def, char *out, int n)
 
 /* Fourtakas et al. 2019's hydrostatic density difference rho^H_ji [kg/m^dim]
  * for the pressure difference ph = rho0 g . (x_j - x_i) [Pa]. */
-static inline float hydro_density(const sph_scene_def *def, float ph)
+static inline float hydro_density(const sph_scene_def *def, const float rho0, float ph)
 {
-    if (def->eos == SPH_EOS_TAIT) {
-        const float B = def->stiffness * def->rest_density / def->tait_gamma;
-        return def->rest_density * (powf(fmaxf(1.0f + ph / B, 1e-3f), 1.0f / def->tait_gamma) - 1.0f);
+    if (def->eos == SPH_EOS_TAIT) { /* rho0: the equation of state's reference, sim->eos_rho0 */
+        const float B = def->stiffness * rho0 / def->tait_gamma;
+        return rho0 * (powf(fmaxf(1.0f + ph / B, 1e-3f), 1.0f / def->tait_gamma) - 1.0f);
     }
     return ph / def->stiffness;
 }
@@ -141,7 +141,7 @@ static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffu
             if (g0) { /* Fourtakas's: + 2 rho^H_ji, at p = rho0 g . x_ji = -rho0 g . x_ij */
                 float ph = 0.0f;
                 for (int d = 0; d < dim; d++) ph -= g0[d] * dx[d];
-                psi += 2.0f * hydro_density(&sim->def, ph);
+                psi += 2.0f * hydro_density(&sim->def, sim->eos_rho0, ph);
             }
             t += diffusion * psi * dw_over_r * P->mass[j] / P->rho_c[j];
         }

@@ -266,7 +266,7 @@ static void run(sph_sim *sim)
     sph_solver_state *s = &sim->solver;
     sph_particles *P = &sim->P;
     if (!(s->rho_rest > 0)) {
-        s->rho_rest = sph_solver_rest_density(sim);
+        s->rho_rest = sph_sim_lattice_rest_density(sim);
         s->den_full = sph_solver_lattice_dots(sim);
         sph_solver_wall_table(sim);
     }

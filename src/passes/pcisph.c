@@ -164,7 +164,7 @@ static void run(sph_sim *sim)
 {
     sph_solver_state *s = &sim->solver;
     if (!(s->rho_rest > 0)) {
-        s->rho_rest = sph_solver_rest_density(sim);
+        s->rho_rest = sph_sim_lattice_rest_density(sim);
         sph_solver_wall_table(sim);
         s->delta = delta_unit(sim, s->rho_rest);
     }

@@ -3,7 +3,9 @@
  *   tait:               p = (k rho0 / gamma) ((rho / rho0)^gamma - 1)
  * Both have the speed of sound c = sqrt(k) at rest density. With
  * negative_pressure = clamp, p < 0 is set to 0: no attraction between
- * particles below rest density (at a free surface), so no tensile clumping. */
+ * particles below rest density (at a free surface), so no tensile clumping.
+ * rho0 is sim->eos_rho0: rest_density, or with eos_rest = lattice the density
+ * the finest lattice sums to at rest, so a block on the lattice starts at p = 0. */
 #include "sph_sim.h"
 
 #include <math.h>
@@ -17,12 +19,13 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
+    const char *rest = def->eos_rest == SPH_EOSREST_LATTICE ? ", rho0 the lattice's" : "";
     if (def->eos == SPH_EOS_TAIT)
-        snprintf(out, (size_t)n, "tait, gamma %g, k %g m^2/s^2%s", def->tait_gamma, def->stiffness,
-                 def->negative_pressure == SPH_NEGP_CLAMP ? ", p >= 0" : "");
+        snprintf(out, (size_t)n, "tait, gamma %g, k %g m^2/s^2%s%s", def->tait_gamma, def->stiffness,
+                 def->negative_pressure == SPH_NEGP_CLAMP ? ", p >= 0" : "", rest);
     else
-        snprintf(out, (size_t)n, "linear, k %g m^2/s^2%s", def->stiffness,
-                 def->negative_pressure == SPH_NEGP_CLAMP ? ", p >= 0" : "");
+        snprintf(out, (size_t)n, "linear, k %g m^2/s^2%s%s", def->stiffness,
+                 def->negative_pressure == SPH_NEGP_CLAMP ? ", p >= 0" : "", rest);
 }
 
 static void run(sph_sim *sim)
@@ -31,7 +34,7 @@ static void run(sph_sim *sim)
     const float *restrict rho = sim->P.rho;
     float *restrict p = sim->P.p;
     const int n = (int)sim->n;
-    const float k = def->stiffness, rho0 = def->rest_density, inv_rho0 = 1.0f / rho0;
+    const float k = def->stiffness, rho0 = sim->eos_rho0, inv_rho0 = 1.0f / rho0; /* rest_density or the lattice's */
     const float clamp = def->negative_pressure == SPH_NEGP_CLAMP ? 0.0f : -INFINITY;
     if (def->eos == SPH_EOS_TAIT) {
         const float gamma = def->tait_gamma, B = k * rho0 / gamma;

@@ -9,35 +9,16 @@
 
 #include <math.h>
 
-/* The density a particle of the scene's finest lattice reads at rest, with
- * its whole support inside the fluid: rho0 (1 + e), where e is the
- * summation's own excess on a lattice (+3.3 % for poly6 at h = 2 s in 2D).
- * The solvers hold this density, not rho0: holding rho0 would expand every
- * block by e at its first step. Computed from the kernel and the lattice,
- * nothing fitted. */
+/* The finest spacing of the scene's blocks [m]. The density the solvers
+ * hold, rho_rest, is the one a particle of that lattice sums to at rest
+ * (sph_sim_lattice_rest_density), not rho0: holding rho0 would expand every
+ * block by the summation's excess at its first step. */
 static inline float sph_solver_spacing(const sph_scene_def *def)
 {
     float s = 0;
     for (int b = 0; b < def->n_blocks; b++)
         if (s == 0 || def->blocks[b].spacing < s) s = def->blocks[b].spacing;
     return s;
-}
-
-static inline float sph_solver_rest_density(const sph_sim *sim)
-{
-    const sph_scene_def *def = &sim->def;
-    const float s = sph_solver_spacing(def);
-    if (!(s > 0)) return def->rest_density;
-    const int dim = sim->dim, r = (int)ceilf(def->h / s);
-    const double m = def->rest_density * (dim == 3 ? (double)s * s * s : (double)s * s);
-    double sum = 0;
-    for (int z = dim == 3 ? -r : 0; z <= (dim == 3 ? r : 0); z++)
-        for (int y = -r; y <= r; y++)
-            for (int x = -r; x <= r; x++) {
-                float d = s * sqrtf((float)(x * x + y * y + z * z));
-                if (d < def->h) sum += m * sph_kernel_w(&sim->k_density, d);
-            }
-    return (float)sum;
 }
 
 /* sum_j m_j^2 grad W^rho_ij . grad W^p_ij over the finest block's full

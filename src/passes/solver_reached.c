@@ -7,18 +7,19 @@
  * Summed here at x after integration and the walls, over the step's lists
  * (made at x + dt v: a pair that came within h during the step is missed,
  * docs/accuracy.md says how often), each pressure model against the density
- * it holds: rho0 with the volume model's walls for the equation of state,
+ * it holds: its reference (rho0, or rho_rest with eos_rest = lattice) with
+ * the volume model's walls for the equation of state,
  * rho_rest with the solvers' walls (solver.h) for PCISPH and DFSPH. */
 #include "solver.h"
 
-/* solver: against rho_rest with the solvers' walls, else against rho0 with
+/* solver: against rho_rest with the solvers' walls, else against the eos's reference with
  * the volume model's. */
 static void compression(const sph_sim *sim, bool solver, double *largest, double *mean)
 {
     const sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
     const int n = (int)sim->n, dim = sim->dim;
-    const double held = solver ? sim->solver.rho_rest : sim->def.rest_density; /* [kg/m^dim] */
+    const double held = solver ? sim->solver.rho_rest : sim->eos_rho0; /* [kg/m^dim] the eos's: eos_rest */
     const bool walls = sph_sim_wall_volume(sim);
     double mx = -INFINITY, sum = 0;
     long cnt = 0;
@@ -58,7 +59,7 @@ void sph_sim_compression(const sph_sim *sim, double *largest, double *mean)
 void sph_sim_compression_lattice(sph_sim *sim, double *largest, double *mean)
 {
     if (!(sim->solver.rho_rest > 0)) { /* no solver made them: what the solvers would hold */
-        sim->solver.rho_rest = sph_solver_rest_density(sim);
+        sim->solver.rho_rest = sph_sim_lattice_rest_density(sim);
         sph_solver_wall_table(sim);
     }
     compression(sim, true, largest, mean);

@@ -44,10 +44,11 @@ static void describe(const sph_scene_def *def, char *out, int n)
              def->n_obstacles ? ", obstacles" : "");
 }
 
-/* The density at which the equation of state gives pressure p. */
-static float eos_density(const sph_scene_def *def, float p)
+/* The density at which the equation of state gives pressure p (its
+ * reference rho0 = sim->eos_rho0, as pressure.c's). */
+static float eos_density(const sph_scene_def *def, const float rho0, float p)
 {
-    const float rho0 = def->rest_density, k = def->stiffness;
+    const float k = def->stiffness;
     if (def->eos == SPH_EOS_TAIT) {
         const float B = k * rho0 / def->tait_gamma;
         return rho0 * powf(fmaxf(1.0f + p / B, 1e-3f), 1.0f / def->tait_gamma);
@@ -92,7 +93,7 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
         for (int d = 0; d < dim; d++) vt[d] = (float)(sv[d] / sw);
     }
     if (def->negative_pressure == SPH_NEGP_CLAMP) p = fmaxf(p, 0.0f);
-    const float rho = eos_density(def, p);
+    const float rho = eos_density(def, sim->eos_rho0, p);
     P->p[w] = p;
     P->rho[w] = rho;
     P->p_rho2[w] = p / (rho * rho);
