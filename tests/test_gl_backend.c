@@ -57,62 +57,17 @@ static const char *scene_3d =
     "[fluid a]\nmin=-0.2 -0.2 -0.2\nmax=0.0 0.0 0.0\nspacing=0.025\nvelocity=0 0 0.3\n";
 
 
-static sph_sim *make(const char *ini, const char *const *sets, int n_sets, bool gl)
-{
-    sph_scene_def def = test_scene(ini);
-    sph_error err;
-    for (int i = 0; i < n_sets; i++)
-        cr_assert_eq(sph_scene_set(&def, sets[i], &err), SPH_ERR_OK, "--set %s: %s", sets[i], err.msg);
-    def.backend = gl ? SPH_BACKEND_GL : SPH_BACKEND_CPU;
-    sph_sim *sim;
-    cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s", err.msg);
-    cr_assert(!gl || sim->backend, "the GL simulation has no backend");
-    return sim;
-}
 
-static void copy_f(float *dst, const float *src, uint32_t n)
-{
-    if (dst && src) memcpy(dst, src, (size_t)n * sizeof(float));
-}
 
-/* The GL simulation takes the CPU's particles (every field of the
- * registry), time step and CFL maxima. */
-static void copy_state(sph_sim *g, const sph_sim *c)
-{
-    uint32_t n = c->n;
-    memcpy(g->P.id, c->P.id, (size_t)n * sizeof *g->P.id);
-    for (int f = 0; f < SPH_FIELD_COUNT; f++)
-        for (int d = 0; d < 3; d++) copy_f(g->P.field[f][d], c->P.field[f][d], n);
-    g->dt = c->dt;
-    g->t = c->t; /* the start-up ramps depend on it */
-    g->max_speed = c->max_speed;
-    g->max_acc = c->max_acc;
-    g->rho_carried = c->rho_carried; /* density_method = continuity: carried since the start */
-    sph_sim_upload(g);
-}
 
 /* Largest |gl - cpu| of a field over particles and components, and the
  * largest |cpu| (the scale the tolerances are fractions of). */
 static double field_error(const sph_sim *c, const sph_sim *g, sph_field_id f, double *scale, const char **name)
 {
-    sph_field fc, fg;
-    cr_assert(sph_sim_field(c, f, &fc) && sph_sim_field(g, f, &fg), "field %d missing", (int)f);
+    sph_field fc;
+    cr_assert(sph_sim_field(c, f, &fc), "field %d missing", (int)f);
     *name = fc.name;
-    double err = 0, big = 0;
-    for (int k = 0; k < fc.ncomp; k++)
-        for (uint32_t i = 0; i < c->n; i++) {
-            err = fmax(err, fabs((double)fg.c[k][i] - fc.c[k][i]));
-            big = fmax(big, fabs((double)fc.c[k][i]));
-        }
-    /* the pressure is the density through the equation of state, whose
-     * (rho/rho0)^gamma - 1 cancels near rest: its rounding is a few ulps of
-     * k rho0 whatever p is, so that is its least scale (a quiet start keeps
-     * |p| far below it) */
-    const double k_rho0 = (double)c->def.stiffness * c->def.rest_density;
-    if (f == SPH_FIELD_P) big = fmax(big, k_rho0);
-    if (f == SPH_FIELD_PRHO2) big = fmax(big, k_rho0 / ((double)c->def.rest_density * c->def.rest_density));
-    *scale = big;
-    return err;
+    return test_gl_field_error(c, g, f, scale);
 }
 
 static void expect_field(const sph_sim *c, const sph_sim *g, sph_field_id f, double tol, const char *what)
@@ -140,7 +95,7 @@ static void expect_index(const sph_sim *c, const sph_sim *g, const char *what)
 static void lockstep(sph_sim *c, sph_sim *g)
 {
     do {
-        copy_state(g, c);
+        test_gl_copy_state(g, c);
         sph_pass_id pc = sph_sim_step_pass(c), pg = sph_sim_step_pass(g);
         cr_assert_eq(pc, pg, "the backends ran different passes: %s on the CPU, %s on GL (alarms %d, %d; solver iteration %d, %d)",
                      pc < SPH_PASS_COUNT ? sph_passes[pc]->name : "none", pg < SPH_PASS_COUNT ? sph_passes[pg]->name : "none",
@@ -208,7 +163,7 @@ static void lockstep(sph_sim *c, sph_sim *g)
 static void lockstep_steps(const char *ini, const char *const *sets, int n_sets, int steps)
 {
     need_gl();
-    sph_sim *c = make(ini, sets, n_sets, false), *g = make(ini, sets, n_sets, true);
+    sph_sim *c = test_gl_make(ini, sets, n_sets, false), *g = test_gl_make(ini, sets, n_sets, true);
     for (int k = 0; k < 2; k++) { /* the mouse, for scenes with the interaction effect */
         sph_sim *s = k ? g : c;
         s->interaction_active = true;
@@ -392,7 +347,7 @@ Test(gl_backend, passes_match_cpu_solvers_dam, .timeout = 300)
     const char *solvers[][1] = {{"physics.pressure_solver=pcisph"}, {"physics.pressure_solver=dfsph"}};
     need_gl();
     for (int k = 0; k < 2; k++) {
-        sph_sim *c = make(ini, solvers[k], 1, false), *g = make(ini, solvers[k], 1, true);
+        sph_sim *c = test_gl_make(ini, solvers[k], 1, false), *g = test_gl_make(ini, solvers[k], 1, true);
         for (int s = 0; s < 20; s++) sph_sim_step(c);
         for (int s = 0; s < 15; s++) lockstep(c, g);
         sph_sim_destroy(g);
@@ -415,7 +370,7 @@ Test(gl_backend, obstacles_match_cpu)
         "[obstacle b]\nmin=-0.1 -0.2\nmax=0.0 -0.1\nslip=free\n"
         "[obstacle c]\nshape=circle\ncentre=-0.2 0.0\nradius=0.05\n";
     const char *sets[] = {"physics.density_method=continuity", "physics.delta_form=antuono", "physics.shifting=lind"};
-    sph_sim *c = make(ini, sets, 3, false), *g = make(ini, sets, 3, true);
+    sph_sim *c = test_gl_make(ini, sets, 3, false), *g = test_gl_make(ini, sets, 3, true);
     cr_assert_eq(c->def.n_obstacles, 2);
     for (int s = 0; s < 40; s++) {
         sph_sim_step(c);
@@ -511,7 +466,7 @@ Test(gl_backend, every_choice_runs_or_is_refused, .timeout = 900)
 static void whole_run_sets(const char *ini, const char *const *sets, int n_sets)
 {
     need_gl();
-    sph_sim *c = make(ini, sets, n_sets, false), *g = make(ini, sets, n_sets, true);
+    sph_sim *c = test_gl_make(ini, sets, n_sets, false), *g = test_gl_make(ini, sets, n_sets, true);
     for (int s = 0; s < 40; s++) {
         sph_sim_step(c);
         sph_sim_step(g);
@@ -608,7 +563,7 @@ Test(gl_backend, passes_match_cpu_eos_rest_lattice)
     lockstep_steps(scene_3d, sets, 3, 1);
     whole_run_sets(scene_2d, sets, 3);
     whole_run_sets(scene_3d, sets, 5);
-    sph_sim *c = make(scene_2d, sets, 3, false), *g = make(scene_2d, sets, 3, true);
+    sph_sim *c = test_gl_make(scene_2d, sets, 3, false), *g = test_gl_make(scene_2d, sets, 3, true);
     sph_sim_step(c); /* after a step GL sums the statistics on the device (gpu_stats.comp's eos_energy) */
     sph_sim_step(g);
     sph_stats sc, sg;
@@ -657,7 +612,7 @@ Test(gl_backend, hash_negative_coordinates)
     need_gl();
     const char *ini = "[scene]\neffects=density\n[domain]\nmin=-1 -1\nmax=1 1\n[kernels]\nh=0.1\n"
                       "[fluid a]\nmin=-0.3 -0.3\nmax=0.3 0.3\nspacing=0.1\n";
-    sph_sim *g = make(ini, NULL, 0, true);
+    sph_sim *g = test_gl_make(ini, NULL, 0, true);
     sph_sim_step_pass(g); /* external: pred = pos */
     sph_sim_step_pass(g); /* hash */
     sph_sim_sync(g, SPH_SYNC_INDEX | SPH_SYNC_FIELD(SPH_FIELD_PRED));
@@ -680,7 +635,7 @@ Test(gl_backend, hash_negative_coordinates)
 Test(gl_backend, stepping_pass_by_pass)
 {
     need_gl();
-    sph_sim *a = make(scene_2d, NULL, 0, true), *b = make(scene_2d, NULL, 0, true);
+    sph_sim *a = test_gl_make(scene_2d, NULL, 0, true), *b = test_gl_make(scene_2d, NULL, 0, true);
     for (int s = 0; s < 3; s++) {
         int passes = 0;
         do {
@@ -707,7 +662,7 @@ Test(gl_backend, stepping_pass_by_pass)
 Test(gl_backend, upload_after_cpu_change)
 {
     need_gl();
-    sph_sim *g = make(scene_2d, NULL, 0, true);
+    sph_sim *g = test_gl_make(scene_2d, NULL, 0, true);
     sph_sim_step(g);
     sph_sim_sync(g, SPH_SYNC_ALL);
     for (uint32_t i = 0; i < g->n; i++) g->P.vel[0][i] = 2.0f;
@@ -742,7 +697,7 @@ Test(gl_backend, refuses_what_it_does_not_implement)
 Test(gl_backend, names_its_device)
 {
     need_gl();
-    sph_sim *g = make(scene_2d, NULL, 0, true);
+    sph_sim *g = test_gl_make(scene_2d, NULL, 0, true);
     cr_expect(strstr(g->backend->device, "OpenGL"), "device '%s'", g->backend->device);
     sph_sim_destroy(g);
 }
@@ -752,7 +707,7 @@ Test(gl_backend, names_its_device)
 Test(gl_backend, reconfigure_keeps_particles)
 {
     need_gl();
-    sph_sim *c = make(scene_2d, NULL, 0, false), *g = make(scene_2d, NULL, 0, true);
+    sph_sim *c = test_gl_make(scene_2d, NULL, 0, false), *g = test_gl_make(scene_2d, NULL, 0, true);
     for (int s = 0; s < 5; s++) {
         sph_sim_step(c);
         sph_sim_step(g);

@@ -54,50 +54,8 @@ static const char *block_3d =
     "gravity=0 -9.81 0\n[kernels]\nh=0.05\nviscosity=cubic\n[time]\ndt=0.001\ncfl=0.4\n"
     "[fluid a]\nmin=-0.2 -0.2 -0.2\nmax=0.0 0.0 0.0\nspacing=0.025\nvelocity=0 0 0.3\n";
 
-static sph_sim *make(const char *ini, const char *const *sets, int n_sets, bool gl)
-{
-    sph_scene_def def = test_scene(ini);
-    sph_error err;
-    for (int i = 0; i < n_sets; i++)
-        cr_assert_eq(sph_scene_set(&def, sets[i], &err), SPH_ERR_OK, "--set %s: %s", sets[i], err.msg);
-    def.backend = gl ? SPH_BACKEND_GL : SPH_BACKEND_CPU;
-    sph_sim *sim;
-    cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s", err.msg);
-    cr_assert(!gl || sim->backend, "the GL simulation has no backend");
-    return sim;
-}
 
-/* g takes c's particles (every field of the registry), time step and maxima. */
-static void copy_state(sph_sim *g, const sph_sim *c)
-{
-    const uint32_t n = c->n;
-    memcpy(g->P.id, c->P.id, (size_t)n * sizeof *g->P.id);
-    for (int f = 0; f < SPH_FIELD_COUNT; f++)
-        for (int d = 0; d < 3; d++)
-            if (g->P.field[f][d] && c->P.field[f][d]) memcpy(g->P.field[f][d], c->P.field[f][d], n * sizeof(float));
-    g->dt = c->dt;
-    g->t = c->t;
-    g->max_speed = c->max_speed;
-    g->max_acc = c->max_acc;
-    g->rho_carried = c->rho_carried;
-    sph_sim_upload(g);
-}
 
-/* Largest |gl - cpu| of a field (NaN counts as infinite) and the largest |cpu|. */
-static double field_error(const sph_sim *c, const sph_sim *g, sph_field_id f, double *scale)
-{
-    sph_field fc, fg;
-    cr_assert(sph_sim_field(c, f, &fc) && sph_sim_field(g, f, &fg), "field %d missing", (int)f);
-    double err = 0, big = 0;
-    for (int k = 0; k < fc.ncomp; k++)
-        for (uint32_t i = 0; i < c->n; i++) {
-            double e = fabs((double)fg.c[k][i] - fc.c[k][i]);
-            err = fmax(err, e == e ? e : INFINITY);
-            big = fmax(big, fabs((double)fc.c[k][i]));
-        }
-    *scale = big;
-    return err;
-}
 
 /* One step in lockstep; the fields each listed pass wrote are compared and
  * must not be zero everywhere. Returns how many of the listed passes ran. */
@@ -106,7 +64,7 @@ static int lockstep(sph_sim *c, sph_sim *g, const sph_pass_id *check, int n_chec
     int seen = 0;
     do {
         /* not before viscosity: with fuse_forces = on GL's pressure_force walk wrote acc_v */
-        if (c->next_pass != SPH_PASS_VISCOSITY) copy_state(g, c);
+        if (c->next_pass != SPH_PASS_VISCOSITY) test_gl_copy_state(g, c);
         sph_pass_id pc = sph_sim_step_pass(c), pg = sph_sim_step_pass(g);
         cr_assert_eq(pc, pg, "%s: the backends ran different passes", what);
         bool listed = false;
@@ -115,7 +73,7 @@ static int lockstep(sph_sim *c, sph_sim *g, const sph_pass_id *check, int n_chec
         seen++;
         for (int f = 0; f < SPH_FIELD_COUNT; f++) {
             if (!(sph_passes[pc]->writes & SPH_FIELD_BIT(f))) continue;
-            double scale, err = field_error(c, g, (sph_field_id)f, &scale);
+            double scale, err = test_gl_field_error(c, g, (sph_field_id)f, &scale);
             cr_expect(scale > 0, "%s, %s: field %s is zero everywhere", what, sph_passes[pc]->name,
                       sph_field_infos[f].name);
             cr_expect(err <= TOL_FORCE * scale, "%s, %s: field %s differs by %.3g, above %.1g of its scale %.4g", what,
@@ -132,7 +90,7 @@ static void lockstep_steps(const char *ini, const char *const *sets, int n_sets,
                            int n_check, int steps, const char *what)
 {
     need_gl();
-    sph_sim *c = make(ini, sets, n_sets, false), *g = make(ini, sets, n_sets, true);
+    sph_sim *c = test_gl_make(ini, sets, n_sets, false), *g = test_gl_make(ini, sets, n_sets, true);
     for (int s = 0; s < 3; s++) sph_sim_step(c); /* the fluid moves before the checked steps */
     int seen = 0;
     for (int s = 0; s < steps; s++) seen += lockstep(c, g, check, n_check, what);
@@ -146,7 +104,7 @@ static void lockstep_steps(const char *ini, const char *const *sets, int n_sets,
 static void whole_run(const char *ini, const char *const *sets, int n_sets, int steps, const char *what)
 {
     need_gl();
-    sph_sim *c = make(ini, sets, n_sets, false), *g = make(ini, sets, n_sets, true);
+    sph_sim *c = test_gl_make(ini, sets, n_sets, false), *g = test_gl_make(ini, sets, n_sets, true);
     for (int s = 0; s < steps; s++) {
         sph_sim_step(c);
         sph_sim_step(g);
@@ -154,7 +112,7 @@ static void whole_run(const char *ini, const char *const *sets, int n_sets, int 
     cr_assert(!g->alarm.raised && !c->alarm.raised, "%s: the watchdog stopped a run", what);
     cr_expect(fabs(g->t - c->t) <= 1e-6 * c->t, "%s: simulated time %g on GL, %g on the CPU", what, g->t, c->t);
     sph_sim_sync(g, SPH_SYNC_ALL);
-    sph_sim *c0 = make(ini, sets, n_sets, false);
+    sph_sim *c0 = test_gl_make(ini, sets, n_sets, false);
     uint32_t *where = malloc(c->n * sizeof *where), *start = malloc(c->n * sizeof *start);
     cr_assert(where && start);
     for (uint32_t i = 0; i < g->n; i++) where[g->P.id[i]] = i;

@@ -56,42 +56,17 @@ static sph_sim *make(const char *ini, const char *const *sets, int n_sets, bool 
  * poisoned with NaN if asked. */
 static void copy_state(sph_sim *g, const sph_sim *c, bool poison)
 {
-    const uint32_t n = c->n;
-    memcpy(g->P.id, c->P.id, (size_t)n * sizeof *g->P.id);
-    for (int f = 0; f < SPH_FIELD_COUNT; f++)
-        for (int d = 0; d < 3; d++)
-            if (g->P.field[f][d] && c->P.field[f][d]) memcpy(g->P.field[f][d], c->P.field[f][d], n * sizeof(float));
-    if (poison)
-        for (int d = 0; d < g->dim; d++)
-            for (uint32_t i = 0; i < n; i++) g->P.acc_v[d][i] = NAN;
-    g->dt = c->dt;
-    g->t = c->t;
-    g->max_speed = c->max_speed;
-    g->max_acc = c->max_acc;
-    g->rho_carried = c->rho_carried;
+    test_gl_copy_state(g, c);
+    if (!poison) return;
+    for (int d = 0; d < g->dim; d++)
+        for (uint32_t i = 0; i < c->n; i++) g->P.acc_v[d][i] = NAN;
     sph_sim_upload(g);
 }
 
-/* Largest |a - b| over particles and components (NaN counts as infinite),
- * and the largest |b|. */
-static double field_error(const sph_sim *a, const sph_sim *b, sph_field_id f, double *scale)
-{
-    sph_field fa, fb;
-    cr_assert(sph_sim_field(a, f, &fa) && sph_sim_field(b, f, &fb), "field %d missing", (int)f);
-    double err = 0, big = 0;
-    for (int k = 0; k < fa.ncomp; k++)
-        for (uint32_t i = 0; i < a->n; i++) {
-            double e = fabs((double)fa.c[k][i] - fb.c[k][i]);
-            err = fmax(err, e == e ? e : INFINITY);
-            big = fmax(big, fabs((double)fb.c[k][i]));
-        }
-    *scale = big;
-    return err;
-}
 
 static void expect_close(const sph_sim *a, const sph_sim *b, sph_field_id f, double tol, const char *what)
 {
-    double scale, err = field_error(a, b, f, &scale);
+    double scale, err = test_gl_field_error(a, b, f, &scale);
     cr_expect(scale > 0, "%s: field %s is zero everywhere", what, sph_field_infos[f].name);
     cr_expect(err <= tol * scale, "%s: %s differs by %.3g, above %.1g of its scale %.4g", what,
               sph_field_infos[f].name, err, tol, scale);

@@ -1,12 +1,16 @@
-/* Shared by the GL backend's tests: whether an OpenGL 4.3 context can be had. */
+/* Shared by the GL backend's tests: whether an OpenGL 4.3 context can be had,
+ * and making, copying and comparing CPU and GL simulations. */
 #ifndef TEST_GL_UTIL_H
 #define TEST_GL_UTIL_H
 
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "gpu.h"
+#include "sph_sim.h"
+#include "test_util.h"
 
 /* No GL at all (no EGL display) is a reason to skip; a display without
  * OpenGL 4.3 is a failure: CI has Mesa, whose llvmpipe gives 4.5. Forced
@@ -22,6 +26,63 @@ static inline void need_gl(void)
         strstr(dev, "eglInitialize"))
         cr_skip_test("no EGL display on this machine: %s", dev);
     cr_assert_fail("an EGL display but no OpenGL 4.3 context: %s", dev);
+}
+
+/* A simulation of the scene text with --set lines applied, on the CPU or
+ * on the GL backend (which must then exist). */
+static inline sph_sim *test_gl_make(const char *ini, const char *const *sets, int n_sets, bool gl)
+{
+    sph_scene_def def = test_scene(ini);
+    sph_error err;
+    for (int i = 0; i < n_sets; i++)
+        cr_assert_eq(sph_scene_set(&def, sets[i], &err), SPH_ERR_OK, "--set %s: %s", sets[i], err.msg);
+    def.backend = gl ? SPH_BACKEND_GL : SPH_BACKEND_CPU;
+    sph_sim *sim;
+    cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert(!gl || sim->backend, "the GL simulation has no backend");
+    return sim;
+}
+
+/* g takes c's particles (every field of the registry both have), time step,
+ * time (the start-up ramps depend on it), maxima and the carried density's
+ * flag (density_method = continuity), and sends them to the device. */
+static inline void test_gl_copy_state(sph_sim *g, const sph_sim *c)
+{
+    const uint32_t n = c->n;
+    memcpy(g->P.id, c->P.id, (size_t)n * sizeof *g->P.id);
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        for (int d = 0; d < 3; d++)
+            if (g->P.field[f][d] && c->P.field[f][d]) memcpy(g->P.field[f][d], c->P.field[f][d], n * sizeof(float));
+    g->dt = c->dt;
+    g->t = c->t;
+    g->max_speed = c->max_speed;
+    g->max_acc = c->max_acc;
+    g->rho_carried = c->rho_carried;
+    sph_sim_upload(g);
+}
+
+/* Largest |gl - cpu| of a field over particles and components (NaN counts
+ * as infinite), and in *scale the largest |cpu|, the scale tolerances are
+ * fractions of. The pressure is the density through the equation of state,
+ * whose (rho/rho0)^gamma - 1 cancels near rest: its rounding is a few ulps
+ * of k rho0 whatever p is, so that is its least scale (a quiet start keeps
+ * |p| far below it). */
+static inline double test_gl_field_error(const sph_sim *c, const sph_sim *g, sph_field_id f, double *scale)
+{
+    sph_field fc, fg;
+    cr_assert(sph_sim_field(c, f, &fc) && sph_sim_field(g, f, &fg), "field %d missing", (int)f);
+    double err = 0, big = 0;
+    for (int k = 0; k < fc.ncomp; k++)
+        for (uint32_t i = 0; i < c->n; i++) {
+            double e = fabs((double)fg.c[k][i] - fc.c[k][i]);
+            err = fmax(err, e == e ? e : INFINITY);
+            big = fmax(big, fabs((double)fc.c[k][i]));
+        }
+    const double k_rho0 = (double)c->def.stiffness * c->def.rest_density;
+    if (f == SPH_FIELD_P) big = fmax(big, k_rho0);
+    if (f == SPH_FIELD_PRHO2) big = fmax(big, k_rho0 / ((double)c->def.rest_density * c->def.rest_density));
+    *scale = big;
+    return err;
 }
 
 #endif
