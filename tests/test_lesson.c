@@ -519,6 +519,17 @@ Test(lesson, export_8_optimisation_ladder)
 {
     const char *dir = export_lesson(8);
     free(check_report(dir, 8, "The optimisation ladder", "L'échelle des optimisations"));
+    char fr_path[1100];
+    snprintf(fr_path, sizeof fr_path, "%s/report.fr.md", dir);
+    char *fr = read_all(fr_path);
+    cr_assert(fr, "no %s", fr_path);
+    /* the tables' level descriptions come from the core's table, in both
+     * languages (the quoted `sphlab bench levels` output stays as printed) */
+    cr_expect(!strstr(fr, "| L0 | brute force") && !strstr(fr, "| L3 | counting sort |"),
+              "report.fr.md's table describes a level in English");
+    cr_expect(strstr(fr, "| L0 | force brute O(N^2)") || strstr(fr, "| L3 | tri par comptage |"),
+              "report.fr.md's table describes no level in French");
+    free(fr);
     if (has_command("bench")) {
         csv c;
         check_csv(dir, "levels.csv", "level,threads,particles,ms_per_step,neighbours_ms,speedup,steps_per_s", 7, &c);

@@ -9,46 +9,57 @@
  * relies on, so a level does not change when a default does. To add a
  * level, add a line (any scene key, `sphlab keys` lists them). */
 const sph_level sph_levels[] = {
-    {"L0", "brute force O(N^2) on 1 thread", "search.method=brute search.reorder=off search.vector=off", 1},
+    {"L0", "brute force O(N^2) on 1 thread", "search.method=brute search.reorder=off search.vector=off", 1,
+     "force brute O(N^2) sur 1 thread"},
     {"L1", "spatial hash unsorted (linked lists)",
-     "search.method=hash search.sort=none search.reorder=off search.vector=off", 1},
+     "search.method=hash search.sort=none search.reorder=off search.vector=off", 1,
+     "hachage spatial non trié (listes chaînées)"},
     {"L2", "hash + bitonic sort + offsets (the seed)",
-     "search.method=hash search.sort=bitonic search.reorder=off search.vector=off", 1},
-    {"L3", "counting sort", "search.method=hash search.sort=counting search.reorder=off search.vector=off", 1},
+     "search.method=hash search.sort=bitonic search.reorder=off search.vector=off", 1,
+     "hachage + tri bitonique + décalages (le projet d'origine)"},
+    {"L3", "counting sort", "search.method=hash search.sort=counting search.reorder=off search.vector=off", 1,
+     "tri par comptage"},
     {"L4", "particle data reordered by cell", "search.method=hash search.sort=counting search.reorder=on search.vector=off",
-     1},
-    {"L5", "OpenMP on all cores", "search.method=hash search.sort=counting search.reorder=on search.vector=off", 0},
+     1, "données des particules réordonnées par cellule"},
+    {"L5", "OpenMP on all cores", "search.method=hash search.sort=counting search.reorder=on search.vector=off", 0,
+     "OpenMP sur tous les cœurs"},
     {"L6", "vectorised inner loops (AVX-512)",
-     "search.method=hash search.sort=counting search.reorder=on search.vector=on", 0},
+     "search.method=hash search.sort=counting search.reorder=on search.vector=on", 0,
+     "boucles internes vectorisées (AVX-512)"},
     {"L7", "dense grid: a stencil row is one run",
-     "search.method=grid search.sort=counting search.reorder=on search.vector=on", 0},
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on", 0,
+     "grille dense : une ligne du pochoir est une plage"},
     /* Past L7 (docs/performance.md, "Past L7"): fewer gathers per neighbour. */
     {"L8", "L7 + pressure and viscosity in one walk",
-     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on", 0},
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on", 0,
+     "L7 + pression et viscosité en un seul parcours"},
     {"L9", "L8 + lists built in place (one copy less)",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
      "search.lists_in_place=on",
-     0},
+     0, "L8 + listes construites sur place (une copie de moins)"},
     {"L10", "L9 + Verlet lists (skin 0.05 h)",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
      "search.lists_in_place=on search.skin=0.05",
-     0},
+     0, "L9 + listes de Verlet (peau 0.05 h)"},
     {"L11", "L10 + compact lists (16-bit offsets)",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
      "search.lists_in_place=on search.skin=0.05 search.compact_lists=on",
-     0},
+     0, "L10 + listes compactes (décalages sur 16 bits)"},
     /* The seed's GPU steps: the passes as GLSL compute shaders (src/gpu/), on
      * whatever OpenGL 4.3 device EGL gives (llvmpipe without a GPU). */
-    {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0},
+    {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0, "GLSL : force brute"},
     {"G1", "GLSL: hash + bitonic sort (the seed)",
-     "compute.backend=gl search.method=hash search.sort=bitonic search.reorder=off", 0},
+     "compute.backend=gl search.method=hash search.sort=bitonic search.reorder=off", 0,
+     "GLSL : hachage + tri bitonique (le projet d'origine)"},
     /* From G2 on the pressure force and viscosity share one walk
      * (docs/performance.md, "The GL levels": the forces in half the time on
      * llvmpipe, the same result to the bit). */
     {"G2", "GLSL: counting sort, reorder, fused forces",
-     "compute.backend=gl search.method=hash search.sort=counting search.reorder=on compute.fuse_forces=on", 0},
+     "compute.backend=gl search.method=hash search.sort=counting search.reorder=on compute.fuse_forces=on", 0,
+     "GLSL : tri par comptage + réordonnancement + forces fusionnées"},
     {"G3", "GLSL: dense grid: stencil rows",
-     "compute.backend=gl search.method=grid search.sort=counting search.reorder=on compute.fuse_forces=on", 0},
+     "compute.backend=gl search.method=grid search.sort=counting search.reorder=on compute.fuse_forces=on", 0,
+     "GLSL : grille dense : lignes du pochoir"},
 };
 const int sph_level_count = (int)(sizeof sph_levels / sizeof sph_levels[0]);
 

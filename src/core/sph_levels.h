@@ -16,6 +16,7 @@ typedef struct sph_level {
     const char *about; /* what it is, in a few words (no commas: it goes into CSV files) */
     const char *sets;  /* scene overrides "section.key=value", separated by spaces */
     int threads;       /* 1, or 0: one per core */
+    const char *about_fr; /* about, in French (lessons' French reports; no commas) */
 } sph_level;
 
 extern const sph_level sph_levels[];

@@ -131,7 +131,7 @@ static void ladder_table(lx *x, const bench_opts *o, const bench_ladder *lad)
     for (int s = 0; s < o->nsel; s++) {
         const bench_level *L = &bench_levels[o->sel[s]];
         const level_result *r = &lad->res[s];
-        lx_md(x, "| %s | %s | %d | %s%s | %s%s |\n", L->name, L->about, r->at.threads ? r->at.threads : L->threads,
+        lx_md(x, "| %s | {{@%s|%s}} | %d | %s%s | %s%s |\n", L->name, L->about, L->about_fr, r->at.threads ? r->at.threads : L->threads,
               r->searched ? lx_fmt("%.0f", r->max_n) : "", r->capped ? " (capped)" : "",
               r->at_ok ? lx_fmt("%.6g", r->at.ms_step) : "", r->at_ok ? lx_fmt(" (N = %u)", r->at.n) : "");
     }
@@ -228,7 +228,8 @@ int lx_lesson8(lx *x)
             nbm[i] = lx_run_pass(&r, "neighbours");
             N = r.particles;
             double sp0 = ms[0] / ms[i], spp = i ? ms[i - 1] / ms[i] : 1;
-            lx_md(x, "| %s | %s | %d | %.3f | %.3f | %.2f | %.2f | %.0f | %s |\n", L->name, L->about, r.threads,
+            lx_md(x, "| %s | {{@%s|%s}} | %d | %.3f | %.3f | %.2f | %.2f | %.0f | %s |\n", L->name, L->about, L->about_fr,
+                  r.threads,
                   ms[i], nbm[i], sp0, spp, 1000 / ms[i], 1000 / ms[i] >= 60 ? "{{@yes|oui}}" : "{{@no|non}}");
             if (f)
                 fprintf(f, "%s,%d,%ld,%.4f,%.4f,%.4f,%.2f\n", L->name, r.threads, r.particles, ms[i], nbm[i], sp0,
