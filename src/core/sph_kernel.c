@@ -191,6 +191,36 @@ int sph_kernel_find(const char *name)
     return -1;
 }
 
+/* The finest spacing of the scene's blocks [m], 0 without blocks. */
+float sph_scene_finest_spacing(const sph_scene_def *def)
+{
+    float s = 0;
+    for (int b = 0; b < def->n_blocks; b++)
+        if (s == 0 || def->blocks[b].spacing < s) s = def->blocks[b].spacing;
+    return s;
+}
+
+/* A sum over a full neighbourhood of the finest lattice, spacing s > 0:
+ * sum_j m W(r_j), or with dots sum_j m^2 W'rho(r_j) W'p(r_j) (j != i). */
+static double lattice_sum(const sph_sim *sim, float s, bool dots)
+{
+    const sph_scene_def *def = &sim->def;
+    const int dim = sim->dim, r = (int)ceilf(def->h / s);
+    const double m = def->rest_density * (dim == 3 ? (double)s * s * s : (double)s * s);
+    double sum = 0;
+    for (int z = dim == 3 ? -r : 0; z <= (dim == 3 ? r : 0); z++)
+        for (int y = -r; y <= r; y++)
+            for (int x = -r; x <= r; x++) {
+                float d = s * sqrtf((float)(x * x + y * y + z * z));
+                if (!(d < def->h)) continue;
+                if (!dots)
+                    sum += m * sph_kernel_w(&sim->k_density, d);
+                else if (d > 0)
+                    sum += m * m * sph_kernel_dw(&sim->k_density, d) * sph_kernel_dw(&sim->k_pressure, d);
+            }
+    return sum;
+}
+
 /* The density a particle of the scene's finest lattice reads at rest, with
  * its whole support inside the fluid: rho0 (1 + e), where e is the
  * summation's own excess on a lattice (+1.46 % for poly6 at h = 2 s in 2D,
@@ -200,19 +230,16 @@ int sph_kernel_find(const char *name)
  * kernel and the lattice, nothing fitted. */
 float sph_sim_lattice_rest_density(const sph_sim *sim)
 {
-    const sph_scene_def *def = &sim->def;
-    float s = 0;
-    for (int b = 0; b < def->n_blocks; b++)
-        if (s == 0 || def->blocks[b].spacing < s) s = def->blocks[b].spacing;
-    if (!(s > 0)) return def->rest_density;
-    const int dim = sim->dim, r = (int)ceilf(def->h / s);
-    const double m = def->rest_density * (dim == 3 ? (double)s * s * s : (double)s * s);
-    double sum = 0;
-    for (int z = dim == 3 ? -r : 0; z <= (dim == 3 ? r : 0); z++)
-        for (int y = -r; y <= r; y++)
-            for (int x = -r; x <= r; x++) {
-                float d = s * sqrtf((float)(x * x + y * y + z * z));
-                if (d < def->h) sum += m * sph_kernel_w(&sim->k_density, d);
-            }
-    return (float)sum;
+    const float s = sph_scene_finest_spacing(&sim->def);
+    return s > 0 ? (float)lattice_sum(sim, s, false) : sim->def.rest_density;
+}
+
+/* sum_j m_j^2 grad W^rho_ij . grad W^p_ij over the finest lattice's full
+ * neighbourhood [kg^2/m^(2 dim + 2)]: DFSPH's alpha denominator for a
+ * particle whose neighbourhood is full (the sum of gradients is 0 there),
+ * the prototype particle of Solenthaler & Pajarola 2009 (section 3.2). */
+float sph_sim_lattice_dots(const sph_sim *sim)
+{
+    const float s = sph_scene_finest_spacing(&sim->def);
+    return s > 0 ? (float)lattice_sum(sim, s, true) : 0.0f;
 }

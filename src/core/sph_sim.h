@@ -330,6 +330,11 @@ struct sph_sim {
 /* [kg/m^dim] The density a particle of the scene's finest lattice sums to at
  * rest, its whole support in the fluid (sph_kernel.c): rest_density (1 + e). */
 float sph_sim_lattice_rest_density(const sph_sim *sim);
+/* DFSPH's alpha denominator for a full neighbourhood of that lattice
+ * (sum_j m^2 grad W^rho . grad W^p) [kg^2/m^(2 dim + 2)], 0 without blocks. */
+float sph_sim_lattice_dots(const sph_sim *sim);
+/* The finest spacing of the scene's blocks [m], 0 without blocks. */
+float sph_scene_finest_spacing(const sph_scene_def *def);
 
 /* threads <= 0: one per core; at most SPH_MAX_THREADS. */
 sph_error_code sph_sim_create(const sph_scene_def *def, int threads, sph_sim **out, sph_error *err);

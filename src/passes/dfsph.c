@@ -32,7 +32,7 @@
  * onto the wall so that the density solve, summing at positions the walls pass clamps, could not lower their
  * density (lesson 11 at 0.1 %: 12 capped solves, one ending at 4.0 %; with the floor on alpha below, the watchdog
  * at step 207).
- * alpha's denominator is at least that of a particle with a full neighbourhood (sph_solver_lattice_dots): where a
+ * alpha's denominator is at least that of a particle with a full neighbourhood (sph_sim_lattice_dots): where a
  * wall's gradient cancels the pairs' differently for the two kernels it fell to 0 or below, alpha read 0 and the
  * particle was never corrected (lesson 11 at 0.1 %, step 106: 3 capped solves in a row).
  * Bender & Koschier solve the divergence after moving the particles, with
@@ -267,7 +267,7 @@ static void run(sph_sim *sim)
     sph_particles *P = &sim->P;
     if (!(s->rho_rest > 0)) {
         s->rho_rest = sph_sim_lattice_rest_density(sim);
-        s->den_full = sph_solver_lattice_dots(sim);
+        s->den_full = sph_sim_lattice_dots(sim);
         sph_solver_wall_table(sim);
     }
     if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */

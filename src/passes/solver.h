@@ -9,40 +9,10 @@
 
 #include <math.h>
 
-/* The finest spacing of the scene's blocks [m]. The density the solvers
- * hold, rho_rest, is the one a particle of that lattice sums to at rest
- * (sph_sim_lattice_rest_density), not rho0: holding rho0 would expand every
- * block by the summation's excess at its first step. */
-static inline float sph_solver_spacing(const sph_scene_def *def)
-{
-    float s = 0;
-    for (int b = 0; b < def->n_blocks; b++)
-        if (s == 0 || def->blocks[b].spacing < s) s = def->blocks[b].spacing;
-    return s;
-}
-
-/* sum_j m_j^2 grad W^rho_ij . grad W^p_ij over the finest block's full
- * lattice [kg^2/m^(2 dim + 2)]: DFSPH's alpha denominator for a particle
- * whose neighbourhood is full (the sum of gradients is 0 there), the
- * prototype particle with a filled neighbourhood of Solenthaler & Pajarola
- * 2009 (section 3.2). Computed from the kernels and the lattice. */
-static inline float sph_solver_lattice_dots(const sph_sim *sim)
-{
-    const sph_scene_def *def = &sim->def;
-    const float s = sph_solver_spacing(def);
-    if (!(s > 0)) return 0.0f;
-    const int dim = sim->dim, r = (int)ceilf(def->h / s);
-    const double m = def->rest_density * (dim == 3 ? (double)s * s * s : (double)s * s);
-    double sum = 0;
-    for (int z = dim == 3 ? -r : 0; z <= (dim == 3 ? r : 0); z++)
-        for (int y = -r; y <= r; y++)
-            for (int x = -r; x <= r; x++) {
-                float d = s * sqrtf((float)(x * x + y * y + z * z));
-                if (d > 0 && d < def->h)
-                    sum += m * m * sph_kernel_dw(&sim->k_density, d) * sph_kernel_dw(&sim->k_pressure, d);
-            }
-    return (float)sum;
-}
+/* The density the solvers hold, rho_rest, is the one a particle of the
+ * scene's finest lattice sums to at rest (sph_sim_lattice_rest_density), not
+ * rho0: holding rho0 would expand every block by the summation's excess at
+ * its first step. */
 
 /* The accelerations other than pressure at particle i (viscosity, cohesion,
  * the mouse; gravity is in the velocity already): every acceleration field
@@ -68,7 +38,7 @@ static inline void sph_solver_wall_table(sph_sim *sim)
 {
     sph_solver_state *st = &sim->solver;
     const sph_scene_def *def = &sim->def;
-    const float s = sph_solver_spacing(def), h = def->h;
+    const float s = sph_scene_finest_spacing(def), h = def->h;
     const int dim = sim->dim, R = s > 0 ? (int)ceilf(h / s) : 0;
     const double m = s > 0 ? def->rest_density * (dim == 3 ? (double)s * s * s : (double)s * s) : 0.0;
     for (int t = 0; t <= SPH_SOLVER_WALL_SAMPLES; t++) {
