@@ -60,10 +60,13 @@
 #include "csf.h"
 #include "sph_search.h"
 #include "sph_walls.h"
+#include "sph_memory.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define CSF_SUPPORT_MIN SPH_CSF_SUPPORT_MIN
 #define CSF_NORMAL_MIN SPH_CSF_NORMAL_MIN
@@ -232,8 +235,10 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
     const bool periodic = sph_sim_periodic(sim);
-    float *lam = malloc(sizeof(float) * (size_t)(2 * n + 1)), *kap = lam + n;
-    if (!lam) return;
+    float *lam = malloc(sizeof(float) * (size_t)(2 * n + 1));
+    /* returning would leave last step's acc_s in place: a wrong answer in silence */
+    if (!lam) sph_memory_fail("the csf pass's %d-particle scratch could not be made (%s)", n, strerror(errno));
+    float *kap = lam + n;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) SPH_SPECIALISE_P(dim, dbl, periodic, csf_one, sim, &k, lam, i);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
