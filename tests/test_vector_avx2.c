@@ -25,11 +25,12 @@
 /* L11's keys (docs/performance.md), with fuse_forces and compact_lists as
  * asked (L11: both on); L12 adds vector_avx2 = on. */
 #define L11_KEYS                                                                                                 \
-    "[search]\nmethod = grid\nsort = counting\nreorder = on\nvector = on\nlists_in_place = on\nskin = 0.05\n"   \
+    "[search]\nmethod = %s\nsort = counting\nreorder = on\nvector = on\nlists_in_place = on\nskin = 0.05\n"   \
     "compact_lists = %s\nvector_avx2 = %s\n[compute]\nfuse_forces = %s\n"
 
-/* Variants of L11: the separate pressure_force and viscosity loops, plain 32-bit lists, the shared pressure form. */
-enum { FUSED = 0, APART = 1, PLAIN = 2, SHARED = 4 };
+/* Variants of L11: the separate pressure_force and viscosity loops, plain 32-bit lists, the shared pressure form,
+ * the hash instead of the dense grid (its runs hold cells of other keys: the scan filters them). */
+enum { FUSED = 0, APART = 1, PLAIN = 2, SHARED = 4, HASH = 8 };
 
 #define DAM_3D                                                                                                   \
     "[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0 0\n"                \
@@ -54,7 +55,7 @@ enum { FUSED = 0, APART = 1, PLAIN = 2, SHARED = 4 };
 static sph_sim *make(const char *scene, int variant, bool avx2, int threads)
 {
     char keys[512], ini[2048];
-    snprintf(keys, sizeof keys, L11_KEYS, variant & PLAIN ? "off" : "on", avx2 ? "on" : "off",
+    snprintf(keys, sizeof keys, L11_KEYS, variant & HASH ? "hash" : "grid", variant & PLAIN ? "off" : "on", avx2 ? "on" : "off",
              variant & APART ? "off" : "on");
     snprintf(ini, sizeof ini, "%s%s%s", scene, keys, variant & SHARED ? "[physics]\npressure_form = shared\n" : "");
     return test_sim(ini, threads);
@@ -150,3 +151,6 @@ Test(vector_avx2, wide_rows_same_on_one_and_two_threads)
     same_on_threads(STRIP_2D, FUSED, 3, "strip with wide rows");
     as_l11(STRIP_2D, FUSED, 3, "strip with wide rows");
 }
+
+/* The hash's scan (runs shared by several cells) in 8 lanes: the same lists as L11's. */
+Test(vector_avx2, hash_search_same_as_l11_3d) { as_l11(DAM_3D, HASH, 10, "3D dam, hash"); }
