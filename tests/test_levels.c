@@ -58,7 +58,7 @@ static void every_level_matches(const char *ini)
         sph_sim_destroy(sim);
         checked++;
     }
-    cr_expect_eq(checked, 12, "levels L0..L11");
+    cr_expect_eq(checked, 13, "levels L0..L12");
 }
 
 Test(levels, every_cpu_level_finds_brute_forces_sets_2d) { every_level_matches(scene_2d); }
@@ -132,4 +132,11 @@ Test(levels, level_of_the_ingredients)
     cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L9")], &def, &err), SPH_ERR_OK);
     cr_expect_eq(def.skin, 0.0f);
     cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L9"));
+    /* L12 is L11 with the AVX2 loops; down to L11 they are off again */
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L12")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.vector_avx2, SPH_ON);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L12"));
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L11")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.vector_avx2, SPH_OFF);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L11"));
 }

@@ -222,7 +222,12 @@ const sph_key sph_scene_keys[] = {
 
     {"search", "vector", SPH_KEY_CHOICE, S(vector), 0, 0, 0, 0, CH(sph_onoff_names), "", "on",
      "on: inner loops written with the CPU's vector instructions (AVX-512, 16 floats at a time) use them, where the "
-     "build has them; off: plain scalar loops"},
+     "build has them (AVX2 with vector_avx2 = on); off: plain scalar loops"},
+    {"search", "vector_avx2", SPH_KEY_CHOICE, S(vector_avx2), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: with vector = on, the neighbour search's scan and the density, pressure_force and viscosity passes (and "
+     "their fused walk) use AVX2 loops, 8 floats at a time, instead of AVX-512's 16: they run on CPUs without "
+     "AVX-512 (where vector = on alone leaves the scalar loops); the same lists, and results within round-off "
+     "(the pair sums in another order); off: AVX-512 where the build has it, else scalar"},
     {"search", "lists_in_place", SPH_KEY_CHOICE, S(lists_in_place), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
      "on: the first thread writes its particles' neighbour lists straight into the joined array the other passes "
      "read, instead of into a buffer of its own that is then copied there (the same lists, one copy less of the "

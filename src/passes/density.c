@@ -82,6 +82,31 @@ static inline void density_one_avx512(const sph_sim *sim, const sph_kernel *k, i
 }
 #endif
 
+#if SPH_HAVE_AVX2
+/* The loop above, 8 neighbours at a time ([search] vector_avx2 = on). */
+static inline void density_one_avx2(const sph_sim *sim, const sph_kernel *k, int i, const int dim)
+{
+    const sph_particles *P = &sim->P;
+    const __m256 h2 = _mm256_set1_ps(k->h2), zero = _mm256_setzero_ps();
+    __m256 xi[3], d3[3];
+    sph_simd8_centre(P, i, dim, xi);
+    __m256 acc = zero;
+    const sph_nbr_row row = sph_nbr_row_of(&sim->S, (uint32_t)i);
+    const uint32_t end = row.n;
+    for (uint32_t e = 0; e < end; e += 8) {
+        const __m256i live = sph_simd8_live(e, end), idx = sph_simd8_nbr(&row, e, end, live);
+        __m256 r2 = sph_simd8_offsets(P, live, idx, xi, dim, d3);
+        __m256 d = _mm256_max_ps(_mm256_sub_ps(h2, r2), zero);
+        __m256 w = sph_simd8_keep(live, _mm256_mul_ps(_mm256_mul_ps(d, d), d));
+        acc = _mm256_fmadd_ps(w, sph_simd8_gather(live, idx, P->mass), acc); /* dead lanes add 0 */
+    }
+    float sum = P->mass[i] * sph_kernel_w(k, 0.0f) + k->sigma * sph_simd8_sum(acc);
+    if (sph_sim_wall_volume(sim)) sum += sim->def.rest_density * sph_wall_hidden(sim, k, i, NULL);
+    P->rho[i] = sum;
+    P->vol[i] = P->mass[i] / sum;
+}
+#endif
+
 /* density_method = continuity switched on by a reconfiguration (a new
  * simulation starts from the lattice's density, sph_sim.c): the carried
  * density starts from this sum. The start-up evaluation (dt = 0, sph_sim_create) sums at x,
@@ -118,6 +143,14 @@ static void run(sph_sim *sim)
     }
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
     const bool periodic = sph_sim_periodic(sim);
+#if SPH_HAVE_AVX2
+    if (sph_simd8_on(sim) && k.kind == SPH_KERNEL_POLY6) {
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+        for (int i = 0; i < n; i++) dim == 3 ? density_one_avx2(sim, &k, i, 3) : density_one_avx2(sim, &k, i, 2);
+        start_carrying(sim);
+        return;
+    }
+#endif
 #if SPH_HAVE_AVX512
     if (sph_simd_on(sim) && k.kind == SPH_KERNEL_POLY6) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)

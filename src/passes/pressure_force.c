@@ -228,6 +228,87 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
 }
 #endif
 
+#if SPH_HAVE_AVX2
+/* pressure_one_avx512 (fused = false) and forces_one_avx512 (fused = true, with
+ * the viscosity kernel kv) 8 neighbours at a time ([search] vector_avx2 = on):
+ * the same operations per pair; the lanes are summed in another order, so the
+ * result differs from the 16-lane loops by round-off only. */
+static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, const sph_kernel *kv, int i,
+                                   const int dim, const bool fused)
+{
+    const sph_particles *P = &sim->P;
+    const bool symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
+    const float rmin = SPH_KERNEL_R_MIN * k->h;
+    __m256 xi[3], d3[3];
+    sph_simd8_centre(P, i, dim, xi);
+    const __m256 h = _mm256_set1_ps(k->h), m3s = _mm256_set1_ps(-3.0f * k->sigma);
+    const __m256 rmin2 = _mm256_set1_ps(rmin * rmin), vrmin = _mm256_set1_ps(rmin);
+    const __m256 pi_over = _mm256_set1_ps(P->p_rho2[i]), pi = _mm256_set1_ps(P->p[i]);
+    const __m256 half_over_rho = _mm256_set1_ps(0.5f / P->rho[i]), zero = _mm256_setzero_ps();
+    const __m256 vxi = _mm256_set1_ps(P->vel[0][i]), vyi = _mm256_set1_ps(P->vel[1][i]);
+    const __m256 vzi = _mm256_set1_ps(dim == 3 ? P->vel[2][i] : 0.0f);
+    float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
+    const __m256 inv_hv = _mm256_set1_ps(fused ? kv->inv_h : 0.0f), one = _mm256_set1_ps(1.0f);
+    const __m256 h2 = _mm256_set1_ps(sim->def.h * sim->def.h);
+    const __m256i vi = _mm256_set1_epi32(i);
+    __m256 ax = zero, ay = zero, az = zero, bx = zero, by = zero, bz = zero;
+    const sph_nbr_row row = sph_nbr_row_of(&sim->S, (uint32_t)i);
+    const uint32_t end = row.n;
+    for (uint32_t e = 0; e < end; e += 8) {
+        const __m256i live = sph_simd8_live(e, end), idx = sph_simd8_nbr(&row, e, end, live);
+        __m256 r2 = sph_simd8_offsets(P, live, idx, xi, dim, d3);
+        __m256 vol = zero;
+        if (fused || !symmetric) vol = sph_simd8_gather(live, idx, P->vol);
+        if (fused) { /* viscosity first, from the true r^2, pairs within h only (forces_one_avx512) */
+            const __m256i in = _mm256_and_si256(live, _mm256_castps_si256(_mm256_cmp_ps(r2, h2, _CMP_LT_OQ)));
+            __m256 lap = _mm256_max_ps(_mm256_fnmadd_ps(_mm256_sqrt_ps(r2), inv_hv, one), zero); /* 1 - r/h */
+            __m256 cv = sph_simd8_keep(in, _mm256_mul_ps(vol, lap));
+            bx = _mm256_fmadd_ps(cv, _mm256_sub_ps(sph_simd8_gather(live, idx, vj[0]), vxi), bx);
+            by = _mm256_fmadd_ps(cv, _mm256_sub_ps(sph_simd8_gather(live, idx, vj[1]), vyi), by);
+            if (dim == 3) bz = _mm256_fmadd_ps(cv, _mm256_sub_ps(sph_simd8_gather(live, idx, vj[2]), vzi), bz);
+        }
+        __m256 dx = d3[0], dy = d3[1], dz = d3[2];
+        const __m256i close = _mm256_and_si256(live, _mm256_castps_si256(_mm256_cmp_ps(r2, rmin2, _CMP_LT_OQ)));
+        const bool any_close = !_mm256_testz_si256(close, close);
+        if (any_close) { /* coincident pairs: pushed apart along x, as in pressure_one */
+            const __m256i before = _mm256_cmpgt_epi32(idx, vi); /* i < j (indices below 2^31) */
+            __m256 along = sph_simd8_pick(before, _mm256_sub_ps(zero, vrmin), vrmin);
+            dx = sph_simd8_pick(close, along, dx);
+            dy = sph_simd8_pick(close, zero, dy);
+            dz = sph_simd8_pick(close, zero, dz);
+            r2 = sph_simd8_pick(close, rmin2, r2);
+        }
+        __m256 r = _mm256_sqrt_ps(r2);
+        __m256 t = _mm256_max_ps(_mm256_sub_ps(h, r), zero);
+        __m256 dw_over_r = _mm256_div_ps(_mm256_mul_ps(m3s, _mm256_mul_ps(t, t)), r);
+        __m256 coef = symmetric ? _mm256_mul_ps(sph_simd8_gather(live, idx, P->mass),
+                                                _mm256_add_ps(pi_over, sph_simd8_gather(live, idx, P->p_rho2)))
+                                : _mm256_mul_ps(_mm256_mul_ps(vol, half_over_rho),
+                                                _mm256_add_ps(pi, sph_simd8_gather(live, idx, P->p)));
+        if (any_close) /* a coincident pair only repels */
+            coef = sph_simd8_pick(_mm256_and_si256(close, _mm256_castps_si256(_mm256_cmp_ps(coef, zero, _CMP_LT_OQ))),
+                                  zero, coef);
+        __m256 f = sph_simd8_keep(live, _mm256_mul_ps(coef, dw_over_r)); /* dead lanes: r may be 0 */
+        ax = _mm256_fnmadd_ps(f, dx, ax);
+        ay = _mm256_fnmadd_ps(f, dy, ay);
+        if (dim == 3) az = _mm256_fnmadd_ps(f, dz, az);
+    }
+    float a[3] = {sph_simd8_sum(ax), sph_simd8_sum(ay), sph_simd8_sum(az)};
+    if (sph_sim_wall_volume(sim)) {
+        float grad[3];
+        sph_wall_hidden(sim, &sim->k_density, i, grad);
+        for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * P->p_rho2[i] * grad[d];
+    }
+    for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
+    if (!fused) return;
+    const float c = kv->sigma * kv->inv_h * kv->inv_h * (dim == 3 ? 6.0f : 1.0f); /* viscosity_one_avx512's scale */
+    const float s = c * sim->def.viscosity * sim->def.rest_density / P->rho[i];
+    P->acc_v[0][i] = s * sph_simd8_sum(bx);
+    P->acc_v[1][i] = s * sph_simd8_sum(by);
+    if (dim == 3) P->acc_v[2][i] = s * sph_simd8_sum(bz);
+}
+#endif
+
 /* Wall particles (wall_model = particles) get no acceleration: they never move. */
 static inline bool wall_still(sph_sim *sim, int i)
 {
@@ -242,6 +323,26 @@ static void run(sph_sim *sim)
     const int n = (int)sim->n, dim = sim->dim;
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
     const bool periodic = sph_sim_periodic(sim);
+#if SPH_HAVE_AVX2
+    if (sph_simd8_on(sim) && k.kind == SPH_KERNEL_SPIKY) {
+        const sph_kernel kv = sim->k_viscosity;
+        const bool fused = sph_forces_fused(sim); /* also writes acc_v; the viscosity pass then does nothing */
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+        for (int i = 0; i < n; i++) {
+            if (sph_is_wall(&sim->P, i)) {
+                for (int d = 0; d < dim; d++) sim->P.acc_p[d][i] = 0.0f;
+                if (fused)
+                    for (int d = 0; d < dim; d++) sim->P.acc_v[d][i] = 0.0f;
+                continue;
+            }
+            if (fused)
+                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, true) : forces_one_avx2(sim, &k, &kv, i, 2, true);
+            else
+                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, false) : forces_one_avx2(sim, &k, &kv, i, 2, false);
+        }
+        return;
+    }
+#endif
 #if SPH_HAVE_AVX512
     if (sph_forces_fused(sim)) { /* also writes acc_v; the viscosity pass then does nothing */
         const sph_kernel kv = sim->k_viscosity;

@@ -174,6 +174,40 @@ static inline void viscosity_one_avx512(const sph_sim *sim, const sph_kernel *k,
 }
 #endif
 
+#if SPH_HAVE_AVX2
+/* The loop above, 8 neighbours at a time ([search] vector_avx2 = on). */
+static inline void viscosity_one_avx2(const sph_sim *sim, const sph_kernel *k, int i, const int dim)
+{
+    const sph_particles *P = &sim->P;
+    __m256 xi[3], d3[3];
+    sph_simd8_centre(P, i, dim, xi);
+    const __m256 vxi = _mm256_set1_ps(P->vel[0][i]), vyi = _mm256_set1_ps(P->vel[1][i]);
+    const __m256 vzi = _mm256_set1_ps(dim == 3 ? P->vel[2][i] : 0.0f);
+    float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
+    const __m256 inv_h = _mm256_set1_ps(k->inv_h), one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+    const __m256 h2 = _mm256_set1_ps(sim->def.h * sim->def.h);
+    __m256 ax = zero, ay = zero, az = zero;
+    const sph_nbr_row row = sph_nbr_row_of(&sim->S, (uint32_t)i);
+    const uint32_t end = row.n;
+    for (uint32_t e = 0; e < end; e += 8) {
+        const __m256i live = sph_simd8_live(e, end), idx = sph_simd8_nbr(&row, e, end, live);
+        __m256 r2 = sph_simd8_offsets(P, live, idx, xi, dim, d3);
+        /* pairs within h only, as in viscosity_one_avx512 */
+        const __m256i in = _mm256_and_si256(live, _mm256_castps_si256(_mm256_cmp_ps(r2, h2, _CMP_LT_OQ)));
+        __m256 lap = _mm256_max_ps(_mm256_fnmadd_ps(_mm256_sqrt_ps(r2), inv_h, one), zero); /* 1 - r/h */
+        __m256 coef = sph_simd8_keep(in, _mm256_mul_ps(sph_simd8_gather(live, idx, P->vol), lap));
+        ax = _mm256_fmadd_ps(coef, _mm256_sub_ps(sph_simd8_gather(live, idx, vj[0]), vxi), ax);
+        ay = _mm256_fmadd_ps(coef, _mm256_sub_ps(sph_simd8_gather(live, idx, vj[1]), vyi), ay);
+        if (dim == 3) az = _mm256_fmadd_ps(coef, _mm256_sub_ps(sph_simd8_gather(live, idx, vj[2]), vzi), az);
+    }
+    const float c = k->sigma * k->inv_h * k->inv_h * (dim == 3 ? 6.0f : 1.0f);
+    const float s = c * sim->def.viscosity * sim->def.rest_density / P->rho[i];
+    P->acc_v[0][i] = s * sph_simd8_sum(ax);
+    P->acc_v[1][i] = s * sph_simd8_sum(ay);
+    if (dim == 3) P->acc_v[2][i] = s * sph_simd8_sum(az);
+}
+#endif
+
 /* Wall particles get no acceleration: they never move. */
 static inline bool wall_still(sph_sim *sim, int i)
 {
@@ -189,6 +223,14 @@ static void run(sph_sim *sim)
     const bool dbl = sim->def.accumulate == SPH_ACC_DOUBLE;
     const bool periodic = sph_sim_periodic(sim);
     if (sph_forces_fused(sim)) return; /* the pressure_force pass wrote acc_v in its walk */
+#if SPH_HAVE_AVX2
+    if (sph_simd8_on(sim) && k.kind == SPH_KERNEL_VISCOSITY && sim->def.viscosity_form == SPH_VFORM_LAPLACIAN) {
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+        for (int i = 0; i < n; i++)
+            if (!wall_still(sim, i)) dim == 3 ? viscosity_one_avx2(sim, &k, i, 3) : viscosity_one_avx2(sim, &k, i, 2);
+        return;
+    }
+#endif
 #if SPH_HAVE_AVX512
     if (sph_simd_on(sim) && k.kind == SPH_KERNEL_VISCOSITY && sim->def.viscosity_form == SPH_VFORM_LAPLACIAN) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
