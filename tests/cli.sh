@@ -273,6 +273,12 @@ for p in dam-break hydrostatic taylor-green poiseuille couette; do
         [ -s "$tmp/val/$p.csv" ] && [ -s "$tmp/val/$p.png" ] && [ -s "$tmp/val/$p.pdf" ] && ok ||
         { bad "validate $p --quick: rc $rc, want 0 or 1, a verdict line and the three files"; cat "$tmp/val.txt"; }
 done
+# --quick samples the channels' start-up at other times than the full run: the verdict names them
+for p in poiseuille couette; do
+    sph validate "$p" --quick --quiet --out "$tmp/val" > "$tmp/val.txt" 2>&1
+    grep -q "^validate $p: .* at t = 0.005, 0.01, 0.025, 0.05, 0.2222 s (--quick: the start-up only): R=10:" "$tmp/val.txt" &&
+        ok || { bad "validate $p --quick: the verdict does not name its sample times"; cat "$tmp/val.txt"; }
+done
 sph validate nosuch > "$tmp/val.txt" 2>&1
 [ $? -eq 2 ] && grep -q "unknown problem 'nosuch'" "$tmp/val.txt" && ok || { bad "validate nosuch: want exit 2"; cat "$tmp/val.txt"; }
 sph validate taylor-green --resolution 20,x > "$tmp/val.txt" 2>&1
