@@ -383,6 +383,25 @@ for f in README.md lessons/08-optimisation-ladder/README.md; do
     grep -q "G3" "$f" && ! grep -q "G0-G2\|G0, G1, G2 |" "$f" && ok || bad "$f: the GL levels are G0-G3"
 done
 
+# The README shows `sphlab check` of the dam break and a refused scene: both as the program prints them now
+# (but the memory line, whose limit is this machine's memory)
+sed -n '/^\$ \.\/sphlab check lessons\/scenes\/dam-break-2d.ini$/,/^```$/p' README.md | sed '1d;$d' |
+    grep -v '^memory: ' > "$tmp/readme-check.txt"
+sph check lessons/scenes/dam-break-2d.ini 2>&1 | grep -v '^memory: ' > "$tmp/check-now.txt"
+[ -s "$tmp/readme-check.txt" ] && diff "$tmp/readme-check.txt" "$tmp/check-now.txt" > "$tmp/rd.txt" && ok ||
+    { bad "README.md: the check of dam-break-2d.ini differs from what check prints"; cat "$tmp/rd.txt"; }
+# its command list names every problem of validate and every WHAT of bench
+for name in $(sph validate list 2>/dev/null | sed -n 's/^\([a-z-][a-z-]*\)  .*/\1/p'); do
+    sed -n '/^sphlab validate NAME/,/^sphlab bench/p' README.md | grep -q "$name" && ok ||
+        bad "README.md: sphlab validate's list leaves out $name"
+done
+for what in ladder scaling solvers machine levels; do
+    grep -q "^sphlab bench [a-z|]*$what" README.md && ok || bad "README.md: no sphlab bench $what"
+done
+want=$(sed -n '/^\$ printf .*bad.ini/{n;p;}' README.md)
+got=$(cd "$tmp" && printf '[kernels]\nh = -0.04\n' > bad.ini && sph run bad.ini 2>&1)
+[ -n "$want" ] && [ "$want" = "$got" ] && ok || bad "README.md: the refused scene's message is '$want', check prints '$got'"
+
 # The hard cases: every verdict must be "pass" (they run headless, a few seconds), and
 # there are at least 40 of them, so a lost table row shows here.
 if sph hardcases --quick > "$tmp/hard.txt" 2>&1; then ok; else bad "hardcases"; cat "$tmp/hard.txt"; fi
