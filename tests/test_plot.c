@@ -418,6 +418,30 @@ Test(plot, series_of_stats_columns)
     test_remove_dir(dir);
 }
 
+/* Three stacked panels without --dim: the energy's and the density's axis
+ * titles name both units and are longer than a panel is tall. Each must stay
+ * beside its own panel: along the strip left of the tick labels, the titles'
+ * ink makes three separate runs, not one title running into the next. */
+Test(plot, series_axis_titles_stay_beside_their_panels)
+{
+    const char *dir = test_temp_dir("plot"), *stats = synthetic_stats();
+    int rc = plot("plot series %s --y ekin,rho_max,max_speed --size 1000x1000 --out %s --quiet", stats, dir);
+    cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
+    char path[256];
+    snprintf(path, sizeof path, "%s/series-ekin-rho_max-max_speed.png", dir);
+    image im = load_png(path);
+    int runs = 0, blank = 1000; /* blank: rows since the last ink */
+    for (int y = 0; y < im.h; y++) {
+        bool ink = false;
+        for (int x = 2; x < 55 && !ink; x++) ink = dark(at(&im, x, y));
+        if (ink && blank > 20) runs++; /* gaps between letters and words are narrower */
+        blank = ink ? 0 : blank + 1;
+    }
+    stbi_image_free(im.px);
+    cr_assert_eq(runs, 3, "%d runs of axis-title ink left of the panels, want 3 (one title per panel)", runs);
+    test_remove_dir(dir);
+}
+
 Test(plot, series_beside_the_csv_by_default)
 {
     const char *dir = test_temp_dir("plot");
