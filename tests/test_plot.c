@@ -442,6 +442,24 @@ Test(plot, series_axis_titles_stay_beside_their_panels)
     test_remove_dir(dir);
 }
 
+/* An obstacle's force columns have a unit and share one panel: with the
+ * energy, two densities and the speed that makes four panels, the most a
+ * chart holds (each column its own panel would make five, refused). */
+Test(plot, series_obstacle_force_columns_share_a_panel)
+{
+    const char *dir = test_temp_dir("plot");
+    char csv[4096];
+    size_t m = (size_t)snprintf(csv, sizeof csv, "step,t,ekin,rho_max,max_speed,obstacle_rock_fx,obstacle_rock_fy\n");
+    for (int i = 1; i <= 20; i++)
+        m += (size_t)snprintf(csv + m, sizeof csv - m, "%d,%g,%g,1000,%g,%g,%g\n", i, 0.01 * i, 0.5 * i, 0.1 * i,
+                              2.0 * i, -1.0 * i);
+    const char *stats = test_write_temp(csv, ".csv");
+    int rc = plot("plot series %s --y ekin,rho_max,max_speed,obstacle_rock_fx,obstacle_rock_fy --dim 2 --out %s --quiet",
+                  stats, dir);
+    cr_assert_eq(rc, 0, "exit %d (the force columns took a panel each?): %s", rc, out);
+    test_remove_dir(dir);
+}
+
 Test(plot, series_beside_the_csv_by_default)
 {
     const char *dir = test_temp_dir("plot");
