@@ -172,6 +172,15 @@ Test(scene, unknown_section)
     EXPECT_LIB("[Scene]\ndimension = 2\n", SPH_ERR_UNKNOWN_SECTION, "x.ini:1", "Scene", "accepted:");
 }
 
+/* A key above every header: the message says so and names the section the
+ * key belongs to, not "unknown section []". */
+Test(scene, key_before_any_section)
+{
+    EXPECT_LIB("h = 0.04\n" BASE2, SPH_ERR_UNKNOWN_SECTION, "x.ini:1", "'h' comes before any [section] header",
+               "[kernels]");
+    EXPECT_LIB("stiffness = 100\n" BASE2, SPH_ERR_UNKNOWN_SECTION, "x.ini:1", "[physics]");
+}
+
 Test(scene, unknown_key)
 {
     EXPECT_LIB(BASE2 "[physics]\nbogus = 1\n", SPH_ERR_UNKNOWN_KEY, "x.ini:11", "bogus", "[physics]",
