@@ -315,7 +315,7 @@ Test(scene, more_particles_than_memory_allows)
 {
     const char *text = "[scene]\ndimension = 3\n[domain]\nmin = 0 0 0\nmax = 1 1 1\n"
                        "[fluid a]\nmin = 0 0 0\nmax = 1 1 1\nspacing = 1e-6\n";
-    EXPECT_LIB(text, SPH_ERR_MEMORY, "x.ini", "memory", "spacing");
+    EXPECT_LIB(text, SPH_ERR_MEMORY, "x.ini:9: [fluid a] spacing = 1e-06 m", "memory");
     /* the binary refuses it at once, before allocating anything */
     char path[256], out[4096];
     snprintf(path, sizeof path, "%s", test_write_temp(text, ".ini"));

@@ -253,11 +253,25 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
     sph_error_code oc = sph_obstacles_validate(def, err); /* sph_obstacles.c */
     if (oc) return oc;
     double count = sph_scene_particle_count(def);
-    if (count > SPH_MAX_PARTICLES) /* particle indices are 32-bit, with room for wall particles */
+    if (count > SPH_MAX_PARTICLES) { /* particle indices are 32-bit, with room for wall particles */
+        /* name the block that makes the most, at the line that set its spacing */
+        int big = 0, slot = 0;
+        double most = -1;
+        for (int b = 0; b < def->n_blocks; b++) {
+            double nb = 1;
+            for (int a = 0; a < dim; a++) nb *= (double)sph_block_nodes(def, b, a);
+            if (nb > most) most = nb, big = b;
+        }
+        for (int i = 0; i < sph_scene_key_count && strcmp(sph_scene_keys[i].name, "spacing") != 0; i++)
+            slot += strcmp(sph_scene_keys[i].section, "fluid") == 0;
+        const sph_block_def *blk = &def->blocks[big];
+        char loc[300];
+        origin_text(def, blk->origin[slot].line ? blk->origin[slot].line : blk->line, loc, sizeof loc);
         return sph_fail(err, SPH_ERR_MEMORY,
-                        "%s: the fluid blocks make %.3g particles, more than memory allows (at most %.0f); raise "
-                        "[fluid] spacing or shrink the blocks",
-                        def->file, count, SPH_MAX_PARTICLES);
+                        "%s: [fluid %s] spacing = %g m: the fluid blocks make %.3g particles, more than memory "
+                        "allows (at most %.0f); raise the spacing or shrink the blocks",
+                        loc, blk->name, blk->spacing, count, SPH_MAX_PARTICLES);
+    }
     if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)) &&
         ((def->effects & SPH_EFFECT(WALLS)) && def->wall_model == SPH_WALL_PARTICLES)) {
         char loc[300];
