@@ -453,6 +453,33 @@ Test(lesson, export_3_pressure_gradient)
     test_remove_dir(dir);
 }
 
+/* The full export (not --quick) runs Mueller's pair in the pool for the
+ * scene's 2 s without viscosity; its energy grows until the watchdog stops
+ * it (t = 1.04 s). That stop is the lesson's result, not a failed export:
+ * exit 0, and the report gives the energy and the time it was stopped at. */
+Test(lesson, export_3_full_reports_the_watchdog_stop, .timeout = 600)
+{
+    const char *dir = test_temp_dir("lesson");
+    char args[256];
+    snprintf(args, sizeof args, "lesson 3 --export %s --quiet", dir);
+    int rc = test_sphlab(args, out, sizeof out);
+    cr_assert(rc == 0, "sphlab %s exited %d:\n%s", args, rc, out);
+    char path[512];
+    snprintf(path, sizeof path, "%s/report.md", dir);
+    char *md = read_all(path);
+    cr_assert(md, "no report.md");
+    cr_expect(strstr(md, "J/m with poly6 / spiky (Mueller's pair)") && strstr(md, "stopped by the watchdog"),
+              "the report does not give Mueller's run and its stop:\n%.2000s", md);
+    cr_expect(!strstr(md, "A run failed"), "the report names a failed run");
+    free(md);
+    snprintf(path, sizeof path, "%s/report.fr.md", dir);
+    md = read_all(path);
+    cr_assert(md, "no report.fr.md");
+    cr_expect(strstr(md, "arrêté par le chien de garde"), "report.fr.md does not say the run was stopped");
+    free(md);
+    test_remove_dir(dir);
+}
+
 Test(lesson, export_4_viscosity)
 {
     const char *dir = export_lesson(4);
