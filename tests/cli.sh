@@ -398,6 +398,10 @@ done
 for what in ladder scaling solvers machine levels; do
     grep -q "^sphlab bench [a-z|]*$what" README.md && ok || bad "README.md: no sphlab bench $what"
 done
+# docs/scene-format.md's --set example is the message the program prints
+want=$(grep "^sphlab: --set: \[kernels\] h = '-0.1'" docs/scene-format.md)
+got=$(sph check lessons/scenes/dam-break-2d.ini --set kernels.h=-0.1 2>&1)
+[ -n "$want" ] && [ "$want" = "$got" ] && ok || bad "docs/scene-format.md: the --set example says '$want', check prints '$got'"
 want=$(sed -n '/^\$ printf .*bad.ini/{n;p;}' README.md)
 got=$(cd "$tmp" && printf '[kernels]\nh = -0.04\n' > bad.ini && sph run bad.ini 2>&1)
 [ -n "$want" ] && [ "$want" = "$got" ] && ok || bad "README.md: the refused scene's message is '$want', check prints '$got'"
