@@ -196,7 +196,7 @@ void lx_block_end(lx *x);
  * if a placeholder has no value. Marks the values it uses. */
 bool lx_report_write(lx *x, const char *tmpl_path, FILE *out);
 /* The report's Markdown (the subset the templates use) as an HTML page (lesson_html.c). */
-void lx_html_write(const char *md, const char *title, FILE *out);
+void lx_html_write(const char *md, const char *title, const char *lang, FILE *out); /* lang: "en", "fr" */
 /* Values the template just filled did not use (each named on stderr), then
  * clears the marks for the next template. */
 int lx_values_unused(lx *x, const char *what);
