@@ -325,6 +325,9 @@ sph check "$tmp/nu0.ini" 2>&1 | grep -q "warning: no viscosity with \[kernels\] 
 # keys: each section once (a section whose keys sit in two runs of the table was printed twice)
 dup=$(sph keys | grep '^\[' | sort | uniq -d)
 [ -z "$dup" ] && ok || bad "sphlab keys prints a section more than once: $dup"
+# the sections a scene names NAME are headed as it writes them, [fluid NAME] and [obstacle NAME]
+sph keys | grep -q '^\[obstacle NAME\]$' && sph keys | grep -q '^\[fluid NAME\]$' && ok ||
+    bad "sphlab keys: want the headings [fluid NAME] and [obstacle NAME]"
 
 # usage errors: the error on the first line, then a short hint, not the whole help; the nearest name for a typo
 sph rendr > "$tmp/u.txt" 2>&1; rc=$?
