@@ -76,10 +76,40 @@ static const char *blocks_overlap(const sph_scene_def *def, char *buf, size_t n)
     return NULL;
 }
 
+static const char *origin_text(const sph_scene_def *def, int line, char *buf, size_t n);
+
+/* A [physics] key the file (or --set) gives that the scene's choices leave
+ * unread: said, since the run is then not the one written (a csf drop given
+ * surface_tension_coefficient ran at the default sigma). */
+static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
+{
+    const struct {
+        const char *key;
+        bool unread;
+        const char *reader;
+    } keys[] = {
+        {"surface_tension_coefficient", def->surface_tension != SPH_STENSION_AKINCI,
+         "only surface_tension = akinci reads it (its gamma; csf's coefficient is [physics] sigma)"},
+        {"sigma", def->surface_tension != SPH_STENSION_CSF, "only surface_tension = csf reads it"},
+        {"delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
+        {"tait_gamma", def->eos != SPH_EOS_TAIT, "only eos = tait reads it"},
+    };
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+        int i = key_index("physics", keys[k].key);
+        if (i < 0 || def->origin[i].line == 0 || !keys[k].unread) continue;
+        char loc[300];
+        snprintf(buf, n, "%s: [physics] %s is set but this scene does not use it: %s",
+                 origin_text(def, def->origin[i].line, loc, sizeof loc), keys[k].key, keys[k].reader);
+        return buf;
+    }
+    return NULL;
+}
+
 const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n)
 {
     if (sph_scene_ignored_z(def, buf, n)) return buf; /* first: the scene is not the one written */
     if (blocks_overlap(def, buf, n)) return buf;
+    if (unread_key(def, buf, n)) return buf;
     double nb = sph_scene_neighbour_estimate(def);
     double count = sph_scene_particle_count(def);
     if (def->n_blocks == 0 || !(def->effects & (SPH_EFFECT(DENSITY) | SPH_EFFECT(PRESSURE) | SPH_EFFECT(VISCOSITY))))
