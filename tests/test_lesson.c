@@ -387,7 +387,40 @@ Test(lesson, export_2_density_summation)
     double mid = field(c.line[c.nlines / 2], 1);
     cr_expect(mid > 1000 && mid < 1030, "interior density %g", mid);
     free(c.text);
-    check_csv(dir, "density-points.csv", "wall_model,h_over_spacing,particle,rho,error_percent", 18, NULL);
+    check_csv(dir, "density-points.csv", "wall_model,h_over_spacing,particle,rho,error_percent", 18, &c);
+    /* the lesson's texts quote the floor and the corner with volume walls at h = 2 spacings (the same
+     * at --quick: the density before any step) */
+    double floor_rho = 0, corner_rho = 0;
+    for (int i = 1; i < c.nlines; i++) {
+        if (strncmp(c.line[i], "volume,2,floor (wall),", 22) == 0) floor_rho = field(c.line[i], 3);
+        if (strncmp(c.line[i], "volume,2,corner floor / left wall,", 34) == 0) corner_rho = field(c.line[i], 3);
+    }
+    free(c.text);
+    cr_assert(floor_rho > 0 && corner_rho > 0, "no volume floor or corner row at h = 2 spacings");
+    const char *texts[2][3] = {{"lessons/02-density-summation/README.md", "At the floor, `volume` gives ",
+                                "in the bottom-left corner "},
+                               {"lessons/02-density-summation/README.fr.md", "Au fond, `volume` donne ",
+                                "dans le coin en bas à gauche, "}};
+    for (int t = 0; t < 2; t++) {
+        char *text = read_all(texts[t][0]);
+        cr_assert(text, "%s is missing", texts[t][0]);
+        /* one line, one space between words, decimal commas as points */
+        size_t m = 0;
+        for (const char *q = text; *q; q++) {
+            char ch = *q == '\n' ? ' ' : *q == ',' && q[1] >= '0' && q[1] <= '9' ? '.' : *q;
+            if (ch != ' ' || (m > 0 && text[m - 1] != ' ')) text[m++] = ch;
+        }
+        text[m] = '\0';
+        const double want[2] = {floor_rho, corner_rho};
+        for (int k = 0; k < 2; k++) {
+            const char *needle = texts[t][1 + k], *at = strstr(text, needle);
+            cr_expect(at, "%s: no '%s'", texts[t][0], needle);
+            if (at)
+                cr_expect(fabs(strtod(at + strlen(needle), NULL) - want[k]) < 0.051, "%s: '%s%.6s...', the export: %.1f",
+                          texts[t][0], needle, at + strlen(needle), want[k]);
+        }
+        free(text);
+    }
     check_png(dir, "density-profile.png", 1000, 650);
     check_pdf(dir, "density-profile.pdf");
     check_png(dir, "pool-walls.png", 1000, 600);
@@ -417,6 +450,33 @@ Test(lesson, export_3_pressure_gradient)
         cr_expect(field(c.line[i], 4) < 1e-5, "momentum not conserved: %s", c.line[i]);
     free(c.text);
     check_png(dir, "pressure.png", 1000, 560);
+    test_remove_dir(dir);
+}
+
+/* The full export (not --quick) runs Mueller's pair in the pool for the
+ * scene's 2 s without viscosity; its energy grows until the watchdog stops
+ * it (t = 1.04 s). That stop is the lesson's result, not a failed export:
+ * exit 0, and the report gives the energy and the time it was stopped at. */
+Test(lesson, export_3_full_reports_the_watchdog_stop, .timeout = 600)
+{
+    const char *dir = test_temp_dir("lesson");
+    char args[256];
+    snprintf(args, sizeof args, "lesson 3 --export %s --quiet", dir);
+    int rc = test_sphlab(args, out, sizeof out);
+    cr_assert(rc == 0, "sphlab %s exited %d:\n%s", args, rc, out);
+    char path[512];
+    snprintf(path, sizeof path, "%s/report.md", dir);
+    char *md = read_all(path);
+    cr_assert(md, "no report.md");
+    cr_expect(strstr(md, "J/m with poly6 / spiky (Mueller's pair)") && strstr(md, "stopped by the watchdog"),
+              "the report does not give Mueller's run and its stop:\n%.2000s", md);
+    cr_expect(!strstr(md, "A run failed"), "the report names a failed run");
+    free(md);
+    snprintf(path, sizeof path, "%s/report.fr.md", dir);
+    md = read_all(path);
+    cr_assert(md, "no report.fr.md");
+    cr_expect(strstr(md, "arrêté par le chien de garde"), "report.fr.md does not say the run was stopped");
+    free(md);
     test_remove_dir(dir);
 }
 

@@ -65,6 +65,10 @@ Test(lesson_report, figures_are_embedded_and_html_is_written)
                   strstr(html, "<h2>") && strstr(html, "</html>"),
               "report.html: %.400s", html);
     cr_expect_null(strstr(html, "{{"), "a placeholder left in the page");
+    cr_expect(strstr(html, "<html lang=\"en\">"), "report.html does not say it is English");
+    snprintf(p, sizeof p, "%s/report.fr.html", dir);
+    html = slurp(p);
+    cr_expect(strstr(html, "<html lang=\"fr\">"), "report.fr.html does not say it is French: %.200s", html);
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     cr_expect_eq(system(cmd), 0);

@@ -418,6 +418,48 @@ Test(plot, series_of_stats_columns)
     test_remove_dir(dir);
 }
 
+/* Three stacked panels without --dim: the energy's and the density's axis
+ * titles name both units and are longer than a panel is tall. Each must stay
+ * beside its own panel: along the strip left of the tick labels, the titles'
+ * ink makes three separate runs, not one title running into the next. */
+Test(plot, series_axis_titles_stay_beside_their_panels)
+{
+    const char *dir = test_temp_dir("plot"), *stats = synthetic_stats();
+    int rc = plot("plot series %s --y ekin,rho_max,max_speed --size 1000x1000 --out %s --quiet", stats, dir);
+    cr_assert_eq(rc, 0, "exit %d: %s", rc, out);
+    char path[256];
+    snprintf(path, sizeof path, "%s/series-ekin-rho_max-max_speed.png", dir);
+    image im = load_png(path);
+    int runs = 0, blank = 1000; /* blank: rows since the last ink */
+    for (int y = 0; y < im.h; y++) {
+        bool ink = false;
+        for (int x = 2; x < 55 && !ink; x++) ink = dark(at(&im, x, y));
+        if (ink && blank > 20) runs++; /* gaps between letters and words are narrower */
+        blank = ink ? 0 : blank + 1;
+    }
+    stbi_image_free(im.px);
+    cr_assert_eq(runs, 3, "%d runs of axis-title ink left of the panels, want 3 (one title per panel)", runs);
+    test_remove_dir(dir);
+}
+
+/* An obstacle's force columns have a unit and share one panel: with the
+ * energy, two densities and the speed that makes four panels, the most a
+ * chart holds (each column its own panel would make five, refused). */
+Test(plot, series_obstacle_force_columns_share_a_panel)
+{
+    const char *dir = test_temp_dir("plot");
+    char csv[4096];
+    size_t m = (size_t)snprintf(csv, sizeof csv, "step,t,ekin,rho_max,max_speed,obstacle_rock_fx,obstacle_rock_fy\n");
+    for (int i = 1; i <= 20; i++)
+        m += (size_t)snprintf(csv + m, sizeof csv - m, "%d,%g,%g,1000,%g,%g,%g\n", i, 0.01 * i, 0.5 * i, 0.1 * i,
+                              2.0 * i, -1.0 * i);
+    const char *stats = test_write_temp(csv, ".csv");
+    int rc = plot("plot series %s --y ekin,rho_max,max_speed,obstacle_rock_fx,obstacle_rock_fy --dim 2 --out %s --quiet",
+                  stats, dir);
+    cr_assert_eq(rc, 0, "exit %d (the force columns took a panel each?): %s", rc, out);
+    test_remove_dir(dir);
+}
+
 Test(plot, series_beside_the_csv_by_default)
 {
     const char *dir = test_temp_dir("plot");

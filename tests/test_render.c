@@ -15,6 +15,7 @@
 
 #include "layout.h"
 #include "render.h"
+#include "sph_walls.h"
 #include "test_util.h"
 
 #define W 320
@@ -88,6 +89,37 @@ Test(render, particles_appear_where_they_are)
     world_px(r, 0.33f, 0.25f, px);
     cr_expect_eq(pixel(img, (int)px[0], (int)px[1]), DOMAIN_BG);
     free(val);
+    free(img);
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+}
+
+/* With wall_model = particles the walls are layers of particles outside the
+ * domain box; a tall tank fills the image's height, and its floor (where the
+ * hydrostatic pressure is read) must be in the picture, not cut off below. */
+Test(render, wall_particles_are_in_the_picture)
+{
+    sph_sim *sim = test_sim("[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=0.3 0.6\n"
+                            "wall_model=particles\n[fluid a]\nmin=0 0\nmax=0.3 0.3\nspacing=0.02\n[kernels]\nh=0.04\n",
+                            1);
+    sph_renderer *r = renderer(SPH_GL_EGL);
+    sph_view v = sph_view_default(sim);
+    uint8_t *img = draw(r, sim, &v);
+    int outside = 0, walls = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (!sph_is_wall(&sim->P, i)) continue;
+        float px[2];
+        world_px(r, sim->P.pos[0][i], sim->P.pos[1][i], px);
+        walls++;
+        if (!(px[0] >= 0 && px[0] < W && px[1] >= 0 && px[1] < H)) {
+            if (!outside)
+                cr_log_error("wall particle %u at (%g, %g) m is drawn at (%g, %g) px, outside %dx%d", i,
+                             sim->P.pos[0][i], sim->P.pos[1][i], px[0], px[1], W, H);
+            outside++;
+        }
+    }
+    cr_expect_gt(walls, 100);
+    cr_expect_eq(outside, 0, "%d of %d wall particles outside the picture", outside, walls);
     free(img);
     sph_renderer_destroy(r);
     sph_sim_destroy(sim);

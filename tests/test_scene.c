@@ -172,6 +172,15 @@ Test(scene, unknown_section)
     EXPECT_LIB("[Scene]\ndimension = 2\n", SPH_ERR_UNKNOWN_SECTION, "x.ini:1", "Scene", "accepted:");
 }
 
+/* A key above every header: the message says so and names the section the
+ * key belongs to, not "unknown section []". */
+Test(scene, key_before_any_section)
+{
+    EXPECT_LIB("h = 0.04\n" BASE2, SPH_ERR_UNKNOWN_SECTION, "x.ini:1", "'h' comes before any [section] header",
+               "[kernels]");
+    EXPECT_LIB("stiffness = 100\n" BASE2, SPH_ERR_UNKNOWN_SECTION, "x.ini:1", "[physics]");
+}
+
 Test(scene, unknown_key)
 {
     EXPECT_LIB(BASE2 "[physics]\nbogus = 1\n", SPH_ERR_UNKNOWN_KEY, "x.ini:11", "bogus", "[physics]",
@@ -306,7 +315,7 @@ Test(scene, more_particles_than_memory_allows)
 {
     const char *text = "[scene]\ndimension = 3\n[domain]\nmin = 0 0 0\nmax = 1 1 1\n"
                        "[fluid a]\nmin = 0 0 0\nmax = 1 1 1\nspacing = 1e-6\n";
-    EXPECT_LIB(text, SPH_ERR_MEMORY, "x.ini", "memory", "spacing");
+    EXPECT_LIB(text, SPH_ERR_MEMORY, "x.ini:9: [fluid a] spacing = 1e-06 m", "memory");
     /* the binary refuses it at once, before allocating anything */
     char path[256], out[4096];
     snprintf(path, sizeof path, "%s", test_write_temp(text, ".ini"));

@@ -128,7 +128,7 @@ const app_opt app_options[] = {
     {"--name", NULL, "BASE", "file name without extension (default: passes, series-COLS,\nkernel-NAME-2d, kernels-2d)",
      PLOT, BASENAME(name)},
     {"--size", NULL, "WxH", "PNG size in pixels (the PDF is WxH/2 points, same layout)", PLOT, SIZE(size, 200, 8000)},
-    {"--dim", NULL, "2|3", "kernels: dimension (default 2); series: units of ekin, rho", PLOT, INT(dim, 2, 3)},
+    {"--dim", NULL, "2|3", "kernels: dimension (default 2); series: units of ekin, rho, obstacle forces", PLOT, INT(dim, 2, 3)},
     {"--h", NULL, "H", "kernels: support radius in m (default: the scene default)", PLOT, DOUBLE(h, 1e-9, 1e6)},
     {"--y", NULL, "C[,C...]", "series: the columns to draw", PLOT, STRING(ycols)},
     {"--x", NULL, "t|step", "series: the x axis (default t)", PLOT, STRING(xcol)},

@@ -36,7 +36,8 @@ int cmd_keys(int argc, char **argv)
         bool seen = false;
         for (int j = 0; j < i && !seen; j++) seen = strcmp(sph_scene_keys[j].section, sec) == 0;
         if (seen) continue;
-        printf("%s[%s%s]\n", i ? "\n" : "", sec, strcmp(sec, "fluid") == 0 ? " NAME" : "");
+        bool named = strcmp(sec, "fluid") == 0 || strcmp(sec, "obstacle") == 0; /* [fluid pool], [obstacle rock] */
+        printf("%s[%s%s]\n", i ? "\n" : "", sec, named ? " NAME" : "");
         for (int j = i; j < sph_scene_key_count; j++) {
             const sph_key *k = &sph_scene_keys[j];
             if (strcmp(k->section, sec) != 0) continue;

@@ -357,6 +357,19 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
     char loc[320];
     where_text(&w, loc, sizeof loc);
     char hint[96];
+    if (!*section) { /* a key above every header: name the sections that have it */
+        char homes[160] = "";
+        size_t used = 0;
+        for (int i = 0; i < sph_scene_key_count && used < sizeof homes; i++)
+            if (strcmp(sph_scene_keys[i].name, name) == 0) {
+                const char *sec = sph_scene_keys[i].section;
+                bool group_sec = strcmp(sec, "fluid") == 0 || strcmp(sec, "obstacle") == 0;
+                used += (size_t)snprintf(homes + used, sizeof homes - used, "%s[%s%s]", used ? " or " : "", sec,
+                                         group_sec ? " NAME" : "");
+            }
+        return sph_fail(err, SPH_ERR_UNKNOWN_SECTION, "%s: key '%.60s' comes before any [section] header (accepted: %s)",
+                        loc, name, *homes ? homes : "keys under a section header, e.g. [kernels]");
+    }
     if (!known_section(section))
         return sph_fail(err, SPH_ERR_UNKNOWN_SECTION, "%s: unknown section [%.60s]%s (accepted: %s)", loc, section,
                         section_hint(section, hint, sizeof hint), section_list());

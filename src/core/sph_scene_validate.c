@@ -41,9 +41,75 @@ double sph_scene_neighbour_estimate(const sph_scene_def *def)
     return def->dim == 3 ? 4.0 / 3.0 * pi * q * q * q : pi * q * q;
 }
 
+/* Two fluid blocks whose boxes share a volume: their particles start on top
+ * of each other, far above rest density, and the fluid bursts apart. Said,
+ * not refused: the hard cases start blocks overlapped on purpose. */
+static const char *blocks_overlap(const sph_scene_def *def, char *buf, size_t n)
+{
+    for (int b = 1; b < def->n_blocks; b++)
+        for (int a = 0; a < b; a++) {
+            const sph_block_def *A = &def->blocks[a], *B = &def->blocks[b];
+            double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, tol = 1e-3 * fmin(A->spacing, B->spacing);
+            bool shared = true;
+            for (int d = 0; d < def->dim; d++) {
+                lo[d] = fmax(A->min[d], B->min[d]);
+                hi[d] = fmin(A->max[d], B->max[d]);
+                shared &= hi[d] - lo[d] > tol; /* touching faces are not an overlap */
+            }
+            if (!shared) continue;
+            char loc[300], box[160];
+            if (B->line > 0)
+                snprintf(loc, sizeof loc, "%s:%d", def->file, B->line);
+            else
+                snprintf(loc, sizeof loc, "%s", def->file);
+            if (def->dim == 3)
+                snprintf(box, sizeof box, "x %g to %g, y %g to %g, z %g to %g m", lo[0], hi[0], lo[1], hi[1], lo[2],
+                         hi[2]);
+            else
+                snprintf(box, sizeof box, "x %g to %g, y %g to %g m", lo[0], hi[0], lo[1], hi[1]);
+            snprintf(buf, n,
+                     "%s: [fluid %s] overlaps [fluid %s] (line %d) over %s: particles there start on top of each "
+                     "other, above rest density, and burst apart; move the blocks apart",
+                     loc, B->name, A->name, A->line, box);
+            return buf;
+        }
+    return NULL;
+}
+
+static const char *origin_text(const sph_scene_def *def, int line, char *buf, size_t n);
+
+/* A [physics] key the file (or --set) gives that the scene's choices leave
+ * unread: said, since the run is then not the one written (a csf drop given
+ * surface_tension_coefficient ran at the default sigma). */
+static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
+{
+    const struct {
+        const char *key;
+        bool unread;
+        const char *reader;
+    } keys[] = {
+        {"surface_tension_coefficient", def->surface_tension != SPH_STENSION_AKINCI,
+         "only surface_tension = akinci reads it (its gamma; csf's coefficient is [physics] sigma)"},
+        {"sigma", def->surface_tension != SPH_STENSION_CSF, "only surface_tension = csf reads it"},
+        {"delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
+        {"tait_gamma", def->eos != SPH_EOS_TAIT, "only eos = tait reads it"},
+    };
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
+        int i = key_index("physics", keys[k].key);
+        if (i < 0 || def->origin[i].line == 0 || !keys[k].unread) continue;
+        char loc[300];
+        snprintf(buf, n, "%s: [physics] %s is set but this scene does not use it: %s",
+                 origin_text(def, def->origin[i].line, loc, sizeof loc), keys[k].key, keys[k].reader);
+        return buf;
+    }
+    return NULL;
+}
+
 const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n)
 {
     if (sph_scene_ignored_z(def, buf, n)) return buf; /* first: the scene is not the one written */
+    if (blocks_overlap(def, buf, n)) return buf;
+    if (unread_key(def, buf, n)) return buf;
     double nb = sph_scene_neighbour_estimate(def);
     double count = sph_scene_particle_count(def);
     if (def->n_blocks == 0 || !(def->effects & (SPH_EFFECT(DENSITY) | SPH_EFFECT(PRESSURE) | SPH_EFFECT(VISCOSITY))))
@@ -217,11 +283,25 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
     sph_error_code oc = sph_obstacles_validate(def, err); /* sph_obstacles.c */
     if (oc) return oc;
     double count = sph_scene_particle_count(def);
-    if (count > SPH_MAX_PARTICLES) /* particle indices are 32-bit, with room for wall particles */
+    if (count > SPH_MAX_PARTICLES) { /* particle indices are 32-bit, with room for wall particles */
+        /* name the block that makes the most, at the line that set its spacing */
+        int big = 0, slot = 0;
+        double most = -1;
+        for (int b = 0; b < def->n_blocks; b++) {
+            double nb = 1;
+            for (int a = 0; a < dim; a++) nb *= (double)sph_block_nodes(def, b, a);
+            if (nb > most) most = nb, big = b;
+        }
+        for (int i = 0; i < sph_scene_key_count && strcmp(sph_scene_keys[i].name, "spacing") != 0; i++)
+            slot += strcmp(sph_scene_keys[i].section, "fluid") == 0;
+        const sph_block_def *blk = &def->blocks[big];
+        char loc[300];
+        origin_text(def, blk->origin[slot].line ? blk->origin[slot].line : blk->line, loc, sizeof loc);
         return sph_fail(err, SPH_ERR_MEMORY,
-                        "%s: the fluid blocks make %.3g particles, more than memory allows (at most %.0f); raise "
-                        "[fluid] spacing or shrink the blocks",
-                        def->file, count, SPH_MAX_PARTICLES);
+                        "%s: [fluid %s] spacing = %g m: the fluid blocks make %.3g particles, more than memory "
+                        "allows (at most %.0f); raise the spacing or shrink the blocks",
+                        loc, blk->name, blk->spacing, count, SPH_MAX_PARTICLES);
+    }
     if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)) &&
         ((def->effects & SPH_EFFECT(WALLS)) && def->wall_model == SPH_WALL_PARTICLES)) {
         char loc[300];

@@ -64,6 +64,21 @@ double sph_wall_particle_count(const sph_scene_def *def)
     return n;
 }
 
+void sph_wall_particles_bounds(const sph_scene_def *def, float lo[3], float hi[3])
+{
+    for (int a = 0; a < 3; a++) lo[a] = (float)def->domain_min[a], hi[a] = (float)def->domain_max[a];
+    if (!sph_scene_wall_particles(def) || def->n_blocks == 0) return;
+    double s = wall_spacing(def);
+    if (!(s > 0) || !isfinite(s)) return;
+    for (int a = 0; a < def->dim; a++) {
+        int64_t inner, layers;
+        axis_nodes(def, a, s, &inner, &layers);
+        /* the outermost node sits (layers - 1/2) s outside; its disc reaches half a spacing further */
+        lo[a] = (float)(def->domain_min[a] - (double)layers * s);
+        hi[a] = (float)(def->domain_max[a] + (double)layers * s);
+    }
+}
+
 /* Side k of the box (xmin, xmax, ymin, ...) is free-slip? */
 static bool side_free(const sph_scene_def *def, int k)
 {

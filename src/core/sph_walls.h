@@ -11,6 +11,10 @@
  * the scene's box makes, and placing them at P[first ..] (after the fluid). */
 double sph_wall_particle_count(const sph_scene_def *def);
 void sph_wall_particles_place(sph_sim *sim, uint32_t first);
+/* [m] the box the particles fill: the domain, widened on each side that has
+ * wall particles by their layers, so a picture framed on it shows the floor's
+ * particles too (the domain itself without wall particles). */
+void sph_wall_particles_bounds(const sph_scene_def *def, float lo[3], float hi[3]);
 /* Is particle i a wall particle? (Never, without wall particles: no field.) */
 #define sph_is_wall(P, i) ((P)->fixed && (P)->fixed[i] != 0.0f)
 /* [kg/m^dim] the density Antuono's diffusion term sees: the carried one of a

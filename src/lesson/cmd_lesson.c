@@ -387,7 +387,7 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
             app_out h;
             ok = md && app_out_open(&h, hpath);
             if (ok) {
-                lx_html_write(md, k == 1 ? L->title_fr : L->title, h.f);
+                lx_html_write(md, k == 1 ? L->title_fr : L->title, k == 1 ? "fr" : "en", h.f);
                 ok = app_out_commit(&h);
             }
             free(md);

@@ -171,6 +171,10 @@ FILE *lx_log_open(lx *x, const char *log, const char *const *argv, const char **
 /* Runs a scene as `sphlab run` would, with the core's functions; fills r (may
  * be NULL). False (a failure, named in the report) if it cannot. */
 bool lx_run_sim(lx *x, const char *log, const lx_run_opts *o, lx_run *r);
+/* The same, where a watchdog stop is a result the lesson reports, not a
+ * failure: *stopped says whether it stopped the run (the files then hold the
+ * steps up to it). */
+bool lx_run_sim_stoppable(lx *x, const char *log, const lx_run_opts *o, lx_run *r, bool *stopped);
 /* ms per step of a pass in a run, or -1. */
 double lx_run_pass(const lx_run *r, const char *pass);
 /* `sphlab plot ...` in process (plot_run): the chart's files in o->out, a log;
@@ -192,7 +196,7 @@ void lx_block_end(lx *x);
  * if a placeholder has no value. Marks the values it uses. */
 bool lx_report_write(lx *x, const char *tmpl_path, FILE *out);
 /* The report's Markdown (the subset the templates use) as an HTML page (lesson_html.c). */
-void lx_html_write(const char *md, const char *title, FILE *out);
+void lx_html_write(const char *md, const char *title, const char *lang, FILE *out); /* lang: "en", "fr" */
 /* Values the template just filled did not use (each named on stderr), then
  * clears the marks for the next template. */
 int lx_values_unused(lx *x, const char *what);

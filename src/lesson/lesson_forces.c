@@ -48,6 +48,7 @@ int lx_lesson3(lx *x)
         {"pool-mueller", "linear", "poly6", "spiky"},
     };
     lx_dump pool[2];
+    bool mueller_stopped = false;
     bool have[2] = {false, false}, have_stats[3] = {false, false, false};
     char statp[3][1100];
     for (int e = 0; e < 3; e++) {
@@ -63,7 +64,9 @@ int lx_lesson3(lx *x)
             ro.sets[1] = kd;
             ro.sets[2] = kp;
         }
-        if (!lx_run_sim(x, lx_fmt("run-%s", pool_runs[e][0]), &ro, NULL)) continue;
+        /* Mueller's pair gains energy: the watchdog may stop it, which is the lesson's result */
+        if (!lx_run_sim_stoppable(x, lx_fmt("run-%s", pool_runs[e][0]), &ro, NULL, e == 2 ? &mueller_stopped : NULL))
+            continue;
         have_stats[e] = true;
         if (e < 2) have[e] = lx_read_dump(x, dpath, &pool[e]);
     }
@@ -97,6 +100,8 @@ int lx_lesson3(lx *x)
                     lx_val(x, "kernel_density", "%s", sph_kernel_names[def.kernel_density]);
                     lx_val(x, "kernel_pressure", "%s", sph_kernel_names[def.kernel_pressure]);
                     lx_val(x, "pool_ekin_mueller", "%.4g", e1[tb.nrows - 1]);
+                    lx_val(x, "pool_t_mueller", "%.3g", t1[tb.nrows - 1]);
+                    lx_val(x, "pool_mueller_stopped", "%s", mueller_stopped ? "yes" : "");
                 }
                 plot_table_free(&tb);
             }

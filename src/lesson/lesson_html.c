@@ -118,9 +118,9 @@ static void row(FILE *o, const char *line, const char *cell)
     fputs("</tr>\n", o);
 }
 
-void lx_html_write(const char *md, const char *title, FILE *o)
+void lx_html_write(const char *md, const char *title, const char *lang, FILE *o)
 {
-    fputs("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>", o);
+    fprintf(o, "<!DOCTYPE html>\n<html lang=\"%s\"><head><meta charset=\"utf-8\"><title>", lang);
     esc(o, title, strlen(title));
     fputs("</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.45}"
           "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:2px 6px}"

@@ -105,6 +105,11 @@ static bool load_into_log(const app_scene_opts *so, sph_scene_def *def, FILE *lf
 
 bool lx_run_sim(lx *x, const char *log, const lx_run_opts *o, lx_run *r)
 {
+    return lx_run_sim_stoppable(x, log, o, r, NULL);
+}
+
+bool lx_run_sim_stoppable(lx *x, const char *log, const lx_run_opts *o, lx_run *r, bool *stopped)
+{
     const char *argv[2 * LX_RUN_MAX_SETS + 16];
     char steps_s[24], threads_s[24];
     run_argv(o, argv, (int)(sizeof argv / sizeof argv[0]), steps_s, threads_s);
@@ -147,11 +152,12 @@ bool lx_run_sim(lx *x, const char *log, const lx_run_opts *o, lx_run *r)
     }
     double wall = sph_now_ms() - t0;
     sph_sim_collect_times(sim); /* the table counts every step */
+    if (stopped) *stopped = sim->alarm.raised;
     if (sim->alarm.raised) {
         char report[4096];
         sph_sim_alarm_report(sim, report, sizeof report);
         fprintf(lf, "sphlab: %s", report);
-        why = "the watchdog stopped it";
+        if (!stopped) why = "the watchdog stopped it";
     }
     if (dump.f) app_dump_write(dump.f, sim);
     bool stats_ok = app_out_commit(&stats), dump_ok = app_out_commit(&dump);

@@ -238,7 +238,14 @@ static void column_axis(const char *name, int dim, char *dst, size_t cap)
         snprintf(dst, cap, "speed [m/s]");
     else if (len > 3 && strcmp(name + len - 3, "_ms") == 0)
         snprintf(dst, cap, "time per step [ms]");
-    else
+    else if (len > 12 && strncmp(name, "obstacle_", 9) == 0 && name[len - 3] == '_' && name[len - 2] == 'f' &&
+             strchr("xyz", name[len - 1])) {
+        /* obstacle_NAME_fx, _fy, _fz: the force the fluid exerts on it (per metre of depth in 2D) */
+        char obstacle[48], esc[64]; /* names are up to 40 characters */
+        snprintf(obstacle, sizeof obstacle, "%.*s", (int)(len - 12 < 40 ? len - 12 : 40), name + 9);
+        plot_escape(esc, sizeof esc, obstacle);
+        snprintf(dst, cap, "force on %.64s [%s]", esc, dim == 2 ? "N/m" : dim == 3 ? "N" : "N/m in 2D, N in 3D");
+    } else
         plot_escape(dst, cap, name);
 }
 

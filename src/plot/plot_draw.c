@@ -212,6 +212,18 @@ static double fit_scale(const char *s, double scale, double width)
     return est > width ? scale * width / est : scale;
 }
 
+/* The same along the page's height: the scale, at most `scale`, at which a
+ * y-axis title s fits in `height` (a fraction of the page height), so the
+ * titles of stacked panels do not run into each other. */
+static double fit_scale_height(const char *s, double scale, double height)
+{
+    PLFLT def, ht, x0, x1, y0, y1;
+    plgchr(&def, &ht);
+    plgspa(&x0, &x1, &y0, &y1);
+    double est = visible_chars(s) * 0.7 * def * scale / (y1 - y0);
+    return est > height ? scale * height / est : scale;
+}
+
 static void page_text(double x, double y, double scale, double just, const char *s)
 {
     plvpor(0, 1, 0, 1);
@@ -474,7 +486,10 @@ static void draw_lines(const void *chart)
          * lowest tick label or the y-axis title. */
         plbox(p == c->np - 1 ? "bcnst" : "bcst", 0, 0, "bcnstvf", 0, 0);
         plot_width(1.0);
-        plmtex("l", 5.2, 0.5, 0.5, ylabel);
+        const double ys = fit_scale_height(ylabel, 1.0, 0.98 * ph);
+        plschr(0, ys);
+        plmtex("l", 5.2 / ys, 0.5, 0.5, ylabel); /* the displacement counts character heights: kept in mm */
+        plschr(0, 1.0);
         if (p == c->np - 1) plmtex("b", 3.2, 0.5, 0.5, c->xlabel);
 
         plot_key e[PLOT_MAX_SERIES];

@@ -21,6 +21,7 @@
 #include "gl_fields.h"
 #include "layout.h"
 #include "renderer_impl.h"
+#include "sph_walls.h" /* sph_wall_particles_bounds: the box the view frames */
 #include "shaders.h" /* generated from shaders/ by src/render/module.mk */
 
 const char *const sph_gl_backend_names[SPH_GL_BACKEND_COUNT] = {
@@ -460,8 +461,8 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     const float fs = r->font.px[SPH_TEXT_SMALL];
     int rc[4], legend_w;
     const bool strip = hud_layout(r, sim, L, v->side_px, rc, &legend_w);
-    float dom_lo[3], dom_hi[3];
-    for (int d = 0; d < 3; d++) dom_lo[d] = (float)sim->def.domain_min[d], dom_hi[d] = (float)sim->def.domain_max[d];
+    float dom_lo[3], dom_hi[3]; /* the domain and the wall particles outside it */
+    sph_wall_particles_bounds(&sim->def, dom_lo, dom_hi);
     sph_camera_fit(&r->cam, sim->dim, dom_lo, dom_hi, &v->orbit, r->w, r->h, rc);
 
     /* overlays (GL-free) */

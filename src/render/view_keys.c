@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "io.h"
+#include "sph_walls.h"
 #include "view_window.h"
 
 /* The key bindings, written once: the help panel, `--help` and
@@ -170,8 +171,8 @@ void viewer_save_scene(viewer *w, const char *path)
 /* Zooms by factor towards the world point at (camera.c). */
 void viewer_zoom_at(viewer *w, float factor, const float at[3])
 {
-    float lo[3], hi[3]; /* the domain in the simulation's frame, as the renderer fits it */
-    for (int d = 0; d < 3; d++) lo[d] = (float)w->sim->def.domain_min[d], hi[d] = (float)w->sim->def.domain_max[d];
+    float lo[3], hi[3]; /* the box the renderer fits: the domain and its wall particles */
+    sph_wall_particles_bounds(&w->sim->def, lo, hi);
     sph_orbit_zoom_at(&w->v.orbit, lo, hi, at, factor);
 }
 
