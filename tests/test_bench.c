@@ -70,7 +70,7 @@ static int level_names(char names[][16], int cap)
 typedef struct csv {
     char *text;
     int nrows, ncols;
-    char *cell[256][80];
+    char *cell[256][128];
 } csv;
 
 static void csv_read(csv *c, const char *path)
@@ -84,7 +84,7 @@ static void csv_read(csv *c, const char *path)
         char *p = line;
         for (;;) {
             char *comma = strchr(p, ',');
-            if (k < 80) c->cell[c->nrows][k++] = p;
+            if (k < 128) c->cell[c->nrows][k++] = p;
             if (!comma) break;
             *comma = '\0';
             p = comma + 1;
@@ -229,6 +229,68 @@ Test(bench, a_level_reaching_no_size_is_reported_not_failed, .timeout = 300)
         cr_assert(strstr(g_out, "  none ") && strstr(g_out, "none: not even the smallest block"),
                   "no size reached, not said so:\n%s", g_out);
     free(c.text);
+}
+
+/* A CSV cell as a number (NaN when empty). */
+static double csv_num(const csv *c, int row, const char *col)
+{
+    const char *v = c->cell[row][csv_col(c, col)];
+    return v[0] ? atof(v) : NAN;
+}
+
+static void assert_near(double got, double want, const char *what)
+{
+    cr_assert(fabs(got - want) <= 2e-5 * fabs(want) + 1e-12, "%s: %.9g, want %.9g", what, got, want);
+}
+
+/* The counted flops of each pass are the formulas' counts times what the
+ * pass walks, on a small known scene: brute force (L0) tests every other
+ * particle at 8 flops, the pair passes do 13, 27 and 26 flops per list entry
+ * (the last two 53 together, also where they share one walk: L12), and a
+ * cell search tests at least every list entry. The columns and the JSON's
+ * figures exist; no assertion on the rates (timings). */
+Test(bench, counted_flops_per_pass_follow_the_formula, .timeout = 300)
+{
+    char dir[64], args[256], path[256];
+    make_dir(dir, sizeof dir);
+    snprintf(args, sizeof args, "bench ladder --quick --quiet --fps 100000 --at 500 --levels L0,L12 --out %s", dir);
+    int rc = test_sphlab(args, g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
+    csv c;
+    snprintf(path, sizeof path, "%s/ladder-3d.csv", dir);
+    csv_read(&c, path);
+    const char *cols[] = {"search_candidates", "search_gflop_per_step", "search_gflops", "search_peak_share",
+                          "force_gflop_per_step", "force_gflops", "force_peak_share", "peak_gflops",
+                          "neighbours_gflop_per_step", "density_gflop_per_step", "density_gflops",
+                          "pressure_force_gflop_per_step", "viscosity_gflop_per_step"};
+    for (size_t k = 0; k < sizeof cols / sizeof cols[0]; k++) (void)csv_col(&c, cols[k]);
+    int r0 = csv_row(&c, "L0"), r12 = csv_row(&c, "L12");
+    cr_assert(r0 > 0 && r12 > 0);
+    double n = csv_num(&c, r0, "n_at"), pairs = csv_num(&c, r0, "pairs_per_step");
+    cr_assert(n > 400 && pairs > 10 * n, "N %g, pairs %g", n, pairs);
+    assert_near(csv_num(&c, r0, "search_candidates"), n * (n - 1), "L0 candidates");
+    assert_near(csv_num(&c, r0, "search_gflop_per_step") * 1e9, 8 * n * (n - 1), "L0 search flops");
+    assert_near(csv_num(&c, r0, "density_gflop_per_step") * 1e9, 13 * pairs, "L0 density flops");
+    assert_near(csv_num(&c, r0, "pressure_force_gflop_per_step") * 1e9, 27 * pairs, "L0 pressure force flops");
+    assert_near(csv_num(&c, r0, "viscosity_gflop_per_step") * 1e9, 26 * pairs, "L0 viscosity flops");
+    assert_near(csv_num(&c, r0, "force_gflop_per_step") * 1e9, 66 * pairs, "L0 forces flops");
+    cr_assert(csv_num(&c, r0, "peak_gflops") > 0);
+    double p12 = csv_num(&c, r12, "pairs_per_step");
+    assert_near(csv_num(&c, r12, "density_gflop_per_step") * 1e9, 13 * p12, "L12 density flops");
+    assert_near((csv_num(&c, r12, "pressure_force_gflop_per_step") + csv_num(&c, r12, "viscosity_gflop_per_step")) *
+                    1e9, 53 * p12, "L12 pressure force + viscosity flops");
+    cr_assert(csv_num(&c, r12, "search_candidates") >= p12, "L12: %g candidates for %g list entries",
+              csv_num(&c, r12, "search_candidates"), p12);
+    cr_assert(isnan(csv_num(&c, r12, "search_gflop_per_step")), "Verlet lists: no search count per step");
+    free(c.text);
+    snprintf(path, sizeof path, "%s/ladder-3d.json", dir);
+    char *json = slurp(path);
+    const char *keys[] = {"\"machine\": {", "\"fma_gflops_1_core\"", "\"pass_flops\": {", "\"per\": \"candidate\"",
+                          "\"per\": \"list entry\"", "\"flops_per\": 13", "\"flops_per\": 27", "\"force_peak_share\"",
+                          "\"search_candidates\""};
+    for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
+        cr_assert(strstr(json, keys[k]), "JSON: no %s", keys[k]);
+    free(json);
 }
 
 /* A level that computes something else (a larger h) is caught and flagged,

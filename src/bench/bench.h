@@ -108,6 +108,9 @@ typedef struct bench_meas {
     const char *timing;             /* a backend's way of timing passes (sph_backend.timing); NULL on the CPU */
     double peak_rss;                /* [B] the process's peak resident size so far (getrusage ru_maxrss),
                                        taken after the timed steps: at a large N, this level's own */
+    double candidates;              /* distance tests of one build of the lists (bench_flops.c); NAN if unknown */
+    bool fused;                     /* pressure force and viscosity in one walk (their flops in the first) */
+    float skin;                     /* [1] Verlet skin in h: > 0, the lists are not built every step */
 } bench_meas;
 
 /* Makes the simulation of size k, runs one warm-up step, then times
@@ -124,6 +127,20 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
 #define BENCH_BUSY 0.25
 bool bench_measure_retry(const bench_config *cfg, const bench_level *L, int k, const bench_plan *plan, double fps,
                          int attempts, bench_meas *out, char *why, size_t n);
+
+/* ---- counted operations (bench_flops.c) ----------------------------------- */
+
+/* Flops per neighbour-list entry of a pair pass (0 for the others), per
+ * distance test of the search; the counts and how they were made are in
+ * bench_flops.c. */
+double bench_flops_per_entry(int pass, bool fused);
+double bench_flops_per_candidate(void);
+/* Fills m's candidates, fused and skin from a simulation after its steps. */
+void bench_flops_of(const sph_sim *sim, bench_meas *m);
+/* Counted flops of each pass in one step (NAN: not counted): list entries x
+ * flops per entry for the pair passes, candidates x flops per test for the
+ * neighbours pass (not with Verlet lists: not built every step). */
+void bench_pass_flops(const bench_meas *m, double flops[SPH_PASS_COUNT]);
 
 /* ---- checks ---------------------------------------------------------------- */
 

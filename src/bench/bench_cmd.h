@@ -55,6 +55,9 @@ typedef struct level_result {
     bench_meas at;             /* at the fixed N */
     bool at_ok;
     double search_ms, force_ms, search_rate, force_rate; /* rates: pairs per second per core */
+    double flops[SPH_PASS_COUNT];  /* counted flops of each pass in one step (bench_pass_flops), NAN: none */
+    double search_gflops, force_gflops; /* [GFLOP/s] counted flops over the search's / pair passes' time */
+    double peak_gflops;        /* [GFLOP/s] the machine's measured FMA throughput on this level's threads */
     bench_diff small, large;   /* checks */
     bool check_ok;
     double others;             /* cores other processes kept busy while this level was measured */
@@ -77,6 +80,7 @@ typedef struct ladder_meta {
     char gl_device[256]; /* the GL levels' device, or why none could be made */
     const char *gl_timing; /* how the GL levels' pass times were measured (sph_backend.timing), or NULL */
     bool all_pass;
+    bench_machine machine; /* its quick measurement at the start: the peak the GFLOP/s are set against */
 } ladder_meta;
 
 /* One run of the ladder: a result per selected level, in o->sel's order. */
@@ -98,6 +102,8 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
 /* DIR/ladder-Nd.{csv,json,png,pdf}; argv: the command line the JSON names. */
 bool bench_ladder_write(const bench_opts *o, const bench_ladder *lad, int argc, char **argv);
 const char *bench_check_word(const level_result *r); /* PASS, FAIL, SKIP or - */
+/* Counted flops and GFLOP/s of a measured level against the machine's peak (bench_ladder.c). */
+void bench_level_flops(level_result *r, const bench_machine *m);
 
 /* `sphlab bench scaling` (bench_scaling.c). */
 int bench_cmd_scaling(bench_opts *o);

@@ -95,6 +95,22 @@ static void fill_rates(level_result *r)
     r->force_rate = r->force_ms > 0 ? r->at.pairs / (r->force_ms / 1e3) / t : 0;
 }
 
+void bench_level_flops(level_result *r, const bench_machine *m)
+{
+    bench_pass_flops(&r->at, r->flops);
+    double force = 0;
+    bool any = false;
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (is_pair_pass(p) && isfinite(r->flops[p])) force += r->flops[p], any = true;
+    double search = r->flops[SPH_PASS_NEIGHBOURS];
+    r->search_gflops = r->search_ms > 0 && isfinite(search) ? search / (r->search_ms * 1e6) : NAN;
+    r->force_gflops = r->force_ms > 0 && any ? force / (r->force_ms * 1e6) : NAN;
+    /* the FMA loop's throughput on as many threads as the level ran */
+    int t = r->at.threads > 0 ? r->at.threads : 1;
+    r->peak_gflops = t >= m->cores ? m->fma_gflops[1] : t * m->fma_gflops[0];
+    if (!(r->peak_gflops > 0)) r->peak_gflops = NAN;
+}
+
 /* The reference states, made when first needed. */
 typedef struct ref_cache {
     int level, k;
@@ -155,6 +171,9 @@ int bench_ladder_measure(const bench_opts *o, bench_ladder *lad)
     bench_cpu cpu0, cpu1;
     bench_cpu_now(&cpu0);
     meta.ghz0 = bench_clock_probe();
+    /* the float peak the counted GFLOP/s are set against: the quick form, about 2 s */
+    bench_progress("the machine's float peak and bandwidth (quick) ...");
+    bench_machine_measure(&meta.machine, true);
 
     int ref_small = bench_level_find(BENCH_REF_SMALL), ref_large = bench_level_find(BENCH_REF_LARGE);
     if (ref_small < 0 || ref_large < 0) {
@@ -231,6 +250,7 @@ int bench_ladder_measure(const bench_opts *o, bench_ladder *lad)
             r->check_ok = false;
         } else {
             fill_rates(r);
+            bench_level_flops(r, &meta.machine);
             if (bench_level_gl(L) && r->at.timing) meta.gl_timing = r->at.timing;
         }
         bench_cpu_now(&c1);

@@ -84,6 +84,7 @@ bool bench_measure(const bench_config *cfg, const bench_level *L, int k, const b
         out->pairs = sim->backend ? NAN
                      : sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start ? (double)sim->S.nbr_start[sim->n]
                                                                                  : 0;
+        bench_flops_of(sim, out); /* after the timed steps: not in their time */
     }
     struct rusage ru;
     out->peak_rss = getrusage(RUSAGE_SELF, &ru) == 0 ? (double)ru.ru_maxrss * 1024.0 : NAN; /* ru_maxrss: KiB */

@@ -31,6 +31,30 @@ const char *bench_check_word(const level_result *r)
     return r->check_ok ? "PASS" : "FAIL";
 }
 
+/* Passes with a counted flop figure (bench_flops.c): the neighbours pass and the pair passes. */
+static bool counted_pass(int p)
+{
+    return p == SPH_PASS_NEIGHBOURS || p == SPH_PASS_DENSITY || p == SPH_PASS_PRESSURE_FORCE ||
+           p == SPH_PASS_VISCOSITY;
+}
+
+/* The pair passes' counted flops in one step, NAN if none. */
+static double force_flops(const level_result *r)
+{
+    double sum = 0;
+    bool any = false;
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (counted_pass(p) && p != SPH_PASS_NEIGHBOURS && isfinite(r->flops[p])) sum += r->flops[p], any = true;
+    return any ? sum : NAN;
+}
+
+/* A pass's counted flops over its own median time [GFLOP/s]; NAN if none or if it took no time. */
+static double pass_gflops(const level_result *r, int p)
+{
+    double ms = r->at.pass_ms[p];
+    return isfinite(r->flops[p]) && ms > 0 && r->flops[p] > 0 ? r->flops[p] / (ms * 1e6) : NAN;
+}
+
 void bench_csv_num(FILE *f, double v, const char *fmt)
 {
     fputc(',', f);
@@ -43,9 +67,14 @@ static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *r
     fprintf(f, "level,description,backend,threads,max_n,capped,steps_per_s_at_max,speedup,n_at,ms_per_step,pairs_per_step,"
                "search_ms,force_ms,search_pairs_per_s_core,force_pairs_per_s_core,check,check_ref,check_n,sets_differ,"
                "edge_pairs,max_dx_m,max_dv_m_s,max_drho,check_at_ref,check_at_n,sets_differ_at,edge_pairs_at,"
-               "max_dx_at_m,max_dv_at_m_s,max_drho_at,others_cores,peak_rss_bytes_per_particle");
+               "max_dx_at_m,max_dv_at_m_s,max_drho_at,others_cores,peak_rss_bytes_per_particle,search_candidates,"
+               "search_gflop_per_step,search_gflops,search_peak_share,force_gflop_per_step,force_gflops,"
+               "force_peak_share,peak_gflops");
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (pass_used[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (pass_used[p] && counted_pass(p)) fprintf(f, ",%s_gflop_per_step,%s_gflops", sph_passes[p]->name,
+                                                     sph_passes[p]->name);
     fputc('\n', f);
     double prev = NAN;
     for (int s = 0; s < o->nsel; s++) {
@@ -86,8 +115,21 @@ static void write_ladder_csv(FILE *f, const bench_opts *o, const level_result *r
         bench_csv_num(f, r->large.done ? r->large.drho : NAN, "%.3g");
         bench_csv_num(f, r->others, "%.3f");
         bench_csv_num(f, r->at_ok && r->at.n ? r->at.peak_rss / r->at.n : NAN, "%.1f");
+        bench_csv_num(f, r->at_ok ? r->at.candidates : NAN, "%.0f");
+        bench_csv_num(f, r->at_ok ? r->flops[SPH_PASS_NEIGHBOURS] / 1e9 : NAN, "%.6g");
+        bench_csv_num(f, r->at_ok ? r->search_gflops : NAN, "%.4g");
+        bench_csv_num(f, r->at_ok ? r->search_gflops / r->peak_gflops : NAN, "%.4g");
+        bench_csv_num(f, r->at_ok ? force_flops(r) / 1e9 : NAN, "%.6g");
+        bench_csv_num(f, r->at_ok ? r->force_gflops : NAN, "%.4g");
+        bench_csv_num(f, r->at_ok ? r->force_gflops / r->peak_gflops : NAN, "%.4g");
+        bench_csv_num(f, r->at_ok ? r->peak_gflops : NAN, "%.4g");
         for (int p = 0; p < SPH_PASS_COUNT; p++)
             if (pass_used[p]) bench_csv_num(f, r->at_ok ? r->at.pass_ms[p] : NAN, "%.6g");
+        for (int p = 0; p < SPH_PASS_COUNT; p++)
+            if (pass_used[p] && counted_pass(p)) {
+                bench_csv_num(f, r->at_ok ? r->flops[p] / 1e9 : NAN, "%.6g");
+                bench_csv_num(f, r->at_ok ? pass_gflops(r, p) : NAN, "%.4g");
+            }
         fputc('\n', f);
     }
 }
@@ -175,6 +217,26 @@ static bool json_level(cJSON *levels, const bench_opts *o, const level_result *r
     cJSON *pass = json_ok(&ok, cJSON_AddObjectToObject(lv, "pass_ms"));
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (r->at_ok && isfinite(r->at.pass_ms[p])) ok &= sph_json_add_num(pass, sph_passes[p]->name, r->at.pass_ms[p], 6);
+    ok &= json_fixed(lv, "search_candidates", r->at_ok ? r->at.candidates : NAN, 0);
+    ok &= sph_json_add_num(lv, "search_gflops", r->at_ok ? r->search_gflops : NAN, 4);
+    ok &= sph_json_add_num(lv, "search_peak_share", r->at_ok ? r->search_gflops / r->peak_gflops : NAN, 4);
+    ok &= sph_json_add_num(lv, "force_gflops", r->at_ok ? r->force_gflops : NAN, 4);
+    ok &= sph_json_add_num(lv, "force_peak_share", r->at_ok ? r->force_gflops / r->peak_gflops : NAN, 4);
+    ok &= sph_json_add_num(lv, "peak_gflops", r->at_ok ? r->peak_gflops : NAN, 4);
+    /* per counted pass: flops in one step, flops per list entry or per candidate, GFLOP/s */
+    cJSON *pf = json_ok(&ok, cJSON_AddObjectToObject(lv, "pass_flops"));
+    for (int p = 0; p < SPH_PASS_COUNT && pf; p++) {
+        if (!r->at_ok || !counted_pass(p) || !isfinite(r->at.pass_ms[p])) continue;
+        cJSON *e = json_ok(&ok, cJSON_AddObjectToObject(pf, sph_passes[p]->name));
+        if (!e) break;
+        bool search = p == SPH_PASS_NEIGHBOURS;
+        json_ok(&ok, cJSON_AddStringToObject(e, "per", search ? "candidate" : "list entry"));
+        ok &= sph_json_add_num(e, "flops_per", search ? bench_flops_per_candidate()
+                                                      : bench_flops_per_entry(p, r->at.fused), 4);
+        ok &= json_fixed(e, "flops_per_step", r->flops[p], 0);
+        ok &= sph_json_add_num(e, "gflops", pass_gflops(r, p), 4);
+        ok &= sph_json_add_num(e, "peak_share", pass_gflops(r, p) / r->peak_gflops, 4);
+    }
     json_ok(&ok, cJSON_AddStringToObject(lv, "check", bench_check_word(r)));
     ok &= json_diff(lv, "check_small", &r->small, m->n_check);
     ok &= json_diff(lv, "check_at", &r->large, m->n_at);
@@ -204,6 +266,11 @@ static cJSON *ladder_json(const bench_opts *o, const level_result *res, const la
     ok &= json_fixed(root, "other_processes_cores", m->others, 3);
     ok &= json_fixed(root, "clock_ghz_start", m->ghz0, 3);
     ok &= json_fixed(root, "clock_ghz_end", m->ghz1, 3);
+    cJSON *mj = bench_machine_to_json(&m->machine); /* the quick measurement the peak shares use */
+    if (!mj || !cJSON_AddItemToObject(root, "machine", mj)) {
+        cJSON_Delete(mj);
+        ok = false;
+    }
     sph_scene_def def, cdef;
     char why[256];
     if (bench_scene_def(&o->cfg, NULL, bench_k_near(o->cfg.dim, m->n_at), false, &def, why, sizeof why) &&
@@ -317,21 +384,37 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
                "ms/step and passes: medians at N = %s; others: cores that other processes kept busy meanwhile\n",
                fps, nat);
         fprintf(out, "\nwhere the time goes at N = %s (pairs: neighbour-list entries per step, i->j and j->i):\n", nat);
-        fprintf(out, "%-5s %12s %10s %16s %10s %16s %10s\n", "level", "pairs", "search ms", "pairs/s/core", "forces ms",
-               "pairs/s/core", "peak B/N");
+        fprintf(out, "%-5s %12s %10s %12s %7s %6s %10s %12s %7s %6s %8s\n", "level", "pairs", "search ms",
+                "pairs/s/core", "GFLOP/s", "%peak", "forces ms", "pairs/s/core", "GFLOP/s", "%peak", "peak B/N");
         for (int s = 0; s < o->nsel; s++) {
             const level_result *r = &res[s];
             if (!r->at_ok) continue;
             if (r->at.pairs > 0)
-                fprintf(out, "%-5s %12.0f %10.3f %16.3g %10.3f %16.3g %10.0f\n", bench_levels[o->sel[s]].name,
-                        r->at.pairs, r->search_ms, r->search_rate, r->force_ms, r->force_rate,
-                        r->at.peak_rss / r->at.n);
+            {
+                char sg[16] = "-", sp[16] = "-", fg[16] = "-", fp[16] = "-";
+                if (isfinite(r->search_gflops)) snprintf(sg, sizeof sg, "%.3g", r->search_gflops);
+                if (isfinite(r->search_gflops / r->peak_gflops))
+                    snprintf(sp, sizeof sp, "%.2g", 100 * r->search_gflops / r->peak_gflops);
+                if (isfinite(r->force_gflops)) snprintf(fg, sizeof fg, "%.3g", r->force_gflops);
+                if (isfinite(r->force_gflops / r->peak_gflops))
+                    snprintf(fp, sizeof fp, "%.2g", 100 * r->force_gflops / r->peak_gflops);
+                fprintf(out, "%-5s %12.0f %10.3f %12.3g %7s %6s %10.3f %12.3g %7s %6s %8.0f\n",
+                        bench_levels[o->sel[s]].name, r->at.pairs, r->search_ms, r->search_rate, sg, sp, r->force_ms,
+                        r->force_rate, fg, fp, r->at.peak_rss / r->at.n);
+            }
             else /* a GL level: no lists, its passes walk the cells */
-                fprintf(out, "%-5s %12s %10.3f %16s %10.3f %16s %10.0f\n", bench_levels[o->sel[s]].name, "-",
-                        r->search_ms, "-", r->force_ms, "-", r->at.peak_rss / r->at.n);
+                fprintf(out, "%-5s %12s %10.3f %12s %7s %6s %10.3f %12s %7s %6s %8.0f\n", bench_levels[o->sel[s]].name,
+                        "-", r->search_ms, "-", "-", "-", r->force_ms, "-", "-", "-", r->at.peak_rss / r->at.n);
         }
         fprintf(out, "search: hash, sort, reorder, offsets, neighbours; forces: density, pressure_force, viscosity\n"
-               "(GL levels build no lists: density and the forces walk the cells themselves, so no pair count)\n"
+                "GFLOP/s: counted flops over the time (search: %g per candidate of the 3^d cells, not counted with\n"
+                "Verlet lists, built on some steps only; forces: %g, %g and %g per list entry, the square root and\n"
+                "the division one each: src/bench/bench_flops.c); %%peak: of the FMA loop's measured %.3g GFLOP/s\n"
+                "on 1 core, %.3g on %d (`sphlab bench machine --quick`, at the start)\n",
+                bench_flops_per_candidate(), bench_flops_per_entry(SPH_PASS_DENSITY, false),
+                bench_flops_per_entry(SPH_PASS_PRESSURE_FORCE, false), bench_flops_per_entry(SPH_PASS_VISCOSITY, false),
+                meta.machine.fma_gflops[0], meta.machine.fma_gflops[1], meta.machine.cores);
+        fprintf(out, "(GL levels build no lists: density and the forces walk the cells themselves, so no pair count)\n"
                "peak B/N: the process's peak resident size (getrusage) over N, after the level's timed steps: a\n"
                "bound on the level's bytes per particle (it includes what earlier levels and checks touched)\n");
         fprintf(out, "\nchecks: neighbour sets identical after 1 step (a pair within %g h of r = h is rounding's call and\n"

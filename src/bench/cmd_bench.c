@@ -23,6 +23,7 @@ static const app_cmd_spec spec = {
     .synopsis = "usage: sphlab bench WHAT [options]\n"
                 "  ladder      for each level of the ladder: the largest N that runs at F steps/s or more\n"
                 "              (bisection over block sizes, median of repeats), ms per pass at a fixed N,\n"
+                "              counted GFLOP/s against the machine's measured float peak (its quick form),\n"
                 "              and a check against the reference level; table, CSV, JSON, chart\n"
                 "  scaling     time per step against N for each level (log-log): O(N^2) against O(N)\n"
                 "  solvers     3D dam break (--at N, default 50,000): eos at the stiffness that holds a 0.1 %\n"
