@@ -256,9 +256,14 @@ static void correct(sph_sim *sim, bool density)
     }
 }
 
+/* The share of the last step's kappa this solve starts from: SPH_DFSPH_WARM, or with solver_warm_start = on
+ * all of it, times (dt_last / dt)^2 (kappa holds 1/dt^2). */
 static void warm(sph_sim *sim, float *k)
 {
-    for (uint32_t i = 0; i < sim->n; i++) k[i] *= SPH_DFSPH_WARM;
+    const float last = sim->solver.dt_last;
+    float share = SPH_DFSPH_WARM;
+    if (sim->def.solver_warm_start == SPH_ON) share = last > 0 ? (last / sim->dt) * (last / sim->dt) : 0.0f;
+    for (uint32_t i = 0; i < sim->n; i++) k[i] *= share;
 }
 
 static void run(sph_sim *sim)
@@ -306,6 +311,7 @@ static void run(sph_sim *sim)
     s->density_error = error;
     s->iteration = 0;
     s->phase = 0;
+    s->dt_last = sim->dt;
 }
 
 const sph_pass sph_pass_dfsph = {
