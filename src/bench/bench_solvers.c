@@ -7,8 +7,10 @@
  *           bracketed, then split until the bracket is within 10 %; a try
  *           stops as soon as its error can only end above the target, or
  *           when the watchdog fires),
- *   pcisph  and dfsph at solver_tolerance = the target,
- * in R interleaved rounds (--repeats; eos, pcisph, dfsph, eos, ...) so that
+ *   pcisph  and dfsph at solver_tolerance = the target, from p = 0 each step,
+ *   pcisph+ and dfsph+ the same with solver_warm_start = on (pcisph+ also
+ *           pcisph_local_delta = on),
+ * in R interleaved rounds (--repeats; eos, pcisph+, dfsph+, pcisph, dfsph, eos, ...) so that
  * a change of the machine's load hits all three alike; each setting's
  * figures are the medians over the rounds, each ratio the median of the
  * rounds' own ratios with the least and the largest. The error is measured
