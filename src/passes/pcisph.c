@@ -30,13 +30,14 @@
  * IISPH's a_ii (Ihmsen et al. 2014) are per particle; the term G^rho . G^p only where positive (beside a wall
  * the two kernels' sums can point apart, and S_i fell towards 0 as DFSPH's denominator did, dfsph.c). With the
  * prototype's delta a particle in a corner of the box (7 neighbours of 26 in 3D at h = 2 s) is corrected at
- * a fifth of its own rate: on the 3D bench scene the bottom corners held each step's largest error for
- * hundreds of iterations (docs/accuracy.md, section 8).
+ * 42 % of its own rate (its own delta is 2.37 times the prototype's): on the 3D bench scene the bottom
+ * corners held each step's largest error for hundreds of iterations (docs/accuracy.md, section 8).
  * Each step starts from p = 0, or with solver_warm_start = on from the
  * pressure the last step ended with (a warm start). That blew up the 2D dam
- * break of tests/test_solvers.c at dt = 2 ms when it was first tried, before
- * the prediction was clamped into the box as the walls pass will; it no
- * longer does (docs/accuracy.md, section 8, gives what it costs in kinetic energy). */
+ * break of tests/test_solvers.c at dt = 2 ms when an earlier version of this
+ * pass first tried it; it no longer does, and it cuts the iterations 3 to 4
+ * times, but ends that dam break with 9 to 11 % more kinetic energy than the
+ * converged answer (docs/accuracy.md, section 8): off by default. */
 #include "solver.h"
 
 #include <stdio.h>
@@ -208,13 +209,13 @@ static void correct(sph_sim *sim)
 {
     sph_particles *P = &sim->P;
     const int n = (int)sim->n;
-    const float inv_dt2 = 1.0f / (sim->dt * sim->dt), delta = sim->solver.delta * inv_dt2;
+    const float delta = sim->solver.delta / (sim->dt * sim->dt); /* as the GL host's u_value, bit for bit */
     const float rho_r = sim->solver.rho_rest;
     const float floor = sim->def.negative_pressure == SPH_NEGP_CLAMP ? 0.0f : -INFINITY;
     const float *restrict local = sim->def.pcisph_local_delta == SPH_ON ? P->delta_pci : NULL;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
-        const float d_i = local ? local[i] * inv_dt2 : delta;
+        const float d_i = local ? local[i] / (sim->dt * sim->dt) : delta;
         P->p_pci[i] = fmaxf(floor, P->p_pci[i] + d_i * (P->rho_pci[i] - rho_r));
     }
 }
