@@ -39,7 +39,8 @@
  * new neighbours; here both solves use the step's lists, the divergence one
  * first, so the density solve accounts for the positions it changes. Warm
  * start (Bender & Koschier 2017 start each solve from the last step's kappa):
- * solver_warm_start = on (off by default, see SPH_DFSPH_WARM below). rho_r is the lattice's rest density (solver.h); the walls
+ * solver_warm_start = on (off by default, see SPH_DFSPH_WARM below).
+ * rho_r is the lattice's rest density (solver.h); the walls
  * count as the lattice continued behind them (solver.h), in place of the
  * density pass's volume-model term. */
 #include "solver.h"
