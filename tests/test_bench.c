@@ -457,8 +457,9 @@ Test(bench, tiny_solvers_ratios, .timeout = 300)
     cr_assert(strstr(g_out, "window: 0 to 0.006 s simulated"), "no window line:\n%s", g_out);
     cr_assert(strstr(g_out, "the least that holds it"), "no stiffness found:\n%s", g_out);
     cr_assert(strstr(g_out, "at equal error (step max <= 0.1 % for all three): yes"), "not at equal error:\n%s", g_out);
-    const char *names[] = {"\neos ", "\npcisph ", "\ndfsph "};
-    for (int s = 0; s < 3; s++) {
+    /* pcisph+ and dfsph+: the solvers with solver_warm_start (and pcisph_local_delta) on */
+    const char *names[] = {"\neos ", "\npcisph ", "\ndfsph ", "\npcisph+ ", "\ndfsph+ "};
+    for (int s = 0; s < 5; s++) {
         const char *row = strstr(g_out, names[s]);
         cr_assert(row, "no row for%s\n%s", names[s], g_out);
         double v[9], lo, hi;
@@ -477,4 +478,10 @@ Test(bench, tiny_solvers_ratios, .timeout = 300)
                         &r[3], &r[4], &r[5]),
                  6, "ratio line: %.160s", sum);
     for (int i = 0; i < 6; i++) cr_assert(isfinite(r[i]) && r[i] > 0, "ratio line: %.160s", sum);
+    sum = strstr(g_out, "warm start (+): eos / pcisph+ ");
+    cr_assert(sum, "no warm ratio line:\n%s", g_out);
+    cr_assert_eq(sscanf(sum, "warm start (+): eos / pcisph+ %lf (%lf-%lf), eos / dfsph+ %lf (%lf-%lf)", &r[0], &r[1],
+                        &r[2], &r[3], &r[4], &r[5]),
+                 6, "warm ratio line: %.160s", sum);
+    for (int i = 0; i < 6; i++) cr_assert(isfinite(r[i]) && r[i] > 0, "warm ratio line: %.160s", sum);
 }

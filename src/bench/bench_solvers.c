@@ -7,8 +7,10 @@
  *           bracketed, then split until the bracket is within 10 %; a try
  *           stops as soon as its error can only end above the target, or
  *           when the watchdog fires),
- *   pcisph  and dfsph at solver_tolerance = the target,
- * in R interleaved rounds (--repeats; eos, pcisph, dfsph, eos, ...) so that
+ *   pcisph  and dfsph at solver_tolerance = the target, from p = 0 each step,
+ *   pcisph+ and dfsph+ the same with solver_warm_start = on (pcisph+ also
+ *           pcisph_local_delta = on),
+ * in R interleaved rounds (--repeats; eos, pcisph+, dfsph+, pcisph, dfsph, eos, ...) so that
  * a change of the machine's load hits all three alike; each setting's
  * figures are the medians over the rounds, each ratio the median of the
  * rounds' own ratios with the least and the largest. The error is measured
@@ -52,8 +54,13 @@
  * target but not at equal error); every iteration is counted in the cost */
 #define SOLVERS_ITER_CAP 2000
 
-enum { SETTING_EOS, SETTING_PCISPH, SETTING_DFSPH, SETTINGS };
-static const char *const setting_names[SETTINGS] = {"eos", "pcisph", "dfsph"};
+/* pcisph+ and dfsph+: the same solvers with solver_warm_start = on (and for
+ * PCISPH pcisph_local_delta = on), beside the cold ones in the same rounds */
+enum { SETTING_EOS, SETTING_PCISPH, SETTING_DFSPH, SETTING_PCISPH_WARM, SETTING_DFSPH_WARM, SETTINGS };
+static const char *const setting_names[SETTINGS] = {"eos", "pcisph", "dfsph", "pcisph+", "dfsph+"};
+static const char *const setting_solver[SETTINGS] = {"eos", "pcisph", "dfsph", "pcisph", "dfsph"};
+static const char *const setting_keys[SETTINGS] = {
+    "", "", "", "solver_warm_start = on\npcisph_local_delta = on\n", "solver_warm_start = on\n"};
 
 typedef struct solver_run {
     bool ok;            /* ran to the end, the watchdog quiet */
@@ -95,10 +102,11 @@ static bool scene(int setting, double n, double k, double duration, sph_scene_de
              "[domain]\nmin = 0 0 0\nmax = %g %g %g\nwall_damping = 0.3\n"
              "[fluid column]\nmin = 0 0 0\nmax = %g %g %g\nspacing = %g\n"
              "[physics]\nrest_density = 1000\neos = linear\neos_rest = lattice\nstiffness = %g\nviscosity = 0.002\n"
-             "negative_pressure = clamp\npressure_solver = %s\nsolver_tolerance = %g\nsolver_max_iterations = %d\n"
+             "negative_pressure = clamp\npressure_solver = %s\nsolver_tolerance = %g\nsolver_max_iterations = %d\n%s"
              "[kernels]\nh = %g\n[time]\ndt = %g\ncfl = 0.4\n",
              duration, 3 * side[0] * s, 1.5 * side[1] * s, side[2] * s, side[0] * s, side[1] * s, side[2] * s, s,
-             k, setting_names[setting], SOLVERS_TARGET, SOLVERS_ITER_CAP, 2 * s, SOLVERS_DT_CAP);
+             k, setting_solver[setting], SOLVERS_TARGET, SOLVERS_ITER_CAP, setting_keys[setting], 2 * s,
+             SOLVERS_DT_CAP);
     *def = sph_default_scene_def();
     sph_error err;
     if (sph_scene_load_string(ini, "bench-solvers.ini", def, &err) != SPH_ERR_OK ||
@@ -293,8 +301,13 @@ int bench_cmd_solvers(bench_opts *o)
                SOLVERS_K_RATIO, tries, 1e-3 * (sph_now_ms() - t_start));
 
     static solver_run runs[SETTINGS][SOLVERS_ROUNDS_MAX];
+    /* each round: eos, the warm solvers, then the cold ones (at 50,000 particles a cold solve could run to
+     * its cap for minutes: --trace has the warm rows' figures before) */
+    static const int order[SETTINGS] = {SETTING_EOS, SETTING_PCISPH_WARM, SETTING_DFSPH_WARM, SETTING_PCISPH,
+                                        SETTING_DFSPH};
     for (int rep = 0; rep < repeats; rep++)
-        for (int s = 0; s < SETTINGS; s++) {
+        for (int o_ = 0; o_ < SETTINGS; o_++) {
+            const int s = order[o_];
             bench_progress("round %d of %d: %s", rep + 1, repeats, setting_names[s]);
             run_one(s, count, k, duration, threads, 0, o->cfg.watchdog, &runs[s][rep]);
             if (!runs[s][rep].ok) {
@@ -343,6 +356,10 @@ int bench_cmd_solvers(bench_opts *o)
         printf("ratio: eos / pcisph %.2f (%.2f-%.2f), eos / dfsph %.2f (%.2f-%.2f); %.0f particles, %g s simulated\n",
                med[SETTING_PCISPH][C_RATIO], lo[SETTING_PCISPH], hi[SETTING_PCISPH], med[SETTING_DFSPH][C_RATIO],
                lo[SETTING_DFSPH], hi[SETTING_DFSPH], count, duration);
+        printf("warm start (+): eos / pcisph+ %.2f (%.2f-%.2f), eos / dfsph+ %.2f (%.2f-%.2f); pcisph+: "
+               "solver_warm_start and pcisph_local_delta on, dfsph+: solver_warm_start on\n",
+               med[SETTING_PCISPH_WARM][C_RATIO], lo[SETTING_PCISPH_WARM], hi[SETTING_PCISPH_WARM],
+               med[SETTING_DFSPH_WARM][C_RATIO], lo[SETTING_DFSPH_WARM], hi[SETTING_DFSPH_WARM]);
         printf("load %.2f at the start, %.2f at the end (1-minute averages); %.0f s in all\n", load0[0], load1[0],
                1e-3 * (sph_now_ms() - t_start));
     }

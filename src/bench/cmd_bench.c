@@ -29,7 +29,9 @@ static const app_cmd_spec spec = {
                 "  solvers     3D dam break (--at N, default 50,000): eos at the stiffness that holds a 0.1 %\n"
                 "              density error over --time T (the stiffness by bisection on log k), pcisph and\n"
                 "              dfsph at tolerance 0.1 %, --repeats R interleaved rounds: error, steps, iterations,\n"
-                "              ms per simulated second (medians), the ratios (median, least, largest)\n"
+                "              ms per simulated second (medians), the ratios (median, least, largest);\n"
+                "              pcisph+ and dfsph+: the same with [physics] solver_warm_start = on\n"
+                "              (pcisph+ also pcisph_local_delta = on)\n"
                 "  machine     the machine's limits: memory bandwidth (streaming loops), float peak (FMA loop)\n"
                 "  levels      the levels and the scene keys that make each\n"
                 "options:\n",

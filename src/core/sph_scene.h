@@ -230,6 +230,8 @@ typedef struct sph_scene_def {
     float solver_tolerance;     /* [1] pcisph, dfsph: largest relative density error a step may end with */
     int solver_max_iterations;  /* [1] pcisph, dfsph: iterations a solve may take at most */
     float divergence_tolerance; /* [1] dfsph: largest dt |D rho/Dt| / rho_rest the divergence solve may leave */
+    sph_onoff solver_warm_start; /* pcisph, dfsph: each solve starts from the last step's pressure, not from 0 */
+    sph_onoff pcisph_local_delta; /* pcisph: delta from each particle's own neighbourhood, not the full lattice's */
     sph_surface_tension surface_tension; /* none; akinci: Akinci 2013 (passes cohesion, normals, curvature); csf: a
                                             continuum surface force of stated sigma (passes normals, csf) */
     float surface_tension_coefficient;   /* [m^4/(kg s^2)] gamma of surface_tension = akinci (the cohesion pass's

@@ -24,9 +24,20 @@
  *   delta = rho_r^2 / (2 dt^2 m^2 S),  S = (sum_j grad W^rho_ij) . (sum_j grad W^p_ij) + sum_j grad W^rho_ij . grad W^p_ij
  * over the finest block's lattice (Solenthaler & Pajarola's beta = 2 (dt m / rho0)^2, eq. 8), with this
  * scene's two kernels: the density kernel's gradient moves the density, the pressure kernel's the particles.
- * Each step starts from p = 0. Starting from the last step's pressure (a
- * warm start) made the 2D dam break of tests/test_solvers.c blow up at
- * dt = 2 ms: the pressure that had just stopped a compression pushed again. */
+ * pcisph_local_delta = on: delta_i from particle i's own neighbourhood at
+ * the step's predicted positions, S_i = G^rho_i . G^p_i + sum_j grad W^rho_ij . grad W^p_ij with
+ * G_i = sum_j grad W_ij + (rho_r / m) grad(walls' share), as DFSPH's alpha (Bender & Koschier 2017, eq. 12) and
+ * IISPH's a_ii (Ihmsen et al. 2014) are per particle; the term G^rho . G^p only where positive (beside a wall
+ * the two kernels' sums can point apart, and S_i fell towards 0 as DFSPH's denominator did, dfsph.c). With the
+ * prototype's delta a particle in a corner of the box (7 neighbours of 26 in 3D at h = 2 s) is corrected at
+ * 42 % of its own rate (its own delta is 2.37 times the prototype's): on the 3D bench scene the bottom
+ * corners held each step's largest error for hundreds of iterations (docs/accuracy.md, section 8).
+ * Each step starts from p = 0, or with solver_warm_start = on from the
+ * pressure the last step ended with (a warm start). That blew up the 2D dam
+ * break of tests/test_solvers.c at dt = 2 ms when an earlier version of this
+ * pass first tried it; it no longer does, and it cuts the iterations 3 to 4
+ * times, but ends that dam break with 9 to 11 % more kinetic energy than the
+ * converged answer (docs/accuracy.md, section 8): off by default. */
 #include "solver.h"
 
 #include <stdio.h>
@@ -70,6 +81,50 @@ static float delta_unit(const sph_sim *sim, float rho_r)
             }
     double S = dots + sum_r[0] * sum_p[0] + sum_r[1] * sum_p[1] + sum_r[2] * sum_p[2];
     return S > 0 ? (float)((double)rho_r * rho_r / (2.0 * m * m * S)) : 0.0f;
+}
+
+/* delta_i at dt = 1 s from particle i's own neighbourhood at pred (pcisph_local_delta = on, see the top). */
+static void local_deltas(sph_sim *sim)
+{
+    sph_particles *P = &sim->P;
+    const sph_search_data *S = &sim->S;
+    const int n = (int)sim->n, dim = sim->dim;
+    const float rho_r = sim->solver.rho_rest;
+    const bool walls = sph_sim_wall_volume(sim);
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) {
+        /* in mass-weighted form: m^2 S_i, so that delta_i = rho_r^2 / (2 m^2 S_i) */
+        float gr[3] = {0, 0, 0}, gp[3] = {0, 0, 0}, dots = 0;
+        const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+        for (uint32_t e = 0; e < row.n; e++) {
+            const uint32_t j = sph_nbr_at(&row, e);
+            float dx[3] = {0, 0, 0}, r2 = 0;
+            for (int d = 0; d < dim; d++) {
+                dx[d] = sph_solver_dx(sim, P->pred[d][i] - P->pred[d][j], d);
+                r2 += dx[d] * dx[d];
+            }
+            const float r = sqrtf(r2);
+            if (!(r > 0.0f)) continue;
+            const float fr = P->mass[j] * sph_kernel_dw(&sim->k_density, r) / r;
+            const float fp = P->mass[j] * sph_kernel_dw(&sim->k_pressure, r) / r;
+            for (int d = 0; d < dim; d++) {
+                gr[d] += fr * dx[d];
+                gp[d] += fp * dx[d];
+                dots += fr * fp * dx[d] * dx[d];
+            }
+        }
+        if (walls) {
+            float g[3];
+            sph_solver_walls_pred(sim, i, g);
+            for (int d = 0; d < dim; d++) {
+                gr[d] += rho_r * g[d];
+                gp[d] += rho_r * g[d];
+            }
+        }
+        const float den = dots + fmaxf(gr[0] * gp[0] + gr[1] * gp[1] + gr[2] * gp[2], 0.0f);
+        /* no neighbour and no wall: nothing it could push, nothing to correct (its density is its own) */
+        P->delta_pci[i] = den > 0.0f ? rho_r * rho_r / (2.0f * den) : sim->solver.delta;
+    }
 }
 
 /* 1 and 2 above: the pressure acceleration from p_pci, then x_pci. */
@@ -154,10 +209,15 @@ static void correct(sph_sim *sim)
 {
     sph_particles *P = &sim->P;
     const int n = (int)sim->n;
-    const float delta = sim->solver.delta / (sim->dt * sim->dt), rho_r = sim->solver.rho_rest;
+    const float delta = sim->solver.delta / (sim->dt * sim->dt); /* as the GL host's u_value, bit for bit */
+    const float rho_r = sim->solver.rho_rest;
     const float floor = sim->def.negative_pressure == SPH_NEGP_CLAMP ? 0.0f : -INFINITY;
+    const float *restrict local = sim->def.pcisph_local_delta == SPH_ON ? P->delta_pci : NULL;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-    for (int i = 0; i < n; i++) P->p_pci[i] = fmaxf(floor, P->p_pci[i] + delta * (P->rho_pci[i] - rho_r));
+    for (int i = 0; i < n; i++) {
+        const float d_i = local ? local[i] / (sim->dt * sim->dt) : delta;
+        P->p_pci[i] = fmaxf(floor, P->p_pci[i] + d_i * (P->rho_pci[i] - rho_r));
+    }
 }
 
 static void run(sph_sim *sim)
@@ -177,8 +237,10 @@ static void run(sph_sim *sim)
             }
         return;
     }
-    if (s->iteration == 0) { /* the step's first call: from p = 0 (see the top) */
-        for (uint32_t i = 0; i < sim->n; i++) P->p_pci[i] = 0.0f;
+    if (s->iteration == 0) { /* the step's first call: from p = 0 or the last step's p (see the top) */
+        if (!(sim->def.solver_warm_start == SPH_ON && s->dt_last > 0))
+            for (uint32_t i = 0; i < sim->n; i++) P->p_pci[i] = 0.0f;
+        if (sim->def.pcisph_local_delta == SPH_ON) local_deltas(sim);
         force(sim);
     }
     const double error = predict(sim);
@@ -186,6 +248,7 @@ static void run(sph_sim *sim)
         s->iterations = s->iteration;
         s->density_error = error;
         s->iteration = 0;
+        s->dt_last = sim->dt;
         return;
     }
     correct(sim);
@@ -197,7 +260,7 @@ const sph_pass sph_pass_pcisph = {
     .name = "pcisph",
     .summary = "PCISPH: one predict-correct iteration of the pressure",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VEL) | SPH_MASK_ACCELERATIONS | SPH_BIT(P_PCI) | SPH_RES_LISTS,
-    .writes = SPH_BIT(P_PCI) | SPH_BIT(X_PCI) | SPH_BIT(RHO_PCI) | SPH_BIT(ACC_PCI),
+    .writes = SPH_BIT(P_PCI) | SPH_BIT(DELTA_PCI) | SPH_BIT(X_PCI) | SPH_BIT(RHO_PCI) | SPH_BIT(ACC_PCI),
     .group = SPH_GROUP_FORCES,
     .highlight = "pcisph-density",
     .skip_reason = skip_reason,

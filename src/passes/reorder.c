@@ -56,6 +56,7 @@ static void run(sph_sim *sim)
     if (P->slip) gather_f(&P->slip, &S->spare_f, e, n);
     if (P->rho_c) gather_f(&P->rho_c, &S->spare_f, e, n); /* the carried density (density_method = continuity) */
     if (P->kappa) gather_f(&P->kappa, &S->spare_f, e, n); /* DFSPH's warm starts */
+    if (P->p_pci) gather_f(&P->p_pci, &S->spare_f, e, n); /* PCISPH's warm start */
     if (P->kappa_v) gather_f(&P->kappa_v, &S->spare_f, e, n);
     for (int d = 0; d < sim->dim; d++) {
         gather_f(&P->pos[d], &S->spare_f, e, n);
