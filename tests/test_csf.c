@@ -170,7 +170,8 @@ Test(csf, ellipse_restoring_force_is_rayleighs)
             }
             const double Rf = s * sqrt(inside / PI), de = 1e-4;
             const double Q_exact = -sigma * (ellipse_perimeter(Rf, e + de) - ellipse_perimeter(Rf, e - de)) / (2 * de);
-            cr_log_info("R/%d e %.3f: Q %.5g N, -sigma dP/de %.5g N (per metre of depth), ratio %.4f", res, e, Q, Q_exact, Q / Q_exact);
+            cr_log_info("R/%d e %.3f: Q %.5g N, -sigma dP/de %.5g N (per metre of depth), ratio %.4f", res, e, Q,
+                        Q_exact, Q / Q_exact);
             cr_expect(fabs(Q / Q_exact - 1) < 0.05, "R/%d, e = %.2f: Q %g N, -sigma dP/de %g N", res, e, Q, Q_exact);
             sph_sim_destroy(sim);
         }
