@@ -42,6 +42,10 @@ const val_problem val_problems[] = {
      "Rayleigh 1879: omega^2 = (n^3 - n) sigma / (rho R^3) at the stated sigma (akinci: sigma measured from the "
      "Laplace pressure of two drops)",
      "period within 5 % of Rayleigh's at R / spacing = 20", "R / spacing", {10, 20, 40}, 10, 6, 200, val_run_drop},
+    {"drop-3d", "a 3D drop (a sphere) without gravity, held by surface_tension = csf (sigma = 1 N/m), oscillating in "
+                "its l = 2 mode",
+     "Rayleigh 1879: omega^2 = l (l - 1) (l + 2) sigma / (rho R^3) at the stated sigma",
+     "period within 5 % of Rayleigh's at R / spacing = 10", "R / spacing", {6, 8, 10}, 6, 4, 40, val_run_drop_3d},
     {"obstacle", "a dam break (column a x 2a) hitting a box obstacle across the tank at x = 2a: the force on it",
      "the hydrostatic force rho0 g d^2 / 2 of the water standing against it at rest (exact); the impact time "
      "against the published surge fronts, reported",

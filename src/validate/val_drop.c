@@ -32,7 +32,8 @@
  * D_x - D_y (3D: D_x minus the mean of D_y and D_z) through its mean: that difference is the n = 2 moment sum r^2 cos(2 theta) alone, free
  * of the breathing and the slow settling that move D_x and D_y together, and
  * of the n = 4 mode the square leaves. The target: the period within 5 % of
- * Rayleigh's at R / spacing = 20 (2D) or 10 (3D). */
+ * Rayleigh's at R / spacing = 20 (2D, validate drop) or 10 (3D, validate drop-3d: the particles laid on
+ * the lattice points nearest the centre, a sphere). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -100,8 +101,45 @@ static bool drop_step(const val_ctx *c, sph_sim *sim, const char *label)
  * particles each (the innermost takes what is left), so that the drop
  * starts round: a square rounds through a large n = 4 oscillation that a
  * drop with a stated sigma and little viscosity does not damp in time. */
+static int drop_cmp_r2(const void *a, const void *b)
+{
+    const double *x = a, *y = b;
+    return (x[0] > y[0]) - (x[0] < y[0]);
+}
+
+/* 3D: the block's particles laid again on the points of its lattice (spacing s) nearest the block's centre,
+ * a sphere of about the same volume, so that the drop does not start as a cube (whose rounding is a large
+ * l = 4 oscillation, as the square's in 2D). */
+static void drop_make_sphere(sph_sim *sim, const sph_block_def *b, double s)
+{
+    sph_particles *P = &sim->P;
+    const uint32_t n = sim->n;
+    double c[3];
+    for (int d = 0; d < 3; d++) c[d] = 0.5 * (b->min[d] + b->max[d]) - sim->origin[d];
+    const int m = (int)ceil(cbrt(3.0 * n / (4.0 * PI))) + 2; /* lattice points out to m spacings each way */
+    const size_t total = (size_t)(2 * m + 1) * (size_t)(2 * m + 1) * (size_t)(2 * m + 1);
+    double *pts = malloc(total * 4 * sizeof *pts);
+    if (!pts) return; /* the cube stays: the settling rounds it */
+    size_t k = 0;
+    for (int i = -m; i <= m; i++)
+        for (int j = -m; j <= m; j++)
+            for (int l = -m; l <= m; l++, k++) { /* offsets by half a spacing: no particle at the very centre */
+                double x = (i + 0.5) * s, y = (j + 0.5) * s, z = (l + 0.5) * s;
+                pts[4 * k] = x * x + y * y + z * z, pts[4 * k + 1] = x, pts[4 * k + 2] = y, pts[4 * k + 3] = z;
+            }
+    qsort(pts, total, 4 * sizeof *pts, drop_cmp_r2);
+    for (uint32_t i = 0; i < n && i < total; i++) {
+        for (int d = 0; d < 3; d++) P->pos[d][i] = (float)(c[d] + pts[4 * i + 1 + d]), P->vel[d][i] = 0.0f;
+    }
+    free(pts);
+}
+
 static void drop_make_disc(sph_sim *sim, const sph_block_def *b, double s)
 {
+    if (sim->dim == 3) {
+        drop_make_sphere(sim, b, s);
+        return;
+    }
     if (sim->dim != 2) return;
     sph_particles *P = &sim->P;
     const uint32_t n = sim->n;
