@@ -167,3 +167,58 @@ Test(volume_walls, fine_lattice_tables_are_the_integral)
                           i);
     }
 }
+
+/* A lattice block at rest on the floor of a box (0.3 m wide, 0.3 m deep,
+ * spacing 0.015 m, h = 2 spacings, k = 400 m²/s², Morris nu = 0.05 m²/s,
+ * gravity ramped in over 0.3 s; the density kernel as given, pressure and
+ * viscosity cubic). *row0: first row / interior density at t = 0 (first
+ * density pass); returns the largest fluid speed between 1.0 and 1.2 s as a
+ * share of sqrt(g H), or INFINITY if the watchdog stopped it. */
+static double block_at_rest(const char *model, const char *kernel, const char *eos_rest, double *row0)
+{
+    char ini[1400];
+    snprintf(ini, sizeof ini,
+             "[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n"
+             "[domain]\nmin=0 0\nmax=0.3 0.5\nwall_model=%s\n"
+             "[fluid water]\nmin=0 0\nmax=0.3 0.3\nspacing=0.015\n"
+             "[physics]\nrest_density=1000\neos=linear\nstiffness=400\nnegative_pressure=clamp\n"
+             "viscosity_form=morris\nviscosity=0.05\ngravity_ramp=0.3\neos_rest=%s\n"
+             "[kernels]\nh=0.03\ndensity=%s\npressure=cubic\nviscosity=cubic\n[time]\ncfl=0.25\ndt=0.001\n",
+             model, eos_rest, kernel);
+    sph_sim *sim = test_sim(ini, 2);
+    double sr = 0, si = 0;
+    int nr = 0, ni = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (sph_is_wall(&sim->P, i)) continue;
+        const float x = sim->P.pos[0][i], y = sim->P.pos[1][i];
+        if (x < 0.09f || x > 0.21f) continue;
+        if (y < 0.015f) sr += sim->P.rho[i], nr++;
+        else if (y > 0.09f && y < 0.21f) si += sim->P.rho[i], ni++;
+    }
+    cr_assert(nr > 0 && ni > 0);
+    *row0 = (sr / nr) / (si / ni);
+    double worst = 0;
+    while (sim->t < 1.2 && !sim->alarm.raised) {
+        sph_sim_step(sim);
+        if (sim->t < 1.0) continue;
+        for (uint32_t i = 0; i < sim->n; i++) {
+            if (sph_is_wall(&sim->P, i)) continue;
+            worst = fmax(worst, hypot(sim->P.vel[0][i], sim->P.vel[1][i]));
+        }
+    }
+    const bool stopped = sim->alarm.raised;
+    sph_sim_destroy(sim);
+    return stopped ? INFINITY : worst / sqrt(9.81 * 0.3);
+}
+
+Test(volume_walls, block_at_rest_table, .timeout = 600)
+{
+    for (int m = 0; m < 3; m++)
+        for (int r = 0; r < 2; r++)
+            for (int k = 0; k < N_KERNELS; k++) {
+                const char *rest = r ? "lattice" : "rest_density";
+                double row0, v = block_at_rest(MODELS[m], KERNELS[k], rest, &row0);
+                cr_log_info("block at rest: %-9s %-12s %-9s first row / interior %.4f, max speed 1-1.2 s %.3g sqrt(gH)",
+                            MODELS[m], rest, KERNELS[k], row0, v);
+            }
+}
