@@ -30,8 +30,7 @@ void main()
     sph_walk(i, xi);
     float rho = sum;
 #if WALL_VOLUME
-    vec3 g;
-    rho += RHO0 * wall_hidden(xi, g);
+    rho = wall_density(xi, rho);
 #endif
     rho_[i] = rho;
     vol_[i] = mass_[i] / rho;

@@ -83,6 +83,27 @@ static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int
     return sph_wall_hidden_at(sim, k, pos, grad);
 }
 
+/* The density of particle i with the walls [kg/m^dim], from its sum over
+ * the fluid, sum [kg/m^dim]: the hidden lattice's nodes carry the particle's
+ * own density (ghosts mirror it, as the ghost pressure does), scaled as a
+ * lattice at rest: rho_i = sum + (rho_i / rho_lat) rho0 H, rho_lat = rho0
+ * times the full lattice's sum, so
+ *   rho_i = sum / (1 - rho0 H / rho_lat).
+ * A lattice at rest reads rho_lat in its first row as inside; a compressed
+ * one reads its compression there too (a hidden lattice at rho0 made the
+ * floor row of a column at rest read low by its compression times H). */
+static inline float sph_wall_density(const sph_sim *sim, const sph_kernel *k, int i, float sum)
+{
+    const float share = sph_wall_hidden(sim, k, i, NULL) / k->wall_lat_full;
+    return sum / fmaxf(1.0f - share, 0.2f); /* share <= 3/4 (a corner's), 1 behind a 3D vertex */
+}
+/* The inverse: the fluid's own sum in a density rho that sph_wall_density made. */
+static inline float sph_wall_density_fluid(const sph_sim *sim, const sph_kernel *k, int i, float rho)
+{
+    const float share = sph_wall_hidden(sim, k, i, NULL) / k->wall_lat_full;
+    return rho * fmaxf(1.0f - share, 0.2f);
+}
+
 /* The pressure force of the hidden lattice on particle i [m/s^2], added to
  * a[]: the lattice's nodes as ghost particles of mass rho0 s^dim and
  * density rho_i, in the pair term of the pressure form, with the ghost
