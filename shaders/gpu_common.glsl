@@ -230,19 +230,6 @@ float wall_hidden_of(int base, float full, vec3 x, out vec3 grad)
 // The density kernel's (density, continuity, DFSPH).
 float wall_hidden(vec3 x, out vec3 grad) { return wall_hidden_of(0, WALL_FULL, x, grad); }
 
-// The density with the walls from the fluid's sum, and back (sph_wall_density,
-// sph_wall_density_fluid): the hidden lattice carries the particle's density.
-float wall_density(vec3 x, float sum)
-{
-    vec3 g;
-    return sum / max(1.0 - wall_hidden(x, g) / WALL_FULL, 0.2);
-}
-float wall_density_fluid(vec3 x, float rho)
-{
-    vec3 g;
-    return rho * max(1.0 - wall_hidden(x, g) / WALL_FULL, 0.2);
-}
-
 // The pressure solvers' walls (sph_solver_walls in src/passes/solver.h): the
 // share of RHO_R the fluid's lattice continued behind the walls adds at x,
 // combined over walls as 1 - prod (1 - share), and its gradient [1/m]; the

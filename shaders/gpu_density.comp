@@ -30,7 +30,8 @@ void main()
     sph_walk(i, xi);
     float rho = sum;
 #if WALL_VOLUME
-    rho = wall_density(xi, rho);
+    vec3 g;
+    rho += RHO0 * wall_hidden(xi, g);
 #endif
     rho_[i] = rho;
     vol_[i] = mass_[i] / rho;

@@ -127,7 +127,8 @@ void main()
 #if WALL_VOLUME
             for (int d = 0; d < DIM; d++) sum += RHO_R * g[d] * vi[d];
             // the density pass counted the walls as the volume model does: count them as the solvers do
-            rho = wall_density_fluid(xi, rho) + RHO_R * share;
+            vec3 gh;
+            rho += RHO_R * share - RHO0 * wall_hidden(xi, gh);
 #endif
             float r = rho >= RHO_R ? u_dt * sum : 0.0;
             rho_df_[i] = r;

@@ -151,7 +151,11 @@ void forces_begin(uint i)
 void forces_end(uint i, vec3 xi)
 {
 #if FORCE_PRESSURE
-#if WALL_VOLUME
+#if WALL_VOLUME && !WALL_GHOST
+    vec3 grad;
+    wall_hidden(xi, grad);
+    for (int d = 0; d < DIM; d++) acc_pf[d] -= RHO0 * pi_over * grad[d];
+#elif WALL_VOLUME
     // the hidden lattice as ghosts in the pair term (sph_wall_ghost_accel)
     vec3 grad, tg = vec3(0.0);
     wall_hidden_of(WALLP_AT, WALL_FULL_P, xi, grad);

@@ -125,7 +125,7 @@ Test(volume_walls, full_box_without_gravity_stays_at_rest)
             char ini[1024];
             snprintf(ini, sizeof ini,
                      "[scene]\ndimension=2\neffects=pressure viscosity walls\n[domain]\nmin=0 0\nmax=0.2 0.2\n"
-                     "wall_model=%s\n[fluid a]\nmin=0 0\nmax=0.2 0.2\nspacing=0.01\n[physics]\nstiffness=400\n"
+                     "wall_model=%s\nwall_force=ghost\n[fluid a]\nmin=0 0\nmax=0.2 0.2\nspacing=0.01\n[physics]\nstiffness=400\n"
                      "viscosity_form=morris\n[kernels]\nh=0.02\ndensity=%s\npressure=cubic\nviscosity=cubic\n"
                      "[time]\ncfl=0.25\n",
                      MODELS[m], KERNELS[k]);
@@ -137,7 +137,7 @@ Test(volume_walls, full_box_without_gravity_stays_at_rest)
             cr_log_info("full box, %s walls, density %s, 300 steps: max speed %.3g m/s (c = 20 m/s)", MODELS[m],
                         KERNELS[k], st.max_speed);
             /* wall particles: at rest (measured 6.6e-5, 7.4e-5 m/s). Volume
-             * walls: the hidden lattice pushes as ghost particles in the pair
+             * walls, wall_force = ghost: the hidden lattice pushes as ghost particles in the pair
              * term, so the lattice's own overpressure is held as by wall
              * particles (measured 8.0e-5, 7.2e-5 m/s; the energy form
              * -(p/rho^2) grad(rho0 H), half that pair term, gave 0.32 and
@@ -182,7 +182,7 @@ static double block_at_rest(const char *model, const char *kernel, const char *e
     char ini[1600];
     snprintf(ini, sizeof ini,
              "[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n"
-             "[domain]\nmin=0 0\nmax=0.3 0.5\nwall_model=%s\n"
+             "[domain]\nmin=0 0\nmax=0.3 0.5\nwall_model=%s\nwall_force=ghost\n"
              "[fluid water]\nmin=0 0\nmax=0.3 0.3\nspacing=0.015\n"
              "[physics]\nrest_density=1000\neos=linear\nstiffness=400\nnegative_pressure=clamp\n"
              "viscosity_form=morris\nviscosity=0.05\ngravity_ramp=0.3\neos_rest=%s\n"
@@ -244,7 +244,7 @@ Test(volume_walls, block_at_rest_table, .timeout = 900)
 }
 
 /* The issue's target "a lattice block at rest stays at rest (max speed below
- * 1e-3 sqrt(g H) after settling)" with volume walls: the block above with the
+ * 1e-3 sqrt(g H) after settling)" with volume walls (wall_force = ghost): the block above with the
  * density carried by the continuity equation and Fourtakas et al. 2019's
  * diffusion (as `sphlab validate hydrostatic`), h = 2 spacings, for the
  * density kernels that read the lattice's density within 4 % (poly6, cubic,

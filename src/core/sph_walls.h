@@ -83,29 +83,8 @@ static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int
     return sph_wall_hidden_at(sim, k, pos, grad);
 }
 
-/* The density of particle i with the walls [kg/m^dim], from its sum over
- * the fluid, sum [kg/m^dim]: the hidden lattice's nodes carry the particle's
- * own density (ghosts mirror it, as the ghost pressure does), scaled as a
- * lattice at rest: rho_i = sum + (rho_i / rho_lat) rho0 H, rho_lat = rho0
- * times the full lattice's sum, so
- *   rho_i = sum / (1 - rho0 H / rho_lat).
- * A lattice at rest reads rho_lat in its first row as inside; a compressed
- * one reads its compression there too (a hidden lattice at rho0 made the
- * floor row of a column at rest read low by its compression times H). */
-static inline float sph_wall_density(const sph_sim *sim, const sph_kernel *k, int i, float sum)
-{
-    const float share = sph_wall_hidden(sim, k, i, NULL) / k->wall_lat_full;
-    return sum / fmaxf(1.0f - share, 0.2f); /* share <= 3/4 (a corner's), 1 behind a 3D vertex */
-}
-/* The inverse: the fluid's own sum in a density rho that sph_wall_density made. */
-static inline float sph_wall_density_fluid(const sph_sim *sim, const sph_kernel *k, int i, float rho)
-{
-    const float share = sph_wall_hidden(sim, k, i, NULL) / k->wall_lat_full;
-    return rho * fmaxf(1.0f - share, 0.2f);
-}
-
 /* The pressure force of the hidden lattice on particle i [m/s^2], added to
- * a[]: the lattice's nodes as ghost particles of mass rho0 s^dim and
+ * a[]. wall_force = energy: the energy's gradient (below). ghost: the lattice's nodes as ghost particles of mass rho0 s^dim and
  * density rho_i, in the pair term of the pressure form, with the ghost
  * pressure extrapolated from the particle with the step's gravity,
  * p_k = p_i + rho_i g . (x_k - x_i) (Adami, Hu & Adams 2012, J. Comput.
@@ -119,6 +98,16 @@ static inline float sph_wall_density_fluid(const sph_sim *sim, const sph_kernel 
  * walls. Corners count T of each wall (the corner's nodes twice). */
 static inline void sph_wall_ghost_accel(const sph_sim *sim, int i, float a[3])
 {
+    if (sim->def.wall_force == SPH_WFORCE_ENERGY) {
+        /* the gradient of the walls' density term, a = -(p_i / rho_i^2)
+         * grad(rho0 H) with the density kernel: walls neither add nor remove
+         * energy, but it is half the pair term the hidden nodes would exert,
+         * so a lattice's overpressure pushes the first rows into the wall */
+        float grad[3];
+        sph_wall_hidden(sim, &sim->k_density, i, grad);
+        for (int d = 0; d < sim->dim; d++) a[d] -= sim->def.rest_density * sim->P.p_rho2[i] * grad[d];
+        return;
+    }
     const sph_kernel *k = &sim->k_pressure;
     const sph_particles *P = &sim->P;
     const int dim = sim->dim;

@@ -50,7 +50,7 @@ static inline void density_one(const sph_sim *sim, const sph_kernel *k, int i, c
         else sf += w;
     }
     float sum = dbl ? (float)sd : sf;
-    if (sph_sim_wall_volume(sim)) sum = sph_wall_density(sim, k, i, sum);
+    if (sph_sim_wall_volume(sim)) sum += sim->def.rest_density * sph_wall_hidden(sim, k, i, NULL);
     P->rho[i] = sum;
     P->vol[i] = P->mass[i] / sum;
 }
@@ -76,7 +76,7 @@ static inline void density_one_avx512(const sph_sim *sim, const sph_kernel *k, i
         acc = _mm512_mask3_fmadd_ps(w, sph_simd_gather(live, idx, P->mass), acc, live); /* dead lanes keep acc */
     }
     float sum = P->mass[i] * sph_kernel_w(k, 0.0f) + k->sigma * _mm512_reduce_add_ps(acc);
-    if (sph_sim_wall_volume(sim)) sum = sph_wall_density(sim, k, i, sum);
+    if (sph_sim_wall_volume(sim)) sum += sim->def.rest_density * sph_wall_hidden(sim, k, i, NULL);
     P->rho[i] = sum;
     P->vol[i] = P->mass[i] / sum;
 }

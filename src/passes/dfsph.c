@@ -187,7 +187,7 @@ static double measure(sph_sim *sim, bool density)
     sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
     const int n = (int)sim->n, dim = sim->dim;
-    const float dt = sim->dt, rho_r = sim->solver.rho_rest;
+    const float dt = sim->dt, rho_r = sim->solver.rho_rest, rho0 = sim->def.rest_density;
     const bool walls = sph_sim_wall_volume(sim);
     float worst = 0.0f;
     double total = 0;
@@ -229,7 +229,7 @@ static double measure(sph_sim *sim, bool density)
             const float share = sph_solver_walls_pred(sim, i, g);
             for (int d = 0; d < dim; d++) sum += rho_r * g[d] * vi[d];
             /* the density pass counted the walls as the volume model does: count them as the solvers do */
-            rho = sph_wall_density_fluid(sim, &sim->k_density, i, rho) + rho_r * share;
+            rho += rho_r * share - rho0 * sph_wall_hidden(sim, &sim->k_density, i, NULL);
         }
         P->rho_df[i] = rho >= rho_r ? dt * sum : 0.0f;
         worst = fmaxf(worst, P->rho_df[i] / rho_r);

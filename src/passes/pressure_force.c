@@ -81,9 +81,9 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
     float a[3];
     for (int d = 0; d < dim; d++) a[d] = dbl ? (float)ad[d] : af[d];
     if (sph_sim_wall_volume(sim)) {
-        /* the hidden lattice behind the walls as ghost particles in the
-         * pair term, their pressure extrapolated with gravity: a lattice at
-         * rest is held (docs/accuracy.md, section 6) */
+        /* the walls' push ([domain] wall_force): the energy's gradient, or
+         * the hidden lattice as ghost particles in the pair term, their
+         * pressure extrapolated with gravity (docs/accuracy.md, section 6) */
         sph_wall_ghost_accel(sim, i, a);
     }
     for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];

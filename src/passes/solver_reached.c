@@ -39,9 +39,9 @@ static void compression(const sph_sim *sim, bool solver, double *largest, double
             }
             if (r2 < sim->def.h * sim->def.h) rho += P->mass[j] * sph_kernel_w(&sim->k_density, sqrtf(r2));
         }
-        if (walls && solver) rho += held * sph_solver_walls(sim, xi, NULL);
-        if (walls && !solver) /* as the density pass: the hidden lattice carries the particle's density */
-            rho /= fmax(1.0 - sph_wall_hidden_at(sim, &sim->k_density, xi, NULL) / sim->k_density.wall_lat_full, 0.2);
+        if (walls)
+            rho += solver ? held * sph_solver_walls(sim, xi, NULL)
+                          : held * sph_wall_hidden_at(sim, &sim->k_density, xi, NULL);
         const double e = rho / held - 1.0;
         mx = fmax(mx, e);
         sum += fmax(e, 0.0);
