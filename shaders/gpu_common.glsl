@@ -144,14 +144,14 @@ float kernel_lap(int kind, float s, float r)
 
 #if USE_WALL
 // The lattice share and its slope (sph_kernel_wall_lat).
-float kernel_wall(float d, out float area)
+float kernel_wall(int base, float d, out float area)
 {
     float t = d * INV_H * float(WALL_TABLE);
     if (!(t < float(WALL_TABLE))) { area = 0.0; return 0.0; }
     if (t < 0.0) t = 0.0;
     int i = int(t);
     float f = t - float(i);
-    int p = i, a = WALL_TABLE + 1 + i;
+    int p = base + i, a = base + WALL_TABLE + 1 + i;
     area = wall_[a] + f * (wall_[a + 1] - wall_[a]);
     return wall_[p] + f * (wall_[p + 1] - wall_[p]);
 }
@@ -166,7 +166,7 @@ float corner_lerp(int tab, int a, int b, float fa, float fb)
 }
 
 // The corner share beyond two walls and its slopes (sph_kernel_wall_corner).
-float kernel_corner(float d1, float d2, out float s1, out float s2)
+float kernel_corner(int base, float d1, float d2, out float s1, out float s2)
 {
     const float c = float(WALL_CORNER);
     float t1 = d1 * INV_H * c, t2 = d2 * INV_H * c;
@@ -175,15 +175,16 @@ float kernel_corner(float d1, float d2, out float s1, out float s2)
     if (t2 < 0.0) t2 = 0.0;
     int i1 = int(t1), i2 = int(t2);
     float f1 = t1 - float(i1), f2 = t2 - float(i2);
-    int tab = 2 * (WALL_TABLE + 1), slope = tab + (WALL_CORNER + 1) * (WALL_CORNER + 1);
+    int tab = base + 2 * (WALL_TABLE + 1), slope = tab + (WALL_CORNER + 1) * (WALL_CORNER + 1);
     s1 = corner_lerp(slope, i1, i2, f1, f2);
     s2 = corner_lerp(slope, i2, i1, f2, f1);
     return corner_lerp(tab, i1, i2, f1, f2);
 }
 
 // Share of the support hidden behind the domain walls, and its gradient
-// (sph_wall_hidden in src/core/sph_walls.h: inclusion-exclusion over the walls).
-float wall_hidden(vec3 x, out vec3 grad)
+// (sph_wall_hidden in src/core/sph_walls.h: inclusion-exclusion over the walls),
+// of the kernel whose tables start at base in wall_ (full: its lattice sum).
+float wall_hidden_of(int base, float full, vec3 x, out vec3 grad)
 {
     float dist[6], sgn[6];
     int axis[6], nw = 0;
@@ -193,7 +194,7 @@ float wall_hidden(vec3 x, out vec3 grad)
         if (PER[d] > 0.0) continue;
         for (int side = 0; side < 2; side++) {
             float ds = side == 0 ? x[d] - DOM_MIN[d] : DOM_MAX[d] - x[d], area;
-            float share = kernel_wall(ds, area);
+            float share = kernel_wall(base, ds, area);
             if (share == 0.0 && area == 0.0) continue;
             dist[nw] = ds;
             sgn[nw] = side == 1 ? -1.0 : 1.0;
@@ -206,17 +207,17 @@ float wall_hidden(vec3 x, out vec3 grad)
     for (int a = 0; a < nw; a++)
         for (int b = a + 1; b < nw; b++) {
             if (axis[a] == axis[b]) continue;
-            float sa, sb, both = kernel_corner(dist[a], dist[b], sa, sb);
+            float sa, sb, both = kernel_corner(base, dist[a], dist[b], sa, sb);
             hidden -= both;
             grad[axis[a]] += sa * sgn[a];
             grad[axis[b]] += sb * sgn[b];
             for (int c = b + 1; c < nw; c++) {
                 if (axis[c] == axis[a] || axis[c] == axis[b]) continue;
                 float ac1, ac3, bc2, bc3;
-                float ac = kernel_corner(dist[a], dist[c], ac1, ac3);
-                float bc = kernel_corner(dist[b], dist[c], bc2, bc3);
+                float ac = kernel_corner(base, dist[a], dist[c], ac1, ac3);
+                float bc = kernel_corner(base, dist[b], dist[c], bc2, bc3);
                 if (!(both > 0.0 && ac > 0.0 && bc > 0.0)) continue;
-                float all = sqrt(both * ac * bc / WALL_FULL);
+                float all = sqrt(both * ac * bc / full);
                 hidden += all;
                 grad[axis[a]] -= 0.5 * all * (sa / both + ac1 / ac) * sgn[a];
                 grad[axis[b]] -= 0.5 * all * (sb / both + bc2 / bc) * sgn[b];
@@ -225,6 +226,9 @@ float wall_hidden(vec3 x, out vec3 grad)
         }
     return hidden;
 }
+
+// The density kernel's (density, continuity, DFSPH).
+float wall_hidden(vec3 x, out vec3 grad) { return wall_hidden_of(0, WALL_FULL, x, grad); }
 
 // The pressure solvers' walls (sph_solver_walls in src/passes/solver.h): the
 // share of RHO_R the fluid's lattice continued behind the walls adds at x,

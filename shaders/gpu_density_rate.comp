@@ -88,7 +88,7 @@ void main()
 #if WALL_VOLUME
     vec3 g;
     wall_hidden(xi, g);
-    for (int d = 0; d < DIM; d++) rate += RHO0 * g[d] * vi[d];
+    for (int d = 0; d < DIM; d++) rate += RHO0 * g[d] * (vi[d] - u_kick[d]); // the walls in the step's frame
 #endif
     drho_[i] = rate;
 }

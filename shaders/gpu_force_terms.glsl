@@ -13,6 +13,25 @@
 #define VISC_MORRIS (VFORM == VFORM_MORRIS || VFORM == VFORM_MORRIS_ARTIFICIAL)
 #define VISC_ARTIFICIAL (VFORM == VFORM_ARTIFICIAL || VFORM == VFORM_MORRIS_ARTIFICIAL)
 float rho_i; // the particle's density [kg/m^DIM]
+#if FORCE_PRESSURE && WALL_VOLUME
+#if HAS_GRAVITY
+uniform float u_gscale; // the share of g of the step (gravity_ramp)
+#endif
+// The hidden lattice's second moments tn (returned in out) and tt at distance d
+// from a wall (sph_kernel_wall_table on wall_lat_tt, wall_lat_tn).
+float wall_moment(float d, out float tn)
+{
+    float t = d * INV_H * float(WALL_TABLE);
+    if (!(t < float(WALL_TABLE))) { tn = 0.0; return 0.0; }
+    if (t < 0.0) t = 0.0;
+    int i = int(t);
+    float f = t - float(i);
+    int at = WALLP_AT + 2 * (WALL_TABLE + 1) + 2 * (WALL_CORNER + 1) * (WALL_CORNER + 1);
+    int p = at + (WALL_TABLE + 1) + i, q = at + i;
+    tn = wall_[q] + f * (wall_[q + 1] - wall_[q]);
+    return wall_[p] + f * (wall_[p + 1] - wall_[p]);
+}
+#endif
 #if FORCE_PRESSURE
 vec3 acc_pf;       // sum of the pressure terms [m/s^2]
 float pi_over, p_i; // p_i / rho_i^2 [Pa m^(2 DIM)/kg^2], p_i [Pa]
@@ -132,10 +151,31 @@ void forces_begin(uint i)
 void forces_end(uint i, vec3 xi)
 {
 #if FORCE_PRESSURE
-#if WALL_VOLUME
+#if WALL_VOLUME && !WALL_GHOST
     vec3 grad;
     wall_hidden(xi, grad);
     for (int d = 0; d < DIM; d++) acc_pf[d] -= RHO0 * pi_over * grad[d];
+#elif WALL_VOLUME
+    // the hidden lattice as ghosts in the pair term (sph_wall_ghost_accel)
+    vec3 grad, tg = vec3(0.0);
+    wall_hidden_of(WALLP_AT, WALL_FULL_P, xi, grad);
+#if HAS_GRAVITY
+    for (int d = 0; d < DIM; d++) {
+        if (PER[d] > 0.0) continue;
+        for (int side = 0; side < 2; side++) {
+            float ds = side == 0 ? xi[d] - DOM_MIN[d] : DOM_MAX[d] - xi[d], tn;
+            float tt = wall_moment(ds, tn);
+            for (int e = 0; e < DIM; e++) tg[e] += (e == d ? tn : tt) * GRAVITY[e] * u_gscale;
+        }
+    }
+#endif
+#if PFORM_SYM
+    const float form = 1.0;
+#else
+    const float form = 0.5;
+#endif
+    float c = form * RHO0 * pi_over * 2.0, cg = form * RHO0 / rho_i;
+    for (int d = 0; d < DIM; d++) acc_pf[d] -= c * grad[d] + cg * tg[d];
 #endif
     for (int d = 0; d < DIM; d++) acc_p_[uint(d) * N + i] = acc_pf[d];
 #endif

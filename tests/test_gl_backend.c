@@ -226,6 +226,20 @@ Test(gl_backend, passes_match_cpu_volume_walls_shared)
     lockstep_steps(scene_3d, sets, 4, 1);
 }
 
+/* The volume walls' ghost force (wall_force = ghost): the pressure kernel's
+ * tables and the second moments, with the gravity ramp's share; with the
+ * continuity equation too (its wall term in the step's frame). */
+Test(gl_backend, passes_match_cpu_volume_walls_ghost)
+{
+    const char *sets[] = {"domain.wall_model=volume", "domain.wall_force=ghost", "physics.gravity_ramp=0.01",
+                          "kernels.density=wendland", "kernels.pressure=cubic"};
+    lockstep_steps(scene_2d, sets, 5, 1);
+    lockstep_steps(scene_3d, sets, 5, 1);
+    const char *cont[] = {"domain.wall_model=volume", "domain.wall_force=ghost", "physics.density_method=continuity",
+                          "physics.pressure_form=shared"};
+    lockstep_steps(scene_2d, cont, 4, 1);
+}
+
 /* Every effect at once, so every pass of the pipeline runs: a pass without
  * a row in the GL table is refused and fails here, one whose shader differs
  * from its C fails the lockstep. */

@@ -105,6 +105,30 @@ static void kernel_wall_tables(sph_kernel *k)
  * as gamma does in the unified semi-analytical walls (Ferrand et al. 2013,
  * Int. J. Numer. Meth. Fluids 71, 446-472, eq. 11), but evaluated with the
  * particles' quadrature instead of exactly. */
+/* The second-moment tables (wall_lat_tn, wall_lat_tt) of the lattice at spacing s [m]. */
+static void kernel_wall_moments(sph_kernel *k, double s)
+{
+    const double h = k->h, cell = k->dim == 3 ? s * s * s : s * s;
+    const int reach = (int)ceil(h / s) + 1;
+    for (int i = 0; i <= SPH_WALL_TABLE; i++) {
+        const double d = h * i / SPH_WALL_TABLE;
+        double tn = 0, tt = 0;
+        for (int row = 0; d + (row + 0.5) * s < h; row++) {
+            const double y = d + (row + 0.5) * s;
+            for (int a = -reach; a <= reach; a++)
+                for (int b = k->dim == 3 ? -reach : 0; b <= (k->dim == 3 ? reach : 0); b++) {
+                    const double t2 = (a * a + b * b) * s * s, r = sqrt(y * y + t2);
+                    if (r >= h) continue;
+                    const double g = -sph_kernel_dw(k, (float)r) / r;
+                    tn += g * y * y;
+                    tt += g * (a * s) * (a * s);
+                }
+        }
+        k->wall_lat_tn[i] = (float)(tn * cell);
+        k->wall_lat_tt[i] = (float)(tt * cell);
+    }
+}
+
 void sph_kernel_wall_lattice(sph_kernel *k, float spacing)
 {
     const int nc = SPH_WALL_CORNER + 1, step = SPH_WALL_TABLE / SPH_WALL_CORNER;
@@ -113,6 +137,9 @@ void sph_kernel_wall_lattice(sph_kernel *k, float spacing)
      * measured), while summing it costs (h/s)^dim per table point: a scene
      * with h = 300 spacings took minutes to start. Use the integral there. */
     if (!(spacing > 0.0f) || k->h > SPH_WALL_LATTICE_MAX * spacing) {
+        /* the integral's within the lattice's error; a coarser lattice where no spacing is known (every
+         * kernel made passes here: kept cheap) */
+        kernel_wall_moments(k, k->h / (spacing > 0.0f ? SPH_WALL_LATTICE_MAX : 8));
         memcpy(k->wall_lat_psi, k->wall_psi, sizeof k->wall_psi);
         memcpy(k->wall_lat_area, k->wall_area, sizeof k->wall_area);
         k->wall_lat_full = 1.0f;
@@ -131,6 +158,7 @@ void sph_kernel_wall_lattice(sph_kernel *k, float spacing)
             for (int c = k->dim == 3 ? -reach : 0; c <= (k->dim == 3 ? reach : 0); c++)
                 full += sph_kernel_w(k, (float)(s * sqrt((double)(a * a + b * b + c * c))));
     k->wall_lat_full = (float)(full * cell);
+    kernel_wall_moments(k, s);
     for (int i = 0; i <= SPH_WALL_TABLE; i++) {
         const double d = h * i / SPH_WALL_TABLE;
         double psi = 0, area = 0;

@@ -63,6 +63,14 @@ typedef struct sph_kernel {
     float wall_lat_psi[SPH_WALL_TABLE + 1];
     float wall_lat_area[SPH_WALL_TABLE + 1];
     float wall_lat_full; /* [1] the whole lattice's sum s^dim sum W (1 when no spacing is known) */
+    /* The hidden lattice's second moments of the gradient, T = -s^dim sum
+     * (W'(r) / r) D D^T over its nodes, D = node - particle: along the wall's
+     * normal (tn) and along one tangent (tt) [1]; the rest is zero by the
+     * lattice's symmetry. The ghost pressure p_i + rho_i g . D (Adami et al.
+     * 2012, eq. 27) makes the pair term carry -(rho0 / rho_i) T g
+     * (sph_wall_ghost_accel). At the full lattice T is about the identity. */
+    float wall_lat_tn[SPH_WALL_TABLE + 1];
+    float wall_lat_tt[SPH_WALL_TABLE + 1];
     /* Two walls meeting (a corner in 2D, an edge in 3D), at distances d1 and
      * d2: the share of the lattice beyond both, which inclusion-exclusion
      * subtracts once (sph_wall_hidden). wall_corner[i1 * (C + 1) + i2] at

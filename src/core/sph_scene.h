@@ -55,6 +55,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_NEGP_CHOICES(X) X(KEEP, "keep") X(CLAMP, "clamp")
 #define SPH_WALL_CHOICES(X) X(VOLUME, "volume") X(REFLECT, "reflect") X(PARTICLES, "particles")
 #define SPH_SLIP_CHOICES(X) X(NO, "no") X(FREE, "free")
+#define SPH_WALL_FORCE_CHOICES(X) X(ENERGY, "energy") X(GHOST, "ghost")
 #define SPH_SIDE_SLIP_CHOICES(X) X(SAME, "same") X(NO, "no") X(FREE, "free")
 #define SPH_SHAPE_CHOICES(X) X(BOX, "box") X(CIRCLE, "circle")
 #define SPH_DMETHOD_CHOICES(X) X(SUMMATION, "summation") X(CONTINUITY, "continuity")
@@ -79,6 +80,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_NEGP(id, name) SPH_NEGP_##id,
 #define SPH_CHOICE_ITEM_SPH_WALL(id, name) SPH_WALL_##id,
 #define SPH_CHOICE_ITEM_SPH_SLIP(id, name) SPH_SLIP_##id,
+#define SPH_CHOICE_ITEM_SPH_WFORCE(id, name) SPH_WFORCE_##id,
 #define SPH_CHOICE_ITEM_SPH_SIDE_SLIP(id, name) SPH_SIDE_SLIP_##id,
 #define SPH_CHOICE_ITEM_SPH_SHAPE(id, name) SPH_SHAPE_##id,
 #define SPH_CHOICE_ITEM_SPH_DMETHOD(id, name) SPH_DMETHOD_##id,
@@ -100,6 +102,7 @@ SPH_DECLARE_CHOICES(sph_sort, SPH_SORT, SPH_SORT_CHOICES)
 SPH_DECLARE_CHOICES(sph_negative_pressure, SPH_NEGP, SPH_NEGP_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_model, SPH_WALL, SPH_WALL_CHOICES)
 SPH_DECLARE_CHOICES(sph_wall_slip, SPH_SLIP, SPH_SLIP_CHOICES)
+SPH_DECLARE_CHOICES(sph_wall_force, SPH_WFORCE, SPH_WALL_FORCE_CHOICES)
 SPH_DECLARE_CHOICES(sph_side_slip, SPH_SIDE_SLIP, SPH_SIDE_SLIP_CHOICES)
 SPH_DECLARE_CHOICES(sph_shape, SPH_SHAPE, SPH_SHAPE_CHOICES)
 SPH_DECLARE_CHOICES(sph_density_method, SPH_DMETHOD, SPH_DMETHOD_CHOICES)
@@ -114,6 +117,7 @@ SPH_DECLARE_CHOICES(sph_pressure_solver, SPH_PSOLVER, SPH_PSOLVER_CHOICES)
 SPH_DECLARE_CHOICES(sph_surface_tension, SPH_STENSION, SPH_STENSION_CHOICES)
 
 extern const char *const sph_eos_names[SPH_EOS_COUNT];
+extern const char *const sph_wall_force_names[SPH_WFORCE_COUNT];
 extern const char *const sph_eos_rest_names[SPH_EOSREST_COUNT];
 extern const char *const sph_pressure_form_names[SPH_PFORM_COUNT];
 extern const char *const sph_viscosity_form_names[SPH_VFORM_COUNT];
@@ -193,6 +197,7 @@ typedef struct sph_scene_def {
     float wall_damping;                 /* [1] share of the normal speed kept at a wall bounce */
     sph_wall_model wall_model;          /* volume: walls also count in density and pressure; particles:
                                            layers of fixed wall particles (Adami et al. 2012) */
+    sph_wall_force wall_force;          /* volume: the walls' pressure force, the energy's gradient or ghosts */
     sph_wall_slip wall_slip;            /* particles: the wall particles' velocity in the viscous term
                                            (no: mirrored, no-slip; free: the fluid's, free-slip) */
     unsigned periodic;                  /* bit d: axis d wraps around (no walls on it) */

@@ -14,6 +14,7 @@ const char *const sph_sort_names[SPH_SORT_COUNT] = {SPH_SORT_CHOICES(NAMES)};
 const char *const sph_negative_pressure_names[SPH_NEGP_COUNT] = {SPH_NEGP_CHOICES(NAMES)};
 const char *const sph_wall_model_names[SPH_WALL_COUNT] = {SPH_WALL_CHOICES(NAMES)};
 const char *const sph_wall_slip_names[SPH_SLIP_COUNT] = {SPH_SLIP_CHOICES(NAMES)};
+const char *const sph_wall_force_names[SPH_WFORCE_COUNT] = {SPH_WALL_FORCE_CHOICES(NAMES)};
 const char *const sph_density_method_names[SPH_DMETHOD_COUNT] = {SPH_DMETHOD_CHOICES(NAMES)};
 const char *const sph_delta_form_names[SPH_DFORM_COUNT] = {SPH_DFORM_CHOICES(NAMES)};
 const char *const sph_shifting_names[SPH_SHIFT_COUNT] = {SPH_SHIFT_CHOICES(NAMES)};
@@ -70,6 +71,12 @@ const sph_key sph_scene_keys[] = {
      "reflection (particles near walls lack neighbours and sink into them); particles: layers of fixed wall "
      "particles outside the box, on the fluid's lattice, whose pressure is extrapolated from the fluid (Adami, Hu "
      "& Adams 2012)"},
+    {"domain", "wall_force", SPH_KEY_CHOICE, S(wall_force), 0, 0, 0, 0, CH(sph_wall_force_names), "", "energy",
+     "with wall_model = volume, how the hidden lattice pushes: energy: -(p_i / rho_i^2) grad(rho0 H), the "
+     "gradient of the walls' density term (conserves energy; a lattice's overpressure pushes the first rows into "
+     "the wall); ghost: the hidden lattice's nodes as ghost particles in the pressure pair term, their pressure "
+     "p_i + rho_i g . (x_k - x_i) (Adami et al. 2012, eq. 27), so a block at rest stays at rest "
+     "(docs/accuracy.md, section 6)"},
     {"domain", "wall_slip", SPH_KEY_CHOICE, S(wall_slip), 0, 0, 0, 0, CH(sph_wall_slip_names), "", "no",
      "with wall_model = particles: no: no-slip walls (the wall particles' velocity in the viscous term mirrors the "
      "fluid's); free: free-slip (they take the fluid's velocity, no shear at the wall)"},

@@ -379,6 +379,7 @@ sph_error_code sph_sim_create_shared(const sph_scene_def *def, int threads, void
     for (int b = 0; b < def->n_blocks; b++)
         if (wall_s == 0.0f || def->blocks[b].spacing < wall_s) wall_s = def->blocks[b].spacing;
     sph_kernel_wall_lattice(&sim->k_density, wall_s);
+    sph_kernel_wall_lattice(&sim->k_pressure, wall_s); /* the walls' pressure force (sph_wall_ghost_accel) */
     sim->eos_rho0 = def->eos_rest == SPH_EOSREST_LATTICE ? sph_sim_lattice_rest_density(sim) : def->rest_density;
 
     /* Only the buffers of passes in the pipeline are allocated. */

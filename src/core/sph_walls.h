@@ -6,6 +6,7 @@
 #define SPH_WALLS_H
 
 #include "sph_sim.h"
+#include "sph_start.h"
 
 /* Boundary particles (wall_model = particles, sph_wall_particles.c): how many
  * the scene's box makes, and placing them at P[first ..] (after the fluid). */
@@ -84,6 +85,55 @@ static inline float sph_wall_hidden(const sph_sim *sim, const sph_kernel *k, int
     float pos[3] = {0.0f, 0.0f, 0.0f};
     for (int d = 0; d < sim->dim; d++) pos[d] = sim->P.pred[d][i];
     return sph_wall_hidden_at(sim, k, pos, grad);
+}
+
+/* The pressure force of the hidden lattice on particle i [m/s^2], added to
+ * a[]. wall_force = energy: the energy's gradient (below). ghost: the lattice's nodes as ghost particles of mass rho0 s^dim and
+ * density rho_i, in the pair term of the pressure form, with the ghost
+ * pressure extrapolated from the particle with the step's gravity,
+ * p_k = p_i + rho_i g . (x_k - x_i) (Adami, Hu & Adams 2012, J. Comput.
+ * Phys. 231, eq. 27, with the particle itself as the only fluid neighbour):
+ *   sum_k s^dim (p_i + p_k) grad W_ik = 2 p_i grad H + rho_i T g,
+ * H the pressure kernel's hidden share, T its second-moment table. For the
+ * symmetric form a -= (rho0 / rho_i^2) times that, half of it for the shared
+ * form. A lattice at uniform pressure is then held exactly (the hidden nodes
+ * stand for the missing neighbours' pair terms), and a hydrostatic column
+ * gets the missing share of -grad p / rho at the floor and at the side
+ * walls. Corners count T of each wall (the corner's nodes twice). */
+static inline void sph_wall_ghost_accel(const sph_sim *sim, int i, float a[3])
+{
+    if (sim->def.wall_force == SPH_WFORCE_ENERGY) {
+        /* the gradient of the walls' density term, a = -(p_i / rho_i^2)
+         * grad(rho0 H) with the density kernel: walls neither add nor remove
+         * energy, but it is half the pair term the hidden nodes would exert,
+         * so a lattice's overpressure pushes the first rows into the wall */
+        float grad[3];
+        sph_wall_hidden(sim, &sim->k_density, i, grad);
+        for (int d = 0; d < sim->dim; d++) a[d] -= sim->def.rest_density * sim->P.p_rho2[i] * grad[d];
+        return;
+    }
+    const sph_kernel *k = &sim->k_pressure;
+    const sph_particles *P = &sim->P;
+    const int dim = sim->dim;
+    const float rho0 = sim->def.rest_density, rho_i = P->rho[i];
+    const float form = sim->def.pressure_form == SPH_PFORM_SYMMETRIC ? 1.0f : 0.5f;
+    float grad[3], g[3] = {0, 0, 0}, tg[3] = {0, 0, 0};
+    sph_wall_hidden(sim, k, i, grad);
+    if (sim->def.effects & SPH_EFFECT(GRAVITY)) {
+        const float gs = sph_start_gravity_scale(sim);
+        for (int d = 0; d < dim; d++) g[d] = sim->def.gravity[d] * gs;
+        for (int d = 0; d < dim; d++) {
+            if (sim->period[d] > 0) continue;
+            const float x = P->pred[d][i];
+            const float ds[2] = {x - (float)sim->def.domain_min[d], (float)sim->def.domain_max[d] - x};
+            for (int side = 0; side < 2; side++) {
+                float tn, tt = sph_kernel_wall_table(k, k->wall_lat_tt, k->wall_lat_tn, ds[side], &tn);
+                for (int e = 0; e < dim; e++) tg[e] += (e == d ? tn : tt) * g[e];
+            }
+        }
+    }
+    const float c = form * rho0 * P->p_rho2[i] * 2.0f, cg = form * rho0 / rho_i;
+    for (int d = 0; d < dim; d++) a[d] -= c * grad[d] + cg * tg[d];
 }
 
 #endif

@@ -174,7 +174,8 @@ static bool make_buffers(gpu *g, const sph_sim *sim)
     /* the volume walls' tables (sph_wall_hidden), the density kernel's: its
      * lattice share, slope, corner share and corner slope (shaders/gpu_common.glsl) */
     const sph_kernel *kd = &sim->k_density;
-    float *wall = malloc((GPU_WALL_FLOATS + GPU_SOLVER_WALL_FLOATS) * sizeof *wall);
+    const size_t wall_floats = GPU_WALLP_AT + GPU_WALLP_FLOATS;
+    float *wall = malloc(wall_floats * sizeof *wall);
     if (!wall) return false;
     float *o = wall;
     memcpy(o, kd->wall_lat_psi, sizeof kd->wall_lat_psi);
@@ -189,7 +190,21 @@ static bool make_buffers(gpu *g, const sph_sim *sim)
     memcpy(o, sim->solver.wall_share, sizeof sim->solver.wall_share);
     o += SPH_SOLVER_WALL_SAMPLES + 1;
     memcpy(o, sim->solver.wall_slope, sizeof sim->solver.wall_slope);
-    g->buf[B_WALL] = new_buffer(g, (GPU_WALL_FLOATS + GPU_SOLVER_WALL_FLOATS) * sizeof *wall, wall);
+    o += SPH_SOLVER_WALL_SAMPLES + 1;
+    /* the pressure kernel's: the walls' pressure force (sph_wall_ghost_accel) */
+    const sph_kernel *kp = &sim->k_pressure;
+    memcpy(o, kp->wall_lat_psi, sizeof kp->wall_lat_psi);
+    o += SPH_WALL_TABLE + 1;
+    memcpy(o, kp->wall_lat_area, sizeof kp->wall_lat_area);
+    o += SPH_WALL_TABLE + 1;
+    memcpy(o, kp->wall_corner, sizeof kp->wall_corner);
+    o += (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1);
+    memcpy(o, kp->wall_corner_slope, sizeof kp->wall_corner_slope);
+    o += (SPH_WALL_CORNER + 1) * (SPH_WALL_CORNER + 1);
+    memcpy(o, kp->wall_lat_tn, sizeof kp->wall_lat_tn);
+    o += SPH_WALL_TABLE + 1;
+    memcpy(o, kp->wall_lat_tt, sizeof kp->wall_lat_tt);
+    g->buf[B_WALL] = new_buffer(g, wall_floats * sizeof *wall, wall);
     free(wall);
     for (int b = 0; b < B_TOTAL; b++)
         if (g->buf[b]) gpu_bind(g, b, g->buf[b]);

@@ -67,6 +67,10 @@ enum {
 /* after them, the pressure solvers' wall share and slope (sph_solver_state,
  * src/passes/solver.h), in the same buffer: no binding more for them */
 #define GPU_SOLVER_WALL_FLOATS (2 * (SPH_SOLVER_WALL_SAMPLES + 1))
+/* after those, the pressure kernel's tables (the same four) and its second
+ * moments tn, tt: the walls' pressure force (sph_wall_ghost_accel) */
+#define GPU_WALLP_AT (GPU_WALL_FLOATS + GPU_SOLVER_WALL_FLOATS)
+#define GPU_WALLP_FLOATS (GPU_WALL_FLOATS + 2 * (SPH_WALL_TABLE + 1))
 
 /* Timer queries (gpu_timing.c): per step, a GL_TIMESTAMP before and after
  * each pass; a ring of steps read back when the device has them. */

@@ -430,7 +430,9 @@ static bool forces_fused(const sph_sim *sim)
 static void run_pressure_force(gpu *g, sph_sim *sim)
 {
     const bool fused = forces_fused(sim);
-    use_walk(g, sim, fused ? PROG_H(forces) : SPH_PASS_PRESSURE_FORCE);
+    const int p = fused ? PROG_H(forces) : SPH_PASS_PRESSURE_FORCE;
+    use_walk(g, sim, p);
+    gpu_set_f(g, p, U_gscale, sph_start_gravity_scale(sim)); /* the volume walls' ghost pressure */
     gpu_dispatch(g, g->n);
     /* the pass's registry row names acc_p only: the host copy of acc_v is
      * now old too (read by the inspector when stepping pass by pass) */

@@ -125,6 +125,8 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put_vec3(&t, "GRAVITY", sim->def.gravity);
     put(&t, "#define WALL_VOLUME %d\n#define WALL_CORNER %d\n", sph_sim_wall_volume(sim), SPH_WALL_CORNER);
     put_float(&t, "WALL_FULL", sim->k_density.wall_lat_full);
+    put_float(&t, "WALL_FULL_P", sim->k_pressure.wall_lat_full);
+    put(&t, "#define WALLP_AT %d\n#define WALL_GHOST %d\n", GPU_WALLP_AT, def->wall_force == SPH_WFORCE_GHOST);
     put_float(&t, "RHO0", def->rest_density);
     put_float(&t, "STIFF", def->stiffness);
     put(&t, "#define EOS_TAIT %d\n#define CLAMP_NEG %d\n", def->eos == SPH_EOS_TAIT,

@@ -152,7 +152,9 @@ static inline void rate_one(const sph_sim *sim, const sph_kernel *k, float diffu
     if (sph_sim_wall_volume(sim)) {
         float grad[3];
         sph_wall_hidden(sim, k, i, grad);
-        for (int d = 0; d < dim; d++) rate += sim->def.rest_density * grad[d] * vi[d];
+        /* the walls at rest in the step's frame (sph_wall_kick), as the wall particles: else a column at
+         * rest reads as flowing into the floor at g dt and its row at the floor is compressed */
+        for (int d = 0; d < dim; d++) rate += sim->def.rest_density * grad[d] * (vi[d] - kick[d]);
     }
     P->drho[i] = rate;
 }

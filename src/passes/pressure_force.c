@@ -81,13 +81,10 @@ static inline void pressure_one(const sph_sim *sim, const sph_kernel *k, int i, 
     float a[3];
     for (int d = 0; d < dim; d++) a[d] = dbl ? (float)ad[d] : af[d];
     if (sph_sim_wall_volume(sim)) {
-        /* The force that makes the walls' density term conservative:
-         * a = -(p_i / rho_i^2) grad(rho0 * hidden share), with the density
-         * kernel, so walls neither add nor remove energy (docs/accuracy.md,
-         * section 6: why not the pair term over the hidden lattice). */
-        float grad[3];
-        sph_wall_hidden(sim, &sim->k_density, i, grad);
-        for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * pi_over * grad[d];
+        /* the walls' push ([domain] wall_force): the energy's gradient, or
+         * the hidden lattice as ghost particles in the pair term, their
+         * pressure extrapolated with gravity (docs/accuracy.md, section 6) */
+        sph_wall_ghost_accel(sim, i, a);
     }
     for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
 }
@@ -140,9 +137,7 @@ static inline void pressure_one_avx512(const sph_sim *sim, const sph_kernel *k, 
     }
     float a[3] = {_mm512_reduce_add_ps(ax), _mm512_reduce_add_ps(ay), _mm512_reduce_add_ps(az)};
     if (sph_sim_wall_volume(sim)) {
-        float grad[3];
-        sph_wall_hidden(sim, &sim->k_density, i, grad);
-        for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * P->p_rho2[i] * grad[d];
+        sph_wall_ghost_accel(sim, i, a);
     }
     for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
 }
@@ -214,9 +209,7 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
     }
     float a[3] = {_mm512_reduce_add_ps(ax), _mm512_reduce_add_ps(ay), _mm512_reduce_add_ps(az)};
     if (sph_sim_wall_volume(sim)) {
-        float grad[3];
-        sph_wall_hidden(sim, &sim->k_density, i, grad);
-        for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * P->p_rho2[i] * grad[d];
+        sph_wall_ghost_accel(sim, i, a);
     }
     for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
     /* the scale of viscosity_one_avx512 */
