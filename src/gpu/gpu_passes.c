@@ -431,6 +431,7 @@ static void run_pressure_force(gpu *g, sph_sim *sim)
 {
     const bool fused = forces_fused(sim);
     use_walk(g, sim, fused ? PROG_H(forces) : SPH_PASS_PRESSURE_FORCE);
+    if (fused) set_kick(g, sim, PROG_H(forces));
     gpu_dispatch(g, g->n);
     /* the pass's registry row names acc_p only: the host copy of acc_v is
      * now old too (read by the inspector when stepping pass by pass) */
@@ -446,6 +447,7 @@ static void run_viscosity(gpu *g, sph_sim *sim)
 {
     if (forces_fused(sim)) return; /* the pressure_force pass wrote acc_v in its walk */
     use_walk(g, sim, SPH_PASS_VISCOSITY);
+    set_kick(g, sim, SPH_PASS_VISCOSITY);
     gpu_dispatch(g, g->n);
 }
 
