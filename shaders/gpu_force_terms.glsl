@@ -60,11 +60,16 @@ void pressure_pair(uint i, uint j, vec3 dx, float r2)
 vec3 acc_vs, vi; // sum of the viscous terms (unscaled), the particle's velocity [m/s]
 #if VISC_ARTIFICIAL
 vec3 acc_av; // sum of Monaghan's terms [m/s^2]
+uniform vec3 u_kick; // [m/s] a wall particle's velocity in the step's frame, g dt (viscosity.c)
 // Monaghan 1992: -m_j Pi_ij grad W_ij for approaching pairs, along x_ij,
-// with the pressure kernel's gradient; the neighbour's own velocity
+// with the pressure kernel's gradient; the neighbour's own velocity, a wall
+// particle's seen at v_w + g dt (sph_wall_kick), as the fluid's v is kicked
 void artificial_pair(uint j, vec3 dx, float r2, float r)
 {
     vec3 vj = VEL3(j);
+#if HAS_FIXED
+    if (fixed_[j] != 0.0) vj += u_kick;
+#endif
     float vx = 0.0;
     for (int d = 0; d < DIM; d++) vx += (vi[d] - vj[d]) * dx[d];
     if (!(vx < 0.0) || r <= 0.0) return;

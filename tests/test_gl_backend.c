@@ -293,6 +293,18 @@ Test(gl_backend, passes_match_cpu_artificial_viscosity_ramps)
     lockstep_steps(scene_3d, sets3, 2, 1);
 }
 
+/* Monaghan's term with wall particles sees a wall at v_w + g dt, the frame of the kicked fluid
+ * (sph_wall_kick); the fused walk: tests/test_gl_fused.c */
+Test(gl_backend, passes_match_cpu_artificial_viscosity_wall_particles)
+{
+    const char *sets[] = {"physics.viscosity_form=artificial", "physics.alpha=0.5", "domain.wall_model=particles",
+                          "compute.fuse_forces=off"};
+    lockstep_steps(scene_2d, sets, 4, 2);
+    const char *both[] = {"physics.viscosity_form=morris-artificial", "physics.alpha=0.5",
+                          "domain.wall_model=particles", "kernels.viscosity=cubic"};
+    lockstep_steps(scene_2d, both, 4, 2);
+}
+
 Test(gl_backend, passes_match_cpu_periodic_brute)
 {
     const char *sets[] = {"domain.periodic=x", "search.method=brute"};

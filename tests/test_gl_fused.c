@@ -162,6 +162,15 @@ Test(gl_fused, wall_particles)
     check(scene_3d, sets, 2, 1, "wall particles 3d");
 }
 
+/* Monaghan's term with wall particles: the fused walk sees a wall at v_w + g dt (sph_wall_kick), as the
+ * viscosity pass does */
+Test(gl_fused, artificial_wall_particles)
+{
+    const char *sets[] = {"physics.viscosity_form=morris-artificial", "physics.alpha=0.5",
+                          "domain.wall_model=particles", "kernels.viscosity=cubic"};
+    check(scene_2d, sets, 4, 2, "morris-artificial, wall particles 2d");
+}
+
 /* With the viscosity pass switched off (the window's pass toggles) the
  * pressure force runs alone: acc_v keeps what it had. */
 Test(gl_fused, viscosity_off_runs_the_pressure_force_alone)

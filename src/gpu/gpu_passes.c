@@ -433,6 +433,7 @@ static void run_pressure_force(gpu *g, sph_sim *sim)
     const int p = fused ? PROG_H(forces) : SPH_PASS_PRESSURE_FORCE;
     use_walk(g, sim, p);
     gpu_set_f(g, p, U_gscale, sph_start_gravity_scale(sim)); /* the volume walls' ghost pressure */
+    if (fused) set_kick(g, sim, p);
     gpu_dispatch(g, g->n);
     /* the pass's registry row names acc_p only: the host copy of acc_v is
      * now old too (read by the inspector when stepping pass by pass) */
@@ -448,6 +449,7 @@ static void run_viscosity(gpu *g, sph_sim *sim)
 {
     if (forces_fused(sim)) return; /* the pressure_force pass wrote acc_v in its walk */
     use_walk(g, sim, SPH_PASS_VISCOSITY);
+    set_kick(g, sim, SPH_PASS_VISCOSITY);
     gpu_dispatch(g, g->n);
 }
 

@@ -51,14 +51,10 @@ static void observe(void *vctx, const sph_sim *sim)
     hyd_obs *o = vctx;
     const sph_particles *P = &sim->P;
     const sph_scene_def *def = &sim->def;
-    if (o->H == 0) { /* the depth, from the fluid's mass */
-        double mass = 0;
-        for (uint32_t i = 0; i < sim->n; i++)
-            if (!sph_is_wall(P, i)) mass += P->mass[i];
-        o->H = mass / (def->rest_density * ((double)def->domain_max[0] - def->domain_min[0]));
-        o->rho0 = def->rest_density;
+    if (o->H == 0) { /* the depth, from the fluid's mass, at the density the pressure is relative to */
+        o->H = val_hydrostatic_column(sim, &o->eos);
+        o->rho0 = o->eos.rho0;
         o->g = -def->gravity[1];
-        o->eos = (val_eos){def->rest_density, def->stiffness, def->eos == SPH_EOS_TAIT ? def->tait_gamma : 0.0};
     }
     double vmax = 0;
     uint32_t fast = 0;

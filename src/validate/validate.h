@@ -88,6 +88,16 @@ typedef struct val_eos {
  * (by about g H0^2 / 2k). */
 double val_hydrostatic_p(const val_eos *e, double g, double H0, double y);
 
+/* The column at rest a run of `validate hydrostatic` is compared with
+ * (validate_ref.c reads the run's state, it steps nothing): *e the run's
+ * equation of state, whose rho0 is the density its pressure is relative to
+ * (sim->eos_rho0: rest_density, or the lattice's with [physics] eos_rest =
+ * lattice); returns H0 [m] such that rho0 g H0 is the fluid's weight per
+ * unit floor (its mass over the domain's width along x, times g), i.e. the
+ * depth that mass would have at that rho0. */
+struct sph_sim;
+double val_hydrostatic_column(const struct sph_sim *sim, val_eos *e);
+
 /* Observed order of convergence between two resolutions: log(e1/e2) / log(r2/r1). */
 double val_order(double r1, double e1, double r2, double e2);
 

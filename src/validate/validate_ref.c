@@ -4,6 +4,8 @@
 
 #include <math.h>
 
+#include "sph_walls.h"
+
 #define PI 3.14159265358979323846
 
 /* Martin, J. C. & Moyce, W. J. 1952, "Part IV. An experimental study of the
@@ -79,6 +81,17 @@ double val_hydrostatic_p(const val_eos *e, double g, double H0, double y)
         p += dy / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
     }
     return p;
+}
+
+double val_hydrostatic_column(const sph_sim *sim, val_eos *e)
+{
+    const sph_scene_def *def = &sim->def;
+    double mass = 0;
+    for (uint32_t i = 0; i < sim->n; i++)
+        if (!sph_is_wall(&sim->P, i)) mass += sim->P.mass[i];
+    const double rho0 = sim->eos_rho0; /* the equation of state's p = 0, as pressure.c's */
+    *e = (val_eos){rho0, def->stiffness, def->eos == SPH_EOS_TAIT ? def->tait_gamma : 0.0};
+    return mass / (rho0 * ((double)def->domain_max[0] - def->domain_min[0]));
 }
 
 double val_poiseuille_steady(double y, double F, double nu, double L)
