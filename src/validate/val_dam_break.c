@@ -15,7 +15,11 @@
  * at every published point with 0.8 <= T <= 3 (Martin & Moyce 1952, both
  * n^2 = 2 columns; Koshizuka & Oka 1996), and H / H_ref - 1 at every point of
  * Martin & Moyce's Table 6 in the same window (published against
- * tau = t sqrt(g/a) = T / n), the references read as published. */
+ * tau = t sqrt(g/a) = T / n), the references read as published.
+ * The CSV also has the front of the main body (the largest group of fluid
+ * particles linked by distance < h, and < 1.5 spacings: val_front_connected),
+ * to show whether the rightmost particle is a drop thrown ahead of the water
+ * (docs/accuracy.md, "The front's measure, checked"); it is not judged. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
