@@ -95,6 +95,34 @@ Test(validate, curve_interpolates_inside_and_is_nan_outside)
 /* The column at rest of a weakly compressible fluid: the floor carries the
  * weight, the linear equation of state has the closed form, the mass is
  * rho0 H0 per unit area, and the incompressible column is the limit. */
+/* The main body's front: a 10 x 5 block of spacing s with a lone particle
+ * 2.5 s ahead of it on the floor and a two-particle drop 6 s ahead; the
+ * rightmost particle of all is the drop's. */
+Test(validate, front_of_the_main_body_leaves_out_what_is_thrown_ahead)
+{
+    double x[64], y[64], s = 0.01;
+    size_t n = 0, body = 0;
+    for (int j = 0; j < 5; j++)
+        for (int i = 0; i < 10; i++) x[n] = i * s, y[n++] = j * s;
+    x[n] = 9 * s + 2.5 * s, y[n++] = 0;         /* the lone particle */
+    x[n] = 9 * s + 6 * s, y[n++] = 2 * s;       /* the drop */
+    x[n] = 9 * s + 6.8 * s, y[n++] = 2.2 * s;
+    cr_assert_float_eq(val_front_connected(x, y, n, 1.5 * s, &body), 9 * s, 1e-12, "links < 1.5 s: the block's edge");
+    cr_assert_eq(body, 50);
+    /* links < 3 s reach the lone particle (2.5 s away), not the drop (4.03 s from it) */
+    cr_assert_float_eq(val_front_connected(x, y, n, 3 * s, &body), 11.5 * s, 1e-12);
+    cr_assert_eq(body, 51);
+    /* links < 4.5 s join everything: the front is the drop's far particle */
+    cr_assert_float_eq(val_front_connected(x, y, n, 4.5 * s, &body), 15.8 * s, 1e-12);
+    cr_assert_eq(body, 53);
+    /* a larger group ahead wins over a smaller one behind: the body is the largest group */
+    double cx[] = {0, 10 * s, 10.5 * s, 11 * s}, cy[] = {0, 0, 0, 0};
+    cr_assert_float_eq(val_front_connected(cx, cy, 4, s, &body), 11 * s, 1e-12);
+    cr_assert_eq(body, 3);
+    cr_assert(isnan(val_front_connected(x, y, 0, s, NULL)), "no particles");
+    cr_assert(isnan(val_front_connected(x, y, n, 0, NULL)), "no link length");
+}
+
 Test(validate, hydrostatic_column_of_the_equation_of_state)
 {
     const double rho0 = 1000, g = 9.81, H0 = 0.3, k = 400;

@@ -98,6 +98,14 @@ double val_hydrostatic_p(const val_eos *e, double g, double H0, double y);
 struct sph_sim;
 double val_hydrostatic_column(const struct sph_sim *sim, val_eos *e);
 
+/* The front of the main body of a particle cloud: the largest x among the
+ * points (x[i], y[i]) of the largest group linked by distance < link [m]
+ * (two points are in one group when a chain of such links joins them), so
+ * that a drop or a lone particle thrown ahead of the water does not count;
+ * *body (if not NULL) gets that group's size. NaN when n == 0, link <= 0 or
+ * out of memory. (validate dam-break) */
+double val_front_connected(const double *x, const double *y, size_t n, double link, size_t *body);
+
 /* Observed order of convergence between two resolutions: log(e1/e2) / log(r2/r1). */
 double val_order(double r1, double e1, double r2, double e2);
 

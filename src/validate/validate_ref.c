@@ -3,6 +3,7 @@
 #include "validate.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #include "sph_walls.h"
 
@@ -151,4 +152,69 @@ double val_period_crossings(const double *x, const double *y, size_t n, int *k)
         (*k)++;
     }
     return *k >= 3 ? 2.0 * (last_even - first) / (double)(2 * ((*k - 1) / 2)) : NAN;
+}
+
+static size_t uf_root(size_t *parent, size_t i)
+{
+    while (parent[i] != i) i = parent[i] = parent[parent[i]]; /* path halving */
+    return i;
+}
+
+double val_front_connected(const double *x, const double *y, size_t n, double link, size_t *body)
+{
+    if (body) *body = 0;
+    if (n == 0 || !(link > 0)) return NAN;
+    double x0 = x[0], x1 = x[0], y0 = y[0], y1 = y[0];
+    for (size_t i = 1; i < n; i++) x0 = fmin(x0, x[i]), x1 = fmax(x1, x[i]), y0 = fmin(y0, y[i]), y1 = fmax(y1, y[i]);
+    /* cells at least `link` wide, so a link joins the same or a neighbouring
+     * cell; widened when the box would need more than 4 n cells */
+    double cell = link;
+    size_t nx, ny;
+    for (;;) {
+        nx = (size_t)((x1 - x0) / cell) + 1;
+        ny = (size_t)((y1 - y0) / cell) + 1;
+        if ((double)nx * (double)ny <= 4.0 * (double)n + 64) break;
+        cell *= 2;
+    }
+    size_t *parent = malloc(n * sizeof *parent), *cell_of = malloc(n * sizeof *cell_of);
+    size_t *order = malloc(n * sizeof *order), *start = calloc(nx * ny + 1, sizeof *start);
+    size_t *size = NULL;
+    double front = NAN;
+    if (!parent || !cell_of || !order || !start) goto out;
+    for (size_t i = 0; i < n; i++) {
+        size_t cx = (size_t)((x[i] - x0) / cell), cy = (size_t)((y[i] - y0) / cell);
+        cell_of[i] = (cy < ny ? cy : ny - 1) * nx + (cx < nx ? cx : nx - 1);
+        start[cell_of[i] + 1]++;
+        parent[i] = i;
+    }
+    for (size_t c = 0; c < nx * ny; c++) start[c + 1] += start[c];
+    for (size_t i = 0; i < n; i++) order[start[cell_of[i]]++] = i; /* start[c] now ends cell c */
+    for (size_t c = nx * ny; c > 0; c--) start[c] = start[c - 1];
+    start[0] = 0;
+    double link2 = link * link;
+    for (size_t i = 0; i < n; i++) {
+        size_t cx = cell_of[i] % nx, cy = cell_of[i] / nx;
+        for (size_t yy = cy ? cy - 1 : 0; yy <= cy + 1 && yy < ny; yy++)
+            for (size_t xx = cx ? cx - 1 : 0; xx <= cx + 1 && xx < nx; xx++)
+                for (size_t k = start[yy * nx + xx]; k < start[yy * nx + xx + 1]; k++) {
+                    size_t j = order[k];
+                    double dx = x[i] - x[j], dy = y[i] - y[j];
+                    if (j <= i || dx * dx + dy * dy >= link2) continue;
+                    size_t a = uf_root(parent, i), b = uf_root(parent, j);
+                    if (a != b) parent[a] = b;
+                }
+    }
+    size = calloc(n, sizeof *size);
+    if (!size) goto out;
+    size_t best = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t r = uf_root(parent, i);
+        if (++size[r] > size[best] || (size[r] == size[best] && r < best)) best = r;
+    }
+    for (size_t i = 0; i < n; i++)
+        if (uf_root(parent, i) == best && !(x[i] <= front)) front = x[i];
+    if (body) *body = size[best];
+out:
+    free(parent), free(cell_of), free(order), free(start), free(size);
+    return front;
 }
