@@ -205,6 +205,8 @@ const app_opt app_options[] = {
      FLAG(quick)},
     {"--out", NULL, "DIR", "where the CSV, JSON and charts go (made if missing; default .)", BENCH, PATH(out)},
     {"--levels", NULL, "L0,L3,...", "only these levels (default: all)", BENCH, STRING(levels)},
+    {"--solvers", NULL, "S,S,...", "solvers: only these rows besides eos (pcisph, dfsph, pcisph+, dfsph+; default: all)",
+     BENCH, STRING(solvers)},
     {"--watchdog", NULL, NULL, "keep the watchdog's checks on while timing (default off: a debugging aid)", BENCH,
      FLAG(watchdog)},
     {"--trace", NULL, NULL, "one line per measurement on stderr (size, steps/s, repeats, others)", BENCH,

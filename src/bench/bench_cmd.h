@@ -17,6 +17,7 @@
 
 typedef struct bench_opts {
     const char *what, *out, *levels;
+    const char *solvers; /* solvers: --solvers, the rows to run besides eos; NULL: all */
     double fps, at;
     double time;  /* [s] solvers: --time, the simulated window; < 0 if not given */
     int repeats;  /* solvers: --repeats, interleaved rounds; < 0 if not given */

@@ -246,6 +246,31 @@ static double stiffness_search(const bench_opts *o, double count, double duratio
     return k_hold;
 }
 
+/* --solvers: the rows to run besides eos, which always runs (every ratio is against it); NULL: all. */
+static bool parse_solvers(const char *list, bool want[SETTINGS])
+{
+    for (int s = 0; s < SETTINGS; s++) want[s] = list == NULL;
+    want[SETTING_EOS] = true;
+    if (!list) return true;
+    char buf[256];
+    if (snprintf(buf, sizeof buf, "%s", list) >= (int)sizeof buf) {
+        fprintf(stderr, "sphlab bench solvers: --solvers '%s': too long\n", list);
+        return false;
+    }
+    for (char *save = NULL, *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+        int found = -1;
+        for (int s = 0; s < SETTINGS; s++)
+            if (strcmp(t, setting_names[s]) == 0) found = s;
+        if (found < 0) {
+            fprintf(stderr, "sphlab bench solvers: --solvers: no solver row '%s' (accepted: eos, pcisph, dfsph, "
+                    "pcisph+, dfsph+)\n", t);
+            return false;
+        }
+        want[found] = true;
+    }
+    return true;
+}
+
 int bench_cmd_solvers(bench_opts *o)
 {
     const double n = o->at_given ? o->at : (o->quick ? 4000 : 50000);
@@ -265,6 +290,8 @@ int bench_cmd_solvers(bench_opts *o)
         fprintf(stderr, "sphlab bench solvers: --repeats %d: at most %d\n", repeats, SOLVERS_ROUNDS_MAX);
         return 2;
     }
+    bool want[SETTINGS];
+    if (!parse_solvers(o->solvers, want)) return 2;
     g_trace = o->trace;
     int side[3];
     column_sides(n, side);
@@ -308,6 +335,7 @@ int bench_cmd_solvers(bench_opts *o)
     for (int rep = 0; rep < repeats; rep++)
         for (int o_ = 0; o_ < SETTINGS; o_++) {
             const int s = order[o_];
+            if (!want[s]) continue;
             bench_progress("round %d of %d: %s", rep + 1, repeats, setting_names[s]);
             run_one(s, count, k, duration, threads, 0, o->cfg.watchdog, &runs[s][rep]);
             if (!runs[s][rep].ok) {
@@ -320,8 +348,9 @@ int bench_cmd_solvers(bench_opts *o)
     bench_loadavg(load1);
 
     enum { C_MAX, C_MEAN, C_STEPS, C_ITS, C_MS, C_DT, C_STEP, C_RATIO, COLS };
-    double med[SETTINGS][COLS], lo[SETTINGS], hi[SETTINGS];
+    double med[SETTINGS][COLS] = {{0}}, lo[SETTINGS] = {0}, hi[SETTINGS] = {0};
     for (int s = 0; s < SETTINGS; s++) {
+        if (!want[s]) continue;
         double v[COLS][SOLVERS_ROUNDS_MAX];
         for (int rep = 0; rep < repeats; rep++) {
             const solver_run *x = &runs[s][rep];
@@ -335,11 +364,12 @@ int bench_cmd_solvers(bench_opts *o)
         hi[s] = v[C_RATIO][repeats - 1];
     }
     bool equal = true;
-    for (int s = 0; s < SETTINGS; s++) equal = equal && med[s][C_STEP] <= SOLVERS_TARGET * (1 + 1e-6);
+    for (int s = 0; s < SETTINGS; s++) equal = equal && (!want[s] || med[s][C_STEP] <= SOLVERS_TARGET * (1 + 1e-6));
     if (!o->quiet) {
         printf("\n%-8s %-11s %-10s %-11s %-11s %-7s %-8s %-8s %-14s %-11s %s\n", "solver", "stiffness", "err max %",
                "step max %", "err mean %", "steps", "dt ms", "it/step", "ms per sim. s", "eos / this", "least-largest");
         for (int s = 0; s < SETTINGS; s++) {
+            if (!want[s]) continue;
             char kk[32];
             snprintf(kk, sizeof kk, s == SETTING_EOS ? "%g" : "-", k);
             printf("%-8s %-11s %-10.4f %-11.4f %-11.4f %-7.0f %-8.4f %-8.1f %-14.0f %-11.2f %.2f-%.2f\n",
@@ -351,15 +381,16 @@ int bench_cmd_solvers(bench_opts *o)
                "round(s); eos / this: the median of\nthe rounds' ratios of ms per simulated second, with the least "
                "and the largest\n",
                repeats);
-        printf("at equal error (step max <= %g %% for all three): %s\n", 100 * SOLVERS_TARGET,
+        printf("at equal error (step max <= %g %% for every row): %s\n", 100 * SOLVERS_TARGET,
                equal ? "yes" : "NO");
-        printf("ratio: eos / pcisph %.2f (%.2f-%.2f), eos / dfsph %.2f (%.2f-%.2f); %.0f particles, %g s simulated\n",
-               med[SETTING_PCISPH][C_RATIO], lo[SETTING_PCISPH], hi[SETTING_PCISPH], med[SETTING_DFSPH][C_RATIO],
-               lo[SETTING_DFSPH], hi[SETTING_DFSPH], count, duration);
-        printf("warm start (+): eos / pcisph+ %.2f (%.2f-%.2f), eos / dfsph+ %.2f (%.2f-%.2f); pcisph+: "
-               "solver_warm_start and pcisph_local_delta on, dfsph+: solver_warm_start on\n",
-               med[SETTING_PCISPH_WARM][C_RATIO], lo[SETTING_PCISPH_WARM], hi[SETTING_PCISPH_WARM],
-               med[SETTING_DFSPH_WARM][C_RATIO], lo[SETTING_DFSPH_WARM], hi[SETTING_DFSPH_WARM]);
+        char r[SETTINGS][48];
+        for (int s = 0; s < SETTINGS; s++)
+            snprintf(r[s], sizeof r[s], want[s] ? "%.2f (%.2f-%.2f)" : "not run", med[s][C_RATIO], lo[s], hi[s]);
+        printf("ratio: eos / pcisph %s, eos / dfsph %s; %.0f particles, %g s simulated\n", r[SETTING_PCISPH],
+               r[SETTING_DFSPH], count, duration);
+        printf("warm start (+): eos / pcisph+ %s, eos / dfsph+ %s; pcisph+: solver_warm_start and pcisph_local_delta "
+               "on, dfsph+: solver_warm_start on\n",
+               r[SETTING_PCISPH_WARM], r[SETTING_DFSPH_WARM]);
         printf("load %.2f at the start, %.2f at the end (1-minute averages); %.0f s in all\n", load0[0], load1[0],
                1e-3 * (sph_now_ms() - t_start));
     }

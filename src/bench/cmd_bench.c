@@ -131,6 +131,7 @@ static int parse_args(int argc, char **argv, bench_opts *o)
     o->repeats = (int)opt.repeats;
     o->out = opt.out;
     o->levels = opt.levels;
+    o->solvers = opt.solvers;
     o->quick = opt.quick;
     o->quiet = opt.quiet;
     o->trace = opt.trace;
