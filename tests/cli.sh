@@ -404,6 +404,9 @@ sed -n '/^\$ \.\/sphlab check lessons\/scenes\/dam-break-2d.ini$/,/^```$/p' READ
 sph check lessons/scenes/dam-break-2d.ini 2>&1 | grep -v '^memory: ' > "$tmp/check-now.txt"
 [ -s "$tmp/readme-check.txt" ] && diff "$tmp/readme-check.txt" "$tmp/check-now.txt" > "$tmp/rd.txt" && ok ||
     { bad "README.md: the check of dam-break-2d.ini differs from what check prints"; cat "$tmp/rd.txt"; }
+# bench solvers --solvers: a row it does not have is refused, naming it, before anything runs
+sph bench solvers --quick --solvers pcisph+,nope > "$tmp/bs.txt" 2>&1; rc=$?
+[ "$rc" -eq 2 ] && grep -q "no solver row 'nope'" "$tmp/bs.txt" && ok || bad "bench solvers --solvers nope: rc $rc: $(cat "$tmp/bs.txt")"
 # its command list names every problem of validate and every WHAT of bench
 for name in $(sph validate list 2>/dev/null | sed -n 's/^\([a-z-][a-z-]*\)  .*/\1/p'); do
     sed -n '/^sphlab validate NAME/,/^sphlab bench/p' README.md | grep -q "$name" && ok ||
