@@ -76,7 +76,8 @@ const sph_pass sph_pass_reorder = {
     .name = "reorder",
     .summary = "store particles in cell order",
     /* and the wall flag `fixed` (with `obstacle` and `slip`) where there are wall particles, the carried
-     * density rho_c with density_method = continuity: written (moved)
+     * density rho_c with density_method = continuity, the position remainder pos_r with position_sum =
+     * compensated: written (moved)
      * when present, not listed in reads (a pass's reads exist in every scene
      * that runs it) */
     .reads = SPH_RES_ENTRIES | SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED),
