@@ -1,8 +1,9 @@
-// uses: POS VEL PRED FIXED
+// uses: POS VEL PRED FIXED POS_R
 // Pass external (src/passes/external.c): v = damp v + gscale g dt, then
 // pred = x + v dt. u_gscale and u_damp are the start-up ramps' factors for
 // this step (src/core/sph_start.h), 1 when the scene has none. Wall
 // particles (wall_model = particles) get no gravity: they stand still.
+// With position_sum = compensated, pred = x + (v dt + pos_r), as external.c.
 layout(local_size_x = WG) in;
 uniform float u_dt;
 uniform float u_gscale;
@@ -28,7 +29,11 @@ void main()
 #endif
         if (changed) vel_[k] = v;
 #if HAS_PRED
+#if HAS_POS_R
+        precise float xp = pos_[k] + (v * u_dt + pos_r_[k]);
+#else
         precise float xp = pos_[k] + v * u_dt;
+#endif
         if (PER[d] > 0.0) xp = wrap_coord(xp, DOM_MIN[d], PER[d], INV_PER[d]);
         pred_[k] = xp;
 #endif

@@ -1,4 +1,4 @@
-// uses: POS VEL ACCELERATIONS REDUCE FIXED
+// uses: POS VEL ACCELERATIONS REDUCE FIXED POS_R
 // Pass integrate (src/passes/integrate.c): symplectic Euler with the sum of
 // every acceleration field (ACC_SUM, written by the host), periodic wrap,
 // and the largest |v|^2 and |a|^2 for the CFL step: reduced per group in
@@ -6,7 +6,9 @@
 // floats order as their bits do; a NaN's bits exceed every finite value's, so
 // a NaN shows up in the maximum, as the watchdog needs). Wall particles
 // (wall_model = particles) never move and count in neither maximum; only the
-// periodic wrap applies to them, as on the CPU.
+// periodic wrap applies to them, as on the CPU. With position_sum =
+// compensated (HAS_POS_R), x += dt v is Kahan's sum, as integrate.c: pos_r
+// keeps what the float x could not hold and adds it to the next move.
 layout(local_size_x = WG) in;
 uniform float u_dt;
 shared uint sv[WG], sa[WG];
@@ -29,7 +31,14 @@ void main()
             float a = ACC_SUM(k); // every acceleration field, as the CPU sums them
             precise float v = vel_[k] + u_dt * a;
             vel_[k] = v;
+#if HAS_POS_R
+            precise float y = u_dt * v + pos_r_[k];
+            precise float x0 = pos_[k];
+            precise float x = x0 + y;
+            pos_r_[k] = y - (x - x0);
+#else
             precise float x = pos_[k] + u_dt * v;
+#endif
             if (PER[d] > 0.0) x = wrap_coord(x, DOM_MIN[d], PER[d], INV_PER[d]);
             pos_[k] = x;
             v2 += v * v;

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "sph_memory.h"
 #include "sph_walls.h"
 #include "test_util.h"
 
@@ -332,4 +333,68 @@ Test(hydro_accuracy, hydrostatic_tank_single_frames, .timeout = 120)
     cr_assert_lt(worst_row, 0.003, "wall row %.4f", worst_row);
     cr_assert_lt(worst_speed, 1e-3 * sqrt_gH, "max speed %g m/s", worst_speed);
     sph_sim_destroy(sim);
+}
+
+/* [m] x-displacement error of a block drifting at 1e-5 m/s (no force: viscosity of a uniform velocity is 0), fixed
+ * dt = 1e-4 s, near x = 0.15 m, after 2000 steps: each move dt v = 1e-9 m is under half a float spacing of x there
+ * (1.49e-8 m / 2). *moved: the largest displacement of any particle. */
+static double slow_drift(const char *position_sum, double *moved)
+{
+    char ini[512];
+    snprintf(ini, sizeof ini,
+             "[scene]\ndimension=2\neffects=viscosity\n[domain]\nmin=0 0\nmax=0.3 0.3\n"
+             "[fluid a]\nmin=0.14 0.1\nmax=0.16 0.12\nspacing=0.005\nvelocity=1e-5 0\n"
+             "[physics]\nviscosity=0.001\n[time]\ncfl=0\ndt=1e-4\nposition_sum=%s\n",
+             position_sum);
+    sph_sim *sim = test_sim(ini, 1);
+    double x0[64];
+    cr_assert_leq(sim->n, 64u);
+    for (uint32_t i = 0; i < sim->n; i++) x0[sim->P.id[i]] = sim->P.pos[0][i];
+    for (int s = 0; s < 2000; s++) sph_sim_step(sim);
+    double worst = 0;
+    *moved = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        double dx = (double)sim->P.pos[0][i] - x0[sim->P.id[i]];
+        worst = fmax(worst, fabs(dx - 2000 * 1e-4 * 1e-5));
+        *moved = fmax(*moved, fabs(dx));
+    }
+    sph_sim_destroy(sim);
+    return worst;
+}
+
+/* position_sum = float rounds every 1e-9 m move away (the block never moves); compensated (Kahan 1965) moves it
+ * the 2e-6 m to within one float spacing of x (1.49e-8 m). The hydrostatic tank's settled particles move like
+ * this (docs/accuracy.md, "hydrostatic"). */
+Test(hydro_accuracy, slow_drift_needs_compensated_positions)
+{
+    double moved_f, moved_c;
+    slow_drift("float", &moved_f);
+    double err_c = slow_drift("compensated", &moved_c);
+    cr_log_info("2000 moves of 1e-9 m at x = 0.15 m: float moved %.3g m, compensated %.4g m (off by %.3g m)",
+                moved_f, moved_c, err_c);
+    cr_assert_eq(moved_f, 0.0, "float positions moved %g m: the moves were expected to be rounded away", moved_f);
+    cr_assert_lt(err_c, 1.49e-8, "compensated displacement off by %g m of 2e-6 m", err_c);
+}
+
+/* The remainder field costs memory only where it is asked for: absent by default, dim floats a particle with
+ * position_sum = compensated, in the simulation and in the memory estimate (bench ladder's bytes per particle). */
+Test(hydro_accuracy, position_remainder_allocated_only_when_compensated)
+{
+    const char *ini = "[scene]\ndimension=2\neffects=gravity pressure viscosity\n[domain]\nmax=1 1\n"
+                      "[fluid a]\nmin=0 0\nmax=0.2 0.2\nspacing=0.02\n";
+    sph_scene_def def = test_scene(ini), comp = def;
+    comp.position_sum = SPH_POSSUM_COMPENSATED;
+    sph_mem_estimate a, b;
+    sph_memory_estimate(&def, &a);
+    sph_memory_estimate(&comp, &b);
+    const double n = sph_scene_particle_count(&def);
+    cr_assert_float_eq(b.total - a.total, n * 2 * sizeof(float), 1e-6, "estimate grew by %g B for %g particles",
+                       b.total - a.total, n);
+    sph_sim *s = test_sim(ini, 1);
+    cr_assert_null(s->P.pos_r[0], "pos_r allocated at the default position_sum = float");
+    sph_sim_destroy(s);
+    sph_error err;
+    cr_assert_eq(sph_sim_create(&comp, 1, &s, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert(s->P.pos_r[0] && s->P.pos_r[1] && !s->P.pos_r[2], "pos_r: one array per axis of the scene");
+    sph_sim_destroy(s);
 }

@@ -32,6 +32,14 @@ const char *const sph_pass_group_names[SPH_GROUP_COUNT] = {
 #undef SPH_GROUP_NAME
 };
 
+bool sph_field_allocated(int f, const sph_scene_def *def, const bool in_pipeline[SPH_PASS_COUNT])
+{
+    const sph_field_info *info = &sph_field_infos[f];
+    if (info->made_by != SPH_PASS_COUNT && !in_pipeline[info->made_by]) return false;
+    if (f == SPH_FIELD_POS_R) return def->position_sum == SPH_POSSUM_COMPENSATED;
+    return true;
+}
+
 const char *sph_field_unit(int f, int dim)
 {
     return dim == 2 ? sph_field_infos[f].unit2 : sph_field_infos[f].unit;

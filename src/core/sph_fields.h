@@ -17,6 +17,7 @@
  *   kind     STATE (carried from step to step), DERIVED (recomputed each step),
  *            ACCELERATION (summed by integration), WALL (a wall model's own data)
  *   made_by  the pass whose presence in the pipeline allocates the field; NONE: always there
+ *            (pos_r besides needs position_sum = compensated: sph_field_allocated)
  *   check    what the watchdog checks besides finiteness: NONE, SPEED (|v| under the
  *            scene's bound), DENSITY (in (0, 100 rho0])
  *   colour   the name particles are coloured by (the window's and `render`'s
@@ -101,7 +102,9 @@
     X(DV_DF, dv_df, V, "m/s", "m/s", DERIVED, DFSPH, NONE, "", "",                                               \
       "DFSPH's velocity change this step, dt (other accelerations + a dfsph): v* = v + dv")                     \
     X(ACC_DF, acc_df, V, "m/s^2", "m/s^2", ACCELERATION, DFSPH, NONE, "dfsph-acc", "a dfsph",                    \
-      "pressure acceleration of DFSPH (divergence-free plus constant-density)")
+      "pressure acceleration of DFSPH (divergence-free plus constant-density)")                                  \
+    X(POS_R, pos_r, V, "m", "m", STATE, INTEGRATE, NONE, "", "",                                                 \
+      "what the float position could not hold of the moves dt v (position_sum = compensated): added to the next")
 
 typedef enum sph_field_id {
 #define SPH_FIELD_ENUM(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) SPH_FIELD_##ID,
@@ -161,6 +164,10 @@ typedef struct sph_field_info {
 
 extern const sph_field_info sph_field_infos[SPH_FIELD_COUNT];
 
+/* Whether a scene allocates field f: its pass runs (in_pipeline, by pass), and for pos_r the scene asks for
+ * compensated positions, so the default costs no memory for it. sph_sim_create and sph_memory_estimate both
+ * ask here. */
+bool sph_field_allocated(int f, const sph_scene_def *def, const bool in_pipeline[SPH_PASS_COUNT]);
 /* The field's unit in a scene of dimension dim. */
 const char *sph_field_unit(int f, int dim);
 /* -1 if no field has that name. */

@@ -62,7 +62,7 @@ void sph_memory_estimate(const sph_scene_def *def, sph_mem_estimate *out)
     double comps = 1; /* P.id */
     for (int k = 0; k < SPH_FIELD_COUNT; k++) {
         const sph_field_info *info = &sph_field_infos[k];
-        if (info->made_by != SPH_PASS_COUNT && !in[info->made_by]) continue;
+        if (!sph_field_allocated(k, def, in)) continue;
         comps += info->vector ? def->dim : 1;
     }
     add(out, "particle fields", n * comps * f, "%.3g particles x %.0f floats", n, comps);

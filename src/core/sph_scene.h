@@ -64,6 +64,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_FIELD_CHOICES(X) X(UNIFORM, "uniform") X(TAYLOR_GREEN, "taylor-green")
 #define SPH_INITP_CHOICES(X) X(NONE, "none") X(HYDROSTATIC, "hydrostatic")
 #define SPH_ACC_CHOICES(X) X(FLOAT, "float") X(DOUBLE, "double")
+#define SPH_POSSUM_CHOICES(X) X(FLOAT, "float") X(COMPENSATED, "compensated")
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
 #define SPH_BACKEND_CHOICES(X) X(CPU, "cpu") X(GL, "gl")
 #define SPH_PSOLVER_CHOICES(X) X(EOS, "eos") X(PCISPH, "pcisph") X(DFSPH, "dfsph")
@@ -89,6 +90,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_VFIELD(id, name) SPH_VFIELD_##id,
 #define SPH_CHOICE_ITEM_SPH_INITP(id, name) SPH_INITP_##id,
 #define SPH_CHOICE_ITEM_SPH_ACC(id, name) SPH_ACC_##id,
+#define SPH_CHOICE_ITEM_SPH_POSSUM(id, name) SPH_POSSUM_##id,
 #define SPH_CHOICE_ITEM_SPH_ONOFF(id, name) SPH_##id,
 #define SPH_CHOICE_ITEM_SPH_BACKEND(id, name) SPH_BACKEND_##id,
 #define SPH_CHOICE_ITEM_SPH_PSOLVER(id, name) SPH_PSOLVER_##id,
@@ -111,6 +113,7 @@ SPH_DECLARE_CHOICES(sph_shifting, SPH_SHIFT, SPH_SHIFT_CHOICES)
 SPH_DECLARE_CHOICES(sph_velocity_field, SPH_VFIELD, SPH_FIELD_CHOICES)
 SPH_DECLARE_CHOICES(sph_initial_pressure, SPH_INITP, SPH_INITP_CHOICES)
 SPH_DECLARE_CHOICES(sph_accumulate, SPH_ACC, SPH_ACC_CHOICES)
+SPH_DECLARE_CHOICES(sph_position_sum, SPH_POSSUM, SPH_POSSUM_CHOICES)
 SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
 SPH_DECLARE_CHOICES(sph_backend_kind, SPH_BACKEND, SPH_BACKEND_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_solver, SPH_PSOLVER, SPH_PSOLVER_CHOICES)
@@ -135,6 +138,7 @@ extern const char *const sph_axis_names[3];
 extern const char *const sph_velocity_field_names[SPH_VFIELD_COUNT];
 extern const char *const sph_initial_pressure_names[SPH_INITP_COUNT];
 extern const char *const sph_accumulate_names[SPH_ACC_COUNT];
+extern const char *const sph_position_sum_names[SPH_POSSUM_COUNT];
 extern const char *const sph_onoff_names[SPH_ONOFF_COUNT];
 extern const char *const sph_backend_names[SPH_BACKEND_COUNT];
 extern const char *const sph_pressure_solver_names[SPH_PSOLVER_COUNT];
@@ -248,6 +252,7 @@ typedef struct sph_scene_def {
     float dt;           /* [s] time step when cfl = 0; the first step's bound otherwise */
     float cfl;          /* [1] Courant factor; > 0 selects the adaptive time step */
     float dt_min;       /* [s] the adaptive step never goes below this */
+    sph_position_sum position_sum; /* x += dt v in float, or compensated (a per-particle remainder, pos_r) */
     int steps;          /* [1] default run length in steps (--steps overrides) */
     float duration;     /* [s] default run length in simulated time; 0: use steps */
 

@@ -95,12 +95,12 @@ static void *alloc_zero(size_t count, size_t size, bool *ok)
 }
 
 /* The registry's fields that the pipeline needs: those always there, and
- * those whose pass runs. */
+ * those whose pass runs (sph_field_allocated). */
 static void alloc_fields(sph_sim *sim, bool *ok)
 {
     for (int f = 0; f < SPH_FIELD_COUNT; f++) {
         const sph_field_info *info = &sph_field_infos[f];
-        if (info->made_by != SPH_PASS_COUNT && !sim->in_pipeline[info->made_by]) continue;
+        if (!sph_field_allocated(f, &sim->def, sim->in_pipeline)) continue;
         for (int d = 0; d < (info->vector ? sim->dim : 1); d++)
             sim->P.field[f][d] = alloc_zero(sim->n, sizeof(float), ok);
     }

@@ -50,8 +50,14 @@ static void run(sph_sim *sim)
         if (P->pred[d]) {
             const float *restrict x = P->pos[d];
             float *restrict xp = P->pred[d];
+            if (P->pos_r[d]) { /* position_sum = compensated: plus what x could not hold (integrate.c) */
+                const float *restrict r = P->pos_r[d];
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-            for (int i = 0; i < n; i++) xp[i] = x[i] + v[i] * dt;
+                for (int i = 0; i < n; i++) xp[i] = x[i] + (v[i] * dt + r[i]);
+            } else {
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+                for (int i = 0; i < n; i++) xp[i] = x[i] + v[i] * dt;
+            }
             if (sim->period[d] > 0) {
                 const float lo = sim->def.domain_min[d], per = sim->period[d], iper = sim->inv_period[d];
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
@@ -64,7 +70,7 @@ static void run(sph_sim *sim)
 const sph_pass sph_pass_external = {
     .name = "external",
     .summary = "external forces and predicted positions",
-    .reads = SPH_BIT(POS) | SPH_BIT(VEL),
+    .reads = SPH_BIT(POS) | SPH_BIT(VEL), /* and pos_r when present (position_sum = compensated) */
     .writes = SPH_BIT(VEL) | SPH_BIT(PRED),
     .group = SPH_GROUP_FORCES_EXTERNAL,
     .highlight = "speed",

@@ -2,7 +2,12 @@
  * field of the registry: pressure, viscosity, interaction, ...),
  * then x += dt v with the new v (gravity was added to v by the external
  * pass); positions on periodic axes are wrapped back into the domain. Also measures the largest speed and acceleration, which the CFL
- * time step of the next step needs. */
+ * time step of the next step needs.
+ * With position_sum = compensated the sum x += dt v is Kahan's (Kahan 1965, Comm. ACM 8:40; Higham 2002, sec.
+ * 4.3): pos_r keeps what the float x could not hold of the moves and adds it to the next one (and the external
+ * pass to the predicted position). Without it a settled fluid's moves, 1e-9 to 1e-8 m a step, fall under half a
+ * float spacing of x near 0.15 m (1.5e-8 m / 2) and are rounded away, so the positions stop following the
+ * velocity the continuity equation integrates (docs/accuracy.md, "hydrostatic"). */
 #include "sph_search.h"
 #include "sph_walls.h"
 
@@ -17,10 +22,11 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
+    const char *sum = def->position_sum == SPH_POSSUM_COMPENSATED ? ", compensated positions" : "";
     if (def->cfl > 0)
-        snprintf(out, (size_t)n, "symplectic Euler, adaptive dt (CFL %g, dt <= %g s)", def->cfl, def->dt);
+        snprintf(out, (size_t)n, "symplectic Euler, adaptive dt (CFL %g, dt <= %g s)%s", def->cfl, def->dt, sum);
     else
-        snprintf(out, (size_t)n, "symplectic Euler, fixed dt %g s", def->dt);
+        snprintf(out, (size_t)n, "symplectic Euler, fixed dt %g s%s", def->dt, sum);
 }
 
 static void run(sph_sim *sim)
@@ -39,6 +45,7 @@ static void run(sph_sim *sim)
             for (int d = 0; d < 3; d++) acc[n_acc][d] = P->field[f][d];
             n_acc++;
         }
+    float *const *pos_r = P->pos_r[0] ? P->pos_r : NULL; /* position_sum = compensated */
     float vmax2 = 0, amax2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : vmax2, amax2) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
@@ -49,7 +56,13 @@ static void run(sph_sim *sim)
             for (int k = 0; k < n_acc; k++) a += acc[k][d][i];
             float v = P->vel[d][i] + dt * a;
             P->vel[d][i] = v;
-            P->pos[d][i] += dt * v;
+            if (pos_r) { /* x + r holds the sum of the moves dt v to a float's precision of r */
+                const float y = dt * v + pos_r[d][i], x = P->pos[d][i], t = x + y;
+                pos_r[d][i] = y - (t - x);
+                P->pos[d][i] = t;
+            } else {
+                P->pos[d][i] += dt * v;
+            }
             v2 += v * v;
             a2 += a * a;
         }
@@ -70,8 +83,10 @@ static void run(sph_sim *sim)
 const sph_pass sph_pass_integrate = {
     .name = "integrate",
     .summary = "symplectic Euler: velocities, then positions",
+    /* and pos_r with position_sum = compensated: read and written when present, not listed in reads (a
+     * pass's reads exist in every scene that runs it) */
     .reads = SPH_BIT(VEL) | SPH_MASK_ACCELERATIONS,
-    .writes = SPH_BIT(VEL) | SPH_BIT(POS),
+    .writes = SPH_BIT(VEL) | SPH_BIT(POS) | SPH_BIT(POS_R),
     .group = SPH_GROUP_INTEGRATE,
     .highlight = "speed",
     .skip_reason = skip_reason,

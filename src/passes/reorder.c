@@ -62,6 +62,7 @@ static void run(sph_sim *sim)
         gather_f(&P->pos[d], &S->spare_f, e, n);
         gather_f(&P->vel[d], &S->spare_f, e, n);
         gather_f(&P->pred[d], &S->spare_f, e, n);
+        if (P->pos_r[d]) gather_f(&P->pos_r[d], &S->spare_f, e, n); /* position_sum = compensated */
     }
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int k = 0; k < n; k++) {
@@ -75,13 +76,14 @@ const sph_pass sph_pass_reorder = {
     .name = "reorder",
     .summary = "store particles in cell order",
     /* and the wall flag `fixed` (with `obstacle` and `slip`) where there are wall particles, the carried
-     * density rho_c with density_method = continuity: written (moved)
+     * density rho_c with density_method = continuity, the position remainder pos_r with position_sum =
+     * compensated: written (moved)
      * when present, not listed in reads (a pass's reads exist in every scene
      * that runs it) */
     .reads = SPH_RES_ENTRIES | SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED),
     .writes = SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED) | SPH_BIT(FIXED) |
               SPH_BIT(RHO_C) | SPH_BIT(OBSTACLE) | SPH_BIT(SLIP) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) |
-              SPH_RES_ENTRIES,
+              SPH_BIT(POS_R) | SPH_RES_ENTRIES,
     .group = SPH_GROUP_SEARCH,
     .highlight = NULL,
     .skip_reason = skip_reason,
