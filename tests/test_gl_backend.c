@@ -321,6 +321,18 @@ Test(gl_backend, passes_match_cpu_wall_particles)
     lockstep_steps(scene_3d, sets, 2, 1);
 }
 
+/* The no-slip mirror's curvature term (wall_state.c), nu high enough for a cell Reynolds number below 1.
+ * Disabled: vel_visc differs between the backends in some steps (0.41 m/s of a scale of 1.14 in the 2D
+ * scene's first step, 6e-8 in its second), not found yet; the other wall tests match, with the term
+ * compiled in. Left open in issue 13. */
+Test(gl_backend, passes_match_cpu_wall_particles_mirror_curvature, .disabled = true)
+{
+    const char *curv[] = {"domain.wall_model=particles", "physics.viscosity=0.05", "physics.viscosity_form=morris",
+                          "kernels.viscosity=cubic"};
+    lockstep_steps(scene_2d, curv, 4, 2);
+    lockstep_steps(scene_3d, curv, 4, 1);
+}
+
 /* density_method = continuity with Molteni's diffusion, with Antuono's and
  * wall particles (the density_gradient pass, a wall's density from
  * wall_state), and with volume walls (the hidden share's rate). */
