@@ -60,7 +60,7 @@ vec3 mirror_curvature()
     float tr = 0.0;
     for (int d = 0; d < DIM; d++) tr += m[d][d];
     float var = dot(n, m * n), var_t = (tr - var) / float(DIM - 1);
-    if (!(var_t > 0.0) || var_t < var) return out_; // a sliver along the normal: no term (wall_state.c)
+    if (!(var_t > 1e-3 * c2) || var_t < var) return out_; // a sliver along the normal: no term (wall_state.c)
     vec3 gt = b - dot(b, n) * n;
     for (int d = 0; d < DIM; d++) out_[d] = gt[d] / var_t / RHO0 * WALL_INV_NU * (0.25 * c2 + 0.5 * var);
     return out_;

@@ -113,7 +113,7 @@ static void mirror_curvature(int dim, double sw, const double sc[3], const doubl
     /* the neighbours must spread along the wall at least as far as across it, as they do at a flat wall
      * (the support's widest chord lies along it); a sliver along the normal (a corner, a free surface
      * meeting the wall) leaves the gradient along the wall undetermined: no term */
-    if (!(var_t > 0) || var_t < var) return;
+    if (!(var_t > 1e-3 * c2) || var_t < var) return; /* 1e-3 |c|^2: above rounding (one neighbour: C = 0) */
     const double len2 = 0.25 * c2 + 0.5 * var; /* [m^2] |c|^2/4 + var_c/2 */
     for (int d = 0; d < dim; d++) /* -(a_t/nu) len2, grad_t q = (b - (b.n) n) / var_t */
         out[d] = (float)((b[d] - bn * n[d]) / var_t / rho0 * inv_nu * len2);
