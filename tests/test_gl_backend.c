@@ -321,6 +321,17 @@ Test(gl_backend, passes_match_cpu_wall_particles)
     lockstep_steps(scene_3d, sets, 2, 1);
 }
 
+/* The no-slip mirror's curvature term (wall_state.c), nu high enough for a cell Reynolds number below 1.
+ * (A wall particle with one fluid neighbour once had it on GL and not on the CPU: its spread along the
+ * wall, zero, read as float rounding.) */
+Test(gl_backend, passes_match_cpu_wall_particles_mirror_curvature)
+{
+    const char *curv[] = {"domain.wall_model=particles", "physics.viscosity=0.05", "physics.viscosity_form=morris",
+                          "kernels.viscosity=cubic"};
+    lockstep_steps(scene_2d, curv, 4, 2);
+    lockstep_steps(scene_3d, curv, 4, 1);
+}
+
 /* density_method = continuity with Molteni's diffusion, with Antuono's and
  * wall particles (the density_gradient pass, a wall's density from
  * wall_state), and with volume walls (the hidden share's rate). */

@@ -50,4 +50,12 @@ static inline void sph_wall_kick(const sph_sim *sim, float kick[3])
     for (int d = 0; d < 3; d++) kick[d] = d < sim->dim ? sim->def.gravity[d] * gdt : 0.0f;
 }
 
+/* [s/m^2] 1/nu for the no-slip mirror's curvature term (wall_state.c), 0 where no physical viscosity
+ * reads the mirror (no viscosity effect, viscosity_form = artificial, nu = 0) */
+static inline double sph_wall_mirror_inv_nu(const sph_scene_def *def)
+{
+    if (!(def->effects & SPH_EFFECT(VISCOSITY)) || def->viscosity_form == SPH_VFORM_ARTIFICIAL) return 0.0;
+    return def->viscosity > 0 ? 1.0 / def->viscosity : 0.0;
+}
+
 #endif

@@ -11,6 +11,7 @@
 
 #include "csf.h"
 #include "gpu_internal.h"
+#include "sph_start.h"
 
 const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT] = {
 #define GPU_B_NAME(name) #name,
@@ -145,6 +146,9 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
         (int)SPH_VFORM_SMOOTHING, (int)SPH_VFORM_MORRIS, (int)SPH_VFORM_ARTIFICIAL, (int)SPH_VFORM_MORRIS_ARTIFICIAL);
     put(&t, "#define DFORM_FOURTAKAS %d\n", def->delta_form == SPH_DFORM_FOURTAKAS);
     put_float(&t, "NU", def->viscosity);
+    /* the no-slip mirror's curvature term (wall_state.c) */
+    put(&t, "#define WALL_CURV %d\n", sph_wall_mirror_inv_nu(def) > 0);
+    put_float(&t, "WALL_INV_NU", (float)sph_wall_mirror_inv_nu(def));
     /* artificial viscosity: alpha c h_s as the CPU pass computes it in float */
     put_float(&t, "AV_ACH", def->alpha * sqrtf(def->stiffness) * (0.5f * def->h));
     put_float(&t, "AV_EPS2", 0.01f * (0.5f * def->h) * (0.5f * def->h));

@@ -12,6 +12,29 @@
  *           about the wall's own, zero at the wall) or v~_w (free-slip);
  *           v_w taken in the step's frame, v_w + g dt, as the fluid's v
  *           already carries this step's gravity kick (sph_wall_kick).
+ *           The mirror continues the fluid's profile as an odd function
+ *           about the wall, which is right only where it is straight. At a
+ *           no-slip wall the fluid is at rest, so the momentum equation
+ *           there reads nu lap v = -a, a = g - grad p / rho the fluid's
+ *           non-viscous acceleration: a profile curved by an unbalanced force
+ *           (a channel's body force) continues as v(-n) = -v(n) - (a/nu) n^2,
+ *           n the distance from the wall, which Adami's mirror places half
+ *           way between the wall particle and the centroid of its fluid
+ *           neighbours (as Morris, Fox & Zhu 1997 place the wall half a
+ *           spacing behind the last fluid row). So, with nu the viscosity:
+ *             vel_visc = 2 v_w - v~_w - (a/nu) (|c|^2/4 + var_c/2),
+ *           c the W-weighted centroid of the fluid neighbours from x_w and
+ *           var_c their W-weighted variance along c (the Shepard average of
+ *           a curved profile is off by (v''/2) var_c). a from the fluid:
+ *           minus the W-weighted gradient along the wall of the pressure
+ *           extrapolated to x_w, q_f = p_f + rho_f g . r_wf, over rho0
+ *           (grad q = grad p - rho g; zero in a column at rest, so the
+ *           hydrostatic tank gets no term; F along a channel), its part
+ *           along the wall only (along c the wall's pressure holds the
+ *           fluid), the term at most |v~_w - v_w| (a limiter: see
+ *           wall_one). Without it a channel's steady profile ran 2 % of
+ *           u_max fast at 10 spacings across (docs/accuracy.md,
+ *           "poiseuille and couette").
  * A wall particle with no fluid in reach keeps p = 0 at rest density.
  * Fluid particles get vel_visc = their velocity. The pass runs after the
  * equation of state: it overwrites the pressure and density that summation
@@ -56,10 +79,50 @@ static float eos_density(const sph_scene_def *def, const float rho0, float p)
     return fmaxf(rho0 + p / k, 1e-3f * rho0);
 }
 
+/* The curvature term of the no-slip mirror (the header): -(a_t/nu) (|c|^2/4 + var_c/2) [m/s] into out[],
+ * from the W-weighted sums over the fluid neighbours: sw = sum W, sc = sum W c_f (c_f = x_f - x_w),
+ * scc = sum W c_f c_f^T, sq = sum W q_f, sqc = sum W q_f c_f. n = c / |c| is the wall's normal; the
+ * gradient of q along the wall is the covariance of q with the neighbours' offsets along the wall over
+ * their variance there (the offsets' spread is the same along every direction of a flat wall of the
+ * lattice): no matrix to invert, so a few neighbours (a corner) give a small term, not an amplified one.
+ * a_t = -grad_t q / rho0: along the normal the wall's pressure, not the mirror, holds the fluid (a normal
+ * term cancelled the pressure's push from the wall: a column at rest blew up). */
+static void mirror_curvature(int dim, double sw, const double sc[3], const double scc[3][3], double sq,
+                             const double sqc[3], double rho0, double inv_nu, float out[3])
+{
+    double m[3][3], b[3], n[3] = {0, 0, 0}, c2 = 0;
+    for (int d = 0; d < 3; d++) out[d] = 0.0f;
+    for (int d = 0; d < dim; d++) {
+        n[d] = sc[d] / sw;
+        c2 += n[d] * n[d];
+    }
+    if (!(c2 > 0) || dim < 2) return;
+    for (int d = 0; d < dim; d++) {
+        for (int e = 0; e < dim; e++) m[d][e] = scc[d][e] / sw - n[d] * n[e];
+        b[d] = sqc[d] / sw - sq / sw * n[d];
+    }
+    const double cl = sqrt(c2);
+    for (int d = 0; d < dim; d++) n[d] /= cl;
+    double tr = 0, var = 0, bn = 0;
+    for (int d = 0; d < dim; d++) {
+        tr += m[d][d];
+        bn += b[d] * n[d];
+        for (int e = 0; e < dim; e++) var += n[d] * m[d][e] * n[e];
+    }
+    const double var_t = (tr - var) / (dim - 1); /* [m^2] the spread along one direction of the wall */
+    /* the neighbours must spread along the wall at least as far as across it, as they do at a flat wall
+     * (the support's widest chord lies along it); a sliver along the normal (a corner, a free surface
+     * meeting the wall) leaves the gradient along the wall undetermined: no term */
+    if (!(var_t > 1e-3 * c2) || var_t < var) return; /* 1e-3 |c|^2: above rounding (one neighbour: C = 0) */
+    const double len2 = 0.25 * c2 + 0.5 * var; /* [m^2] |c|^2/4 + var_c/2 */
+    for (int d = 0; d < dim; d++) /* -(a_t/nu) len2, grad_t q = (b - (b.n) n) / var_t */
+        out[d] = (float)((b[d] - bn * n[d]) / var_t / rho0 * inv_nu * len2);
+}
+
 /* gscale: the share of g of the step under way (gravity_ramp; 0 without gravity); kick: g dt of
- * the step (sph_wall_kick) */
+ * the step (sph_wall_kick); inv_nu: 1/nu [s/m^2] for the mirror's curvature term (0: none) */
 static inline void wall_one(sph_sim *sim, int w, const int dim, const bool periodic, const float gscale,
-                            const float *kick)
+                            const float *kick, const double inv_nu)
 {
     sph_particles *P = &sim->P;
     const sph_search_data *S = &sim->S;
@@ -67,6 +130,10 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
     const sph_kernel *k = &sim->k_density;
     const float *per = sim->period, *iper = sim->inv_period;
     double sw = 0, sp = 0, srr[3] = {0, 0, 0}, sv[3] = {0, 0, 0};
+    double sq = 0, sc[3] = {0, 0, 0}, sqc[3] = {0, 0, 0}, scc[3][3] = {{0}}; /* mirror_curvature's sums */
+    /* [Pa] q's reference, the wall particle's pressure of the last step: q's gradient is a small difference of
+     * large pressures (1e6 Pa in a stiff tank), which the GL backend sums in float */
+    const double qref = P->p[w];
     const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)(w));
     for (uint32_t e = 0; e < row.n; e++) {
         uint32_t f = sph_nbr_at(&row, e);
@@ -80,9 +147,19 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
         double W = sph_kernel_w(k, sqrtf(r2));
         sw += W;
         sp += (double)P->p[f] * W;
+        double q = (double)P->p[f] - qref; /* q_f = p_f + rho_f g . r_wf, less qref */
         for (int d = 0; d < dim; d++) {
             srr[d] += (double)P->rho[f] * dx[d] * W;
             sv[d] += (double)P->vel[d][f] * W;
+            q += (double)def->gravity[d] * gscale * P->rho[f] * dx[d];
+        }
+        if (inv_nu > 0) { /* c_f = x_f - x_w = -dx */
+            sq += q * W;
+            for (int d = 0; d < dim; d++) {
+                sc[d] -= dx[d] * W;
+                sqc[d] -= q * dx[d] * W;
+                for (int d2 = 0; d2 < dim; d2++) scc[d][d2] += (double)dx[d] * dx[d2] * W;
+            }
         }
     }
     float p = 0.0f, vt[3] = {0, 0, 0};
@@ -100,8 +177,28 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
     P->vol[w] = P->mass[w] / rho;
     /* the mirror about the wall's velocity in the step's frame, v_w + g dt (kick): the fluid's v already
      * carries this step's gravity kick, which its pressure force is about to take back */
+    float curv[3] = {0, 0, 0};
+    if (inv_nu > 0 && sw > 0 && P->slip[w] == 0.0f) {
+        mirror_curvature(dim, sw, sc, scc, sq, sqc, def->rest_density, inv_nu, curv);
+        /* The continuation is the viscous sublayer's Taylor series over |c|: only where viscosity rules
+         * across it, the cell Reynolds number |v~_w - v_w| |c| / nu <= 1; beyond, the boundary layer is
+         * thinner than the spacing and there is no resolved profile to continue (Adami's mirror alone).
+         * And a limiter: the term at most |v~_w - v_w|, as a continuation whose curvature outweighs the
+         * speed it continues is not a resolved profile either (a fluid still at rest under a force not
+         * yet balanced, a corner's few neighbours). In the channels neither binds. */
+        double c2 = 0, r2 = 0, cc = 0;
+        for (int d = 0; d < dim; d++) {
+            const double rel = vt[d] - (P->vel[d][w] + kick[d]);
+            c2 += (double)curv[d] * curv[d];
+            r2 += rel * rel;
+            cc += sc[d] / sw * sc[d] / sw;
+        }
+        if (sqrt(r2 * cc) * inv_nu > 1.0) c2 = r2 = 0.0, curv[0] = curv[1] = curv[2] = 0.0f;
+        if (c2 > r2)
+            for (int d = 0; d < dim; d++) curv[d] *= (float)sqrt(r2 / c2);
+    }
     for (int d = 0; d < dim; d++)
-        P->vel_visc[d][w] = P->slip[w] != 0.0f ? vt[d] : 2.0f * (P->vel[d][w] + kick[d]) - vt[d];
+        P->vel_visc[d][w] = P->slip[w] != 0.0f ? vt[d] : 2.0f * (P->vel[d][w] + kick[d]) - vt[d] + curv[d];
 }
 
 static void run(sph_sim *sim)
@@ -115,14 +212,15 @@ static void run(sph_sim *sim)
     const float gscale = (sim->def.effects & SPH_EFFECT(GRAVITY)) ? sph_start_gravity_scale(sim) : 0.0f;
     float kick[3];
     sph_wall_kick(sim, kick);
+    const double inv_nu = sph_wall_mirror_inv_nu(&sim->def);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         if (!sph_is_wall(P, i)) {
             for (int d = 0; d < dim; d++) P->vel_visc[d][i] = P->vel[d][i];
         } else if (periodic) {
-            wall_one(sim, i, dim, true, gscale, kick);
+            wall_one(sim, i, dim, true, gscale, kick, inv_nu);
         } else {
-            wall_one(sim, i, dim, false, gscale, kick);
+            wall_one(sim, i, dim, false, gscale, kick, inv_nu);
         }
     }
 }
