@@ -176,3 +176,20 @@ Test(csf, ellipse_restoring_force_is_rayleighs)
             sph_sim_destroy(sim);
         }
 }
+
+/* The pass's description names sigma in the key's unit: per metre of depth in 2D (N), N/m in 3D; it said
+ * N/m in 2D too. */
+Test(csf, description_names_sigma_in_the_dimensions_unit)
+{
+    sph_scene_def def;
+    memset(&def, 0, sizeof def);
+    def.surface_tension = SPH_STENSION_CSF;
+    def.sigma = 0.0728f;
+    char out[256];
+    def.dim = 2;
+    sph_passes[SPH_PASS_CSF]->describe(&def, out, (int)sizeof out);
+    cr_assert(strstr(out, "sigma 0.0728 N") && !strstr(out, "N/m"), "2D: %s", out);
+    def.dim = 3;
+    sph_passes[SPH_PASS_CSF]->describe(&def, out, (int)sizeof out);
+    cr_assert(strstr(out, "sigma 0.0728 N/m"), "3D: %s", out);
+}

@@ -201,6 +201,8 @@ Test(surface_tension, quick_validate_drop_writes_its_outputs_and_a_verdict, .tim
     cr_assert(rc == 0 || rc == 1, "exit %d (want 0 pass or 1 fail): %s", rc, out);
     cr_assert(strstr(out, rc == 0 ? "validate drop: PASS: " : "validate drop: FAIL: ") && strstr(out, "Rayleigh"),
               "no verdict line: %s", out);
+    /* sigma with its unit: per metre of depth in 2D, N (the verdict gave it none) */
+    cr_assert(strstr(out, "sigma 1 N (stated)"), "no sigma with its unit in: %s", out);
     /* the period at R/10, "(+7.1%)": within the band measured there, -5 % (a kick of a quarter) to +7.3 %
      * (docs/accuracy.md, the drop; with shifting = lind it read +10.4 %) */
     const char *pc = strstr(out, "Rayleigh 2.409 s (");
@@ -229,10 +231,10 @@ Test(surface_tension, quick_validate_drop_3d_holds_the_laplace_pressure, .timeou
     cr_assert(rc == 0 || rc == 1, "exit %d (want 0 pass or 1 fail): %s", rc, out);
     cr_assert(strstr(out, rc == 0 ? "validate drop-3d: PASS: " : "validate drop-3d: FAIL: ") &&
                   strstr(out, "Rayleigh"), "no verdict line: %s", out);
-    const char *q = strstr(out, "R/6: sigma 1 (inner pressure ");
+    const char *q = strstr(out, "R/6: sigma 1 N/m (inner pressure ");
     cr_assert_not_null(q, "no inner pressure in: %s", out);
     double p = 0, R = 0;
-    cr_assert_eq(sscanf(q, "R/6: sigma 1 (inner pressure %lf at R = %lf m", &p, &R), 2, "%s", q);
+    cr_assert_eq(sscanf(q, "R/6: sigma 1 N/m (inner pressure %lf Pa at R = %lf m", &p, &R), 2, "%s", q);
     cr_assert(R > 0.08 && R < 0.11 && fabs(p / (2 / R) - 1) < 0.1, "inner pressure %g Pa at R = %g m, 2 sigma/R %g", p,
               R, 2 / R);
     char path[700];

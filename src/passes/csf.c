@@ -81,7 +81,9 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "continuum surface force (Brackbill 1992, Morris 2000), sigma %g N/m", def->sigma);
+    /* in 2D sigma is per metre of depth: N (the key's unit), in 3D N/m */
+    snprintf(out, (size_t)n, "continuum surface force (Brackbill 1992, Morris 2000), sigma %g %s", def->sigma,
+             def->dim == 3 ? "N/m" : "N");
 }
 
 /* The cubic B-spline of support radius h in dim - 1 dimensions (1D: 4/(3h), 2D: 40/(7 pi h^2)): the

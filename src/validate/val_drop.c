@@ -47,7 +47,7 @@
 
 typedef struct drop_obs {
     double R, R_small, p_in, p_small, sigma, sigma_laplace, T_ray, T, D0;
-    int crossings;
+    int crossings, dim; /* dim: 2 or 3, for the units */
     bool stated; /* sigma is the scene's input (surface_tension = csf), not measured */
     val_series dx, ray, dx_minmax, aniso; /* aniso: D_x minus the mean of the other axes' D */
 } drop_obs;
@@ -68,6 +68,10 @@ static void drop_shape(const sph_sim *sim, double spacing, double c[3], double m
     double vol = n * pow(spacing, dim);
     *R = dim == 3 ? cbrt(3.0 * vol / (4.0 * PI)) : sqrt(vol / PI);
 }
+
+/* The units of sigma and of a pressure: in 2D per metre of depth (sigma N, pressure N/m), in 3D N/m and Pa. */
+#define SIGMA_UNIT(dim) ((dim) == 3 ? "N/m" : "N")
+#define P_UNIT(dim) ((dim) == 3 ? "Pa" : "N/m")
 
 /* Mean pressure within R/2 of the centre [Pa, N/m in 2D]. */
 static double drop_inner_pressure(const sph_sim *sim, double spacing)
@@ -218,6 +222,7 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
     o->sigma = (o->p_in - o->p_small) / (k * (1.0 / o->R - 1.0 / o->R_small));
     o->sigma_laplace = o->sigma;
     o->stated = def.surface_tension == SPH_STENSION_CSF;
+    o->dim = dim;
     if (o->stated) o->sigma = def.sigma; /* the stated input */
     const double omega2 = (dim == 3 ? 8.0 : 6.0) * o->sigma / (rho * pow(o->R, 3));
     o->T_ray = omega2 > 0 ? 2.0 * PI / sqrt(omega2) : NAN;
@@ -246,8 +251,9 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
     char ray[80] = "not measurable: the Laplace jump is not positive";
     if (isfinite(o->T_ray)) snprintf(ray, sizeof ray, "%.4g s", o->T_ray);
     if (!c->quiet)
-        fprintf(stderr, "  %s: sigma %.4g (inner pressure %.5g at R = %.4g m, %.5g at R = %.4g m); oscillating to t = %.3g s "
-                "(Rayleigh's period %s)\n", label, o->sigma, o->p_in, o->R, o->p_small, o->R_small, t_end, ray);
+        fprintf(stderr, "  %s: sigma %.4g %s (inner pressure %.5g %s at R = %.4g m, %.5g %s at R = %.4g m); oscillating "
+                "to t = %.3g s (Rayleigh's period %s)\n", label, o->sigma, SIGMA_UNIT(dim), o->p_in, P_UNIT(dim), o->R,
+                o->p_small, P_UNIT(dim), o->R_small, t_end, ray);
     while (ok && sim->t < t_end - 1e-12) {
         double mx = -1e30, mn = 1e30;
         drop_shape(sim, spacing, cen, m2, &R);
@@ -271,8 +277,9 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
     for (size_t i = 0; i < o->dx.n; i++)
         if (!val_series_add(&o->ray, o->dx.x[i], o->D0 + a * sin(omega * o->dx.x[i]))) return false;
     if (!c->quiet)
-        fprintf(stderr, "  %s: R %.4g m, sigma %.4g (p_in %.4g at R %.4g, %.4g at R %.4g), period %.4g s, Rayleigh %s\n",
-                label, o->R, o->sigma, o->p_in, o->R, o->p_small, o->R_small, o->T, ray);
+        fprintf(stderr, "  %s: R %.4g m, sigma %.4g %s (p_in %.4g %s at R %.4g m, %.4g %s at R %.4g m), period %.4g s, "
+                "Rayleigh %s\n", label, o->R, o->sigma, SIGMA_UNIT(dim), o->p_in, P_UNIT(dim), o->R, o->p_small,
+                P_UNIT(dim), o->R_small, o->T, ray);
     return true;
 }
 
@@ -310,14 +317,15 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
         const drop_obs *o = &obs[r];
         if (isfinite(o->T_ray))
             val_append(trend, sizeof trend,
-                       "%sR/%d: R %.4g m, sigma %.4g%s, period %.4g s vs Rayleigh %.4g s (%+.1f%%)", r ? "; " : "",
-                       c->res[r], o->R, o->sigma, o->stated ? " (stated)" : "", o->T, o->T_ray,
+                       "%sR/%d: R %.4g m, sigma %.4g %s%s, period %.4g s vs Rayleigh %.4g s (%+.1f%%)", r ? "; " : "",
+                       c->res[r], o->R, o->sigma, SIGMA_UNIT(o->dim), o->stated ? " (stated)" : "", o->T, o->T_ray,
                        100 * (o->T / o->T_ray - 1));
         else
             val_append(trend, sizeof trend,
-                       "%sR/%d: R %.4g m, period %.4g s; sigma not measurable (Laplace jump %.3g Pa between R and "
-                       "R/2, inner pressure %.4g)",
-                       r ? "; " : "", c->res[r], o->R, o->T, o->p_small - o->p_in, o->p_in);
+                       "%sR/%d: R %.4g m, period %.4g s; sigma not measurable (Laplace jump %.3g %s between R and "
+                       "R/2, inner pressure %.4g %s)",
+                       r ? "; " : "", c->res[r], o->R, o->T, o->p_small - o->p_in, P_UNIT(o->dim), o->p_in,
+                       P_UNIT(o->dim));
     }
     if (ok) {
         plot_lines ch;
