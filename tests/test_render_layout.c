@@ -5,6 +5,7 @@
  * (zoom 1, no pan) bring the whole domain back in frame. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <string.h>
 
 #include "camera.h"
 #include "layout.h"
@@ -131,4 +132,25 @@ Test(render_layout, zooming_towards_a_point_keeps_its_pixel)
     float q[2];
     sph_camera_project(&o0, far, q, &depth);
     cr_expect(fabsf(p[0] - q[0]) > 10, "a far point should move when zooming");
+}
+
+/* The legend's three labels differ when the range is narrow against the values (a density from 999.2
+ * to 1000.9 read "1000 / 1000 / 1000" with 4 digits), and keep 4 digits on a wide range. */
+Test(render_layout, legend_labels_tell_a_narrow_range_apart)
+{
+    const float ranges[][2] = {{999.2f, 1000.9f}, {999.98f, 1000.02f}, {0.0f, 2.5f}, {-3.0f, 3.0f}, {1000, 1000}};
+    for (size_t k = 0; k < sizeof ranges / sizeof ranges[0]; k++) {
+        const float lo = ranges[k][0], hi = ranges[k][1];
+        char a[32], m[32], b[32];
+        sph_legend_label(a, sizeof a, lo, lo, hi);
+        sph_legend_label(m, sizeof m, 0.5f * (lo + hi), lo, hi);
+        sph_legend_label(b, sizeof b, hi, lo, hi);
+        if (hi > lo)
+            cr_expect(strcmp(a, m) != 0 && strcmp(m, b) != 0, "range %g to %g: labels %s / %s / %s", lo, hi, a, m, b);
+    }
+    char s[32];
+    sph_legend_label(s, sizeof s, 2.5f, 0.0f, 2.5f);
+    cr_expect_str_eq(s, "2.5");
+    sph_legend_label(s, sizeof s, 1234.5678f, 0.0f, 2000.0f);
+    cr_expect_str_eq(s, "1235", "a wide range keeps 4 significant digits");
 }

@@ -139,11 +139,6 @@ void hud_panel(sph_renderer *r, const char (*lines)[128], int n)
         canvas_text(r, SPH_TEXT_SMALL, x0 + 6, y0 + 4 + (float)i * 1.25f * fs, SPH_RGBA(235, 235, 240, 255), lines[i]);
 }
 
-static void fmt_num(char *out, size_t n, float v)
-{
-    snprintf(out, n, "%.4g", (double)v);
-}
-
 void hud_legend(sph_renderer *r, const sph_sim *sim, sph_color_field f, float lo, float hi)
 {
     const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
@@ -174,10 +169,10 @@ void hud_legend(sph_renderer *r, const sph_sim *sim, sph_color_field f, float lo
         canvas_rect(r, bx0, y, bx1, fminf(y + 1.0f, bot), sph_colormap_viridis(t));
     }
     canvas_outline(r, bx0 - 1, top - 1, bx1 + 1, bot + 1, 1, grey);
-    fmt_num(s, sizeof s, hi);
+    sph_legend_label(s, sizeof s, hi, lo, hi);
     canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, top + 0.5f * fs, SPH_ALIGN_LEFT, white, s, false);
-    fmt_num(s, sizeof s, 0.5f * (lo + hi));
+    sph_legend_label(s, sizeof s, 0.5f * (lo + hi), lo, hi);
     canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, 0.5f * (top + bot), SPH_ALIGN_LEFT, white, s, false);
-    fmt_num(s, sizeof s, lo);
+    sph_legend_label(s, sizeof s, lo, lo, hi);
     canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, bot - 0.5f * fs, SPH_ALIGN_LEFT, white, s, false);
 }

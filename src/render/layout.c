@@ -2,7 +2,19 @@
 #include "layout.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
+
+void sph_legend_label(char *out, size_t n, float v, float lo, float hi)
+{
+    /* the digits that tell the half range apart at the values' magnitude: log10(max |value| / (half range)),
+     * plus one; 4 at least (a wide range), 9 at most (a float's digits) */
+    const double big = fmax(fabs((double)lo), fabs((double)hi)), half = 0.5 * fabs((double)hi - (double)lo);
+    int digits = 4;
+    if (half > 0 && big > 0) digits = (int)ceil(log10(big / half)) + 2;
+    digits = digits < 4 ? 4 : digits > 9 ? 9 : digits;
+    snprintf(out, n, "%.*g", digits, (double)v);
+}
 
 void sph_layout_font_sizes(int h, float *small, float *normal)
 {

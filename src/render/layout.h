@@ -6,6 +6,7 @@
 #define SPH_LAYOUT_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 typedef struct sph_layout {
     int view[4];   /* [px] x, y (top-left), width, height: the domain is fitted into it, world drawing clipped to it */
@@ -26,5 +27,10 @@ void sph_layout_compute(int w, int h, int side_w, bool legend, bool strip, sph_l
 /* The window's side column for a w x h window: wide enough for the HUD and
  * the parameter panel's sliders, at most 45% of the width. */
 int sph_layout_side_width(int w, int h);
+
+/* A colour legend's label for the value v of a scale from lo to hi: 4 significant digits, more when
+ * the range is narrow against the values (a density from 999.2 to 1000.9 kg/m^3 read "1000" three
+ * times), so that the labels at lo, the middle and hi differ where the range is not zero. */
+void sph_legend_label(char *out, size_t n, float v, float lo, float hi);
 
 #endif
