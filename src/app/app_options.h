@@ -50,8 +50,8 @@ typedef struct app_opts {
     double slice;            /* --slice [m], NAN if not given */
     /* words, as given (a choice is checked against its accepted words) */
     const char *backend, *gl, *stats, *dump, *vtk, *out, *name, *only, *screenshot, *keys, *metric, *ycols, *xcol,
-        *h_list, *n_list, *function, *kernel, *samples, *levels, *solvers, *export_dir, *color, *range, *camera, *center,
-        *save_scene, *resolution,
+        *h_list, *n_list, *function, *kernel, *samples, *levels, *solvers, *export_dir, *color, *range, *camera,
+        *center, *save_scene, *resolution,
         *video, *format;
     /* repeatable */
     app_list sets, vary, overlay, no_overlay;
