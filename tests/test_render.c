@@ -118,6 +118,8 @@ Test(render, wall_particles_are_in_the_picture)
             outside++;
         }
     }
+    /* counts of particles and of pixels they land on (not timings): the tank has its wall layers, and
+     * every one of them is inside the image */
     cr_expect_gt(walls, 100);
     cr_expect_eq(outside, 0, "%d of %d wall particles outside the picture", outside, walls);
     free(img);
