@@ -34,6 +34,26 @@ Test(validate, surge_data_are_the_published_numbers)
         }
 }
 
+Test(validate, surge_table_2_is_quarter_inches_of_the_2_25_in_column)
+{
+    const val_curve *c = &val_surge_table2;
+    cr_assert_eq(c->n, 15);
+    cr_assert_float_eq(c->x[1], 0.84, 1e-12);
+    cr_assert_float_eq(c->y[1], 1.22, 1e-12);
+    for (int i = 0; i < c->n; i++) {
+        /* the front read in quarter inches over a = 2.25 in: Z = 1 + k/9 */
+        double k = (c->y[i] - 1.0) * 9.0;
+        cr_assert_float_eq(k, round(k), 0.06, "T = %.2f: Z = %.2f is not 1 + k/9", c->x[i], c->y[i]);
+        if (i) cr_assert_gt(c->x[i], c->x[i - 1]);
+        /* the same column as the Figure 3 curve val_surge[1], within 3 %
+         * (at most 0.09 in Z: the figure's points, joined by straight
+         * lines, are sparser than the table's) */
+        double f3 = val_curve_at(&val_surge[1], c->x[i]);
+        if (isfinite(f3))
+            cr_assert_lt(fabs(c->y[i] / f3 - 1), 0.03, "T = %.2f: %.3f vs Figure 3 %.3f", c->x[i], c->y[i], f3);
+    }
+}
+
 Test(validate, column_height_data_are_martin_and_moyce_table_6)
 {
     const val_curve *c = &val_column;

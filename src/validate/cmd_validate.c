@@ -15,8 +15,8 @@
 /* One row per problem; run NULL: not written yet. */
 const val_problem val_problems[] = {
     {"dam-break", "collapse of a water column of width a and height 2a (n^2 = 2) on a dry floor",
-     "surge front Z(T) of Martin & Moyce 1952 (two column sizes) and Koshizuka & Oka 1996; column height H of "
-     "Martin & Moyce 1952, Table 6",
+     "surge front Z(T) of Martin & Moyce 1952, Table 2 (judged; their Figure 3 curves of two column sizes and "
+     "Koshizuka & Oka 1996 shown and reported); column height H of Martin & Moyce 1952, Table 6",
      "over 0.8 <= T <= 3: front mean |Z/Z_ref - 1| <= 5 %, max <= 10 %; height mean |H/H_ref - 1| <= 5 %; at "
      "a/spacing >= 40",
      "a / spacing", {20, 40, 80},

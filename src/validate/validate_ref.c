@@ -41,12 +41,25 @@ static const double mm6_tau[] = {0.56, 0.77, 0.93, 1.08, 1.28, 1.46, 1.66, 1.84,
 static const double mm6_H[] = {0.94, 0.89, 0.83, 0.78, 0.72, 0.67, 0.61, 0.56, 0.50,
                                0.44, 0.39, 0.33, 0.28, 0.22, 0.17, 0.11, 0.06};
 
+/* Martin & Moyce 1952 (above), Table 2: the surge front of the same n^2 = 2,
+ * a = 2.25 in column, Z = front / a against T = n t sqrt(g/a), as Ocellaris
+ * keeps it beside Table 6 (same file). Every Z is a whole number of quarter
+ * inches of front travel over a = 2.25 in (Z = 1 + k/9, two decimals), as for
+ * Table 6; it agrees with the Figure 3 curve of the same column (val_surge[1])
+ * within 3 % (0.09 in Z at most: the figure's points are sparser). */
+static const double mm2t_T[] = {0.41, 0.84, 1.19, 1.43, 1.63, 1.83, 1.98, 2.20,
+                                2.32, 2.51, 2.65, 2.83, 2.98, 3.11, 3.33};
+static const double mm2t_Z[] = {1.11, 1.22, 1.44, 1.67, 1.89, 2.11, 2.33, 2.56,
+                                2.78, 3.00, 3.22, 3.44, 3.67, 3.89, 4.11};
+
 #define N(a) ((int)(sizeof a / sizeof a[0]))
 const val_curve val_surge[VAL_SURGE_CURVES] = {
     {"Martin & Moyce 1952, a = 1.125 in", "Martin & Moyce 1952, Fig. 3", mm1_T, mm1_Z, N(mm1_T)},
     {"Martin & Moyce 1952, a = 2.25 in", "Martin & Moyce 1952, Fig. 3", mm2_T, mm2_Z, N(mm2_T)},
     {"Koshizuka & Oka 1996, experiment", "Koshizuka & Oka 1996", ko_T, ko_Z, N(ko_T)},
 };
+const val_curve val_surge_table2 = {"Martin & Moyce 1952, a = 2.25 in (Table 2)", "Martin & Moyce 1952, Table 2",
+                                    mm2t_T, mm2t_Z, N(mm2t_T)};
 const val_curve val_column = {"Martin & Moyce 1952, a = 2.25 in", "Martin & Moyce 1952, Table 6", mm6_tau, mm6_H,
                               N(mm6_tau)};
 
