@@ -1,8 +1,9 @@
-// uses: PRED MASS P_PCI X_PCI RHO_PCI ACC_PCI ACCELERATIONS ENTRIES START WALL REDUCE
+// uses: PRED MASS P_PCI X_PCI RHO_PCI DELTA_PCI ACC_PCI ACCELERATIONS ENTRIES START WALL REDUCE
 // Pass pcisph (src/passes/pcisph.c): one stage of a predict-correct
 // iteration per dispatch, u_count says which (the host, run_pcisph in
 // src/gpu/gpu_passes.c, calls them in the CPU pass's order):
-//   0 start:   p = 0, a = 0, x* = pred + dt^2 (other accelerations)
+//   0 start:   p = 0, a = 0, x* = pred + dt^2 (other accelerations); with solver_warm_start = on (and a last
+//              step) the host calls 1 instead, from the p the last step ended with
 //   1 force:   a_i = -(1/rho_r^2) sum_j m_j (p_i + p_j) grad W^p_ij at pred, walls push back; x* as above plus a
 //   2 predict: rho*_i = sum_j m_j W^rho(x*_i - x*_j) + rho_r (walls' share at x*_i), over the pairs within h at
 //              pred (the CPU's lists); the largest (rho* - rho_r) / rho_r, at least 0, into reduce_[2] (per work
@@ -10,13 +11,17 @@
 //              bits do; a NaN counts as 0, as fmaxf leaves it out on the CPU)
 //   3 correct: p += delta (rho* - rho_r), u_value = delta / dt^2, clamped at 0 with negative_pressure = clamp
 //   4 the start-up evaluation (dt = 0): a = 0, x* = pred
+//   5 pcisph_local_delta = on: delta_i at dt = 1 s from i's neighbourhood at pred, rho_r^2 / (2 S_i) with
+//     S_i = max(G^rho_i . G^p_i, 0) + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, G_i = sum_j m_j grad W_ij + rho_r
+//     grad(walls' share); u_value = the full lattice's delta, kept where S_i is 0 (local_deltas in pcisph.c)
+//   6 correct with those: p += delta_i / dt^2 (rho* - rho_r), u_value = dt^2, clamped as 3
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;
 uniform float u_value;
 shared uint s_err[WG];
-vec3 acc, xs;
-float p_i, rho;
+vec3 acc, xs, gr, gp;
+float p_i, rho, dots;
 
 void sph_pair(uint i, uint j, vec3 dx, float r2)
 {
@@ -28,6 +33,15 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
         float r = sqrt(r2);
         float c = mass_[j] * (p_i + p_pci_[j]) * INV_RHO_R2 * kernel_dw(KP, SIG_P, r) / r;
         for (int d = 0; d < DIM; d++) acc[d] -= c * dx[d];
+    } else if (u_count == 5u) {
+        float r = sqrt(r2);
+        if (!(r > 0.0)) return;
+        float fr = mass_[j] * kernel_dw(KD, SIG_D, r) / r, fp = mass_[j] * kernel_dw(KP, SIG_P, r) / r;
+        for (int d = 0; d < DIM; d++) {
+            gr[d] += fr * dx[d];
+            gp[d] += fp * dx[d];
+            dots += fr * fp * dx[d] * dx[d];
+        }
     } else {
         precise float q2 = 0.0;
         for (int d = 0; d < DIM; d++) {
@@ -89,8 +103,25 @@ void main()
             rho_pci_[i] = rho;
             float e = (rho - RHO_R) / RHO_R;
             err = e > 0.0 ? floatBitsToUint(e) : 0u;
+        } else if (u_count == 5u) {
+            gr = vec3(0.0);
+            gp = vec3(0.0);
+            dots = 0.0;
+            vec3 xi = PRED3(i);
+            sph_walk(i, xi);
+#if WALL_VOLUME
+            vec3 g;
+            solver_walls(xi, g);
+            for (int d = 0; d < DIM; d++) {
+                gr[d] += RHO_R * g[d];
+                gp[d] += RHO_R * g[d];
+            }
+#endif
+            precise float den = dots + max(gr.x * gp.x + gr.y * gp.y + gr.z * gp.z, 0.0);
+            delta_pci_[i] = den > 0.0 ? RHO_R * RHO_R / (2.0 * den) : u_value;
         } else {
-            precise float p = p_pci_[i] + u_value * (rho_pci_[i] - RHO_R);
+            float d_i = u_count == 6u ? delta_pci_[i] / u_value : u_value;
+            precise float p = p_pci_[i] + d_i * (rho_pci_[i] - RHO_R);
 #if CLAMP_NEG
             p = max(0.0, p);
 #endif

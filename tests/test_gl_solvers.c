@@ -4,12 +4,15 @@
  * positions within the whole-run tolerance of tests/test_gl_backend.c; the
  * solver is called once per iteration on GL too, and reads back only the
  * error of each iteration. Pass by pass, each iteration's fields are
- * compared in test_gl_backend.c (passes_match_cpu_solvers). */
+ * compared in test_gl_backend.c (passes_match_cpu_solvers); with the keys
+ * solver_warm_start and pcisph_local_delta, here (lockstep_keys). */
 #define _GNU_SOURCE /* setenv */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "gpu.h"
 #include "test_gl_util.h"
@@ -32,10 +35,18 @@ static const char *dam_3d =
     "[fluid column]\nmin=0 0 0\nmax=0.15 0.15 0.15\nspacing=0.025\n"
     "[kernels]\nh=0.05\n[time]\ndt=0.0005\ncfl=0\n";
 
-static sph_sim *make(const char *ini, const char *solver, const char *walls, bool gl)
+/* extra: more --set lines, separated by spaces (NULL: none), e.g. "physics.solver_warm_start=on" */
+static sph_sim *make(const char *ini, const char *solver, const char *walls, const char *extra, bool gl)
 {
     sph_scene_def def = test_scene(ini);
     sph_error err;
+    for (const char *at = extra; at && *at;) {
+        const size_t len = strcspn(at, " ");
+        char one[100];
+        snprintf(one, sizeof one, "%.*s", (int)len, at);
+        cr_assert_eq(sph_scene_set(&def, one, &err), SPH_ERR_OK, "%s: %s", one, err.msg);
+        at += len + (at[len] == ' ');
+    }
     char set[100];
     snprintf(set, sizeof set, "physics.pressure_solver=%s", solver);
     cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
@@ -68,11 +79,11 @@ static int count_difference(const sph_sim *a, const sph_sim *b)
  * does at the same steps. So each step's count on GL is held within 1 of
  * the CPU's, or within the largest difference the ulp-shifted run has shown
  * so far where that is more. */
-static void compare_runs(const char *ini, const char *solver, const char *walls, int steps)
+static void compare_runs(const char *ini, const char *solver, const char *walls, const char *extra, int steps)
 {
     need_gl();
-    sph_sim *c = make(ini, solver, walls, false), *g = make(ini, solver, walls, true);
-    sph_sim *u = make(ini, solver, walls, false);
+    sph_sim *c = make(ini, solver, walls, extra, false), *g = make(ini, solver, walls, extra, true);
+    sph_sim *u = make(ini, solver, walls, extra, false);
     for (int d = 0; d < u->dim; d++)
         for (uint32_t i = 0; i < u->n; i++) u->P.pos[d][i] = nextafterf(u->P.pos[d][i], INFINITY);
     const bool df = g->def.pressure_solver == SPH_PSOLVER_DFSPH;
@@ -125,11 +136,11 @@ static void compare_runs(const char *ini, const char *solver, const char *walls,
     free(where);
     if (getenv("SPH_TEST_VERBOSE"))
         fprintf(stderr,
-                "%s %dD %s walls, %d steps: %ld iterations on the CPU, %ld on GL, %d steps with the same count (worst "
-                "difference %d; CPU shifted by one ulp: %d), density errors differ by %.3g at most, %llu bytes read "
-                "back, positions differ by %.3g m (CPU shifted by one ulp: %.3g m)\n",
-                solver, c->dim, walls, steps, total, total_gl, same, worst, spread, err_worst,
-                (unsigned long long)bytes, err, err_u);
+                "%s %dD %s walls%s%s, %d steps: %ld iterations on the CPU, %ld on GL, %d steps with the same count "
+                "(worst difference %d; CPU shifted by one ulp: %d), density errors differ by %.3g at most, %llu bytes "
+                "read back, positions differ by %.3g m (CPU shifted by one ulp: %.3g m)\n",
+                solver, c->dim, walls, extra ? ", " : "", extra ? extra : "", steps, total, total_gl, same, worst,
+                spread, err_worst, (unsigned long long)bytes, err, err_u);
     cr_expect(total > (df ? 2 : 1) * steps, "%s: %ld iterations in %d steps: the solver did not iterate", solver,
               total, steps);
     cr_expect(labs(total_gl - total) <= total / 20, "%s: %ld iterations on GL, %ld on the CPU", solver, total_gl,
@@ -141,7 +152,125 @@ static void compare_runs(const char *ini, const char *solver, const char *walls,
     sph_sim_destroy(c);
 }
 
-Test(gl_solvers, pcisph_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "pcisph", "volume", 40); }
-Test(gl_solvers, dfsph_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "dfsph", "volume", 40); }
-Test(gl_solvers, pcisph_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "pcisph", "volume", 20); }
-Test(gl_solvers, dfsph_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "volume", 20); }
+Test(gl_solvers, pcisph_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "pcisph", "volume", NULL, 40); }
+Test(gl_solvers, dfsph_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "dfsph", "volume", NULL, 40); }
+Test(gl_solvers, pcisph_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "pcisph", "volume", NULL, 20); }
+Test(gl_solvers, dfsph_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "volume", NULL, 20); }
+
+/* solver_warm_start = on (each solve from the last step's pressure, DFSPH's
+ * kappa scaled by (dt_last / dt)^2) and pcisph_local_delta = on (each
+ * particle's delta from its own neighbourhood, walls included): the same
+ * whole runs. The warm runs also carry p_pci and kappa through the reorder
+ * pass from step to step, which the pass-by-pass checks below cannot see. */
+#define WARM "physics.solver_warm_start=on"
+#define LOCAL "physics.pcisph_local_delta=on"
+Test(gl_solvers, pcisph_warm_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "pcisph", "volume", WARM, 40); }
+Test(gl_solvers, pcisph_local_delta_dam_break_2d, .timeout = 300)
+{
+    compare_runs(dam_2d, "pcisph", "volume", LOCAL, 40);
+}
+Test(gl_solvers, dfsph_warm_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "dfsph", "volume", WARM, 40); }
+Test(gl_solvers, pcisph_warm_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "pcisph", "volume", WARM, 20); }
+Test(gl_solvers, pcisph_local_delta_dam_break_3d, .timeout = 300)
+{
+    compare_runs(dam_3d, "pcisph", "volume", LOCAL, 20);
+}
+Test(gl_solvers, dfsph_warm_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "volume", WARM, 20); }
+
+/* As TOL_SOLVER in tests/test_gl_backend.c: a few roundings of rho* over the
+ * tolerance's excess (1e-3 rho_r). */
+#define TOL_SOLVER (16 * FLT_EPSILON / 1e-3)
+
+/* The fields pass p wrote, GL against the CPU, within tol of their scale;
+ * worst[f]: the largest error / scale so far. */
+static void expect_written(const sph_sim *c, const sph_sim *g, sph_pass_id p, double tol, int step, double *worst)
+{
+    for (int f = 0; f < SPH_FIELD_COUNT; f++) {
+        if (!(sph_passes[p]->writes & SPH_FIELD_BIT(f)) || !c->P.field[f][0]) continue;
+        double scale, err = test_gl_field_error(c, g, (sph_field_id)f, &scale);
+        if (scale > 0) worst[f] = fmax(worst[f], err / scale);
+        cr_expect(err <= tol * scale + 1e-30, "step %d, %s (iteration %d): %s differs by %.3g, above %.1g of %.4g",
+                  step, sph_passes[p]->name, c->solver.iteration, sph_field_infos[f].name, err, tol, scale);
+    }
+}
+
+/* Pass by pass from the CPU's state (its kept pressures and the step they
+ * were solved for included, that step made 10 % shorter): each solver iteration's fields within
+ * TOL_SOLVER and the error measured within a few roundings, as
+ * passes_match_cpu_solvers does; the reorder pass moves the kept pressures
+ * exactly. */
+static void lockstep_keys(const char *ini, const char *solver, const char *extra, int before, int steps)
+{
+    need_gl();
+    sph_sim *c = make(ini, solver, "volume", extra, false), *g = make(ini, solver, "volume", extra, true);
+    for (int s = 0; s < before; s++) sph_sim_step(c); /* where the water meets the far wall */
+    /* the particles in reverse order, so that the first step's reorder pass moves every kept pressure (in a
+     * sorted block few particles change cells in a few steps) */
+    for (uint32_t i = 0, k = c->n - 1; i < k; i++, k--) {
+        const uint32_t t = c->P.id[i];
+        c->P.id[i] = c->P.id[k];
+        c->P.id[k] = t;
+        for (int f = 0; f < SPH_FIELD_COUNT; f++)
+            for (int d = 0; d < 3; d++) {
+                float *a = c->P.field[f][d];
+                if (!a) continue;
+                const float x = a[i];
+                a[i] = a[k];
+                a[k] = x;
+            }
+    }
+    const sph_pass_id solver_pass = c->def.pressure_solver == SPH_PSOLVER_DFSPH ? SPH_PASS_DFSPH : SPH_PASS_PCISPH;
+    int calls = 0;
+    double worst[SPH_FIELD_COUNT] = {0};
+    for (int s = 0; s < steps; s++) {
+        /* the last step as if 10 % shorter: dt is fixed in these scenes, and DFSPH's kept kappa is scaled by
+         * (dt_last / dt)^2 */
+        c->solver.dt_last *= 0.9f;
+        do {
+            test_gl_copy_state(g, c);
+            g->solver.dt_last = c->solver.dt_last; /* what the warm start scales by (or whether it starts) */
+            const sph_pass_id pc = sph_sim_step_pass(c), pg = sph_sim_step_pass(g);
+            cr_assert_eq(pc, pg, "step %d: %s on the CPU, %s on GL", s,
+                         pc < SPH_PASS_COUNT ? sph_passes[pc]->name : "-",
+                         pg < SPH_PASS_COUNT ? sph_passes[pg]->name : "-");
+            if (pc == SPH_PASS_REORDER) {
+                sph_sim_sync(g, SPH_SYNC_ALL);
+                const sph_field_id kept[] = {SPH_FIELD_P_PCI, SPH_FIELD_KAPPA, SPH_FIELD_KAPPA_V};
+                for (int k = 0; k < 3; k++) {
+                    if (!c->P.field[kept[k]][0]) continue;
+                    double scale, err = test_gl_field_error(c, g, kept[k], &scale);
+                    cr_expect(err == 0, "step %d, reorder: %s differs by %.3g", s, sph_field_infos[kept[k]].name, err);
+                }
+            }
+            if (pc != solver_pass) continue;
+            calls++;
+            expect_written(c, g, pc, TOL_SOLVER, s, worst);
+            cr_expect(fabs(g->solver.error - c->solver.error) <= 4 * FLT_EPSILON,
+                      "step %d, %s: error %g after iteration %d on GL, %g on the CPU", s, sph_passes[pc]->name,
+                      g->solver.error, g->solver.iteration, c->solver.error);
+        } while (c->next_pass != 0);
+    }
+    if (getenv("SPH_TEST_VERBOSE")) {
+        fprintf(stderr, "%s %dD %s: %d steps pass by pass after %d, %d calls of the solver; largest error / scale:",
+                solver, c->dim, extra, steps, before, calls);
+        for (int f = 0; f < SPH_FIELD_COUNT; f++)
+            if ((sph_passes[solver_pass]->writes & SPH_FIELD_BIT(f)) && c->P.field[f][0])
+                fprintf(stderr, " %s %.2g", sph_field_infos[f].name, worst[f]);
+        fprintf(stderr, "\n");
+    }
+    cr_expect(calls > steps, "%d calls of the solver in %d steps: it did not iterate", calls, steps);
+    sph_sim_destroy(g);
+    sph_sim_destroy(c);
+}
+
+Test(gl_solvers, pcisph_warm_passes_match_cpu, .timeout = 300) { lockstep_keys(dam_2d, "pcisph", WARM, 20, 10); }
+Test(gl_solvers, pcisph_local_delta_passes_match_cpu, .timeout = 300)
+{
+    lockstep_keys(dam_2d, "pcisph", LOCAL, 20, 10);
+    lockstep_keys(dam_3d, "pcisph", LOCAL, 30, 3); /* a box's corners: 7 neighbours of 26 */
+}
+/* a tighter divergence tolerance than the default, so that the divergence solve iterates and kappa_v is kept */
+Test(gl_solvers, dfsph_warm_passes_match_cpu, .timeout = 300)
+{
+    lockstep_keys(dam_2d, "dfsph", WARM " physics.divergence_tolerance=1e-5", 20, 10);
+}

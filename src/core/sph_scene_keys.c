@@ -179,13 +179,13 @@ const sph_key sph_scene_keys[] = {
     {"physics", "solver_warm_start", SPH_KEY_CHOICE, S(solver_warm_start), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
      "pcisph, dfsph: on: each solve starts from the pressure the last step ended with (PCISPH's p; DFSPH's kappa "
      "and kappa_v times (dt_last / dt)^2, Bender & Koschier 2017, Algorithm 3), not from 0: fewer iterations "
-     "(docs/accuracy.md, section 8); not on the GL backend"},
+     "(docs/accuracy.md, section 8); on the GL backend too"},
     {"physics", "pcisph_local_delta", SPH_KEY_CHOICE, S(pcisph_local_delta), 0, 0, 0, 0, CH(sph_onoff_names), "",
      "off",
      "pcisph: on: each particle's delta from its own neighbourhood at the step's start (walls included), as "
      "DFSPH's alpha and IISPH's a_ii are, instead of the full lattice's (Solenthaler & Pajarola 2009's prototype "
-     "particle): a corner or wall particle with fewer neighbours is corrected at its own rate; not on the GL "
-     "backend"},
+     "particle): a corner or wall particle with fewer neighbours is corrected at its own rate; on the GL "
+     "backend too"},
     {"physics", "surface_tension", SPH_KEY_CHOICE, S(surface_tension), 0, 0, 0, 0, CH(sph_surface_tension_names), "",
      "none",
      "none; akinci: Akinci, Akinci & Teschner 2013 (ACM TOG 32(6)), the cohesion term (eq. 1-2, the cohesion pass) "

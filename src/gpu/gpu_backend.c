@@ -107,16 +107,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [search] skin = %g (Verlet lists) is not implemented by the GL backend (its passes "
                         "walk the cells every step and keep no lists; accepted there: 0)",
                         def->file, (double)def->skin);
-    if (def->pressure_solver != SPH_PSOLVER_EOS && def->solver_warm_start == SPH_ON)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] solver_warm_start = on is not implemented by the GL backend (its solves start "
-                        "from 0; accepted there: off)",
-                        def->file);
-    if (def->pressure_solver == SPH_PSOLVER_PCISPH && def->pcisph_local_delta == SPH_ON)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] pcisph_local_delta = on is not implemented by the GL backend (its PCISPH uses "
-                        "the full lattice's delta; accepted there: off)",
-                        def->file);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)

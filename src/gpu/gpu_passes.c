@@ -327,7 +327,8 @@ static double solver_mean(gpu *g, sph_sim *sim, int p, uint32_t stage)
     return ldexp((double)count, -28);
 }
 
-enum { PCI_START, PCI_FORCE, PCI_PREDICT, PCI_CORRECT, PCI_STARTUP }; /* shaders/gpu_pcisph.comp's stages */
+/* shaders/gpu_pcisph.comp's stages */
+enum { PCI_START, PCI_FORCE, PCI_PREDICT, PCI_CORRECT, PCI_STARTUP, PCI_DELTA, PCI_CORRECT_LOCAL };
 
 static void run_pcisph(gpu *g, sph_sim *sim)
 {
@@ -337,15 +338,24 @@ static void run_pcisph(gpu *g, sph_sim *sim)
         solver_stage(g, sim, p, PCI_STARTUP, 0.0f);
         return;
     }
-    if (s->iteration == 0) solver_stage(g, sim, p, PCI_START, 0.0f); /* the step's first call: from p = 0 */
+    const bool local = sim->def.pcisph_local_delta == SPH_ON;
+    if (s->iteration == 0) { /* the step's first call: from p = 0, or the last step's p (a warm start) */
+        if (local) solver_stage(g, sim, p, PCI_DELTA, s->delta);
+        const bool warm = sim->def.solver_warm_start == SPH_ON && s->dt_last > 0;
+        solver_stage(g, sim, p, warm ? PCI_FORCE : PCI_START, 0.0f);
+    }
     const double error = solver_measure(g, sim, p, PCI_PREDICT);
     if (sph_solver_done(sim, error, sim->def.solver_tolerance)) {
         s->iterations = s->iteration;
         s->density_error = error;
         s->iteration = 0;
+        s->dt_last = sim->dt;
         return;
     }
-    solver_stage(g, sim, p, PCI_CORRECT, s->delta / (sim->dt * sim->dt));
+    if (local)
+        solver_stage(g, sim, p, PCI_CORRECT_LOCAL, sim->dt * sim->dt);
+    else
+        solver_stage(g, sim, p, PCI_CORRECT, s->delta / (sim->dt * sim->dt));
     solver_stage(g, sim, p, PCI_FORCE, 0.0f);
     sim->pass_again = true;
 }
@@ -353,10 +363,18 @@ static void run_pcisph(gpu *g, sph_sim *sim)
 /* shaders/gpu_dfsph.comp's stages */
 enum { DF_FACTORS, DF_WARM_V, DF_WARM, DF_MEASURE_V, DF_MEASURE, DF_CORRECT_V, DF_CORRECT };
 
-/* The share of the last step's kappa a solve starts from: as SPH_DFSPH_WARM
- * in src/passes/dfsph.c (0: off, see there); the lockstep test compares
- * kappa after each call, so the two cannot differ unseen. */
+/* The share of the last step's kappa a solve starts from: as warm() in
+ * src/passes/dfsph.c, SPH_DFSPH_WARM there (0: off, see there), or with
+ * solver_warm_start = on (dt_last / dt)^2; the lockstep tests compare kappa
+ * after each call, so the two cannot differ unseen. */
 #define GPU_DFSPH_WARM 0.0f
+
+static float dfsph_warm(const sph_sim *sim)
+{
+    const float last = sim->solver.dt_last;
+    if (sim->def.solver_warm_start != SPH_ON) return GPU_DFSPH_WARM;
+    return last > 0 ? (last / sim->dt) * (last / sim->dt) : 0.0f;
+}
 
 /* acc_df and dv_df from kappa_v (density: and kappa); startup: a = 0. */
 static void dfsph_force(gpu *g, sph_sim *sim, bool density, bool startup)
@@ -379,7 +397,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
     const float dt2 = sim->dt * sim->dt;
     if (s->iteration == 0 && s->phase == 0) { /* the step's first call */
         solver_stage(g, sim, p, DF_FACTORS, 0.0f);
-        solver_stage(g, sim, p, DF_WARM_V, GPU_DFSPH_WARM);
+        solver_stage(g, sim, p, DF_WARM_V, dfsph_warm(sim));
         dfsph_force(g, sim, false, false);
     }
     if (s->phase == 0) {
@@ -394,7 +412,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
         s->divergence_error = error;
         s->iteration = 0;
         s->phase = 1; /* and on to the density in this call */
-        solver_stage(g, sim, p, DF_WARM, GPU_DFSPH_WARM);
+        solver_stage(g, sim, p, DF_WARM, dfsph_warm(sim));
         dfsph_force(g, sim, true, false);
     }
     const double error = solver_measure(g, sim, p, DF_MEASURE);
@@ -408,6 +426,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
     s->density_error = error;
     s->iteration = 0;
     s->phase = 0;
+    s->dt_last = sim->dt;
 }
 
 static unsigned dfsph_helpers(const sph_scene_def *def)

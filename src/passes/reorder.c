@@ -77,13 +77,13 @@ const sph_pass sph_pass_reorder = {
     .summary = "store particles in cell order",
     /* and the wall flag `fixed` (with `obstacle` and `slip`) where there are wall particles, the carried
      * density rho_c with density_method = continuity, the position remainder pos_r with position_sum =
-     * compensated: written (moved)
-     * when present, not listed in reads (a pass's reads exist in every scene
-     * that runs it) */
+     * compensated, the pressure solvers' kept kappa, kappa_v and p_pci (their warm starts; the GL backend
+     * gathers what is listed here): written (moved) when present, not listed in reads (a pass's reads exist
+     * in every scene that runs it) */
     .reads = SPH_RES_ENTRIES | SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED),
     .writes = SPH_RES_ID | SPH_BIT(MASS) | SPH_BIT(POS) | SPH_BIT(VEL) | SPH_BIT(PRED) | SPH_BIT(FIXED) |
               SPH_BIT(RHO_C) | SPH_BIT(OBSTACLE) | SPH_BIT(SLIP) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) |
-              SPH_BIT(POS_R) | SPH_RES_ENTRIES,
+              SPH_BIT(P_PCI) | SPH_BIT(POS_R) | SPH_RES_ENTRIES,
     .group = SPH_GROUP_SEARCH,
     .highlight = NULL,
     .skip_reason = skip_reason,
