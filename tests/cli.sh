@@ -106,6 +106,11 @@ sph study lessons/scenes/study-hydrostatic-2d.ini --steps 20 --repeats 1 --threa
     awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next } { if (!($col["error"] > 0)) bad = 1; n++ }
              END { exit bad || n != 3 }' "$tmp/ps/study.csv" &&
     ok || { bad "study hydrostatic --vary pressure_solver: want 3 rows with an error"; cat "$tmp/err.txt"; cat "$tmp/ps/study.csv"; }
+# a scene no metric is guessed for: the refusal lists every metric, compression (the dam break's) included
+sph study lessons/11-incompressible/lesson.ini --steps 1 --repeats 1 --quiet --vary physics.solver_tolerance=0.01,0.001 \
+    --out "$tmp/nm" > "$tmp/err.txt" 2>&1
+[ $? -eq 1 ] && grep -q "give --metric .*compression" "$tmp/err.txt" && ok ||
+    { bad "study without a guessable metric: want exit 1 and every metric named, compression included"; cat "$tmp/err.txt"; }
 sph run "$scene" --set compute.backend=opencl --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "\[compute\] backend = 'opencl'" "$tmp/gl.txt" && ok || { bad "compute.backend=opencl: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
 
