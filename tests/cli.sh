@@ -384,6 +384,21 @@ sph check "$tmp/st.ini" --set physics.surface_tension=akinci > "$tmp/st.txt" 2>&
 sph check lessons/scenes/dam-break-2d.ini --set physics.delta=0.2 2>&1 |
     grep -q "warning: --set: \[physics\] delta is set but this scene does not use it: only density_method = continuity" &&
     ok || bad "delta with summation: want the warning"
+# the solvers' keys without their solver: a tolerance or warm start given to the equation of state was run
+# without a word (a student's solver_tolerance = 1e-5 changed nothing); said, with the line, and not once the
+# solver that reads the key is chosen
+printf '[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.2 0.2\n[physics]\nsolver_tolerance = 1e-5\n' > "$tmp/sv.ini"
+sph check "$tmp/sv.ini" > "$tmp/sv.txt" 2>&1 &&
+    grep -q "warning: .*sv.ini:8: \[physics\] solver_tolerance is set but this scene does not use it: .*pcisph or dfsph" "$tmp/sv.txt" &&
+    ok || { bad "eos with solver_tolerance: want the warning naming the line"; cat "$tmp/sv.txt"; }
+sph check "$tmp/sv.ini" --set physics.pressure_solver=pcisph > "$tmp/sv.txt" 2>&1 && ! grep -q "does not use it" "$tmp/sv.txt" &&
+    ok || { bad "pcisph with solver_tolerance: no warning"; cat "$tmp/sv.txt"; }
+for kv in solver_warm_start=on:eos solver_max_iterations=50:eos divergence_tolerance=0.01:pcisph pcisph_local_delta=on:dfsph; do
+    key=${kv%%=*}; rest=${kv#*=}; value=${rest%%:*}; solver=${rest#*:}
+    sph check lessons/scenes/dam-break-2d.ini --set physics.pressure_solver="$solver" --set physics."$key"="$value" 2>&1 |
+        grep -q "warning: --set: \[physics\] $key is set but this scene does not use it" &&
+        ok || bad "$key = $value with pressure_solver = $solver: want the unread key's warning"
+done
 # check --save-scene into a path that cannot be written: exit 1, the option named, no "ok" before it
 : > "$tmp/afile2"
 sph check lessons/scenes/drop-2d.ini --save-scene "$tmp/afile2/x.ini" > "$tmp/ss.txt" 2>&1
