@@ -411,3 +411,19 @@ Test(validate, bad_input_is_refused_with_exit_2)
     cr_assert_eq(test_sphlab("validate list", out, sizeof out), 0);
     cr_assert(strstr(out, "couette") && strstr(out, "obstacle"), "%s", out);
 }
+
+/* The drop's verdict names a period it could not measure (a record that crossed its mean fewer than 3 times:
+ * R/20's growing mode) in words, not as "period nan s (+nan%)". */
+Test(validate, drop_period_text_says_when_there_is_no_period)
+{
+    char buf[256];
+    val_period_text(buf, sizeof buf, 2.581, 2.409, 6);
+    cr_expect_str_eq(buf, "period 2.581 s vs Rayleigh 2.409 s (+7.1%)");
+    val_period_text(buf, sizeof buf, NAN, 2.409, 2);
+    cr_expect(strstr(buf, "no period") && strstr(buf, "2 crossings") && strstr(buf, "3 needed") &&
+                  strstr(buf, "Rayleigh 2.409 s"),
+              "%s", buf);
+    cr_expect_null(strstr(buf, "nan"), "%s", buf);
+    val_period_text(buf, sizeof buf, 2.5, NAN, 6);
+    cr_expect_null(strstr(buf, "nan"), "%s", buf);
+}

@@ -322,11 +322,11 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
     char trend[1200] = "";
     for (int r = 0; r < done; r++) {
         const drop_obs *o = &obs[r];
+        char period[160];
+        val_period_text(period, sizeof period, o->T, o->T_ray, o->crossings);
         if (isfinite(o->T_ray))
-            val_append(trend, sizeof trend,
-                       "%sR/%d: R %.4g m, sigma %.4g %s%s, period %.4g s vs Rayleigh %.4g s (%+.1f%%)", r ? "; " : "",
-                       c->res[r], o->R, o->sigma, SIGMA_UNIT(o->dim), o->stated ? " (stated)" : "", o->T, o->T_ray,
-                       100 * (o->T / o->T_ray - 1));
+            val_append(trend, sizeof trend, "%sR/%d: R %.4g m, sigma %.4g %s%s, %s", r ? "; " : "", c->res[r], o->R,
+                       o->sigma, SIGMA_UNIT(o->dim), o->stated ? " (stated)" : "", period);
         else
             val_append(trend, sizeof trend,
                        "%sR/%d: R %.4g m, period %.4g s; sigma not measurable (Laplace jump %.3g %s between R and "
@@ -339,9 +339,12 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
         memset(&ch, 0, sizeof ch);
         snprintf(ch.title, sizeof ch.title, "%s oscillation (n = 2) against Rayleigh's period", p->name);
         for (int r = 0; r < done; r++)
-            if (isfinite(obs[r].T_ray))
+            if (isfinite(obs[r].T_ray) && isfinite(obs[r].T))
                 val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: %+.1f%%", r ? "; " : "period error: ", c->res[r],
                            100 * (obs[r].T / obs[r].T_ray - 1));
+            else if (isfinite(obs[r].T_ray)) /* fewer than 3 crossings: no period, not nan */
+                val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: no period", r ? "; " : "period error: ",
+                           c->res[r]);
             else /* no sigma, so no reference: say so rather than print nan */
                 val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: sigma not measurable", r ? "; " : "period error: ",
                            c->res[r]);
