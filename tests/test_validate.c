@@ -427,3 +427,21 @@ Test(validate, drop_period_text_says_when_there_is_no_period)
     val_period_text(buf, sizeof buf, 2.5, NAN, 6);
     cr_expect_null(strstr(buf, "nan"), "%s", buf);
 }
+
+/* Each verdict line names what its percentages are of, with the figure, and its target's quantities: the
+ * channels said "/ scale" (of what?) and the hydrostatic target "<= 1 %, < 1 %" (of which quantity?). */
+Test(validate, verdicts_name_the_scale_of_their_percentages, .timeout = 120)
+{
+    static const char *const names[] = {"poiseuille", "couette", "hydrostatic"};
+    static const char *const want[][2] = {{"/ u_max (", "m/s"}, {"/ U (", "m/s"}, {"p <= 1 % of rho0 g H", "sqrt(g H)"}};
+    char dir[] = "/tmp/sphlab-validate-XXXXXX";
+    cr_assert_not_null(mkdtemp(dir));
+    for (int k = 0; k < 3; k++) {
+        char args[600], out[16384];
+        snprintf(args, sizeof args, "validate %s --quick --quiet --threads 2 --out %s", names[k], dir);
+        int rc = test_sphlab(args, out, sizeof out);
+        cr_assert(rc == 0 || rc == 1, "%s: exit %d: %s", names[k], rc, out);
+        cr_expect(strstr(out, want[k][0]) && strstr(out, want[k][1]), "%s: want '%s' and '%s' in: %s", names[k],
+                  want[k][0], want[k][1], out);
+    }
+}

@@ -209,6 +209,7 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
     }
     return val_verdict(c, p, ok, pass,
                        "worst centre-line |p - p_exact| / rho0 g H (p_exact: the column of the scene's equation of state) in %d single frames after t = %g s, the "
-                       "row at the floor included, and max speed / sqrt(g H) after it: %s (target: <= 1 %%, < 1 %%)",
+                       "row at the floor included, and max speed / sqrt(g H) after it: %s (target at every resolution: "
+                       "p <= 1 %% of rho0 g H, speed < 1 %% of sqrt(g H))",
                        FRAMES, T_SETTLE, detail);
 }
