@@ -271,6 +271,12 @@ for scene in scenes/validate/*.ini; do
 done
 sph validate list > "$tmp/val.txt" 2>&1
 [ $? -eq 0 ] && grep -q '^dam-break ' "$tmp/val.txt" && grep -q '^obstacle ' "$tmp/val.txt" && ok || { bad "validate list"; cat "$tmp/val.txt"; }
+# `validate NAME --help` also gives that problem's reference, target and resolution unit (the general help
+# sent the reader to `validate list` for the unit of --resolution)
+sph validate drop-3d --help > "$tmp/vh.txt" 2>&1 &&
+    grep -q "^drop-3d .*sphere" "$tmp/vh.txt" && grep -q "against: Rayleigh" "$tmp/vh.txt" &&
+    grep -q "target: .*5 %" "$tmp/vh.txt" && grep -q "R = R / spacing; default 6,8,10; --quick 6" "$tmp/vh.txt" &&
+    ok || { bad "validate drop-3d --help: want the problem's entry"; cat "$tmp/vh.txt"; }
 for p in dam-break hydrostatic taylor-green poiseuille couette; do
     sph validate "$p" --quick --quiet --out "$tmp/val" > "$tmp/val.txt" 2>&1
     rc=$?
