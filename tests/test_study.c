@@ -575,7 +575,8 @@ Test(study, warning_of_an_inert_key_names_a_tolerance_already_met)
     char args[1024], out[16384];
     snprintf(args, sizeof args,
              "study lessons/11-incompressible/lesson.ini --metric compression --set physics.pressure_solver=dfsph "
-             "--set physics.solver_tolerance=0.01 --vary physics.divergence_tolerance=0.1,0.01 --steps 5 --out %s --repeats 1 --threads 1 --quiet",
+             "--set physics.solver_tolerance=0.01 --vary physics.divergence_tolerance=0.1,0.01 --steps 5 --out %s "
+             "--repeats 1 --threads 1 --quiet",
              dir);
     int rc = test_sphlab(args, out, sizeof out);
     cr_assert_eq(rc, 0, "exit %d: %s", rc, out);

@@ -433,7 +433,8 @@ Test(validate, drop_period_text_says_when_there_is_no_period)
 Test(validate, verdicts_name_the_scale_of_their_percentages, .timeout = 120)
 {
     static const char *const names[] = {"poiseuille", "couette", "hydrostatic"};
-    static const char *const want[][2] = {{"/ u_max (", "m/s"}, {"/ U (", "m/s"}, {"p <= 1 % of rho0 g H", "sqrt(g H)"}};
+    static const char *const want[][2] = {
+        {"/ u_max (", "m/s"}, {"/ U (", "m/s"}, {"p <= 1 % of rho0 g H", "sqrt(g H)"}};
     char dir[] = "/tmp/sphlab-validate-XXXXXX";
     cr_assert_not_null(mkdtemp(dir));
     for (int k = 0; k < 3; k++) {
