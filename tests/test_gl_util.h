@@ -5,6 +5,7 @@
 
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -83,6 +84,58 @@ static inline double test_gl_field_error(const sph_sim *c, const sph_sim *g, sph
     if (f == SPH_FIELD_PRHO2) big = fmax(big, k_rho0 / ((double)c->def.rest_density * c->def.rest_density));
     *scale = big;
     return err;
+}
+
+/* 2D, 225 particles in a box reaching below zero on both axes (negative
+ * cells), jittered so that no two distances tie. */
+#define TEST_GL_SCENE_2D \
+    "[scene]\nname=gl 2d\ndimension=2\neffects=gravity pressure viscosity walls\njitter=0.2\n" \
+    "[domain]\nmin=-0.3 -0.2\nmax=0.3 0.4\nwall_damping=0.3\n" \
+    "[physics]\nnegative_pressure=clamp\nviscosity=0.005\n" \
+    "[kernels]\nh=0.04\n[time]\ndt=0.001\ncfl=0.4\n" \
+    "[fluid a]\nmin=-0.3 -0.2\nmax=0.0 0.1\nspacing=0.02\nvelocity=0.5 0\n"
+
+/* 3D, 512 particles, also across zero. */
+#define TEST_GL_SCENE_3D \
+    "[scene]\nname=gl 3d\ndimension=3\neffects=gravity pressure viscosity walls\njitter=0.2\n" \
+    "[domain]\nmin=-0.2 -0.2 -0.2\nmax=0.2 0.2 0.2\nwall_damping=0.3\n" \
+    "[physics]\nnegative_pressure=clamp\nviscosity=0.005\ngravity=0 -9.81 0\n" \
+    "[kernels]\nh=0.05\n[time]\ndt=0.001\ncfl=0.4\n" \
+    "[fluid a]\nmin=-0.2 -0.2 -0.2\nmax=0.0 0.0 0.0\nspacing=0.025\nvelocity=0 0 0.3\n"
+
+#define TEST_GL_TOL_POS_RUN 1e-4 /* [m] positions after a whole run of separate simulations */
+
+/* Separate simulations on the CPU and on GL, 40 steps each: positions stay within TEST_GL_TOL_POS_RUN and
+ * the kinetic energies within 1e-3. */
+static inline void test_gl_whole_run(const char *ini, const char *const *sets, int n_sets)
+{
+    need_gl();
+    sph_sim *c = test_gl_make(ini, sets, n_sets, false), *g = test_gl_make(ini, sets, n_sets, true);
+    for (int s = 0; s < 40; s++) {
+        sph_sim_step(c);
+        sph_sim_step(g);
+    }
+    cr_assert(!g->alarm.raised && !c->alarm.raised, "the watchdog stopped a run");
+    cr_expect(fabs(g->t - c->t) <= 1e-6 * c->t, "simulated time %g on GL, %g on the CPU", g->t, c->t);
+    sph_sim_sync(g, SPH_SYNC_ALL);
+    /* match particles by id: both reorder the same way, but compare robustly */
+    uint32_t *where = malloc(c->n * sizeof *where);
+    cr_assert_not_null(where);
+    for (uint32_t i = 0; i < g->n; i++) where[g->P.id[i]] = i;
+    double err = 0;
+    for (uint32_t i = 0; i < c->n; i++)
+        for (int d = 0; d < c->dim; d++) err = fmax(err, fabs((double)g->P.pos[d][where[c->P.id[i]]] - c->P.pos[d][i]));
+    free(where);
+    if (getenv("SPH_TEST_VERBOSE"))
+        fprintf(stderr, "whole run (%dD, 40 steps): positions differ by %.3g m\n", c->dim, err);
+    cr_expect(err <= TEST_GL_TOL_POS_RUN, "positions after 40 steps differ by %.3g m (tolerance %g m)", err,
+              TEST_GL_TOL_POS_RUN);
+    sph_stats sc, sg;
+    sph_sim_stats(c, &sc);
+    sph_sim_stats(g, &sg);
+    cr_expect(fabs(sg.ekin - sc.ekin) <= 1e-3 * sc.ekin, "kinetic energy %g on GL, %g on the CPU", sg.ekin, sc.ekin);
+    sph_sim_destroy(g);
+    sph_sim_destroy(c);
 }
 
 #endif

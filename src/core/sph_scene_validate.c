@@ -93,6 +93,15 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
         {"sigma", def->surface_tension != SPH_STENSION_CSF, "only surface_tension = csf reads it"},
         {"delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
         {"tait_gamma", def->eos != SPH_EOS_TAIT, "only eos = tait reads it"},
+        /* the solvers' keys: a tolerance given to the equation of state changed nothing, unsaid */
+        {"solver_tolerance", def->pressure_solver == SPH_PSOLVER_EOS,
+         "only pressure_solver = pcisph or dfsph reads it"},
+        {"solver_max_iterations", def->pressure_solver == SPH_PSOLVER_EOS,
+         "only pressure_solver = pcisph or dfsph reads it"},
+        {"solver_warm_start", def->pressure_solver == SPH_PSOLVER_EOS,
+         "only pressure_solver = pcisph or dfsph reads it"},
+        {"divergence_tolerance", def->pressure_solver != SPH_PSOLVER_DFSPH, "only pressure_solver = dfsph reads it"},
+        {"pcisph_local_delta", def->pressure_solver != SPH_PSOLVER_PCISPH, "only pressure_solver = pcisph reads it"},
     };
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
         int i = key_index("physics", keys[k].key);

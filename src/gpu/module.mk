@@ -25,7 +25,8 @@ $(BUILD)/gpu/%.o: src/gpu/%.c src/gpu/*.h src/gl/*.h src/core/*.h src/passes/sol
 $(BUILD)/gpu:
 	mkdir -p $@
 
-$(BUILD)/tests/test_gl_backend.o $(BUILD)/tests/test_gl_timing.o $(BUILD)/tests/test_gl_sort.o $(BUILD)/tests/test_gl_stats.o \
+$(BUILD)/tests/test_gl_backend.o $(BUILD)/tests/test_gl_runs.o $(BUILD)/tests/test_gl_timing.o \
+    $(BUILD)/tests/test_gl_sort.o $(BUILD)/tests/test_gl_stats.o \
     $(BUILD)/tests/test_gl_solvers.o $(BUILD)/tests/test_gl_fused.o $(BUILD)/tests/test_gl_health.o \
     $(BUILD)/tests/test_gl_csf.o: CORE_CFLAGS += -Isrc/gpu
 

@@ -167,11 +167,13 @@ int study_cmd_run(const study_cmd *cmd)
     sph_scene_def scene;
     if (!app_load_scene(&o, &scene)) return 1;
     if (metric < 0 && (metric = study_metric_guess(&scene)) < 0) {
+        /* the list from the metric table, so that a metric added there (compression) is named here too */
         fprintf(stderr,
-                "sphlab study: %s is none of the reference problems this command recognises (a Taylor-Green block, "
-                "a tank, a block whose density is computed): give --metric density|density-surface|hydrostatic|"
-                "taylor-green\n",
+                "sphlab study: %s is none of the reference problems this command guesses (a Taylor-Green block, "
+                "a tank, a block whose density is computed): give --metric ",
                 o.path);
+        for (int m = 0; m < STUDY_METRIC_COUNT; m++) fprintf(stderr, "%s%s", m ? "|" : "", study_metric_names[m]);
+        fprintf(stderr, " (compression: any flow with pressure, as a dam break)\n");
         return 1;
     }
     /* every combination must be a valid scene the metric applies to, before anything runs */
@@ -244,7 +246,9 @@ int study_cmd_run(const study_cmd *cmd)
         if (study_knob_inert(&plan, rows, combos, k))
             fprintf(stderr,
                     "sphlab study: warning: --vary %s: every value gave the same particles, steps and error: the key "
-                    "does not act on this scene (its effects or pressure_solver leave out the passes that read it)\n",
+                    "does not act on this scene (its effects or pressure_solver leave out the passes that read it, "
+                    "or, for a tolerance, every value is already met at the solve's first iteration: try smaller "
+                    "ones; --stats shows the error each solve ends with)\n",
                     plan.knob[k].key);
     if (code) {
         free(rows);

@@ -77,17 +77,19 @@ static const val_problem *find(const char *name)
     return NULL;
 }
 
+static void entry(FILE *f, const val_problem *p)
+{
+    fprintf(f, "%-13s %s\n", p->name, p->about);
+    if (!p->run) return;
+    fprintf(f, "%-13s   against: %s\n", "", p->reference);
+    fprintf(f, "%-13s   target:  %s\n", "", p->target);
+    fprintf(f, "%-13s   R = %s; default %d,%d,%d; --quick %d\n", "", p->res_meaning, p->res_default[0],
+            p->res_default[1], p->res_default[2], p->res_quick);
+}
+
 static void list(FILE *f)
 {
-    for (int i = 0; i < val_problem_count; i++) {
-        const val_problem *p = &val_problems[i];
-        fprintf(f, "%-13s %s\n", p->name, p->about);
-        if (!p->run) continue;
-        fprintf(f, "%-13s   against: %s\n", "", p->reference);
-        fprintf(f, "%-13s   target:  %s\n", "", p->target);
-        fprintf(f, "%-13s   R = %s; default %d,%d,%d; --quick %d\n", "", p->res_meaning, p->res_default[0],
-                p->res_default[1], p->res_default[2], p->res_quick);
-    }
+    for (int i = 0; i < val_problem_count; i++) entry(f, &val_problems[i]);
 }
 
 /* "40" or "20,40,80" into c->res, each within the problem's range. */
@@ -144,6 +146,15 @@ int cmd_validate(int argc, char **argv)
     app_opts_init(&o);
     int rc = app_opts_parse(&spec, argc, argv, &o);
     plot_out_command("validate");
+    if (rc == 0) { /* the help printed: with a problem named, its reference, target and unit of --resolution too */
+        for (int i = 1; i < argc; i++) {
+            const val_problem *p = find(argv[i]);
+            if (!p) continue;
+            printf("\n");
+            entry(stdout, p);
+            break;
+        }
+    }
     if (rc >= 0) return rc;
     if (o.n_pos == 0) {
         app_opts_usage_error(&spec, "name a problem (sphlab validate list names them)");

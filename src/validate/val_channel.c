@@ -162,13 +162,14 @@ int val_channel_run(const val_ctx *c, const val_problem *p, const val_channel *c
         ok = val_chart(c, ch->base, &pl);
     }
     for (int r = 0; r < done; r++) free(obs[r].y), free(obs[r].u);
+    const double scale_shown = done ? ch->scale(&defs[0]) : NAN; /* the spacing does not change it */
     /* the times the errors were sampled at (--quick scales them down to the start-up) */
     char when[160] = "";
     for (int k = 0; k < VAL_CHANNEL_TIMES; k++)
         val_append(when, sizeof when, "%s%.4g", k ? ", " : "", done ? obs[0].times[k] : val_channel_times[k]);
     return val_verdict(c, p, ok, pass,
-                       "worst row |u - u_exact| / scale at t = %s s%s: %s (target: <= %g %% during start-up, <= %g %% "
-                       "at steady state)",
-                       when, c->quick ? " (--quick: the start-up only)" : "", trend, 100 * ch->startup_tol,
-                       100 * ch->steady_tol);
+                       "worst row |u - u_exact| / %s (%.4g m/s) at t = %s s%s: %s (target: <= %g %% during "
+                       "start-up, <= %g %% at steady state)",
+                       ch->scale_name, scale_shown, when, c->quick ? " (--quick: the start-up only)" : "", trend,
+                       100 * ch->startup_tol, 100 * ch->steady_tol);
 }

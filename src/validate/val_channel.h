@@ -13,6 +13,7 @@ typedef struct val_channel {
     double (*exact)(const sph_scene_def *def, double y, double t);
     /* its scale: the steady centre-line speed (Poiseuille) or the wall's (Couette) [m/s] */
     double (*scale)(const sph_scene_def *def);
+    const char *scale_name; /* the scale in the verdict line: "u_max", "U" */
     double startup_tol, steady_tol; /* [1] of the scale: before the last sample, at it */
 } val_channel;
 

@@ -21,6 +21,7 @@ static double scale(const sph_scene_def *def)
 
 int val_run_couette(const val_ctx *c, const val_problem *p)
 {
-    static const val_channel ch = {"couette.ini", "couette", "Start-up Couette flow", exact, scale, 0.02, 0.02};
+    static const val_channel ch = {"couette.ini", "couette", "Start-up Couette flow", exact, scale, "U", 0.02,
+                                   0.02};
     return val_channel_run(c, p, &ch);
 }

@@ -165,10 +165,11 @@ static void drop_make_disc(sph_sim *sim, const sph_block_def *b, double s)
 /* Makes the drop and runs it round (to the scene's damping_time); *p_in: the
  * inner pressure over the last fifth of that time. */
 static bool drop_settle(const val_ctx *c, const sph_scene_def *def, const char *label, sph_sim **out, double *p_in,
-                        double *R)
+                        double *R, val_clock *clock)
 {
     sph_error err;
     sph_sim *sim;
+    *clock = val_clock_start(); /* the run's cost, from the sim's making (as val_run) */
     if (sph_sim_create(def, c->threads, &sim, &err) != SPH_ERR_OK) {
         fprintf(stderr, "sphlab validate: %s: %s\n", label, err.msg);
         return false;
@@ -186,6 +187,7 @@ static bool drop_settle(const val_ctx *c, const sph_scene_def *def, const char *
     if (!c->quiet) fprintf(stderr, "  %s: settling to t = %g s\n", label, t_end);
     while (sim->t < t_end - 1e-12) {
         if (!drop_step(c, sim, label)) {
+            val_cost_add(label, sim, *clock);
             sph_sim_destroy(sim);
             return false;
         }
@@ -214,11 +216,13 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
         small.blocks[0].max[d] = mid + half;
     }
     sph_sim *sim = NULL;
+    val_clock clock;
     snprintf(label, sizeof label, "drop R/%d, half size", res);
-    if (!drop_settle(c, &small, label, &sim, &o->p_small, &o->R_small)) return false;
+    if (!drop_settle(c, &small, label, &sim, &o->p_small, &o->R_small, &clock)) return false;
+    val_cost_add(label, sim, clock);
     sph_sim_destroy(sim);
     snprintf(label, sizeof label, "drop R/%d", res);
-    if (!drop_settle(c, &def, label, &sim, &o->p_in, &o->R)) return false;
+    if (!drop_settle(c, &def, label, &sim, &o->p_in, &o->R, &clock)) return false;
     o->sigma = (o->p_in - o->p_small) / (k * (1.0 / o->R - 1.0 / o->R_small));
     o->sigma_laplace = o->sigma;
     o->stated = def.surface_tension == SPH_STENSION_CSF;
@@ -265,6 +269,7 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
         if (!ok) fprintf(stderr, "sphlab validate: out of memory\n");
         ok = ok && drop_step(c, sim, label);
     }
+    val_cost_add(label, sim, clock); /* the settling and the oscillation: one sim */
     sph_sim_destroy(sim);
     if (!ok) return false;
     o->T = val_period_crossings(o->aniso.x, o->aniso.y, o->aniso.n, &o->crossings);
@@ -298,6 +303,8 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
         ok = drop_one(c, file, c->res[r], &obs[r]);
         if (ok) done = r + 1;
     }
+    /* each resolution ran two sims (the half-size drop, then the drop): the period's error beside the second */
+    for (int r = 0; r < done; r++) val_cost_error(2 * r + 1, fabs(obs[r].T / obs[r].T_ray - 1));
     char csv[64];
     snprintf(csv, sizeof csv, "%s.csv", p->name);
     FILE *f = ok ? val_csv(c, csv) : NULL;
@@ -315,11 +322,11 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
     char trend[1200] = "";
     for (int r = 0; r < done; r++) {
         const drop_obs *o = &obs[r];
+        char period[160];
+        val_period_text(period, sizeof period, o->T, o->T_ray, o->crossings);
         if (isfinite(o->T_ray))
-            val_append(trend, sizeof trend,
-                       "%sR/%d: R %.4g m, sigma %.4g %s%s, period %.4g s vs Rayleigh %.4g s (%+.1f%%)", r ? "; " : "",
-                       c->res[r], o->R, o->sigma, SIGMA_UNIT(o->dim), o->stated ? " (stated)" : "", o->T, o->T_ray,
-                       100 * (o->T / o->T_ray - 1));
+            val_append(trend, sizeof trend, "%sR/%d: R %.4g m, sigma %.4g %s%s, %s", r ? "; " : "", c->res[r], o->R,
+                       o->sigma, SIGMA_UNIT(o->dim), o->stated ? " (stated)" : "", period);
         else
             val_append(trend, sizeof trend,
                        "%sR/%d: R %.4g m, period %.4g s; sigma not measurable (Laplace jump %.3g %s between R and "
@@ -332,9 +339,12 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
         memset(&ch, 0, sizeof ch);
         snprintf(ch.title, sizeof ch.title, "%s oscillation (n = 2) against Rayleigh's period", p->name);
         for (int r = 0; r < done; r++)
-            if (isfinite(obs[r].T_ray))
+            if (isfinite(obs[r].T_ray) && isfinite(obs[r].T))
                 val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: %+.1f%%", r ? "; " : "period error: ", c->res[r],
                            100 * (obs[r].T / obs[r].T_ray - 1));
+            else if (isfinite(obs[r].T_ray)) /* fewer than 3 crossings: no period, not nan */
+                val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: no period", r ? "; " : "period error: ",
+                           c->res[r]);
             else /* no sigma, so no reference: say so rather than print nan */
                 val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: sigma not measurable", r ? "; " : "period error: ",
                            c->res[r]);

@@ -218,7 +218,7 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
     }
     return val_verdict(c, p, ok, pass,
                        "worst centre-line |p - p_exact| / rho0 g H (p_exact: the column of the scene's equation of state) in %d single frames after t = %g s, the "
-                       "row at the floor included, and max speed / sqrt(g H) after it: %s (target: <= 1 %% at "
-                       "H/spacing >= %d, < 1 %%)",
+                       "row at the floor included, and max speed / sqrt(g H) after it: %s (target: p <= 1 %% of rho0 g H "
+                       "at H/spacing >= %d, speed < 1 %% of sqrt(g H) at every resolution)",
                        FRAMES, T_SETTLE, detail, P_JUDGED);
 }

@@ -23,7 +23,7 @@ static double scale(const sph_scene_def *def)
 
 int val_run_poiseuille(const val_ctx *c, const val_problem *p)
 {
-    static const val_channel ch = {"poiseuille.ini", "poiseuille", "Start-up Poiseuille flow", exact, scale, 0.05,
-                                   0.02};
+    static const val_channel ch = {"poiseuille.ini", "poiseuille", "Start-up Poiseuille flow", exact, scale, "u_max",
+                                   0.05, 0.02};
     return val_channel_run(c, p, &ch);
 }

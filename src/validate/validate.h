@@ -153,5 +153,9 @@ extern const int val_problem_count;
  * that does not hold whole periods has its mean off the centre line, which makes the half periods
  * alternate short and long); the crossings counted in *k; NaN below 3 crossings. (validate drop) */
 double val_period_crossings(const double *x, const double *y, size_t n, int *k);
+/* The drop's period against Rayleigh's as the verdict line gives it: "period T s vs Rayleigh T_ray s (+e%)",
+ * or, where the record crossed its mean fewer than 3 times (T NaN), "no period: k crossings of the mean in
+ * the run (3 needed), Rayleigh T_ray s" rather than a NaN; the same for T_ray NaN (sigma not measurable). */
+void val_period_text(char *buf, size_t n, double T, double T_ray, int crossings);
 
 #endif

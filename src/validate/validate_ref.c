@@ -3,6 +3,7 @@
 #include "validate.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "sph_walls.h"
@@ -165,6 +166,20 @@ double val_period_crossings(const double *x, const double *y, size_t n, int *k)
         (*k)++;
     }
     return *k >= 3 ? 2.0 * (last_even - first) / (double)(2 * ((*k - 1) / 2)) : NAN;
+}
+
+void val_period_text(char *buf, size_t n, double T, double T_ray, int crossings)
+{
+    if (isfinite(T) && isfinite(T_ray))
+        snprintf(buf, n, "period %.4g s vs Rayleigh %.4g s (%+.1f%%)", T, T_ray, 100 * (T / T_ray - 1));
+    else if (isfinite(T))
+        snprintf(buf, n, "period %.4g s; no Rayleigh period (sigma not measurable)", T);
+    else if (isfinite(T_ray)) /* a NaN is no figure: say why there is none */
+        snprintf(buf, n, "no period: %d crossing%s of the mean in the run (3 needed), Rayleigh %.4g s", crossings,
+                 crossings == 1 ? "" : "s", T_ray);
+    else
+        snprintf(buf, n, "no period: %d crossing%s of the mean in the run (3 needed)", crossings,
+                 crossings == 1 ? "" : "s");
 }
 
 static size_t uf_root(size_t *parent, size_t i)

@@ -81,6 +81,25 @@ void val_cost_error(int run, double error)
     if (run >= 0 && run < ncosts) costs[run].error = error;
 }
 
+val_clock val_clock_start(void)
+{
+    return (val_clock){.ms = sph_now_ms(), .cpu_s = cpu_seconds()};
+}
+
+void val_cost_add(const char *label, const sph_sim *sim, val_clock since)
+{
+    if (ncosts >= VAL_MAX_COSTS) return;
+    struct val_cost *k = &costs[ncosts++];
+    snprintf(k->label, sizeof k->label, "%s", label);
+    k->particles = sim->n;
+    k->fluid = (uint32_t)val_fluid_count(sim);
+    k->steps = (unsigned long long)sim->step;
+    k->t_sim = sim->t;
+    k->wall_s = (sph_now_ms() - since.ms) / 1e3;
+    k->cpu_s = cpu_seconds() - since.cpu_s;
+    k->error = NAN;
+}
+
 bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, double t_end, val_observe_fn fn, void *ctx)
 {
     sph_sim *sim;
@@ -90,7 +109,8 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
         return false;
     }
     bool ok = true;
-    double shown = sph_now_ms(), start = shown, cpu0 = cpu_seconds();
+    const val_clock clock = val_clock_start();
+    double shown = clock.ms, start = shown;
     fn(ctx, sim);
     while (sim->t < t_end - 1e-12) {
         sph_sim_step(sim);
@@ -114,17 +134,7 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
     if (!c->quiet)
         fprintf(stderr, "\r%-62s\r  %-40.40s done: %u particles, %llu steps, %.1f s\n", "", label, sim->n,
                 (unsigned long long)sim->step, (sph_now_ms() - start) / 1e3);
-    if (ncosts < VAL_MAX_COSTS) {
-        struct val_cost *k = &costs[ncosts++];
-        snprintf(k->label, sizeof k->label, "%s", label);
-        k->particles = sim->n;
-        k->fluid = (uint32_t)val_fluid_count(sim);
-        k->steps = (unsigned long long)sim->step;
-        k->t_sim = sim->t;
-        k->wall_s = (sph_now_ms() - start) / 1e3;
-        k->cpu_s = cpu_seconds() - cpu0;
-        k->error = NAN;
-    }
+    val_cost_add(label, sim, clock);
     sph_sim_destroy(sim);
     return ok;
 }

@@ -21,6 +21,15 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
  * since the last verdict), written beside its cost in NAME-cost.csv. */
 void val_cost_error(int run, double error);
 
+/* For a problem that steps its own sim (validate drop): the clock started
+ * before the sim was made, and the cost of that sim's run recorded when it
+ * ends, as val_run records its own. */
+typedef struct val_clock {
+    double ms, cpu_s; /* [ms] sph_now_ms, [s] process CPU time */
+} val_clock;
+val_clock val_clock_start(void);
+void val_cost_add(const char *label, const sph_sim *sim, val_clock since);
+
 /* Number of fluid particles (wall particles left out). */
 double val_fluid_count(const sph_sim *sim);
 
