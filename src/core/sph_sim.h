@@ -261,6 +261,8 @@ typedef struct sph_solver_state {
     float delta;             /* [m^2] pcisph: delta at dt = 1 s (delta(dt) = delta / dt^2, in m^2/s^2) */
     float den_full;          /* [kg^2/m^(2 dim + 2)] dfsph: alpha's least denominator, a full neighbourhood's */
     float dt_last;           /* [s] the step the kept pressures were solved for (solver_warm_start); 0: none */
+    float *x_df;             /* [m] dfsph: x* of the density iteration, x y z per particle (scratch) */
+    uint32_t x_df_cap;       /* [1] particles x_df has room for */
     /* The walls as the lattice continued behind them (src/passes/solver.h):
      * at distance d = i h / SPH_SOLVER_WALL_SAMPLES from a wall, the share of
      * rho_rest the rows behind it add, and its derivative in d. */

@@ -20,7 +20,15 @@
  * Why the density solve differs from the paper's (rho* = rho + dt^2 sum_j m_j (a_i - a_j) . grad W_ij, eq. 11, and
  * kappa only growing): the linearised rho* misses the second-order terms and the walls pass, and the 2D dam break
  * of tests/test_solvers.c (dfsph_holds_reached_2d) ended 26 of 260 steps above its 0.1 % at the positions reached,
- * up to 3.4 %. Summed at x*, a kappa that only grows ran away where a particle's own push cannot lower its density
+ * up to 3.4 %. With the relaxed step below the linearised rho* still does not hold it: in the paper's form with the
+ * velocities, rho*_i = rho_i + dt sum_j m_j (dv_i - dv_j) . grad W_ij at pred (+ the walls' gradient term; pred is
+ * x + dt v, so dv where the paper has v* about x), the same test ended 80 of 202 converged steps above 0.1 % at
+ * the positions reached, up to 14.4 %, 58 solves capped, in 66.7 iterations per step (summed at x*: none above,
+ * 4 capped, 62.0); the 3D one 56 of 99 above, up to 0.60 %, 22.2 iterations (summed: none, 22.5). Nor was it
+ * cheaper: on the bench's 15,360-particle dam break (10 steps, one thread) 147.6 iterations per step in 34.8 s of
+ * user CPU time, against 148.4 in 20.2 to 23.4 s summed at x* made once per particle (it redoes the walls'
+ * volume-model term each iteration; docs/performance.md). Summed at x*, a kappa that only grows ran away where a
+ * particle's own push cannot lower its density
  * (pressed onto a wall) and, once past, stays: hence a step that can also lower kappa, relaxed by omega = 0.5 as
  * Ihmsen et al. 2014 (IISPH, IEEE TVCG 20(3)) relax their Jacobi step (unrelaxed, the watchdog stopped both dam
  * breaks of those tests within 2 steps). K stays >= 0 (no pull, as negative_pressure = clamp), and the bound is on
@@ -44,8 +52,10 @@
  * count as the lattice continued behind them (solver.h), in place of the
  * density pass's volume-model term. */
 #include "solver.h"
+#include "sph_memory.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 
 /* The share of the last step's kappa a solve starts from. 0: the warm start
  * is off. Measured with the linearised density solve, whose kappa only grew
@@ -172,13 +182,32 @@ static void force(sph_sim *sim, bool with_density)
     }
 }
 
-/* x*_i: where integration and the walls pass will put particle i with this
- * iteration's dv_df (x + dt v* = pred + dt dv_df, clamped into the box). */
-static inline void reached(const sph_sim *sim, uint32_t i, float c[3])
+/* x*: where integration and the walls pass will put each particle with this
+ * iteration's dv_df (x + dt v* = pred + dt dv_df, clamped into the box), once
+ * per particle into the solver's scratch: the pair loop read it per pair, and
+ * made the density iteration cost 4 to 4.5 PCISPH iterations. */
+static float *reached(sph_sim *sim)
 {
-    float x[3] = {0, 0, 0};
-    for (int d = 0; d < sim->dim; d++) x[d] = sim->P.pred[d][i] + sim->dt * sim->P.dv_df[d][i];
-    sph_solver_clamped(sim, x, c);
+    sph_solver_state *st = &sim->solver;
+    const int n = (int)sim->n, dim = sim->dim;
+    if (st->x_df_cap < sim->n) {
+        char size[32];
+        float *grown = realloc(st->x_df, (size_t)sim->n * 3 * sizeof *grown);
+        if (!grown) /* returning would leave the last iteration's rho_df in place: a wrong answer in silence */
+            sph_memory_fail("the dfsph pass's scratch for x* could not be made (%s)",
+                            sph_memory_text(3.0 * sim->n * sizeof *grown, size, sizeof size));
+        st->x_df = grown;
+        st->x_df_cap = sim->n;
+    }
+    float *restrict xs = st->x_df;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) {
+        float x[3] = {0, 0, 0}, c[3];
+        for (int d = 0; d < dim; d++) x[d] = sim->P.pred[d][i] + sim->dt * sim->P.dv_df[d][i];
+        sph_solver_clamped(sim, x, c);
+        for (int d = 0; d < 3; d++) xs[3 * (size_t)i + (size_t)d] = c[d];
+    }
+    return xs;
 }
 
 /* rho_df: dt D rho/Dt of v* (density false; linear, Bender & Koschier 2017 eq. 9), or the density rho* summed at
@@ -193,23 +222,23 @@ static double measure(sph_sim *sim, bool density)
     const int n = (int)sim->n, dim = sim->dim;
     const float dt = sim->dt, rho_r = sim->solver.rho_rest, rho0 = sim->def.rest_density;
     const bool walls = sph_sim_wall_volume(sim);
+    const float *restrict xs = density ? reached(sim) : NULL;
     float worst = 0.0f;
     double total = 0;
 #pragma omp parallel for schedule(static) reduction(max : worst) reduction(+ : total) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         if (density) {
-            float xi[3];
-            reached(sim, (uint32_t)i, xi);
+            const float *xi = xs + 3 * (size_t)i;
             float rho = P->mass[i] * sph_kernel_w(&sim->k_density, 0.0f);
-            for (uint32_t e = S->nbr_start[i]; e < S->nbr_start[i + 1]; e++) {
-                const uint32_t j = S->nbr[e];
-                float xj[3], r2 = 0;
-                reached(sim, j, xj);
+            const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
+            for (uint32_t e = 0; e < row.n; e++) {
+                const float *xj = xs + 3 * (size_t)sph_nbr_at(&row, e);
+                float r2 = 0;
                 for (int d = 0; d < dim; d++) {
                     const float dx = sph_solver_dx(sim, xi[d] - xj[d], d);
                     r2 += dx * dx;
                 }
-                rho += P->mass[j] * sph_kernel_w(&sim->k_density, sqrtf(r2));
+                rho += P->mass[sph_nbr_at(&row, e)] * sph_kernel_w(&sim->k_density, sqrtf(r2));
             }
             if (walls) rho += rho_r * sph_solver_walls(sim, xi, NULL);
             P->rho_df[i] = rho;
