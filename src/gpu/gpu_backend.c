@@ -117,6 +117,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [physics] pcisph_local_delta = on is not implemented by the GL backend (its PCISPH uses "
                         "the full lattice's delta; accepted there: off)",
                         def->file);
+    if (def->surface_tension == SPH_STENSION_STRESS)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] surface_tension = stress is not implemented by the GL backend (no shader "
+                        "for its surface stress yet; accepted there: none, akinci, csf)",
+                        def->file);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)
