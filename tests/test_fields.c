@@ -125,8 +125,9 @@ Test(fields, integration_sums_every_acceleration_field)
         if (sph_field_infos[f].kind != SPH_KIND_ACCELERATION) continue;
         /* the pressure solvers' are alternatives to acc_p (pressure_solver), not in this scene */
         if (sph_field_infos[f].made_by == SPH_PASS_PCISPH || sph_field_infos[f].made_by == SPH_PASS_DFSPH) continue;
-        /* csf's is the alternative to akinci's curvature term (surface_tension) */
-        if (sph_field_infos[f].made_by == SPH_PASS_CSF) continue;
+        /* csf's and stress's are alternatives to akinci's curvature term (surface_tension) */
+        if (sph_field_infos[f].made_by == SPH_PASS_CSF || sph_field_infos[f].made_by == SPH_PASS_SURFACE_STRESS)
+            continue;
         cr_assert(P->field[f][0], "%s not allocated in a scene with every effect", sph_field_infos[f].name);
         n_acc++;
         for (uint32_t i = 0; i < sim->n; i++)

@@ -90,9 +90,9 @@ const app_opt app_options[] = {
      SIZE(size, 64, 8192)},
     {"--color", "--colour", "FIELD",
      "colour by: density pressure speed key neighbours, or a field of a pass the scene runs: pressure-acc "
-     "viscosity-acc cohesion-acc normal curvature-acc curvature csf-acc xsph-acc density-rate pcisph-pressure "
-     "pcisph-density pcisph-acc dfsph-density dfsph-acc (with pressure_solver = pcisph, pcisph-pressure is the "
-     "pressure)",
+     "viscosity-acc cohesion-acc normal curvature-acc curvature csf-acc stress-acc xsph-acc density-rate "
+     "pcisph-pressure pcisph-density pcisph-acc dfsph-density dfsph-acc (with pressure_solver = pcisph, "
+     "pcisph-pressure is the pressure)",
      RENDER | VIEW, STRING(color)},
     {"--range", NULL, "LO,HI",
      "fixed colour range (LO:HI also); render: 'run' (default): one range for the whole\n"

@@ -56,6 +56,9 @@
       "normal, positive on a convex surface; 0 where the normal is too short to have a direction")          \
     X(ACC_S, acc_s, V, "m/s^2", "m/s^2", ACCELERATION, CSF, NONE, "csf-acc", "a csf",                            \
       "continuum surface force of surface_tension = csf per unit mass, sigma kappa s_i n / m_i")               \
+    X(ACC_T, acc_t, V, "m/s^2", "m/s^2", ACCELERATION, SURFACE_STRESS, NONE, "stress-acc", "a stress",          \
+      "surface tension of surface_tension = stress per unit mass, the divergence of the surface stress "          \
+      "sigma (I - n n) delta_s")                                                                                 \
     X(ACC_X, acc_x, V, "m/s^2", "m/s^2", ACCELERATION, XSPH, NONE, "xsph-acc", "a xsph",                        \
       "XSPH velocity smoothing as an acceleration, (eps / dt) sum_j m_j / rho_ij (v_j - v_i) W_ij")            \
     X(ACC_I, acc_i, V, "m/s^2", "m/s^2", ACCELERATION, INTERACTION, NONE, "", "a mouse", "interaction acceleration") \

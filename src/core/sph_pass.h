@@ -31,6 +31,7 @@
     X(NORMALS, normals)    \
     X(CURVATURE, curvature) \
     X(CSF, csf)            \
+    X(SURFACE_STRESS, surface_stress) \
     X(XSPH, xsph)          \
     X(INTERACTION, interaction) \
     X(PCISPH, pcisph)      \

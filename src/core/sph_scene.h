@@ -68,7 +68,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
 #define SPH_BACKEND_CHOICES(X) X(CPU, "cpu") X(GL, "gl")
 #define SPH_PSOLVER_CHOICES(X) X(EOS, "eos") X(PCISPH, "pcisph") X(DFSPH, "dfsph")
-#define SPH_STENSION_CHOICES(X) X(NONE, "none") X(AKINCI, "akinci") X(CSF, "csf")
+#define SPH_STENSION_CHOICES(X) X(NONE, "none") X(AKINCI, "akinci") X(CSF, "csf") X(STRESS, "stress")
 
 #define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
     typedef enum type { LIST(SPH_CHOICE_ITEM_##PREFIX) PREFIX##_COUNT } type;

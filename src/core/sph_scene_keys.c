@@ -193,7 +193,12 @@ const sph_key sph_scene_keys[] = {
      "grad W (eq. 3, pointing into the fluid); gamma = surface_tension_coefficient; not with the effect cohesion; "
      "csf: a continuum surface force (Brackbill, Kothe & Zemach 1992; Morris 2000) a_i = sigma kappa_i s_i n_i / "
      "m_i of the stated sigma, kappa the renormalised divergence of the unit normals (Shepard-averaged), s_i the "
-     "particle's share of the surface (a partition of unity along it)"},
+     "particle's share of the surface (a partition of unity along it); "
+     "stress: the divergence of the surface stress sigma (I - n n) delta_s (Lafaurie et al. 1994, J. Comput. Phys. "
+     "113:134; in SPH as Hu & Adams 2006, J. Comput. Phys. 213:844), delta_s = s_i / (V_i c_i) (csf's share "
+     "s_i over the colour c_i), pair terms equal and opposite (momentum kept to rounding; csf's are not: a drop "
+     "left alone grows an n = 2 oscillation), with Monaghan 2000's artificial stress (eps 0.3, n 4) against the "
+     "tensile instability; not on the GL backend"},
     {"physics", "surface_tension_coefficient", SPH_KEY_FLOAT, S(surface_tension_coefficient), 0, 1e6, 0, 0, NULL, 0,
      "m^4/(kg s^2)", "1",
      "gamma of surface_tension = akinci (both terms; the paper's gamma, not a physical sigma: docs/accuracy.md "
@@ -202,7 +207,8 @@ const sph_key sph_scene_keys[] = {
      "epsilon of XSPH velocity smoothing (Monaghan 1989, J. Comput. Phys. 82:1): a_i = (epsilon / dt) sum_j m_j / "
      "((rho_i + rho_j)/2) (v_j - v_i) W_ij, so a step moves v_i towards its neighbours' average; 0: none"},
     {"physics", "sigma", SPH_KEY_FLOAT, S(sigma), 0, 1e6, 0, 0, NULL, 0, "N/m", "0.0728",
-     "surface tension coefficient of surface_tension = csf (in 2D per metre of depth: N); water at 20 C: 0.0728"},
+     "surface tension coefficient of surface_tension = csf or pairwise (in 2D per metre of depth: N); water at "
+     "20 C: 0.0728"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
      "support radius, also the cell size of the neighbour search; about 2 spacings; at least 0.1 mm: below it the "

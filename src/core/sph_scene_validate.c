@@ -90,7 +90,8 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
     } keys[] = {
         {"surface_tension_coefficient", def->surface_tension != SPH_STENSION_AKINCI,
          "only surface_tension = akinci reads it (its gamma; csf's coefficient is [physics] sigma)"},
-        {"sigma", def->surface_tension != SPH_STENSION_CSF, "only surface_tension = csf reads it"},
+        {"sigma", def->surface_tension != SPH_STENSION_CSF && def->surface_tension != SPH_STENSION_STRESS,
+         "only surface_tension = csf or stress reads it"},
         {"delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
         {"tait_gamma", def->eos != SPH_EOS_TAIT, "only eos = tait reads it"},
         /* the solvers' keys: a tolerance given to the equation of state changed nothing, unsaid */

@@ -38,7 +38,7 @@ float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which)
     }
     /* capillary waves as short as h_s (Brackbill, Kothe & Zemach 1992, eq. 61): their speed
      * grows as 1/sqrt(wavelength), so no other condition bounds them */
-    if (def->surface_tension == SPH_STENSION_CSF && def->sigma > 0) {
+    if ((def->surface_tension == SPH_STENSION_CSF || def->surface_tension == SPH_STENSION_STRESS) && def->sigma > 0) {
         double cap = cfl * sqrt(def->rest_density * hs * hs * hs / (2.0 * 3.14159265358979 * def->sigma));
         if (cap < dt) dt = cap, w = "capillary: dt <= cfl sqrt(rho0 (h/2)^3 / (2 pi sigma))";
     }

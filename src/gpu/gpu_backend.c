@@ -107,6 +107,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [search] skin = %g (Verlet lists) is not implemented by the GL backend (its passes "
                         "walk the cells every step and keep no lists; accepted there: 0)",
                         def->file, (double)def->skin);
+    if (def->surface_tension == SPH_STENSION_STRESS)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [physics] surface_tension = stress is not implemented by the GL backend (no shader "
+                        "for its surface stress yet; accepted there: none, akinci, csf)",
+                        def->file);
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)

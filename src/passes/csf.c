@@ -86,16 +86,6 @@ static void describe(const sph_scene_def *def, char *out, int n)
              def->dim == 3 ? "N/m" : "N");
 }
 
-/* The cubic B-spline of support radius h in dim - 1 dimensions (1D: 4/(3h), 2D: 40/(7 pi h^2)): the
- * particles' density along the surface. */
-static inline double csf_w_surface(double r, double h, int dim)
-{
-    double q = r / h, f;
-    if (q >= 1) return 0.0;
-    f = q <= 0.5 ? 1 - 6 * q * q + 6 * q * q * q : 2 * (1 - q) * (1 - q) * (1 - q);
-    return (dim == 2 ? 4.0 / (3.0 * h) : 40.0 / (7.0 * 3.14159265358979 * h * h)) * f;
-}
-
 /* kappa = trace(A_t^-1 S_t), A and S projected on the tangent plane of the
  * outward unit normal u (2D: one tangent; 3D: two); 0 where A_t is nearly
  * singular. */
@@ -153,7 +143,7 @@ static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float *lam, 
     if (sph_is_wall(P, i) || !(len_i > CSF_FORCE_MIN)) return;
     const bool curved = len_i > CSF_NORMAL_MIN;
     const double wi = len_i - CSF_FORCE_MIN;
-    double A[3][3] = {{0}}, Sm[3][3] = {{0}}, ls = wi * csf_w_surface(0.0, k->h, dim);
+    double A[3][3] = {{0}}, Sm[3][3] = {{0}}, ls = wi * sph_csf_w_surface(0.0, k->h, dim);
     float xi[3];
     const double inv_rho0 = 1.0 / sim->def.rest_density;
     for (int d = 0; d < dim; d++) xi[d] = P->pred[d][i];
@@ -174,7 +164,7 @@ static inline void csf_one(const sph_sim *sim, const sph_kernel *k, float *lam, 
         if (!(r2 > 0)) continue;
         float r = sqrtf(r2);
         double xn = (dx[0] * ni[0] + dx[1] * ni[1] + (dim == 3 ? dx[2] * ni[2] : 0.0f)) / len_i;
-        ls += (len_j - CSF_FORCE_MIN) * csf_w_surface(sqrt(fmax(r2 - xn * xn, 0.0)), k->h, dim);
+        ls += (len_j - CSF_FORCE_MIN) * sph_csf_w_surface(sqrt(fmax(r2 - xn * xn, 0.0)), k->h, dim);
         if (!curved || !(len_j > CSF_NORMAL_MIN)) continue;
         /* w_j V_j grad_i W_ij = g x_ij */
         double g = (len_j - CSF_NORMAL_MIN) * (double)P->mass[j] * inv_rho0 * sph_kernel_dw(k, r) / r;

@@ -10,4 +10,14 @@
 /* the tangential renormalisation's least eigenvalue (1 in a full support) */
 #define SPH_CSF_SUPPORT_MIN 0.1
 
+/* The cubic B-spline of support radius h in dim - 1 dimensions (1D: 4/(3h), 2D: 40/(7 pi h^2)): the
+ * particles' density along the surface (csf.c; surface_stress.c shares the surface out the same way). */
+static inline double sph_csf_w_surface(double r, double h, int dim)
+{
+    double q = r / h, f;
+    if (q >= 1) return 0.0;
+    f = q <= 0.5 ? 1 - 6 * q * q + 6 * q * q * q : 2 * (1 - q) * (1 - q) * (1 - q);
+    return (dim == 2 ? 4.0 / (3.0 * h) : 40.0 / (7.0 * 3.14159265358979 * h * h)) * f;
+}
+
 #endif

@@ -49,7 +49,7 @@ static inline void normal_one(const sph_sim *sim, const sph_kernel *k, int i, co
     const float *per = sim->period, *iper = sim->inv_period;
     float xi[3], nf[3] = {0, 0, 0};
     double nd[3] = {0, 0, 0};
-    const bool csf = sim->def.surface_tension == SPH_STENSION_CSF;
+    const bool csf = sim->def.surface_tension == SPH_STENSION_CSF || sim->def.surface_tension == SPH_STENSION_STRESS;
     const float inv_rho0 = 1.0f / sim->def.rest_density;
     if (sph_is_wall(P, i)) {
         for (int d = 0; d < dim; d++) P->normal[d][i] = 0.0f;

@@ -1,5 +1,5 @@
 /* validate drop: a drop without gravity, held by surface tension (the scene's
- * surface_tension = csf at a stated sigma; akinci, whose sigma is measured),
+ * surface_tension = csf or stress at a stated sigma; akinci, whose sigma is measured),
  * oscillating in its fundamental mode, against Rayleigh's frequency
  * (scenes/validate/drop.ini, 2D: a liquid cylinder; drop-3d.ini: a sphere).
  *
@@ -225,7 +225,7 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
     if (!drop_settle(c, &def, label, &sim, &o->p_in, &o->R, &clock)) return false;
     o->sigma = (o->p_in - o->p_small) / (k * (1.0 / o->R - 1.0 / o->R_small));
     o->sigma_laplace = o->sigma;
-    o->stated = def.surface_tension == SPH_STENSION_CSF;
+    o->stated = def.surface_tension == SPH_STENSION_CSF || def.surface_tension == SPH_STENSION_STRESS;
     o->dim = dim;
     if (o->stated) o->sigma = def.sigma; /* the stated input */
     const double omega2 = (dim == 3 ? 8.0 : 6.0) * o->sigma / (rho * pow(o->R, 3));
@@ -233,7 +233,7 @@ static bool drop_one(const val_ctx *c, const char *file, int res, drop_obs *o)
     /* the kick: the n = 2 mode with the surface's radial speed U = KICK sqrt(p_in / rho), a
      * speed of the cohesive fluid itself, so the kick does not depend on sigma, which may
      * not be measurable */
-    const bool stated = def.surface_tension == SPH_STENSION_CSF;
+    const bool stated = o->stated;
     /* with a stated sigma, the capillary speed sqrt(sigma / (rho R)): the deformation's amplitude is then
      * KICK / sqrt(6) = 2 % of R in 2D (KICK / sqrt(8) in 3D), whatever sigma */
     const double U = KICK * sqrt(fmax(stated ? o->sigma / o->R : o->p_in, 0.0) / rho),
