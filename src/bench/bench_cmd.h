@@ -110,5 +110,7 @@ void bench_level_flops(level_result *r, const bench_machine *m);
 int bench_cmd_scaling(bench_opts *o);
 /* `sphlab bench solvers` (bench_solvers.c). */
 int bench_cmd_solvers(bench_opts *o);
+/* bench_pair.c: two CPU levels stepped in turn on one thread (--levels A,B). */
+int bench_cmd_pair(bench_opts *o);
 
 #endif

@@ -510,6 +510,7 @@ void sph_sim_destroy(sph_sim *sim)
     free(S->tbuf);
     free(S->tcap);
     for (int d = 0; d < 3; d++) free(S->skin_ref[d]);
+    free(S->rec);
     free(sim);
 }
 
