@@ -410,6 +410,7 @@ Test(bench, bad_command_lines_exit_2)
         "bench pair",
         "bench pair --levels L12",
         "bench pair --levels L12,G0",
+        "bench ladder --threads 2",
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         int rc = test_sphlab(bad[i], g_out, sizeof g_out);

@@ -21,6 +21,7 @@ typedef struct bench_opts {
     double fps, at;
     double time;  /* [s] solvers: --time, the simulated window; < 0 if not given */
     int repeats;  /* solvers: --repeats, interleaved rounds; < 0 if not given */
+    int threads;  /* pair: --threads; < 0 if not given (then 1) */
     bool quick, quiet, at_given, trace;
     bench_config cfg;
     int sel[BENCH_MAX_LEVELS], nsel;

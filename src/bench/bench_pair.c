@@ -1,10 +1,11 @@
 /* sphlab bench pair: two CPU levels side by side (--levels A,B), built from
  * the bench's scene at --at N and stepped in turn from the same start on one
- * thread, for --repeats R rounds (the order swapped every round), so that
- * load from other jobs slows both alike: each step's thread CPU time, the
- * medians (least, largest) and their ratio, each pass's mean CPU time, the list
- * builds, and how far the two states are apart at the end (the same to the
- * bit where the second level only changes how the same sums are read). */
+ * thread (or --threads T, then timed by the wall clock), for --repeats R
+ * rounds (the order swapped every round), so that load from other jobs slows
+ * both alike: each step's thread CPU time, the medians (least, largest) and
+ * their ratio, each pass's mean time, the list builds, and how far the two
+ * states are apart at the end (the same to the bit where the second level
+ * only changes how the same sums are read). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,16 +22,17 @@ static double thread_cpu_ms(void)
     return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
 }
 
-/* One step, pass by pass (sph_sim_step's loop): returns its thread CPU time
- * [ms] and adds each pass's over `rounds` to pass_ms. */
-static double step_timed(sph_sim *sim, double *pass_ms, int rounds)
+/* One step, pass by pass (sph_sim_step's loop): returns its time [ms], the
+ * thread's CPU time (wall: the wall clock, for several threads), and adds
+ * each pass's over `rounds` to pass_ms. */
+static double step_timed(sph_sim *sim, double *pass_ms, int rounds, bool wall)
 {
     const uint64_t step = sim->step;
     double total = 0;
     while (sim->step == step && !sim->alarm.raised) {
-        const double c0 = thread_cpu_ms();
+        const double c0 = wall ? sph_now_ms() : thread_cpu_ms();
         const sph_pass_id p = sph_sim_step_pass(sim);
-        const double t = thread_cpu_ms() - c0;
+        const double t = (wall ? sph_now_ms() : thread_cpu_ms()) - c0;
         total += t;
         if (p == SPH_PASS_COUNT) { /* no pass at all: sph_sim_step advances the time */
             sph_sim_step(sim);
@@ -70,6 +72,8 @@ int bench_cmd_pair(bench_opts *o)
     }
     const int rounds = o->repeats > 0 ? o->repeats : o->quick ? 3 : 15;
     const int k = bench_k_near(o->cfg.dim, o->at);
+    const int threads = o->threads > 0 ? o->threads : 1;
+    const bool wall = threads > 1; /* a thread's CPU time would count one thread's share only */
     const bench_level *L[2] = {&bench_levels[o->sel[0]], &bench_levels[o->sel[1]]};
     sph_sim *sim[2] = {NULL, NULL};
     double *ms = calloc(2 * (size_t)rounds, sizeof *ms);
@@ -91,7 +95,7 @@ int bench_cmd_pair(bench_opts *o)
         } else if (!bench_scene_def(&o->cfg, L[s], k, false, &def, why, sizeof why)) {
             fprintf(stderr, "sphlab bench pair: %s: %s\n", L[s]->name, why);
             rc = 1;
-        } else if (sph_sim_create(&def, 1, &sim[s], &err) != SPH_ERR_OK) {
+        } else if (sph_sim_create(&def, threads, &sim[s], &err) != SPH_ERR_OK) {
             fprintf(stderr, "sphlab bench pair: %s: %s\n", L[s]->name, err.msg);
             rc = 1;
         } else {
@@ -108,21 +112,21 @@ int bench_cmd_pair(bench_opts *o)
             bench_progress("round %d of %d", r + 1, rounds);
             for (int t = 0; t < 2; t++) {
                 const int s = r % 2 ? 1 - t : t; /* A B, then B A */
-                ms[(size_t)s * (size_t)rounds + (size_t)r] = step_timed(sim[s], pass_ms[s], rounds);
+                ms[(size_t)s * (size_t)rounds + (size_t)r] = step_timed(sim[s], pass_ms[s], rounds, wall);
             }
         }
         bench_progress_done();
         bench_loadavg(load1);
-        printf("sphlab bench pair: %s, N = %u, %dD, 1 thread, %d rounds after one untimed step, load %.2f -> %.2f\n",
-               date, sim[0]->n, o->cfg.dim, rounds, load0[0], load1[0]);
-        printf("thread CPU time per step:\n");
+        printf("sphlab bench pair: %s, N = %u, %dD, %d thread%s, %d rounds after one untimed step, load %.2f -> %.2f\n",
+               date, sim[0]->n, o->cfg.dim, threads, threads > 1 ? "s" : "", rounds, load0[0], load1[0]);
+        printf("%s per step:\n", wall ? "wall time" : "thread CPU time");
         double med[2];
         for (int s = 0; s < 2; s++) {
             print_times(L[s]->name, ms + (size_t)s * (size_t)rounds, rounds); /* sorts: median below */
             med[s] = bench_median(ms + (size_t)s * (size_t)rounds, rounds);
         }
         printf("ratio of the medians %s / %s: x%.2f\n", L[0]->name, L[1]->name, med[0] / med[1]);
-        printf("mean thread CPU ms per pass:\n");
+        printf("mean %s ms per pass:\n", wall ? "wall" : "thread CPU");
         for (int p = 0; p < SPH_PASS_COUNT; p++) {
             if (pass_ms[0][p] < 0.05 && pass_ms[1][p] < 0.05) continue;
             printf("  %-16s %9.2f %9.2f  x%.2f\n", sph_passes[p]->name, pass_ms[0][p], pass_ms[1][p],

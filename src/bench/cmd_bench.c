@@ -35,7 +35,8 @@ static const app_cmd_spec spec = {
                 "              (pcisph+ also pcisph_local_delta = on)\n"
                 "  pair        two CPU levels (--levels A,B) from the same start at --at N, stepped in turn on\n"
                 "              one thread for --repeats R rounds (default 15): each step's thread CPU time,\n"
-                "              medians and their ratio, mean ms per pass, how far the states end apart\n"
+                "              medians and their ratio, mean ms per pass, how far the states end apart;\n"
+                "              --threads T: on T threads, wall times\n"
                 "  machine     the machine's limits: memory bandwidth (streaming loops), float peak (FMA loop)\n"
                 "  levels      the levels and the scene keys that make each\n"
                 "options:\n",
@@ -139,11 +140,16 @@ static int parse_args(int argc, char **argv, bench_opts *o)
     o->quick = opt.quick;
     o->quiet = opt.quiet;
     o->trace = opt.trace;
+    o->threads = (int)opt.threads;
     o->cfg.watchdog = opt.watchdog;
     for (int i = 0; i < opt.sets.n; i++)
         if (!add_set(o, opt.sets.v[i])) return 2;
     if (!o->what) {
         app_opts_usage_error(&spec, "name a benchmark");
+        return 2;
+    }
+    if (o->threads > 0 && strcmp(o->what, "pair") != 0) {
+        app_opts_usage_error(&spec, "--threads is for bench pair only (the ladder's levels name their threads)");
         return 2;
     }
     if (!parse_levels(o)) return 2;
