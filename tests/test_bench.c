@@ -407,6 +407,10 @@ Test(bench, bad_command_lines_exit_2)
         "bench solvers --repeats 51",
         "bench solvers --at 0",
         "bench solvers --dim 2",
+        "bench pair",
+        "bench pair --levels L12",
+        "bench pair --levels L12,G0",
+        "bench ladder --threads 2",
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         int rc = test_sphlab(bad[i], g_out, sizeof g_out);
@@ -484,4 +488,17 @@ Test(bench, tiny_solvers_ratios, .timeout = 300)
                         &r[2], &r[3], &r[4], &r[5]),
                  6, "warm ratio line: %.160s", sum);
     for (int i = 0; i < 6; i++) cr_assert(isfinite(r[i]) && r[i] > 0, "warm ratio line: %.160s", sum);
+}
+
+/* Two levels stepped in turn: the CPU times, their ratio, and, for L12 and
+ * L13 (the same sums read from packed records), states equal to the bit. */
+Test(bench, pair_steps_two_levels_in_turn, .timeout = 120)
+{
+    const char *args = "bench pair --levels L13,L12 --at 1000 --repeats 3 --quiet";
+    int rc = test_sphlab(args, g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
+    cr_expect(strstr(g_out, "L12    median") && strstr(g_out, "L13    median"), "%s", g_out);
+    cr_expect(strstr(g_out, "ratio of the medians L12 / L13: x"), "levels in ladder order: %s", g_out);
+    cr_expect(strstr(g_out, "pressure_force"), "no per-pass line: %s", g_out);
+    cr_expect(strstr(g_out, "|dx| <= 0 m, |dv| <= 0 m/s, |drho| <= 0 kg/m^3"), "states apart: %s", g_out);
 }

@@ -58,7 +58,7 @@ static void every_level_matches(const char *ini)
         sph_sim_destroy(sim);
         checked++;
     }
-    cr_expect_eq(checked, 13, "levels L0..L12");
+    cr_expect_eq(checked, 14, "levels L0..L13");
 }
 
 Test(levels, every_cpu_level_finds_brute_forces_sets_2d) { every_level_matches(scene_2d); }
@@ -139,4 +139,11 @@ Test(levels, level_of_the_ingredients)
     cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L11")], &def, &err), SPH_ERR_OK);
     cr_expect_eq(def.vector_avx2, SPH_OFF);
     cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L11"));
+    /* L13 is L12 reading packed records; down to L12 they are off again */
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L13")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.packed_records, SPH_ON);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L13"));
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L12")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.packed_records, SPH_OFF);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L12"));
 }

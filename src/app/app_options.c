@@ -54,8 +54,8 @@ const app_opt app_options[] = {
      INT(steps, 0, MANY)},
     {"--steps", NULL, "N", "run length in steps (default: the scene's duration or steps)", STUDY, INT(steps, 1, MANY)},
     {"--time", NULL, "T", "simulate until T seconds (instead of --steps)", RUN | RENDER | STUDY, DOUBLE(time, 0, 1e6)},
-    {"--threads", NULL, "N", "worker threads (default: one per core)", RUN | RENDER | VIEW | STUDY | VALIDATE,
-     INT(threads, 1, SPH_MAX_THREADS)},
+    {"--threads", NULL, "N", "worker threads (default: one per core; bench pair: 1, each step's CPU time)",
+     RUN | RENDER | VIEW | STUDY | VALIDATE | BENCH, INT(threads, 1, SPH_MAX_THREADS)},
     {"--backend", NULL, "cpu|gl",
      "where the passes run (overrides [compute] backend): gl runs them as\n"
      "OpenGL 4.3 compute shaders (the GPU, or Mesa's llvmpipe without one)",
@@ -195,12 +195,12 @@ const app_opt app_options[] = {
     {"--fps", NULL, "F", "ladder: the frame rate to reach, steps/s (default 60)", BENCH, DOUBLE(fps, 0.01, 1e5)},
     {"--at", NULL, "N",
      "ladder: particle count of the per-pass table (default 20000; --quick 6000); solvers: the dam break's "
-     "(default 50000; --quick 4000)",
+     "(default 50000; --quick 4000); pair: the block's (default 20000)",
      BENCH, INT(at, 8, 20000000L)},
     {"--time", NULL, "T", "solvers: simulated seconds each run covers, the window the error is measured over "
      "(default 0.02; --quick 0.01)", BENCH, DOUBLE(time, 1e-4, 10)},
-    {"--repeats", NULL, "R", "solvers: interleaved rounds of eos, pcisph, dfsph (default 5; --quick 1)", BENCH,
-     INT(repeats, 1, 50)},
+    {"--repeats", NULL, "R", "solvers: interleaved rounds of eos, pcisph, dfsph (default 5; --quick 1); pair: "
+     "rounds (default 15; --quick 3)", BENCH, INT(repeats, 1, 50)},
     {"--quick", NULL, NULL, "small sizes, few repeats (for CI: ladder and scaling in well under a minute)", BENCH,
      FLAG(quick)},
     {"--out", NULL, "DIR", "where the CSV, JSON and charts go (made if missing; default .)", BENCH, PATH(out)},

@@ -21,6 +21,7 @@ typedef struct bench_opts {
     double fps, at;
     double time;  /* [s] solvers: --time, the simulated window; < 0 if not given */
     int repeats;  /* solvers: --repeats, interleaved rounds; < 0 if not given */
+    int threads;  /* pair: --threads; < 0 if not given (then 1) */
     bool quick, quiet, at_given, trace;
     bench_config cfg;
     int sel[BENCH_MAX_LEVELS], nsel;
@@ -110,5 +111,7 @@ void bench_level_flops(level_result *r, const bench_machine *m);
 int bench_cmd_scaling(bench_opts *o);
 /* `sphlab bench solvers` (bench_solvers.c). */
 int bench_cmd_solvers(bench_opts *o);
+/* bench_pair.c: two CPU levels stepped in turn on one thread (--levels A,B). */
+int bench_cmd_pair(bench_opts *o);
 
 #endif

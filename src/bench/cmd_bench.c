@@ -3,6 +3,7 @@
  *             sizes), ms per pass at a fixed N, checks against a reference
  *   scaling   time per step against N for each level (log-log)
  *   solvers   eos, pcisph and dfsph at equal density error (bench_solvers.c)
+ *   pair      two levels stepped in turn on one thread (bench_pair.c)
  *   machine   the machine's limits (memory bandwidth, float peak)
  *   levels    the level table and the scene keys of each level */
 #include <math.h>
@@ -32,6 +33,10 @@ static const app_cmd_spec spec = {
                 "              ms per simulated second (medians), the ratios (median, least, largest);\n"
                 "              pcisph+ and dfsph+: the same with [physics] solver_warm_start = on\n"
                 "              (pcisph+ also pcisph_local_delta = on)\n"
+                "  pair        two CPU levels (--levels A,B) from the same start at --at N, stepped in turn on\n"
+                "              one thread for --repeats R rounds (default 15): each step's thread CPU time,\n"
+                "              medians and their ratio, mean ms per pass, how far the states end apart;\n"
+                "              --threads T: on T threads, wall times\n"
                 "  machine     the machine's limits: memory bandwidth (streaming loops), float peak (FMA loop)\n"
                 "  levels      the levels and the scene keys that make each\n"
                 "options:\n",
@@ -135,11 +140,16 @@ static int parse_args(int argc, char **argv, bench_opts *o)
     o->quick = opt.quick;
     o->quiet = opt.quiet;
     o->trace = opt.trace;
+    o->threads = (int)opt.threads;
     o->cfg.watchdog = opt.watchdog;
     for (int i = 0; i < opt.sets.n; i++)
         if (!add_set(o, opt.sets.v[i])) return 2;
     if (!o->what) {
         app_opts_usage_error(&spec, "name a benchmark");
+        return 2;
+    }
+    if (o->threads > 0 && strcmp(o->what, "pair") != 0) {
+        app_opts_usage_error(&spec, "--threads is for bench pair only (the ladder's levels name their threads)");
         return 2;
     }
     if (!parse_levels(o)) return 2;
@@ -235,8 +245,10 @@ int cmd_bench(int argc, char **argv)
     if (strcmp(o.what, "ladder") == 0) return cmd_ladder(&o, argc, argv);
     if (strcmp(o.what, "scaling") == 0) return bench_cmd_scaling(&o);
     if (strcmp(o.what, "solvers") == 0) return bench_cmd_solvers(&o);
+    if (strcmp(o.what, "pair") == 0) return bench_cmd_pair(&o);
     if (strcmp(o.what, "machine") == 0) return cmd_machine(&o);
     if (strcmp(o.what, "levels") == 0) return cmd_levels(&o);
-    fprintf(stderr, "sphlab bench: unknown benchmark '%s' (ladder, scaling, solvers, machine, levels)\n", o.what);
+    fprintf(stderr, "sphlab bench: unknown benchmark '%s' (ladder, scaling, solvers, pair, machine, levels)\n",
+            o.what);
     return 2;
 }

@@ -8,7 +8,7 @@
 # keep whatever default goal was set so far, so that `bench` never becomes it.
 BENCH_SAVED_GOAL := $(.DEFAULT_GOAL)
 
-BENCH_SRC := cmd_bench bench_common bench_ladder bench_report bench_scaling bench_solvers bench_levels bench_measure bench_machine bench_chart bench_flops
+BENCH_SRC := cmd_bench bench_common bench_ladder bench_report bench_scaling bench_solvers bench_levels bench_measure bench_machine bench_chart bench_flops bench_pair
 MOD_OBJ   += $(BENCH_SRC:%=$(BUILD)/bench/%.o)
 
 $(BUILD)/bench/%.o: src/bench/%.c src/bench/*.h src/plot/plot.h src/gpu/gpu.h src/app/*.h src/core/*.h | $(BUILD)/bench

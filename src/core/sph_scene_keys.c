@@ -281,6 +281,11 @@ const sph_key sph_scene_keys[] = {
      "on: the pressure force and viscosity passes share one walk of each particle's neighbours (each neighbour's "
      "data gathered once for both), where the vector loops run both (spiky pressure kernel, laplacian viscosity "
      "form); otherwise, and off, the two passes walk the lists each"},
+    {"compute", "packed_records", SPH_KEY_CHOICE, S(packed_records), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: with vector_avx2 = on, the density and pressure_force passes (and the fused walk) first copy each "
+     "particle's fields into one record (x, y, z, m: 16 bytes for density; x, y, z, volume, velocity, p/rho^2 or p: "
+     "32 bytes for the forces) and read 8 neighbours as 8 loads and a transpose instead of one gather per field; "
+     "the same operations per pair, so the same results to the bit; 32 bytes per particle more. Off: gathers"},
 
     {"fluid", "min", SPH_KEY_POINT, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_POINT, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},

@@ -511,6 +511,7 @@ void sph_sim_destroy(sph_sim *sim)
     free(S->tcap);
     for (int d = 0; d < 3; d++) free(S->skin_ref[d]);
     free(sim->solver.x_df);
+    free(S->rec);
     free(sim);
 }
 

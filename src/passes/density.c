@@ -83,8 +83,10 @@ static inline void density_one_avx512(const sph_sim *sim, const sph_kernel *k, i
 #endif
 
 #if SPH_HAVE_AVX2
-/* The loop above, 8 neighbours at a time ([search] vector_avx2 = on). */
-static inline void density_one_avx2(const sph_sim *sim, const sph_kernel *k, int i, const int dim)
+/* The loop above, 8 neighbours at a time ([search] vector_avx2 = on); with
+ * rec (packed_records = on) each neighbour's x, y, z, m from its record
+ * (sph_simd8_rec4) instead of 4 gathers: the same values, the same sums. */
+static inline void density_one_avx2(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const float *rec)
 {
     const sph_particles *P = &sim->P;
     const __m256 h2 = _mm256_set1_ps(k->h2), zero = _mm256_setzero_ps();
@@ -95,10 +97,22 @@ static inline void density_one_avx2(const sph_sim *sim, const sph_kernel *k, int
     const uint32_t end = row.n;
     for (uint32_t e = 0; e < end; e += 8) {
         const __m256i live = sph_simd8_live(e, end), idx = sph_simd8_nbr(&row, e, end, live);
-        __m256 r2 = sph_simd8_offsets(P, live, idx, xi, dim, d3);
+        __m256 r2, mj, f[4];
+        if (rec) { /* sph_simd8_offsets' sums on the records' positions */
+            uint32_t j[8];
+            sph_simd8_indices(idx, j);
+            sph_simd8_rec4(rec, 4, j, f);
+            for (int d = 0; d < 3; d++) d3[d] = d < dim ? _mm256_sub_ps(xi[d], f[d]) : zero;
+            r2 = _mm256_add_ps(_mm256_mul_ps(d3[0], d3[0]), _mm256_mul_ps(d3[1], d3[1]));
+            if (dim == 3) r2 = _mm256_add_ps(r2, _mm256_mul_ps(d3[2], d3[2]));
+            mj = f[3];
+        } else {
+            r2 = sph_simd8_offsets(P, live, idx, xi, dim, d3);
+            mj = sph_simd8_gather(live, idx, P->mass);
+        }
         __m256 d = _mm256_max_ps(_mm256_sub_ps(h2, r2), zero);
         __m256 w = sph_simd8_keep(live, _mm256_mul_ps(_mm256_mul_ps(d, d), d));
-        acc = _mm256_fmadd_ps(w, sph_simd8_gather(live, idx, P->mass), acc); /* dead lanes add 0 */
+        acc = _mm256_fmadd_ps(w, mj, acc); /* dead lanes add 0 (w = 0, mj a real mass) */
     }
     float sum = P->mass[i] * sph_kernel_w(k, 0.0f) + k->sigma * sph_simd8_sum(acc);
     if (sph_sim_wall_volume(sim)) sum += sim->def.rest_density * sph_wall_hidden(sim, k, i, NULL);
@@ -145,8 +159,21 @@ static void run(sph_sim *sim)
     const bool periodic = sph_sim_periodic(sim);
 #if SPH_HAVE_AVX2
     if (sph_simd8_on(sim) && k.kind == SPH_KERNEL_POLY6) {
+        float *rec = sph_simd8_packed(sim) ? sph_simd8_records(sim, 4) : NULL;
+        if (rec) {
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
-        for (int i = 0; i < n; i++) dim == 3 ? density_one_avx2(sim, &k, i, 3) : density_one_avx2(sim, &k, i, 2);
+            for (int i = 0; i < n; i++) {
+                for (int d = 0; d < 3; d++) rec[4 * (size_t)i + (size_t)d] = d < dim ? P->pred[d][i] : 0.0f;
+                rec[4 * (size_t)i + 3] = P->mass[i];
+            }
+        }
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+        for (int i = 0; i < n; i++) {
+            if (rec)
+                dim == 3 ? density_one_avx2(sim, &k, i, 3, rec) : density_one_avx2(sim, &k, i, 2, rec);
+            else
+                dim == 3 ? density_one_avx2(sim, &k, i, 3, NULL) : density_one_avx2(sim, &k, i, 2, NULL);
+        }
         start_carrying(sim);
         return;
     }

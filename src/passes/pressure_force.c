@@ -225,9 +225,12 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
 /* pressure_one_avx512 (fused = false) and forces_one_avx512 (fused = true, with
  * the viscosity kernel kv) 8 neighbours at a time ([search] vector_avx2 = on):
  * the same operations per pair; the lanes are summed in another order, so the
- * result differs from the 16-lane loops by round-off only. */
+ * result differs from the 16-lane loops by round-off only. With rec
+ * (packed_records = on) each neighbour's x, y, z, volume, velocity and p/rho^2
+ * (or p) come from its record (two sph_simd8_rec4) instead of 8 gathers: the
+ * same values, the same operations, the same result to the bit. */
 static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, const sph_kernel *kv, int i,
-                                   const int dim, const bool fused)
+                                   const int dim, const bool fused, const float *rec)
 {
     const sph_particles *P = &sim->P;
     const bool symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
@@ -249,16 +252,32 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
     const uint32_t end = row.n;
     for (uint32_t e = 0; e < end; e += 8) {
         const __m256i live = sph_simd8_live(e, end), idx = sph_simd8_nbr(&row, e, end, live);
-        __m256 r2 = sph_simd8_offsets(P, live, idx, xi, dim, d3);
-        __m256 vol = zero;
-        if (fused || !symmetric) vol = sph_simd8_gather(live, idx, P->vol);
+        __m256 r2, vol = zero, q[4], g[4]; /* q, g: the records' halves */
+        uint32_t j[8];
+        if (rec) { /* sph_simd8_offsets' sums on the records' positions */
+            sph_simd8_indices(idx, j);
+            sph_simd8_rec4(rec, 8, j, q);
+            for (int d = 0; d < 3; d++) d3[d] = d < dim ? _mm256_sub_ps(xi[d], q[d]) : zero;
+            r2 = _mm256_add_ps(_mm256_mul_ps(d3[0], d3[0]), _mm256_mul_ps(d3[1], d3[1]));
+            if (dim == 3) r2 = _mm256_add_ps(r2, _mm256_mul_ps(d3[2], d3[2]));
+            vol = q[3];
+            sph_simd8_rec4(rec + 4, 8, j, g);
+        } else {
+            r2 = sph_simd8_offsets(P, live, idx, xi, dim, d3);
+            if (fused || !symmetric) vol = sph_simd8_gather(live, idx, P->vol);
+        }
         if (fused) { /* viscosity first, from the true r^2, pairs within h only (forces_one_avx512) */
             const __m256i in = _mm256_and_si256(live, _mm256_castps_si256(_mm256_cmp_ps(r2, h2, _CMP_LT_OQ)));
             __m256 lap = _mm256_max_ps(_mm256_fnmadd_ps(_mm256_sqrt_ps(r2), inv_hv, one), zero); /* 1 - r/h */
             __m256 cv = sph_simd8_keep(in, _mm256_mul_ps(vol, lap));
-            bx = _mm256_fmadd_ps(cv, _mm256_sub_ps(sph_simd8_gather(live, idx, vj[0]), vxi), bx);
-            by = _mm256_fmadd_ps(cv, _mm256_sub_ps(sph_simd8_gather(live, idx, vj[1]), vyi), by);
-            if (dim == 3) bz = _mm256_fmadd_ps(cv, _mm256_sub_ps(sph_simd8_gather(live, idx, vj[2]), vzi), bz);
+            const __m256 ux = rec ? g[0] : sph_simd8_gather(live, idx, vj[0]);
+            const __m256 uy = rec ? g[1] : sph_simd8_gather(live, idx, vj[1]);
+            bx = _mm256_fmadd_ps(cv, _mm256_sub_ps(ux, vxi), bx);
+            by = _mm256_fmadd_ps(cv, _mm256_sub_ps(uy, vyi), by);
+            if (dim == 3) {
+                const __m256 uz = rec ? g[2] : sph_simd8_gather(live, idx, vj[2]);
+                bz = _mm256_fmadd_ps(cv, _mm256_sub_ps(uz, vzi), bz);
+            }
         }
         __m256 dx = d3[0], dy = d3[1], dz = d3[2];
         const __m256i close = _mm256_and_si256(live, _mm256_castps_si256(_mm256_cmp_ps(r2, rmin2, _CMP_LT_OQ)));
@@ -274,10 +293,9 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
         __m256 r = _mm256_sqrt_ps(r2);
         __m256 t = _mm256_max_ps(_mm256_sub_ps(h, r), zero);
         __m256 dw_over_r = _mm256_div_ps(_mm256_mul_ps(m3s, _mm256_mul_ps(t, t)), r);
-        __m256 coef = symmetric ? _mm256_mul_ps(sph_simd8_gather(live, idx, P->mass),
-                                                _mm256_add_ps(pi_over, sph_simd8_gather(live, idx, P->p_rho2)))
-                                : _mm256_mul_ps(_mm256_mul_ps(vol, half_over_rho),
-                                                _mm256_add_ps(pi, sph_simd8_gather(live, idx, P->p)));
+        const __m256 pj = rec ? g[3] : sph_simd8_gather(live, idx, symmetric ? P->p_rho2 : P->p);
+        __m256 coef = symmetric ? _mm256_mul_ps(sph_simd8_gather(live, idx, P->mass), _mm256_add_ps(pi_over, pj))
+                                : _mm256_mul_ps(_mm256_mul_ps(vol, half_over_rho), _mm256_add_ps(pi, pj));
         if (any_close) /* a coincident pair only repels */
             coef = sph_simd8_pick(_mm256_and_si256(close, _mm256_castps_si256(_mm256_cmp_ps(coef, zero, _CMP_LT_OQ))),
                                   zero, coef);
@@ -302,6 +320,29 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
 }
 #endif
 
+#if SPH_HAVE_AVX2
+/* The records forces_one_avx2 reads (packed_records = on), 8 floats a particle:
+ * x, y, z [m], volume [m^3], the velocity the viscosity reads [m/s], and
+ * p/rho^2 [m^5/(kg s^2)] (symmetric form) or p [Pa]. */
+static void pack_records(const sph_sim *sim, float *rec)
+{
+    const sph_particles *P = &sim->P;
+    const int n = (int)sim->n, dim = sim->dim;
+    float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
+    const float *pj = sim->def.pressure_form == SPH_PFORM_SYMMETRIC ? P->p_rho2 : P->p;
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    for (int i = 0; i < n; i++) {
+        float *r = rec + 8 * (size_t)i;
+        for (int d = 0; d < 3; d++) {
+            r[d] = d < dim ? P->pred[d][i] : 0.0f;
+            r[4 + d] = d < dim ? vj[d][i] : 0.0f;
+        }
+        r[3] = P->vol[i];
+        r[7] = pj[i];
+    }
+}
+#endif
+
 /* Wall particles (wall_model = particles) get no acceleration: they never move. */
 static inline bool wall_still(sph_sim *sim, int i)
 {
@@ -320,6 +361,8 @@ static void run(sph_sim *sim)
     if (sph_simd8_on(sim) && k.kind == SPH_KERNEL_SPIKY) {
         const sph_kernel kv = sim->k_viscosity;
         const bool fused = sph_forces_fused(sim); /* also writes acc_v; the viscosity pass then does nothing */
+        float *rec = sph_simd8_packed(sim) ? sph_simd8_records(sim, 8) : NULL;
+        if (rec) pack_records(sim, rec);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) {
             if (sph_is_wall(&sim->P, i)) {
@@ -328,10 +371,19 @@ static void run(sph_sim *sim)
                     for (int d = 0; d < dim; d++) sim->P.acc_v[d][i] = 0.0f;
                 continue;
             }
-            if (fused)
-                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, true) : forces_one_avx2(sim, &k, &kv, i, 2, true);
+            /* each combination its own call, so that dim, fused and rec are constants in it */
+            if (rec && fused)
+                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, true, rec)
+                         : forces_one_avx2(sim, &k, &kv, i, 2, true, rec);
+            else if (rec)
+                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, false, rec)
+                         : forces_one_avx2(sim, &k, &kv, i, 2, false, rec);
+            else if (fused)
+                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, true, NULL)
+                         : forces_one_avx2(sim, &k, &kv, i, 2, true, NULL);
             else
-                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, false) : forces_one_avx2(sim, &k, &kv, i, 2, false);
+                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, false, NULL)
+                         : forces_one_avx2(sim, &k, &kv, i, 2, false, NULL);
         }
         return;
     }

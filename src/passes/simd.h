@@ -9,7 +9,9 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <stdlib.h>
 
+#include "sph_memory.h"
 #include "sph_sim.h"
 
 #ifdef __AVX512F__
@@ -142,6 +144,31 @@ static inline __m256 sph_simd8_pick(__m256i mask, __m256 a, __m256 b)
 
 /* v where the mask is set, 0 elsewhere. */
 static inline __m256 sph_simd8_keep(__m256i mask, __m256 v) { return _mm256_and_ps(_mm256_castsi256_ps(mask), v); }
+
+/* [compute] packed_records = on: the neighbours idx as 8 indices (dead lanes
+ * hold index 0: a real record, whose lanes the loops then mask). */
+static inline void sph_simd8_indices(__m256i idx, uint32_t j[8])
+{
+    _mm256_storeu_si256((__m256i *)(void *)j, idx);
+}
+
+/* Four consecutive floats of each neighbour j[l]'s record (records of `per`
+ * floats, 16-byte aligned) as 8 16-byte loads and 8 shuffles instead of 4
+ * gathers: f[k] holds float k of lane l's four. Written out, not looped, so
+ * that the compiler keeps everything in registers. */
+static inline void sph_simd8_rec4(const float *rec, size_t per, const uint32_t j[8], __m256 f[4])
+{
+#define SPH_REC_PAIR(a, b)                                                                                      \
+    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(rec + per * j[a])), _mm_load_ps(rec + per * j[b]), 1)
+    const __m256 r0 = SPH_REC_PAIR(0, 4), r1 = SPH_REC_PAIR(1, 5), r2 = SPH_REC_PAIR(2, 6), r3 = SPH_REC_PAIR(3, 7);
+#undef SPH_REC_PAIR
+    const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1); /* lanes 0 1 0 1 | 4 5 4 5 */
+    const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3); /* lanes 2 3 2 3 | 6 7 6 7 */
+    f[0] = _mm256_shuffle_ps(t0, t2, 0x44);
+    f[1] = _mm256_shuffle_ps(t0, t2, 0xEE);
+    f[2] = _mm256_shuffle_ps(t1, t3, 0x44);
+    f[3] = _mm256_shuffle_ps(t1, t3, 0xEE);
+}
 #else
 #define SPH_HAVE_AVX2 0
 #endif
@@ -151,6 +178,30 @@ static inline bool sph_simd8_on(const sph_sim *sim)
 {
     return SPH_HAVE_AVX2 && sim->def.vector == SPH_ON && sim->def.vector_avx2 == SPH_ON &&
            sim->def.accumulate == SPH_ACC_FLOAT && !sph_sim_periodic(sim);
+}
+
+/* Whether the 8-lane loops read neighbours from packed records ([compute] packed_records = on). */
+static inline bool sph_simd8_packed(const sph_sim *sim)
+{
+    return sph_simd8_on(sim) && sim->def.packed_records == SPH_ON;
+}
+
+/* The records' buffer, `per` floats for each particle (grown, never shrunk). */
+static inline float *sph_simd8_records(sph_sim *sim, size_t per)
+{
+    sph_search_data *S = &sim->S;
+    const size_t need = (per * (sim->n ? sim->n : 1) + 7) & ~(size_t)7; /* whole 32-byte blocks */
+    if (S->rec_cap < need) {
+        free(S->rec);
+        S->rec = aligned_alloc(32, need * sizeof(float));
+        S->rec_cap = S->rec ? need : 0;
+        if (!S->rec) {
+            char size[32];
+            sph_memory_fail("the packed records could not be made (%s; [compute] packed_records = off needs none)",
+                            sph_memory_text((double)need * sizeof(float), size, sizeof size));
+        }
+    }
+    return S->rec;
 }
 
 /* Whether a pass may use its vector loop for this scene and kernel: the
