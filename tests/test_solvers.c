@@ -345,3 +345,38 @@ Test(solvers, pcisph_local_delta_corner)
     cr_assert_gt(dc, 2.0f * proto, "corner: delta %g, the prototype's %g", dc, proto);
     sph_sim_destroy(sim);
 }
+
+/* The cold solve's error must not rise: a 3D dam break as the solvers bench
+ * builds it (src/bench/bench_solvers.c: s = 1 cm, h = 2 s, dt = 2 ms, walls,
+ * viscosity, tolerance 0.1 %, a cap of 2000), 16 x 16 x 8 particles (2048),
+ * under 8 g so that its floor's hydrostatic pressure (12.6 kPa) exceeds the
+ * 50,688-particle bench's (4.7 kPa), where step 3's solve fell to 0.118 % and
+ * then rose to 0.42 % (docs/accuracy.md, section 8). Here the third step's
+ * solve falls to 2.17 % at its second iteration, then rises (4.0 % at 50,
+ * 20.1 % at the cap), held by the bottom corners pressed within s/2 of the
+ * walls. Disabled until the cold solve converges there: the assertion (every
+ * iteration's error at most the least seen so far plus the tolerance, and
+ * the solve ending within the tolerance) fails on the present code. */
+Test(solvers, pcisph_cold_does_not_rise, .timeout = 300, .disabled = true)
+{
+    sph_sim *sim = test_sim("[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\n"
+                            "min = 0 0 0\nmax = 0.48 0.24 0.08\nwall_damping = 0.3\n[fluid column]\nmin = 0 0 0\n"
+                            "max = 0.16 0.16 0.08\nspacing = 0.01\n[physics]\ngravity = 0 -78.48 0\nviscosity = 0.002\n"
+                            "negative_pressure = clamp\npressure_solver = pcisph\nsolver_tolerance = 0.001\n"
+                            "solver_max_iterations = 2000\n[kernels]\nh = 0.02\n[time]\ndt = 0.002\ncfl = 0.4\n",
+                            1);
+    for (int s = 0; s < 2; s++) sph_sim_step(sim);
+    double least = INFINITY, worst_rise = 0;
+    const uint64_t step = sim->step;
+    while (sim->step == step)
+        if (sph_sim_step_pass(sim) == SPH_PASS_PCISPH) {
+            least = fmin(least, sim->solver.error);
+            worst_rise = fmax(worst_rise, sim->solver.error - least);
+        }
+    cr_log_info("third step: %d iterations, error %g, least %g, largest rise %g", sim->solver.iterations,
+                sim->solver.density_error, least, worst_rise);
+    cr_assert_leq(worst_rise, 0.001, "the error rose by %g over the least it had reached (%g)", worst_rise, least);
+    cr_assert_leq(sim->solver.density_error, 0.001, "the solve ended at %g in %d iterations",
+                  sim->solver.density_error, sim->solver.iterations);
+    sph_sim_destroy(sim);
+}
