@@ -43,13 +43,7 @@ Test(gl_backend, obstacles_match_cpu)
     }
     cr_assert(!g->alarm.raised && !c->alarm.raised, "the watchdog stopped a run");
     sph_sim_sync(g, SPH_SYNC_ALL);
-    uint32_t *where = malloc(c->n * sizeof *where);
-    cr_assert_not_null(where);
-    for (uint32_t i = 0; i < g->n; i++) where[g->P.id[i]] = i;
-    double err = 0;
-    for (uint32_t i = 0; i < c->n; i++)
-        for (int d = 0; d < c->dim; d++) err = fmax(err, fabs((double)g->P.pos[d][where[c->P.id[i]]] - c->P.pos[d][i]));
-    free(where);
+    double err = test_gl_position_gap(c, g);
     double fc[2][3], fg[2][3], ferr = 0, fbig = 0;
     cr_assert_eq(sph_obstacle_forces(c, fc), 2);
     cr_assert_eq(sph_obstacle_forces(g, fg), 2);

@@ -105,6 +105,20 @@ static inline double test_gl_field_error(const sph_sim *c, const sph_sim *g, sph
 
 #define TEST_GL_TOL_POS_RUN 1e-4 /* [m] positions after a whole run of separate simulations */
 
+/* The largest gap [m] between the CPU's and GL's positions of the same particles, matched by id (both
+ * reorder the same way, but the comparison does not rely on it); g synchronised by the caller. */
+static inline double test_gl_position_gap(const sph_sim *c, const sph_sim *g)
+{
+    uint32_t *where = malloc(c->n * sizeof *where);
+    cr_assert_not_null(where);
+    for (uint32_t i = 0; i < g->n; i++) where[g->P.id[i]] = i;
+    double err = 0;
+    for (uint32_t i = 0; i < c->n; i++)
+        for (int d = 0; d < c->dim; d++) err = fmax(err, fabs((double)g->P.pos[d][where[c->P.id[i]]] - c->P.pos[d][i]));
+    free(where);
+    return err;
+}
+
 /* Separate simulations on the CPU and on GL, 40 steps each: positions stay within TEST_GL_TOL_POS_RUN and
  * the kinetic energies within 1e-3. */
 static inline void test_gl_whole_run(const char *ini, const char *const *sets, int n_sets)
@@ -118,14 +132,7 @@ static inline void test_gl_whole_run(const char *ini, const char *const *sets, i
     cr_assert(!g->alarm.raised && !c->alarm.raised, "the watchdog stopped a run");
     cr_expect(fabs(g->t - c->t) <= 1e-6 * c->t, "simulated time %g on GL, %g on the CPU", g->t, c->t);
     sph_sim_sync(g, SPH_SYNC_ALL);
-    /* match particles by id: both reorder the same way, but compare robustly */
-    uint32_t *where = malloc(c->n * sizeof *where);
-    cr_assert_not_null(where);
-    for (uint32_t i = 0; i < g->n; i++) where[g->P.id[i]] = i;
-    double err = 0;
-    for (uint32_t i = 0; i < c->n; i++)
-        for (int d = 0; d < c->dim; d++) err = fmax(err, fabs((double)g->P.pos[d][where[c->P.id[i]]] - c->P.pos[d][i]));
-    free(where);
+    double err = test_gl_position_gap(c, g);
     if (getenv("SPH_TEST_VERBOSE"))
         fprintf(stderr, "whole run (%dD, 40 steps): positions differ by %.3g m\n", c->dim, err);
     cr_expect(err <= TEST_GL_TOL_POS_RUN, "positions after 40 steps differ by %.3g m (tolerance %g m)", err,
