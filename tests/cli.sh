@@ -285,11 +285,15 @@ for p in dam-break hydrostatic taylor-green poiseuille couette; do
         [ -s "$tmp/val/$p.csv" ] && [ -s "$tmp/val/$p.png" ] && [ -s "$tmp/val/$p.pdf" ] && ok ||
         { bad "validate $p --quick: rc $rc, want 0 or 1, a verdict line and the three files"; cat "$tmp/val.txt"; }
 done
-# --quick samples the channels' start-up at other times than the full run: the verdict names them
+# --quick samples the channels' start-up at the full run's start-up times (the steady sample left out), so a
+# student's first run reads the figures the full run prints first, and passes where it does (Couette's
+# quick once sampled t = 0.005 s, where the moving wall's layer is 0.7 spacing thick, and failed at 4.1 %)
 for p in poiseuille couette; do
     sph validate "$p" --quick --quiet --out "$tmp/val" > "$tmp/val.txt" 2>&1
-    grep -q "^validate $p: .* at t = 0.005, 0.01, 0.025, 0.05, 0.2222 s (--quick: the start-up only): R=10:" "$tmp/val.txt" &&
-        ok || { bad "validate $p --quick: the verdict does not name its sample times"; cat "$tmp/val.txt"; }
+    rc=$?
+    [ "$rc" -eq 0 ] && grep -q "^validate $p: PASS: .* at t = 0.0225, 0.045, 0.1125, 0.225 s (--quick: the start-up only): R=10:" \
+        "$tmp/val.txt" &&
+        ok || { bad "validate $p --quick: rc $rc, want PASS at the full run's start-up times"; cat "$tmp/val.txt"; }
 done
 sph validate nosuch > "$tmp/val.txt" 2>&1
 [ $? -eq 2 ] && grep -q "unknown problem 'nosuch'" "$tmp/val.txt" && ok || { bad "validate nosuch: want exit 2"; cat "$tmp/val.txt"; }
