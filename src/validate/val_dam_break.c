@@ -32,7 +32,7 @@
 #define T_LO 0.8
 #define T_HI 3.0
 #define N_COLUMN 1.4142135623730951 /* n = sqrt(2): T = n tau */
-#define A_SCENE 0.1                 /* [m] the column width the scene ships with */
+#define A_SCENE 0.05715             /* [m] the column width the scene ships with: 2.25 in */
 
 typedef struct dam_obs {
     double a, s, g;     /* [m] column width, [m] spacing, [m/s^2] gravity */
