@@ -6,16 +6,19 @@
 // with every acceleration field this one would declare more than the 16
 // storage blocks a shader may have.
 //   0 factors: alpha_i = rho_r / max(G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, DEN_FULL), walls in G
+//     negative where that sum is not above ALPHA_MIN (src/passes/dfsph.c says why)
 //   1, 2 warm start: kappa_v (1) or kappa (2) *= u_value
 //   3 measure the divergence: rho_df = dt D rho/Dt of v + dv where rho >= rho_r (else 0), error rho_df / rho_r
 //   4 measure the density: rho_df = sum_j m_j W^rho(x*_i - x*_j) + rho_r (walls' share at x*_i) at the
 //     positions the step will reach, x* = pred + dt dv clamped into the box, error (rho_df - rho_r) / rho_r
-//     4 puts the largest error, at least 0, into reduce_[2]: per work group in shared memory, then one
+//     4 puts the largest error, at least 0, into reduce_[2], and the largest (rho_r - rho_df) / rho_r of a
+//     pushed particle (kappa + kappa_v > 0), at least 0, into reduce_[3] (the stopping test, dfsph.c): per work
+//     group in shared memory, then one
 //     atomicMax on the float's bits (non-negative floats order as their bits do; a NaN counts as 0, as fmaxf
 //     leaves it out on the CPU); 3 the sum of max(error, 0), in units of 2^-28 N (so that the host reads the
 //     mean over the N particles as the count times 2^-28): per work group in shared memory, then one atomicAdd
-//   5 correct: kappa_v += max(dt D, 0) alpha / dt^2, u_value = dt^2
-//   6 correct: kappa = max(kappa + OMEGA (rho_df - rho_r) alpha / dt^2, -kappa_v) (a relaxed Jacobi step,
+//   5 correct: kappa_v += max(dt D, 0) max(alpha, 0) / dt^2, u_value = dt^2
+//   6 correct: kappa = max(kappa + OMEGA (rho_df - rho_r) |alpha| / dt^2, -kappa_v) (a relaxed Jacobi step,
 //     kappa_v + kappa kept >= 0; src/passes/dfsph.c says why)
 layout(local_size_x = WG) in;
 uniform uint u_count;
@@ -84,7 +87,7 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
 void main()
 {
     uint i = gid(), l = gl_LocalInvocationID.x, u = u_count;
-    uint err = 0u;
+    uint err = 0u, over = 0u;
     if (i < N) {
         vec3 xi = PRED3(i), g = vec3(0.0);
         float share = 0.0;
@@ -102,8 +105,8 @@ void main()
                 gp[d] += RHO_R * g[d];
             }
 #endif
-            precise float den = max(dots + gr.x * gp.x + gr.y * gp.y + gr.z * gp.z, DEN_FULL);
-            alpha_[i] = den > ALPHA_MIN ? RHO_R / den : 0.0;
+            precise float raw = dots + gr.x * gp.x + gr.y * gp.y + gr.z * gp.z;
+            alpha_[i] = (raw > ALPHA_MIN ? 1.0 : -1.0) * RHO_R / max(raw, DEN_FULL);
         } else if (u == 1u) {
             kappa_v_[i] *= u_value;
         } else if (u == 2u) {
@@ -119,6 +122,7 @@ void main()
             rho_df_[i] = sum;
             float e = (sum - RHO_R) / RHO_R;
             err = e > 0.0 ? floatBitsToUint(e) : 0u;
+            over = kappa_[i] + kappa_v_[i] > 0.0 && e < 0.0 ? floatBitsToUint(-e) : 0u; // a pushed particle below rho_r
         } else if (u == 3u) {
             vi = velocity(i);
             sum = 0.0;
@@ -135,10 +139,10 @@ void main()
             float e = r / RHO_R;
             err = e > 0.0 ? floatBitsToUint(e) : 0u;
         } else if (u == 6u) {
-            precise float k = kappa_[i] + OMEGA * (rho_df_[i] - RHO_R) * alpha_[i] / u_value;
+            precise float k = kappa_[i] + OMEGA * (rho_df_[i] - RHO_R) * abs(alpha_[i]) / u_value;
             kappa_[i] = max(k, -kappa_v_[i]);
         } else {
-            precise float add = max(rho_df_[i], 0.0) * alpha_[i] / u_value; // rho_df: dt D
+            precise float add = max(rho_df_[i], 0.0) * max(alpha_[i], 0.0) / u_value; // rho_df: dt D
             kappa_v_[i] += add;
         }
     }
@@ -160,4 +164,12 @@ void main()
         barrier();
     }
     if (l == 0u) atomicMax(reduce_[2], s_err[0]);
+    barrier();
+    s_err[l] = over;
+    barrier();
+    for (uint off = uint(WG) / 2u; off > 0u; off >>= 1) {
+        if (l < off) s_err[l] = max(s_err[l], s_err[l + off]);
+        barrier();
+    }
+    if (l == 0u) atomicMax(reduce_[3], s_err[0]);
 }

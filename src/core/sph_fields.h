@@ -95,7 +95,7 @@
     X(ACC_PCI, acc_pci, V, "m/s^2", "m/s^2", ACCELERATION, PCISPH, NONE, "pcisph-acc", "a pcisph",               \
       "pressure acceleration of PCISPH")                                                                         \
     X(ALPHA, alpha, 1, "m^3/kg", "m^2/kg", DERIVED, DFSPH, NONE, "", "alpha",                                    \
-      "DFSPH's factor rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2)")                              \
+      "DFSPH's factor rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2), < 0: own push raises rho")     \
     X(KAPPA, kappa, 1, "m^2/s^2", "m^2/s^2", STATE, DFSPH, NONE, "", "kappa",                                    \
       "DFSPH's constant-density stiffness kappa = p / rho of the last step (warm start)")                       \
     X(KAPPA_V, kappa_v, 1, "m^2/s^2", "m^2/s^2", STATE, DFSPH, NONE, "", "kappa div",                            \
