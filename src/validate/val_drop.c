@@ -341,7 +341,8 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
             const drop_obs *o = &obs[r];
             for (size_t i = 0; i < o->dx.n; i++)
                 fprintf(f, "%d,%.6g,%.6g,%.6g,%.6g,%.5f,%.6g,%.6g,%.6g,%.6g\n", c->res[r], o->R, o->sigma, o->T,
-                        o->T_ray, o->dx.x[i], o->dx.y[i], o->ray.y[i], o->dx_minmax.y[i], o->aniso.y[i]);
+                        o->T_ray, o->dx.x[i], o->dx.y[i], i < o->ray.n ? o->ray.y[i] : NAN, o->dx_minmax.y[i],
+                        o->aniso.y[i]); /* a run the watchdog stopped has no Rayleigh curve */
         }
         ok = val_csv_close(c, f, csv);
     }
@@ -381,6 +382,9 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
             if (isfinite(obs[r].T_ray) && isfinite(obs[r].T))
                 val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: %+.1f%%", r ? "; " : "period error: ", c->res[r],
                            100 * (obs[r].T / obs[r].T_ray - 1));
+            else if (obs[r].stopped)
+                val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: unstable (watchdog)", r ? "; " : "period error: ",
+                           c->res[r]);
             else if (isfinite(obs[r].T_ray)) /* fewer than 3 crossings: no period, not nan */
                 val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: no period", r ? "; " : "period error: ",
                            c->res[r]);
@@ -395,10 +399,12 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
             snprintf(s->label, sizeof s->label, "R/%d", c->res[r]);
             s->x = obs[r].dx.x, s->y = obs[r].dx.y, s->n = obs[r].dx.n, s->style = r;
         }
-        if (done && isfinite(obs[done - 1].T_ray)) { /* Rayleigh's curve only where sigma was measured */
-            const drop_obs *o = &obs[done - 1];
+        int last = done - 1; /* the finest resolution that ran to its end: a stopped run has no curve */
+        while (last >= 0 && obs[last].stopped) last--;
+        if (last >= 0 && isfinite(obs[last].T_ray)) { /* Rayleigh's curve only where sigma was measured */
+            const drop_obs *o = &obs[last];
             plot_series *e = &ch.p[0].s[ch.p[0].n++];
-            snprintf(e->label, sizeof e->label, "Rayleigh, R/%d's sigma", c->res[done - 1]);
+            snprintf(e->label, sizeof e->label, "Rayleigh, R/%d's sigma", c->res[last]);
             e->x = o->ray.x, e->y = o->ray.y, e->n = o->ray.n, e->style = 7;
         }
         ok = val_chart(c, p->name, &ch);
