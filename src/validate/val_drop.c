@@ -56,7 +56,7 @@ typedef struct drop_obs {
     double spread, spread_max; /* the half periods' (longest - shortest) / mean, and the most a steady sine shows */
     bool stopped;       /* the watchdog stopped this resolution's run: *why says where and when */
     double t_stop;      /* [s] since the kick (negative: while settling) */
-    char why[200];
+    char why[400];
     bool stated; /* sigma is the scene's input (surface_tension = csf), not measured */
     val_series dx, ray, dx_minmax, aniso; /* aniso: D_x minus the mean of the other axes' D */
 } drop_obs;
