@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "test_util.h"
 
@@ -217,6 +219,45 @@ Test(surface_tension, quick_validate_drop_writes_its_outputs_and_a_verdict, .tim
         snprintf(path, sizeof path, "%s/drop.%s", dir, ext[k]);
         cr_assert(stat(path, &st) == 0 && st.st_size > 0, "%s missing", path);
     }
+}
+
+/* A resolution the method cannot hold gives a verdict, not "no verdict": validate drop run from a directory
+ * whose scenes/validate/drop.ini states sigma = 300 N (its drop at R/10 goes past the watchdog's speed while
+ * settling, at 0.83 s) FAILs naming the resolution, "unstable, stopped by the watchdog", and the time. Before,
+ * the command ended with "the run or its outputs failed (above); no verdict" (exit 3). */
+Test(surface_tension, validate_drop_says_which_resolution_is_unstable, .timeout = 300)
+{
+    char dir[] = "/tmp/sphlab-dropw-XXXXXX", path[700], cwd[512], cmd[2048], out[16384];
+    cr_assert_not_null(mkdtemp(dir));
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    FILE *in = fopen("scenes/validate/drop.ini", "r");
+    cr_assert_not_null(in, "scenes/validate/drop.ini");
+    snprintf(path, sizeof path, "%s/scenes", dir);
+    cr_assert_eq(mkdir(path, 0700), 0);
+    snprintf(path, sizeof path, "%s/scenes/validate", dir);
+    cr_assert_eq(mkdir(path, 0700), 0);
+    snprintf(path, sizeof path, "%s/scenes/validate/drop.ini", dir);
+    FILE *o = fopen(path, "w");
+    cr_assert_not_null(o, "%s", path);
+    char line[512];
+    int set = 0;
+    while (fgets(line, sizeof line, in)) {
+        if (strcmp(line, "sigma = 1\n") == 0) snprintf(line, sizeof line, "sigma = 300\n"), set++;
+        fputs(line, o);
+    }
+    fclose(in), fclose(o);
+    cr_assert_eq(set, 1, "drop.ini's sigma line not found");
+    const char *bin = getenv("SPHLAB") && *getenv("SPHLAB") ? getenv("SPHLAB") : "./sphlab";
+    snprintf(cmd, sizeof cmd, "cd %s && %s%s%s validate drop --quick --quiet --threads 2 --out %s/out 2>&1", dir,
+             bin[0] == '/' ? "" : cwd, bin[0] == '/' ? "" : "/", bin, dir);
+    FILE *p = popen(cmd, "r");
+    cr_assert_not_null(p);
+    size_t n = fread(out, 1, sizeof out - 1, p);
+    out[n] = '\0';
+    int st = pclose(p), rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    cr_assert_eq(rc, 1, "exit %d (want 1, a FAIL verdict): %s", rc, out);
+    cr_assert(strstr(out, "validate drop: FAIL: R/10: unstable, stopped by the watchdog"), "no such verdict: %s", out);
+    cr_assert(!strstr(out, "no verdict"), "%s", out);
 }
 
 /* validate drop-3d --quick (R/6, the sphere laid on the lattice points nearest the centre): its outputs, a

@@ -100,6 +100,48 @@ Test(validate, drop_period_from_crossings_of_a_damped_sine)
     cr_assert(isnan(val_period_crossings(x, y, 100, &k)), "%d crossings", k);
 }
 
+/* The half periods (val_drop.c's verdict). A kicked drop's D_x - D_y is a sine from its centre; through the
+ * record's mean its half periods alternate short and long by at most val_half_period_bound (0.27 at 1.5
+ * periods, 0.135 at 3): damped sines of the 2D and 3D drops' decay over 1.5 and 3 periods stay within it. The
+ * 3D R/10 drop's record (crossings at 0.99, 2.37 and 3.17 s: half periods 1.38 and 0.80 s over 1.5 periods of
+ * 2.197 s) is no steady period and must be beyond it, though its full period read -1.1 %. The decay widens
+ * the bound by the ratio of the first half period's amplitude to the last's (val_amplitude_ratio). */
+Test(validate, drop_half_periods_tell_a_steady_period)
+{
+    cr_assert_float_eq(val_half_period_bound(1.5, 1.0), 4 * asin(1 / (1.5 * PI)) / PI, 1e-12);
+    static double x[5000], y[5000];
+    const double T = 2.4;
+    for (int run = 0; run < 4; run++) {
+        const double span = (run % 2 ? 3.0 : 1.5) * T, zeta = run < 2 ? 0.0133 : 0.063, w = 2 * PI / T;
+        size_t n = 0;
+        for (double t = 0; t < span && n < 5000; t += 0.01, n++)
+            x[n] = t, y[n] = 0.007 * exp(-zeta * w * t) * sin(w * t) + 0.001;
+        double c[16];
+        int k = val_crossing_times(x, y, n, c, 16);
+        double spread = val_half_period_spread(c, k),
+               bound = val_half_period_bound(span / T, val_amplitude_ratio(x, y, n, c, k));
+        cr_log_info("%.1f periods, zeta %.3g: %d crossings, spread %.3f, bound %.3f\n", span / T, zeta, k, spread,
+                    bound);
+        cr_assert_geq(k, 3);
+        cr_assert_leq(spread, bound, "%.1f periods: spread %.3f above %.3f", span / T, spread, bound);
+    }
+    /* the 3D R/10 drop's record: a sine whose phase runs at pi / 1.38 s, then pi / 0.80 s from 2.37 s */
+    const double T3 = 2.197, span = 1.5 * T3;
+    size_t n = 0;
+    for (double t = 0; t < span && n < 5000; t += 0.01, n++) {
+        double ph = t < 2.37 ? PI * (t - 0.99) / 1.38 : PI + PI * (t - 2.37) / 0.80;
+        x[n] = t, y[n] = 0.004 * sin(ph);
+    }
+    double c[16];
+    int k = val_crossing_times(x, y, n, c, 16);
+    double spread = val_half_period_spread(c, k),
+           bound = val_half_period_bound(span / T3, val_amplitude_ratio(x, y, n, c, k));
+    cr_log_info("3D R/10's record: %d crossings, spread %.3f, bound %.3f\n", k, spread, bound);
+    cr_assert_eq(k, 3, "%d crossings", k);
+    cr_assert_gt(spread, bound, "half periods %.3f and %.3f s: spread %.3f within %.3f", c[1] - c[0], c[2] - c[1],
+                 spread, bound);
+}
+
 Test(validate, curve_interpolates_inside_and_is_nan_outside)
 {
     const val_curve *c = &val_surge[2];

@@ -153,6 +153,21 @@ extern const int val_problem_count;
  * that does not hold whole periods has its mean off the centre line, which makes the half periods
  * alternate short and long); the crossings counted in *k; NaN below 3 crossings. (validate drop) */
 double val_period_crossings(const double *x, const double *y, size_t n, int *k);
+/* The times (x) at which y crosses its mean, as val_period_crossings finds them, into t (at most max); their
+ * count. */
+int val_crossing_times(const double *x, const double *y, size_t n, double *t, int max);
+/* The spread of the half periods between k crossing times, (longest - shortest) / their mean; NaN below 3. */
+double val_half_period_spread(const double *t, int k);
+/* The largest spread a steady (or decaying) sine's half periods show when crossings are taken through the mean
+ * of a record of `periods` periods: the record's mean sits up to a / (pi periods) off the centre, a the first
+ * amplitude (the mean of a sin (omega t + phi) over [0, 2 pi P] is at most 2 a / (2 pi P)), which moves each
+ * crossing by asin(delta / a_t) / omega, a_t the amplitude there (at least the last, a / decay), one half period
+ * longer and the next shorter by that twice: spread 4 asin(decay / (pi P)) / pi (a steady sine over 1.5
+ * periods: 0.27; over 3: 0.135). A larger spread is no steady period. NaN for periods <= 0 or decay < 1. */
+double val_half_period_bound(double periods, double decay);
+/* decay for it: the largest |y - mean| between the first two crossings t[0], t[1] over that between the last two
+ * (at least 1); NaN below 3 crossings. */
+double val_amplitude_ratio(const double *x, const double *y, size_t n, const double *t, int k);
 /* The drop's period against Rayleigh's as the verdict line gives it: "period T s vs Rayleigh T_ray s (+e%)",
  * or, where the record crossed its mean fewer than 3 times (T NaN), "no period: k crossings of the mean in
  * the run (3 needed), Rayleigh T_ray s" rather than a NaN; the same for T_ray NaN (sigma not measurable). */

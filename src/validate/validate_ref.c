@@ -168,6 +168,50 @@ double val_period_crossings(const double *x, const double *y, size_t n, int *k)
     return *k >= 3 ? 2.0 * (last_even - first) / (double)(2 * ((*k - 1) / 2)) : NAN;
 }
 
+int val_crossing_times(const double *x, const double *y, size_t n, double *t, int max)
+{
+    double mean = 0;
+    for (size_t i = 0; i < n; i++) mean += y[i];
+    mean /= (double)(n ? n : 1);
+    int k = 0;
+    for (size_t i = 1; i < n && k < max; i++) {
+        double a = y[i - 1] - mean, b = y[i] - mean;
+        if ((a < 0) == (b < 0) || a == b) continue;
+        t[k++] = x[i - 1] + (x[i] - x[i - 1]) * a / (a - b);
+    }
+    return k;
+}
+
+double val_half_period_spread(const double *t, int k)
+{
+    if (k < 3) return NAN;
+    double lo = INFINITY, hi = 0, sum = 0;
+    for (int i = 1; i < k; i++) {
+        double h = t[i] - t[i - 1];
+        lo = fmin(lo, h), hi = fmax(hi, h), sum += h;
+    }
+    return (hi - lo) / (sum / (k - 1));
+}
+
+double val_half_period_bound(double periods, double decay)
+{
+    if (!(periods > 0) || !(decay >= 1)) return NAN;
+    return 4.0 * asin(fmin(1.0, decay / (PI * periods))) / PI;
+}
+
+double val_amplitude_ratio(const double *x, const double *y, size_t n, const double *t, int k)
+{
+    if (k < 3) return NAN;
+    double mean = 0, first = 0, last = 0;
+    for (size_t i = 0; i < n; i++) mean += y[i];
+    mean /= (double)n;
+    for (size_t i = 0; i < n; i++) {
+        if (x[i] >= t[0] && x[i] <= t[1]) first = fmax(first, fabs(y[i] - mean));
+        if (x[i] >= t[k - 2] && x[i] <= t[k - 1]) last = fmax(last, fabs(y[i] - mean));
+    }
+    return last > 0 ? fmax(1.0, first / last) : NAN;
+}
+
 void val_period_text(char *buf, size_t n, double T, double T_ray, int crossings)
 {
     if (isfinite(T) && isfinite(T_ray))
