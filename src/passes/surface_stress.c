@@ -104,7 +104,7 @@ static double stress_artificial_share(const sph_kernel *k, double vol, int dim)
     return 1.0 - STRESS_EPS * i5 / (5.0 * w_dp * w_dp * w_dp * w_dp);
 }
 
-/* Sweep 1: tau_i = sigma s_i / (V_i c_i) [N/m^2 per unit sigma's unit ...: a stress], 0 off the surface. */
+/* Sweep 1: tau_i = sigma s_i / (V_i c_i), a stress [Pa; in 2D N/m, per metre of depth], 0 off the surface. */
 static inline void stress_one(const sph_sim *sim, const sph_kernel *k, float *tau, const double *share, int i,
                               const int dim, const bool dbl, const bool periodic)
 {
