@@ -13,7 +13,9 @@
 // double (A is inverted). Wall particles neither get nor give any.
 layout(local_size_x = WG) in;
 
-dmat3 A, S;     // A = sum w_j V_j grad_i W_ij (x_j - x_i)^T, S = sum w_j V_j grad_i W_ij (u_j - u_i)^T
+// Arrays, not dmat3/dvec3, wherever a component is written at a loop
+// index: NVIDIA's compiler (580) cannot ("can't find __setVectorIndex").
+double A[3][3], S[3][3];     // A = sum w_j V_j grad_i W_ij (x_j - x_i)^T, S = sum w_j V_j grad_i W_ij (u_j - u_i)^T
 double ls;      // sum_j w_j W_{DIM-1}(r_t), self included
 vec3 ni;        // the particle's normal
 float len_i;    // its length
@@ -65,24 +67,24 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
 // u; 0 where A_t is nearly singular (csf.c's csf_div, term for term).
 double csf_div(dvec3 u)
 {
-    dvec3 t0 = dvec3(0.0lf), t1 = dvec3(0.0lf);
+    double t[2][3] = double[2][3](double[3](0.0lf, 0.0lf, 0.0lf), double[3](0.0lf, 0.0lf, 0.0lf));
 #if DIM == 2
-    t0 = dvec3(-u[1], u[0], 0.0lf);
+    t[0] = double[3](-u[1], u[0], 0.0lf);
 #else
     // t0 perpendicular to u along its smallest component's axis, t1 = u x t0
     int m = abs(u[0]) <= abs(u[1]) && abs(u[0]) <= abs(u[2]) ? 0 : abs(u[1]) <= abs(u[2]) ? 1 : 2;
-    dvec3 e = dvec3(0.0lf);
+    double e[3] = double[3](0.0lf, 0.0lf, 0.0lf);
     e[m] = 1.0lf;
-    dvec3 c = dvec3(u[1] * e[2] - u[2] * e[1], u[2] * e[0] - u[0] * e[2], u[0] * e[1] - u[1] * e[0]);
+    double c[3] = double[3](u[1] * e[2] - u[2] * e[1], u[2] * e[0] - u[0] * e[2], u[0] * e[1] - u[1] * e[0]);
     double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    for (int d = 0; d < 3; d++) t0[d] = c[d] / len;
-    t1[0] = u[1] * t0[2] - u[2] * t0[1];
-    t1[1] = u[2] * t0[0] - u[0] * t0[2];
-    t1[2] = u[0] * t0[1] - u[1] * t0[0];
+    for (int d = 0; d < 3; d++) t[0][d] = c[d] / len;
+    t[1][0] = u[1] * t[0][2] - u[2] * t[0][1];
+    t[1][1] = u[2] * t[0][0] - u[0] * t[0][2];
+    t[1][2] = u[0] * t[0][1] - u[1] * t[0][0];
 #endif
-    dvec3 t[2] = dvec3[2](t0, t1);
     const int nt = DIM - 1;
-    dmat2 At = dmat2(0.0lf), St = dmat2(0.0lf);
+    double At[2][2] = double[2][2](double[2](0.0lf, 0.0lf), double[2](0.0lf, 0.0lf));
+    double St[2][2] = double[2][2](double[2](0.0lf, 0.0lf), double[2](0.0lf, 0.0lf));
     for (int p = 0; p < nt; p++)
         for (int q = 0; q < nt; q++)
             for (int a = 0; a < DIM; a++)
@@ -111,8 +113,8 @@ void main()
     float kappa = 0.0, lam = 0.0;
     if (!is_wall(i) && len_i > CSF_NORMAL_MIN) {
         double wi = double(len_i - CSF_NORMAL_MIN);
-        A = dmat3(0.0lf);
-        S = dmat3(0.0lf);
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) A[a][b] = S[a][b] = 0.0lf;
         ls = wi * csf_w_surface(0.0lf);
         sph_walk(i, PRED3(i));
         // the outward unit normal, in float as the CPU's

@@ -35,7 +35,9 @@ void main()
             precise float y = u_dt * v + pos_r_[k];
             precise float x0 = pos_[k];
             precise float x = x0 + y;
-            pos_r_[k] = y - (x - x0);
+            // precise, or a compiler may fold y - ((x0 + y) - x0) to 0 (NVIDIA's does)
+            precise float r = y - (x - x0);
+            pos_r_[k] = r;
 #else
             precise float x = pos_[k] + u_dt * v;
 #endif

@@ -1,6 +1,7 @@
 /* The pressure solvers (pressure_solver = pcisph, dfsph) on the GL backend
  * against the CPU: separate runs of small dam breaks, 2D and 3D, step by
- * step the same iteration counts (within 1, see compare_runs) and, at the end, the same
+ * step the same iteration counts (within 1, see compare_runs; on a software
+ * renderer: see software_device) and, at the end, the same
  * positions within the whole-run tolerance of tests/test_gl_backend.c; the
  * solver is called once per iteration on GL too, and reads back only the
  * error of each iteration. Pass by pass, each iteration's fields are
@@ -34,6 +35,22 @@ static const char *dam_3d =
     "[physics]\nstiffness=1000\nviscosity=0.002\ngravity=0 -9.81 0\n"
     "[fluid column]\nmin=0 0 0\nmax=0.15 0.15 0.15\nspacing=0.025\n"
     "[kernels]\nh=0.05\n[time]\ndt=0.0005\ncfl=0\n";
+
+/* Whether the GL device is a software renderer (Mesa's llvmpipe, as in CI):
+ * it compiles GLSL to the C code's operations, IEEE-rounded one by one, and
+ * the solvers then take the CPU's iteration count step by step. A GPU
+ * contracts a * b + c into one rounding and approximates division (GLSL
+ * allows 2.5 ulp): on an H100 (driver 580) PCISPH with the local delta in 2D
+ * took the same count in 27 of 40 steps (worst difference 7) for the same
+ * total, 106 iterations, and positions 6.3e-6 m apart. There the per-step
+ * counts are reported, and the totals, the positions and the density error
+ * of every step are asserted. */
+static bool software_device(void)
+{
+    char device[256];
+    if (!sph_gpu_probe(device, sizeof device)) return true;
+    return strstr(device, "llvmpipe") || strstr(device, "softpipe") || strstr(device, "Software");
+}
 
 /* extra: more --set lines, separated by spaces (NULL: none), e.g. "physics.solver_warm_start=on" */
 static sph_sim *make(const char *ini, const char *solver, const char *walls, const char *extra, bool gl)
@@ -88,6 +105,7 @@ static void compare_runs(const char *ini, const char *solver, const char *walls,
         for (uint32_t i = 0; i < u->n; i++) u->P.pos[d][i] = nextafterf(u->P.pos[d][i], INFINITY);
     const bool df = g->def.pressure_solver == SPH_PSOLVER_DFSPH;
     const int p = df ? SPH_PASS_DFSPH : SPH_PASS_PCISPH;
+    const bool exact = software_device();
     int same = 0, worst = 0, spread = 0;
     long total = 0, total_gl = 0;
     double err_worst = 0;
@@ -100,7 +118,7 @@ static void compare_runs(const char *ini, const char *solver, const char *walls,
         const int d = count_difference(g, c), allowed = spread > 1 ? spread : 1;
         spread = count_difference(u, c) > spread ? count_difference(u, c) : spread;
         if (spread > allowed && d <= spread) { /* the ulp-shifted run differs as much at this very step */
-        } else {
+        } else if (exact) {
             cr_expect_leq(d, allowed, "%s, %s walls, step %d: %d (+%d) iterations on GL, %d (+%d) on the CPU", solver,
                           walls, s, g->solver.iterations, g->solver.div_iterations, c->solver.iterations,
                           c->solver.div_iterations);

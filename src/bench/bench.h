@@ -66,6 +66,8 @@ typedef struct bench_config {
 #define BENCH_JITTER 0.1       /* spacings: the timed block is off its lattice, as a fluid that has flowed */
 #define BENCH_CHECK_JITTER 0.1 /* spacings: the checks move particles off it, so that no pair sits at r = h */
 #define BENCH_CHECK_STEPS 10
+#define BENCH_GL_WARM_MS 300.0 /* [ms] a GL level steps this long before it is timed (the GPU's clock rises) */
+#define BENCH_GL_WARM_STEPS 200 /* ... or this many steps, whichever comes first */
 
 int bench_k_min(int dim);
 void bench_sides(int dim, int k, int side[3]);
