@@ -438,6 +438,10 @@ sph check lessons/scenes/dam-break-2d.ini 2>&1 | grep -v '^memory: ' > "$tmp/che
 # bench solvers --solvers: a row it does not have is refused, naming it, before anything runs
 sph bench solvers --quick --solvers pcisph+,nope > "$tmp/bs.txt" 2>&1; rc=$?
 [ "$rc" -eq 2 ] && grep -q "no solver row 'nope'" "$tmp/bs.txt" && ok || bad "bench solvers --solvers nope: rc $rc: $(cat "$tmp/bs.txt")"
+# bench scaling --at: the sweep's largest N, reached even between two doublings
+sph bench scaling --quick --levels L5 --at 1000 --out "$tmp/scaling" -q > "$tmp/sc.txt" 2>&1; rc=$?
+last_n=$(tail -1 "$tmp/scaling/scaling-3d.csv" 2>/dev/null | cut -d, -f4)
+[ "$rc" -eq 0 ] && [ "${last_n:-0}" -eq 1000 ] && ok || bad "bench scaling --at 1000: rc $rc, last N '${last_n:-none}'"
 # its command list names every problem of validate and every WHAT of bench
 for name in $(sph validate list 2>/dev/null | sed -n 's/^\([a-z-][a-z-]*\)  .*/\1/p'); do
     sed -n '/^sphlab validate NAME/,/^sphlab bench/p' README.md | grep -q "$name" && ok ||

@@ -17,14 +17,18 @@ int bench_cmd_scaling(bench_opts *o)
     bench_now_iso(date, sizeof date);
     bench_loadavg(load0);
     double t_start = sph_now_ms(), ghz0 = bench_clock_probe();
-    /* N = 128, 256, ... : the quick run stops at 8192 */
-    const double n_max = o->quick ? 8192 : (dim == 3 ? 262144 : 524288);
+    /* N = 128, 256, ... up to --at: a GPU's sweep goes to millions; the quick run stops at 8192 */
+    const double n_max = o->at_given ? o->at : o->quick ? 8192 : (dim == 3 ? 262144 : 524288);
     const double max_ms = o->quick ? 150 : 1000; /* a level stops after a size this slow */
     const bench_plan plan = o->quick ? (bench_plan){1, 2, 200, 0, false} : (bench_plan){3, 3, 3000, 0, false};
     int ks[64], nk = 0;
-    for (double n = 128; n <= n_max * 1.001 && nk < 64; n *= 2) {
+    for (double n = fmin(128, n_max); n <= n_max * 1.001 && nk < 64; n *= 2) {
         int k = bench_k_near(dim, n);
         if (nk == 0 || k != ks[nk - 1]) ks[nk++] = k;
+    }
+    { /* --at between two doublings: it is the sweep's last size */
+        int k = bench_k_near(dim, n_max);
+        if (nk < 64 && (nk == 0 || k > ks[nk - 1])) ks[nk++] = k;
     }
     char dir_err[1200];
     if (!sph_output_dir(o->out, dir_err, sizeof dir_err)) {
