@@ -150,7 +150,12 @@ got=$(grep '^| particles |' "$tmp/l10/report.md" | tail -1 | sed 's/^| particles
 sph lesson 10 --export "$tmp/l10h" --quick --quiet --format html > "$tmp/l10h.txt" 2>&1
 grep -q '<th>wall row: |p - rho0 g (H - y)| / rho0 g H</th><th>mean over the column</th>' "$tmp/l10h/report.html" && ! grep -q '\\|' "$tmp/l10h/report.html" && ok || { bad "lesson 10 html: an escaped bar split its cell"; cat "$tmp/l10h.txt"; }
 sph keys extra > "$tmp/keys.txt" 2>&1
-[ $? -eq 2 ] && grep -q "sphlab keys: takes no argument ('extra')" "$tmp/keys.txt" && ok || { bad "keys extra: want exit 2"; cat "$tmp/keys.txt"; }
+[ $? -eq 2 ] && grep -q "sphlab keys: no section 'extra'" "$tmp/keys.txt" && ok || { bad "keys extra: want exit 2"; cat "$tmp/keys.txt"; }
+sph keys physcs > "$tmp/keys.txt" 2>&1
+[ $? -eq 2 ] && grep -q "no section 'physcs' (did you mean physics?)" "$tmp/keys.txt" && ok || { bad "keys physcs: want the nearest section"; cat "$tmp/keys.txt"; }
+# keys SECTION...: those sections alone, in the table's order, each once ([time] written as a scene writes it)
+got=$(sph keys '[time]' physics time | grep '^\[' | tr '\n' ' ')
+[ "$got" = "[physics] [time] " ] && ok || bad "keys '[time]' physics time: headings '$got', want '[physics] [time] '"
 sph validate dam-brake > "$tmp/combo.txt" 2>&1
 [ $? -eq 2 ] && grep -q "did you mean dam-break?" "$tmp/combo.txt" && ok || { bad "validate dam-brake: want the nearest name"; cat "$tmp/combo.txt"; }
 sph check "$oscene" --set domain.wall_model=volume > "$tmp/ob.txt" 2>&1

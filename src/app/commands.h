@@ -8,7 +8,7 @@
     X(run, "SCENE.ini", "simulate a scene; print per-pass timings and a summary") \
     X(check, "SCENE.ini", "validate a scene and print the pipeline it resolves to and its hash health") \
     X(plot, "WHAT ...", "charts for a report: ms per pass, --stats series, kernels (PNG + PDF)") \
-    X(keys, "", "list every scene key with its default, unit and meaning") \
+    X(keys, "[SECTION]", "list the scene keys (of the named sections) with default, unit, meaning") \
     X(render, "SCENE.ini", "simulate headless and write PNG frames (and VTK files)") \
     X(view, "SCENE.ini", "open a window and run the scene live, with overlays") \
     X(hardcases, "", "run the hard cases (odd parameters) and print a verdict for each") \

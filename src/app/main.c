@@ -23,28 +23,77 @@ static void usage(FILE *f)
           f);
 }
 
+/* Each section once, in the order it first appears: the table may hold a
+ * section's keys in more than one run (keys added at its end). */
+static bool keys_section_first(int i)
+{
+    for (int j = 0; j < i; j++)
+        if (strcmp(sph_scene_keys[j].section, sph_scene_keys[i].section) == 0) return false;
+    return true;
+}
+
+static void keys_print_section(const char *sec, bool first)
+{
+    bool named = strcmp(sec, "fluid") == 0 || strcmp(sec, "obstacle") == 0; /* [fluid pool], [obstacle rock] */
+    printf("%s[%s%s]\n", first ? "" : "\n", sec, named ? " NAME" : "");
+    for (int j = 0; j < sph_scene_key_count; j++) {
+        const sph_key *k = &sph_scene_keys[j];
+        if (strcmp(k->section, sec) != 0) continue;
+        printf("  %-18s default %-34s %s%s%s\n", k->name, *k->def ? k->def : "(empty)",
+               k->unit && *k->unit ? "[" : "", k->unit ? k->unit : "", k->unit && *k->unit ? "] " : "");
+        printf("  %-18s %s\n", "", k->help);
+    }
+}
+
+/* "physics", "[physics]" or "fluid NAME" -> the section's table name, or NULL */
+static const char *keys_section_named(const char *arg)
+{
+    char buf[64];
+    snprintf(buf, sizeof buf, "%s", arg[0] == '[' ? arg + 1 : arg);
+    size_t n = strcspn(buf, "] ");
+    buf[n] = '\0';
+    for (int i = 0; i < sph_scene_key_count; i++)
+        if (strcmp(sph_scene_keys[i].section, buf) == 0) return sph_scene_keys[i].section;
+    return NULL;
+}
+
 int cmd_keys(int argc, char **argv)
 {
-    if (argc > 1 && strcmp(argv[1], "--help") != 0 && strcmp(argv[1], "-h") != 0) {
-        fprintf(stderr, "sphlab keys: takes no argument ('%s'); it prints every scene key\n", argv[1]);
-        return 2;
-    }
-    /* each section once, in the order it first appears: the table may hold
-     * a section's keys in more than one run (keys added at its end) */
-    for (int i = 0; i < sph_scene_key_count; i++) {
-        const char *sec = sph_scene_keys[i].section;
-        bool seen = false;
-        for (int j = 0; j < i && !seen; j++) seen = strcmp(sph_scene_keys[j].section, sec) == 0;
-        if (seen) continue;
-        bool named = strcmp(sec, "fluid") == 0 || strcmp(sec, "obstacle") == 0; /* [fluid pool], [obstacle rock] */
-        printf("%s[%s%s]\n", i ? "\n" : "", sec, named ? " NAME" : "");
-        for (int j = i; j < sph_scene_key_count; j++) {
-            const sph_key *k = &sph_scene_keys[j];
-            if (strcmp(k->section, sec) != 0) continue;
-            printf("  %-18s default %-34s %s%s%s\n", k->name, *k->def ? k->def : "(empty)",
-                   k->unit && *k->unit ? "[" : "", k->unit ? k->unit : "", k->unit && *k->unit ? "] " : "");
-            printf("  %-18s %s\n", "", k->help);
+    for (int a = 1; a < argc; a++)
+        if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
+            printf("usage: sphlab keys [SECTION ...]\n"
+                   "  every scene key with its default, unit and meaning; with SECTIONs (physics, [physics]),\n"
+                   "  only theirs\nsections:");
+            for (int i = 0; i < sph_scene_key_count; i++)
+                if (keys_section_first(i)) printf(" %s", sph_scene_keys[i].section);
+            printf("\n");
+            return 0;
         }
+    const char *want[64];
+    int n_want = 0;
+    for (int a = 1; a < argc && n_want < 64; a++) {
+        const char *sec = keys_section_named(argv[a]);
+        if (!sec) {
+            const char *near = NULL;
+            for (int i = 0; i < sph_scene_key_count && !near; i++)
+                if (keys_section_first(i) && sph_name_near(argv[a], sph_scene_keys[i].section))
+                    near = sph_scene_keys[i].section;
+            fprintf(stderr, "sphlab keys: no section '%s'", argv[a]);
+            if (near) fprintf(stderr, " (did you mean %s?)", near);
+            fprintf(stderr, "\nsee `sphlab keys --help` for the sections\n");
+            return 2;
+        }
+        want[n_want++] = sec;
+    }
+    bool first = true;
+    for (int i = 0; i < sph_scene_key_count; i++) {
+        if (!keys_section_first(i)) continue;
+        const char *sec = sph_scene_keys[i].section;
+        bool shown = n_want == 0;
+        for (int w = 0; w < n_want && !shown; w++) shown = want[w] == sec;
+        if (!shown) continue;
+        keys_print_section(sec, first);
+        first = false;
     }
     return 0;
 }
