@@ -269,6 +269,7 @@ typedef struct sph_scene_def {
     sph_backend_kind backend; /* where the passes run: the CPU, or GL compute shaders (src/gpu/) */
     sph_onoff fuse_forces; /* pressure force and viscosity in one walk of the lists, where the forms allow */
     sph_onoff packed_records; /* AVX2 pair loops read neighbours from one record per particle, not field gathers */
+    sph_onoff uniform_mass;   /* with packed_records: one mass for all, a constant of the force walk */
     float jitter;        /* [1] random offset of each particle, in spacings */
     uint32_t seed;       /* [1] random seed of the jitter */
     float interaction_radius;   /* [m] reach of the push/pull around the point */

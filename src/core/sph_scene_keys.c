@@ -286,6 +286,11 @@ const sph_key sph_scene_keys[] = {
      "particle's fields into one record (x, y, z, m: 16 bytes for density; x, y, z, volume, velocity, p/rho^2 or p: "
      "32 bytes for the forces) and read 8 neighbours as 8 loads and a transpose instead of one gather per field; "
      "the same operations per pair, so the same results to the bit; 32 bytes per particle more. Off: gathers"},
+    {"compute", "uniform_mass", SPH_KEY_CHOICE, S(uniform_mass), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: with packed_records = on and the symmetric pressure form, when every particle has the same mass (checked "
+     "each step as the records are written) the force walk takes it as a constant instead of gathering each "
+     "neighbour's mass; the same products, so the same results to the bit; unequal masses are gathered as with "
+     "off. Off: gathered"},
 
     {"fluid", "min", SPH_KEY_POINT, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_POINT, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},

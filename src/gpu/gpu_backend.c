@@ -107,6 +107,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [compute] packed_records = on is not implemented by the GL backend (it changes how the "
                         "CPU's AVX2 loops read neighbours; the shaders read buffers; accepted there: off)",
                         def->file);
+    if (def->uniform_mass == SPH_ON)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [compute] uniform_mass = on is not implemented by the GL backend (it changes how the "
+                        "CPU's AVX2 force walk reads the mass; the shaders read buffers; accepted there: off)",
+                        def->file);
     if (def->skin > 0)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] skin = %g (Verlet lists) is not implemented by the GL backend (its passes "

@@ -18,6 +18,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 static const char *skip_reason(const sph_scene_def *def)
 {
@@ -228,9 +229,11 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
  * result differs from the 16-lane loops by round-off only. With rec
  * (packed_records = on) each neighbour's x, y, z, volume, velocity and p/rho^2
  * (or p) come from its record (two sph_simd8_rec4) instead of 8 gathers: the
- * same values, the same operations, the same result to the bit. */
+ * same values, the same operations, the same result to the bit. With one_mass
+ * (uniform_mass = on, every particle's mass the same) the mass is that
+ * constant, not a gather: the same value, so the same result again. */
 static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, const sph_kernel *kv, int i,
-                                   const int dim, const bool fused, const float *rec)
+                                   const int dim, const bool fused, const float *rec, const bool one_mass)
 {
     const sph_particles *P = &sim->P;
     const bool symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
@@ -247,6 +250,7 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
     const __m256 inv_hv = _mm256_set1_ps(fused ? kv->inv_h : 0.0f), one = _mm256_set1_ps(1.0f);
     const __m256 h2 = _mm256_set1_ps(sim->def.h * sim->def.h);
     const __m256i vi = _mm256_set1_epi32(i);
+    const __m256 mall = _mm256_set1_ps(one_mass ? P->mass[0] : 0.0f); /* one_mass: every neighbour's mass [kg] */
     __m256 ax = zero, ay = zero, az = zero, bx = zero, by = zero, bz = zero;
     const sph_nbr_row row = sph_nbr_row_of(&sim->S, (uint32_t)i);
     const uint32_t end = row.n;
@@ -294,7 +298,8 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
         __m256 t = _mm256_max_ps(_mm256_sub_ps(h, r), zero);
         __m256 dw_over_r = _mm256_div_ps(_mm256_mul_ps(m3s, _mm256_mul_ps(t, t)), r);
         const __m256 pj = rec ? g[3] : sph_simd8_gather(live, idx, symmetric ? P->p_rho2 : P->p);
-        __m256 coef = symmetric ? _mm256_mul_ps(sph_simd8_gather(live, idx, P->mass), _mm256_add_ps(pi_over, pj))
+        const __m256 mj = one_mass ? mall : symmetric ? sph_simd8_gather(live, idx, P->mass) : zero;
+        __m256 coef = symmetric ? _mm256_mul_ps(mj, _mm256_add_ps(pi_over, pj))
                                 : _mm256_mul_ps(_mm256_mul_ps(vol, half_over_rho), _mm256_add_ps(pi, pj));
         if (any_close) /* a coincident pair only repels */
             coef = sph_simd8_pick(_mm256_and_si256(close, _mm256_castps_si256(_mm256_cmp_ps(coef, zero, _CMP_LT_OQ))),
@@ -323,15 +328,21 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
 #if SPH_HAVE_AVX2
 /* The records forces_one_avx2 reads (packed_records = on), 8 floats a particle:
  * x, y, z [m], volume [m^3], the velocity the viscosity reads [m/s], and
- * p/rho^2 [m^5/(kg s^2)] (symmetric form) or p [Pa]. */
-static void pack_records(const sph_sim *sim, float *rec)
+ * p/rho^2 [m^5/(kg s^2)] (symmetric form) or p [Pa]. With check (uniform_mass
+ * = on) it also says whether every particle's mass is the first's, bit for
+ * bit, so that the walk may take it as a constant (the same loop reads it
+ * alongside: no pass of its own). */
+static bool pack_records(const sph_sim *sim, float *rec, const bool check)
 {
     const sph_particles *P = &sim->P;
     const int n = (int)sim->n, dim = sim->dim;
     float *const *vj = P->vel_visc[0] ? P->vel_visc : P->vel;
     const float *pj = sim->def.pressure_form == SPH_PFORM_SYMMETRIC ? P->p_rho2 : P->p;
-#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+    const float m0 = n > 0 ? P->mass[0] : 0.0f;
+    int differ = 0; /* particles whose mass is not m0 */
+#pragma omp parallel for schedule(static) reduction(+ : differ) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (check) differ += memcmp(&P->mass[i], &m0, sizeof m0) != 0; /* bits: the very value a gather reads (-0 == 0 as floats) */
         float *r = rec + 8 * (size_t)i;
         for (int d = 0; d < 3; d++) {
             r[d] = d < dim ? P->pred[d][i] : 0.0f;
@@ -340,6 +351,7 @@ static void pack_records(const sph_sim *sim, float *rec)
         r[3] = P->vol[i];
         r[7] = pj[i];
     }
+    return check && differ == 0;
 }
 #endif
 
@@ -362,7 +374,9 @@ static void run(sph_sim *sim)
         const sph_kernel kv = sim->k_viscosity;
         const bool fused = sph_forces_fused(sim); /* also writes acc_v; the viscosity pass then does nothing */
         float *rec = sph_simd8_packed(sim) ? sph_simd8_records(sim, 8) : NULL;
-        if (rec) pack_records(sim, rec);
+        /* uniform_mass: the symmetric form's one gather the records leave, gone when every mass is the same */
+        const bool want_one = sim->def.uniform_mass == SPH_ON && sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
+        const bool one_mass = rec && pack_records(sim, rec, want_one);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) {
             if (sph_is_wall(&sim->P, i)) {
@@ -371,19 +385,22 @@ static void run(sph_sim *sim)
                     for (int d = 0; d < dim; d++) sim->P.acc_v[d][i] = 0.0f;
                 continue;
             }
-            /* each combination its own call, so that dim, fused and rec are constants in it */
-            if (rec && fused)
-                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, true, rec)
-                         : forces_one_avx2(sim, &k, &kv, i, 2, true, rec);
+            /* each combination its own call, so that dim, fused, rec and one_mass are constants in it */
+#define SPH_FORCES_AVX2(F, R, M)                                                                                   \
+    (dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, F, R, M) : forces_one_avx2(sim, &k, &kv, i, 2, F, R, M))
+            if (one_mass && fused)
+                SPH_FORCES_AVX2(true, rec, true);
+            else if (one_mass)
+                SPH_FORCES_AVX2(false, rec, true);
+            else if (rec && fused)
+                SPH_FORCES_AVX2(true, rec, false);
             else if (rec)
-                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, false, rec)
-                         : forces_one_avx2(sim, &k, &kv, i, 2, false, rec);
+                SPH_FORCES_AVX2(false, rec, false);
             else if (fused)
-                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, true, NULL)
-                         : forces_one_avx2(sim, &k, &kv, i, 2, true, NULL);
+                SPH_FORCES_AVX2(true, NULL, false);
             else
-                dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, false, NULL)
-                         : forces_one_avx2(sim, &k, &kv, i, 2, false, NULL);
+                SPH_FORCES_AVX2(false, NULL, false);
+#undef SPH_FORCES_AVX2
         }
         return;
     }
