@@ -163,6 +163,7 @@ Test(solvers, pool_stays_at_rest, .timeout = 120)
         double mass = 0;
         for (uint32_t i = 0; i < sim->n; i++) mass += sim->P.mass[i];
         double rms = sqrt(2 * st.ekin / mass);
+        cr_log_info("%s: rms speed %.4f m/s after 0.4 s, fastest %.3f m/s", solvers[k], rms, fastest);
         cr_assert_lt(rms, 0.05, "%s: rms speed %g m/s after 0.4 s", solvers[k], rms);
         cr_assert_lt(fastest, sqrtf(2 * 9.81f * 0.02f), "%s: max speed %g m/s within 0.4 s", solvers[k], fastest);
         sph_sim_destroy(sim);
@@ -239,7 +240,7 @@ static double check_reached_slack(const char *ini, int steps, double slack)
         converged++;
         iterations += sim->solver.iterations + sim->solver.div_iterations;
         if ((slack > 1.0 ? lists : full) > tol * 1.001 && over++ == 0) first = s;
-        cr_assert_leq(full, tol * slack * 1.001, "step %d: %g over all pairs", s, full);
+        cr_assert_leq(full, tol * slack * 1.001, "step %d: %g over all pairs, %g over the lists", s, full, lists);
         worst = fmax(worst, full);
     }
     cr_log_info("%s: %d of %d steps converged, %d above the tolerance (the first: step %d), largest %.4g %%, "
@@ -356,10 +357,15 @@ Test(solvers, pcisph_local_delta_corner)
  * 50,688-particle bench's (4.7 kPa), where step 3's solve fell to 0.118 % and
  * then rose to 0.42 % (docs/accuracy.md, section 8). Here the third step's
  * solve falls to 2.17 % at its second iteration, then rises (4.0 % at 50,
- * 20.1 % at the cap), held by the bottom corners pressed within s/2 of the
- * walls. Disabled until the cold solve converges there: the assertion (every
- * iteration's error at most the least seen so far plus the tolerance, and
- * the solve ending within the tolerance) fails on the present code. */
+ * 20.1 % at the cap), held by the bottom corners: the walls push back with
+ * p_i alone and the density kernel's gradient, so a uniform pressure presses
+ * a wall row into the wall (42 m/s^2 per kPa) and raising p raises the
+ * corner's density. Walls pushing as their hidden lattice in the pair term
+ * pass this test (90 iterations) but break the 50,688-particle bench's warm
+ * run (docs/accuracy.md, section 8): not adopted. Disabled until a fix holds
+ * both: the assertion (every iteration's error at most the least seen so far
+ * plus the tolerance, and the solve ending within the tolerance) fails on
+ * the present code. */
 Test(solvers, pcisph_cold_does_not_rise, .timeout = 300, .disabled = true)
 {
     sph_sim *sim = test_sim("[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\n"
