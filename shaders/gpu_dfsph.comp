@@ -1,4 +1,4 @@
-// uses: PRED VEL MASS RHO ALPHA ALPHA_V KAPPA KAPPA_V RHO_DF DV_DF ENTRIES START WALL REDUCE POS POS_R
+// uses: PRED VEL MASS RHO ALPHA ALPHA_V KAPPA KAPPA_V RHO_DF DV_DF ENTRIES START WALL REDUCE
 // Pass dfsph (src/passes/dfsph.c): one stage of an iteration per dispatch,
 // u_count says which (run_dfsph in src/gpu/gpu_passes.c calls them in the
 // CPU pass's order); every walk is over the pairs within h at pred (the
@@ -46,19 +46,13 @@ vec3 velocity(uint j)
     return v;
 }
 
-// x* = x + dt (v + dv), rounded as gpu_integrate.comp rounds it, clamped into the box as the walls pass will
-// (sph_solver_clamped in src/passes/solver.h)
+// x* = pred + dt dv, clamped into the box as the walls pass will (sph_solver_clamped in src/passes/solver.h)
 vec3 reached(uint j)
 {
     vec3 x = vec3(0.0);
     for (int d = 0; d < DIM; d++) {
         uint k = uint(d) * N + j;
-        precise float v = vel_[k] + dv_df_[k];
-#if HAS_POS_R
-        precise float y = pos_[k] + (u_dt * v + pos_r_[k]);
-#else
-        precise float y = pos_[k] + u_dt * v;
-#endif
+        precise float y = pred_[k] + u_dt * dv_df_[k];
 #if HAS_WALLS
         if (PER[d] <= 0.0) y = min(max(y, DOM_MIN[d]), DOM_MAX[d]);
 #endif
