@@ -1,4 +1,4 @@
-// uses: PRED VEL MASS RHO ALPHA KAPPA KAPPA_V RHO_DF DV_DF ENTRIES START WALL REDUCE
+// uses: PRED VEL MASS RHO ALPHA ALPHA_V KAPPA KAPPA_V RHO_DF DV_DF ENTRIES START WALL REDUCE
 // Pass dfsph (src/passes/dfsph.c): one stage of an iteration per dispatch,
 // u_count says which (run_dfsph in src/gpu/gpu_passes.c calls them in the
 // CPU pass's order); every walk is over the pairs within h at pred (the
@@ -6,9 +6,11 @@
 // with every acceleration field this one would declare more than the 16
 // storage blocks a shader may have.
 //   0 factors: alpha_i = rho_r / max(G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, DEN_FULL), walls in G
-//     negative where that sum is not above ALPHA_MIN (src/passes/dfsph.c says why)
+//     negative where that sum is not above ALPHA_MIN (src/passes/dfsph.c says why), and the divergence
+//     solve's alpha_v_i = rho_r / max(|G^p_i|^2 + sum_j m_j^2 |grad W^p_ij|^2, DEN_FULL_V)
 //   1, 2 warm start: kappa_v (1) or kappa (2) *= u_value
-//   3 measure the divergence: rho_df = dt D rho/Dt of v + dv where rho >= rho_r (else 0), error rho_df / rho_r
+//   3 measure the divergence: rho_df = dt D rho/Dt of v + dv where rho >= rho_r (else 0), error rho_df / rho_r,
+//     with the pressure kernel's gradient, the push's (dfsph.c says why)
 //   4 measure the density: rho_df = sum_j m_j W^rho(x*_i - x*_j) + rho_r (walls' share at x*_i) at the
 //     positions the step will reach, x* = pred + dt dv clamped into the box, error (rho_df - rho_r) / rho_r
 //     4 puts the largest error, at least 0, into reduce_[2], and the largest (rho_r - rho_df) / rho_r of a
@@ -17,7 +19,7 @@
 //     atomicMax on the float's bits (non-negative floats order as their bits do; a NaN counts as 0, as fmaxf
 //     leaves it out on the CPU); 3 the sum of max(error, 0), in units of 2^-28 N (so that the host reads the
 //     mean over the N particles as the count times 2^-28): per work group in shared memory, then one atomicAdd
-//   5 correct: kappa_v += max(dt D, 0) max(alpha, 0) / dt^2, u_value = dt^2
+//   5 correct: kappa_v += max(dt D, 0) alpha_v / dt^2, u_value = dt^2
 //   6 correct: kappa = max(kappa + OMEGA (rho_df - rho_r) |alpha| / dt^2, -kappa_v) (a relaxed Jacobi step,
 //     kappa_v + kappa kept >= 0; src/passes/dfsph.c says why)
 layout(local_size_x = WG) in;
@@ -27,7 +29,7 @@ uniform float u_value;
 shared uint s_err[WG];
 shared float s_sum[WG];
 vec3 gr, gp, vi, xs;
-float dots, sum;
+float dots, dots_p, sum;
 const float OMEGA = 0.5; // SPH_DFSPH_OMEGA in src/passes/dfsph.c
 
 float grad_factor(int kind, float s, float r2)
@@ -75,9 +77,10 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
             gr[d] += fr * dx[d];
             gp[d] += fp * dx[d];
             dots += fr * fp * dx[d] * dx[d];
+            dots_p += fp * fp * dx[d] * dx[d];
         }
     } else {
-        float f = mass_[j] * grad_factor(KD, SIG_D, r2);
+        float f = mass_[j] * grad_factor(KP, SIG_P, r2);
         vec3 vj = velocity(j);
         for (int d = 0; d < DIM; d++) sum += f * (vi[d] - vj[d]) * dx[d];
     }
@@ -98,6 +101,7 @@ void main()
             gr = vec3(0.0);
             gp = vec3(0.0);
             dots = 0.0;
+            dots_p = 0.0;
             sph_walk(i, xi);
 #if WALL_VOLUME
             for (int d = 0; d < DIM; d++) {
@@ -107,6 +111,8 @@ void main()
 #endif
             precise float raw = dots + gr.x * gp.x + gr.y * gp.y + gr.z * gp.z;
             alpha_[i] = (raw > ALPHA_MIN ? 1.0 : -1.0) * RHO_R / max(raw, DEN_FULL);
+            precise float raw_v = dots_p + gp.x * gp.x + gp.y * gp.y + gp.z * gp.z;
+            alpha_v_[i] = RHO_R / max(raw_v, DEN_FULL_V);
         } else if (u == 1u) {
             kappa_v_[i] *= u_value;
         } else if (u == 2u) {
@@ -142,7 +148,7 @@ void main()
             precise float k = kappa_[i] + OMEGA * (rho_df_[i] - RHO_R) * abs(alpha_[i]) / u_value;
             kappa_[i] = max(k, -kappa_v_[i]);
         } else {
-            precise float add = max(rho_df_[i], 0.0) * max(alpha_[i], 0.0) / u_value; // rho_df: dt D
+            precise float add = max(rho_df_[i], 0.0) * alpha_v_[i] / u_value; // rho_df: dt D
             kappa_v_[i] += add;
         }
     }

@@ -29,7 +29,7 @@ static double energy(const sph_sim *sim)
  * at 1e-4 runs to 0.5 s with viscosity and the walls' damping only taking energy out, so the energy never rises
  * above its start (0.5 % allowed). Before, the watchdog stopped it at step 240 (one thread): a particle whose own
  * push raised its divergence (alpha's denominator below 0, read as the floor's) had its kappa_v grow without bound.
- * At 1e-5 the watchdog still stops it (src/passes/dfsph.c says why). */
+ * At 1e-5 it runs too (tests/test_dfsph_tight.c). */
 static void check_tight(double tolerance)
 {
     char ini[1200];

@@ -96,6 +96,8 @@
       "pressure acceleration of PCISPH")                                                                         \
     X(ALPHA, alpha, 1, "m^3/kg", "m^2/kg", DERIVED, DFSPH, NONE, "", "alpha",                                    \
       "DFSPH's factor rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2), < 0: own push raises rho")     \
+    X(ALPHA_V, alpha_v, 1, "m^3/kg", "m^2/kg", DERIVED, DFSPH, NONE, "", "alpha div",                            \
+      "DFSPH's divergence factor rho_i / (|sum_j m_j grad W^p_ij|^2 + sum_j |m_j grad W^p_ij|^2), walls in the sum") \
     X(KAPPA, kappa, 1, "m^2/s^2", "m^2/s^2", STATE, DFSPH, NONE, "", "kappa",                                    \
       "DFSPH's constant-density stiffness kappa = p / rho of the last step (warm start)")                       \
     X(KAPPA_V, kappa_v, 1, "m^2/s^2", "m^2/s^2", STATE, DFSPH, NONE, "", "kappa div",                            \

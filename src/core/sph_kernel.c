@@ -229,8 +229,9 @@ float sph_scene_finest_spacing(const sph_scene_def *def)
 }
 
 /* A sum over a full neighbourhood of the finest lattice, spacing s > 0:
- * sum_j m W(r_j), or with dots sum_j m^2 W'rho(r_j) W'p(r_j) (j != i). */
-static double lattice_sum(const sph_sim *sim, float s, bool dots)
+ * sum_j m W^rho(r_j), or with a kernel b sum_j m^2 W'a(r_j) W'b(r_j) (j != i),
+ * a = b if same, else the density kernel. */
+static double lattice_sum(const sph_sim *sim, float s, const sph_kernel *b, bool same)
 {
     const sph_scene_def *def = &sim->def;
     const int dim = sim->dim, r = (int)ceilf(def->h / s);
@@ -241,10 +242,10 @@ static double lattice_sum(const sph_sim *sim, float s, bool dots)
             for (int x = -r; x <= r; x++) {
                 float d = s * sqrtf((float)(x * x + y * y + z * z));
                 if (!(d < def->h)) continue;
-                if (!dots)
+                if (!b)
                     sum += m * sph_kernel_w(&sim->k_density, d);
                 else if (d > 0)
-                    sum += m * m * sph_kernel_dw(&sim->k_density, d) * sph_kernel_dw(&sim->k_pressure, d);
+                    sum += m * m * sph_kernel_dw(same ? b : &sim->k_density, d) * sph_kernel_dw(b, d);
             }
     return sum;
 }
@@ -259,7 +260,7 @@ static double lattice_sum(const sph_sim *sim, float s, bool dots)
 float sph_sim_lattice_rest_density(const sph_sim *sim)
 {
     const float s = sph_scene_finest_spacing(&sim->def);
-    return s > 0 ? (float)lattice_sum(sim, s, false) : sim->def.rest_density;
+    return s > 0 ? (float)lattice_sum(sim, s, NULL, false) : sim->def.rest_density;
 }
 
 /* sum_j m_j^2 grad W^rho_ij . grad W^p_ij over the finest lattice's full
@@ -269,5 +270,13 @@ float sph_sim_lattice_rest_density(const sph_sim *sim)
 float sph_sim_lattice_dots(const sph_sim *sim)
 {
     const float s = sph_scene_finest_spacing(&sim->def);
-    return s > 0 ? (float)lattice_sum(sim, s, true) : 0.0f;
+    return s > 0 ? (float)lattice_sum(sim, s, &sim->k_pressure, false) : 0.0f;
+}
+
+/* sum_j m_j^2 |grad W^p_ij|^2 over the same neighbourhood: the least denominator of
+ * DFSPH's divergence factor, whose divergence and push both take the pressure kernel. */
+float sph_sim_lattice_dots_pressure(const sph_sim *sim)
+{
+    const float s = sph_scene_finest_spacing(&sim->def);
+    return s > 0 ? (float)lattice_sum(sim, s, &sim->k_pressure, true) : 0.0f;
 }

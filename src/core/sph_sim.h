@@ -264,6 +264,7 @@ typedef struct sph_solver_state {
     float rho_rest;          /* [kg/m^dim] the density held: the sum a particle of the initial lattice reads */
     float delta;             /* [m^2] pcisph: delta at dt = 1 s (delta(dt) = delta / dt^2, in m^2/s^2) */
     float den_full;          /* [kg^2/m^(2 dim + 2)] dfsph: alpha's least denominator, a full neighbourhood's */
+    float den_full_v;        /* [kg^2/m^(2 dim + 2)] dfsph: alpha_v's least denominator, a full neighbourhood's */
     float dt_last;           /* [s] the step the kept pressures were solved for (solver_warm_start); 0: none */
     float *x_df;             /* [m] dfsph: x* of the density iteration, x y z per particle (scratch) */
     uint32_t x_df_cap;       /* [1] particles x_df has room for */
@@ -340,6 +341,8 @@ float sph_sim_lattice_rest_density(const sph_sim *sim);
 /* DFSPH's alpha denominator for a full neighbourhood of that lattice
  * (sum_j m^2 grad W^rho . grad W^p) [kg^2/m^(2 dim + 2)], 0 without blocks. */
 float sph_sim_lattice_dots(const sph_sim *sim);
+/* The same with the pressure kernel's gradient in both factors (sum_j m^2 |grad W^p|^2): the divergence solve's. */
+float sph_sim_lattice_dots_pressure(const sph_sim *sim);
 /* The finest spacing of the scene's blocks [m], 0 without blocks. */
 float sph_scene_finest_spacing(const sph_scene_def *def);
 

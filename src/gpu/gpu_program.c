@@ -178,6 +178,7 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put_float(&t, "INV_RHO_R2", rho_r > 0 ? 1.0f / (rho_r * rho_r) : 0.0f);
     put_float(&t, "ALPHA_MIN", 1e-6f * rho_r * rho_r / (def->h * def->h));
     put_float(&t, "DEN_FULL", sim->solver.den_full);
+    put_float(&t, "DEN_FULL_V", sim->solver.den_full_v);
     put(&t, "#define SOLVER_WALL_AT %d\n#define SOLVER_WALL_SAMPLES %d\n", GPU_WALL_FLOATS, SPH_SOLVER_WALL_SAMPLES);
     put_float(&t, "SOLVER_WALL_SCALE", (float)SPH_SOLVER_WALL_SAMPLES / def->h);
     put(&t, "#define ACC_OTHER(k) (0.0");

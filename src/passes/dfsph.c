@@ -4,8 +4,9 @@
  * Each step makes two solves at the step's predicted positions x + dt v
  * (where the neighbour lists and the density were made), both on the
  * velocity v* = v + dt (other accelerations + this pass's a):
- *   divergence-free: D_i = sum_j m_j (v*_i - v*_j) . grad W_ij (+ rho_r grad(walls' share) . v*_i at walls, solver.h),
- *     kappa^v_i += max(D_i, 0) alpha_i / dt, until the mean of max(dt D_i, 0) / rho_r <= divergence_tolerance
+ *   divergence-free: D_i = sum_j m_j (v*_i - v*_j) . grad W^p_ij (+ rho_r grad(walls' share) . v*_i at walls,
+ *     solver.h),
+ *     kappa^v_i += max(D_i, 0) alpha^v_i / dt, until the mean of max(dt D_i, 0) / rho_r <= divergence_tolerance
  *     (the density change the flow would make in one step, counted where rho_i >= rho_r; the average, as
  *     Bender & Koschier's Algorithm 2);
  *   constant density: rho*_i = sum_j m_j W(x*_i - x*_j) + rho_r (walls' share at x*_i), summed at the positions
@@ -18,7 +19,8 @@
  *     against 502.3 J cold at 0.1 %, 534.6 against 488.0 J at 0.01 %; now 538.0 and 489.5 J, docs/accuracy.md);
  * with the factor alpha_i = rho_r / max(G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, its full-lattice
  * value, see below),
- * G_i = sum_j m_j grad W_ij + rho_r grad(walls' share) (Bender & Koschier 2017, eq. 12 with rho_i = rho_r)
+ * G_i = sum_j m_j grad W_ij + rho_r grad(walls' share) (Bender & Koschier 2017, eq. 12 with rho_i = rho_r),
+ * and the divergence solve's alpha^v_i = rho_r / max(|G^p_i|^2 + sum_j m_j^2 |grad W^p_ij|^2, its full-lattice value)
  * and the acceleration a_i = -sum_j m_j (K_i + K_j) / rho_r grad W^p_ij - K_i grad(walls' share),
  * K = kappa^v + kappa (eq. 10).
  * Why the density solve differs from the paper's (rho* = rho + dt^2 sum_j m_j (a_i - a_j) . grad W_ij, eq. 11, and
@@ -49,16 +51,24 @@
  * particle was never corrected (lesson 11 at 0.1 %, step 106: 3 capped solves in a row).
  * Where the denominator itself is not positive, alpha is stored negative: with two kernels G^rho . G^p can be
  * below -sum m^2 grad W^rho . grad W^p (a near neighbour on one side weighs in grad W^p, farther ones on the other in
- * grad W^rho), and the particle's own push then raises its density and divergence. The density solve, which can
- * take its kappa back, uses |alpha|; the divergence solve, whose kappa^v only grows, leaves such a particle to its
- * neighbours' pushes: with the floor's positive alpha its kappa^v grew without bound (lesson 11 at
- * divergence_tolerance = 1e-4, step 240 on one thread: kappa^v 1.2e5 m^2/s^2 after 100 iterations, the watchdog);
- * now it runs 0.5 s at 1e-4 (7.2 divergence iterations per step) without its energy rising (tests/test_dfsph.c).
- * At 1e-5 the watchdog still stops it (step 228): in the bottom corner a particle's own kappa pushes it into the
- * walls (the walls' term takes the density kernel's gradient, which cancels the pairs' sum of grad W^rho, not their
- * larger sum of grad W^p), and the divergence solve, whose mean stalls near 1.5e-5, pushes it harder. Taking the
- * pressure kernel's gradient for that term held 1e-5 but made energy: the 2D dam break of tests/test_solvers.c
- * ended with kinetic plus potential energy 92 J above its start (4997 against 4905 J), so it is not done.
+ * grad W^rho), and the particle's own push then raises its density. The density solve, which can take its kappa
+ * back, uses |alpha|.
+ * The divergence solve reads D with the pressure kernel's gradient, the one its push acts with: Bender & Koschier
+ * (2017, eqs. 9 and 10) take one grad W_ij in both, so that the solve's matrix is symmetric and positive
+ * semi-definite (the push's work is -rho_r sum m_i kappa^v_i D_i); D is then rho div v, estimated with the pressure
+ * kernel, and its factor alpha^v (above) is always > 0. Read with grad W^rho, as before, the matrix was neither:
+ * lesson 11's dam break at divergence_tolerance = 1e-5 stopped the watchdog at step 227 (t = 0.444 s), where two
+ * particles with a near-coincident neighbour between them (0.0026 m, h = 0.04 m; own G^rho . G^p = -6.6e8 against
+ * dots 6.7e8 kg^2/m^6, the self-response 1 % of a full one) each raised the other's divergence more than its own push
+ * lowered its own: their kappa^v, which only grows, grew 9 % an iteration, to 5.9e4 m^2/s^2 and a mean error of 5.9e-2
+ * at the cap (alpha < 0 had let it run 0.5 s at 1e-4; before that, kappa^v ran away at 1e-4 too). Now it runs to
+ * 0.5 s at 1e-5 (tests/test_dfsph_tight.c: 53.1 divergence iterations per step, 18 of 263 solves capped, ending at up
+ * to 2.2e-5, early in the run where the column is deep and Jacobi slow), and the 2D dam break of
+ * lessons/scenes/dam-break-2d.ini at 1e-5 runs its 1 s (it stopped at step 838; docs/accuracy.md, section 8).
+ * A step that can also lower kappa^v, max(kappa^v + omega alpha^v dt D / dt^2, 0) as SPlisHSPlasH's
+ * TimeStepDFSPH does (omega 1 or 0.5), converged worse there: 198 or 145 capped solves, against 18.
+ * Left: the 2D dam break of tests/test_solvers.c (check_dam) at 1e-5 ends 27.6 J/m (0.56 %) above its start's energy,
+ * put in by four constant-density solves capped in a row (steps 208 to 211); at the default 1e-3 it is unchanged.
  * Bender & Koschier solve the divergence after moving the particles, with
  * new neighbours; here both solves use the step's lists, the divergence one
  * first, so the density solve accounts for the positions it changes. Warm
@@ -137,7 +147,7 @@ static void factors(sph_sim *sim)
     const float full = sim->solver.den_full;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
-        float gr[3] = {0, 0, 0}, gp[3] = {0, 0, 0}, dots = 0;
+        float gr[3] = {0, 0, 0}, gp[3] = {0, 0, 0}, dots = 0, dots_p = 0;
         const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
         for (uint32_t e = 0; e < row.n; e++) {
             const uint32_t j = sph_nbr_at(&row, e);
@@ -149,6 +159,7 @@ static void factors(sph_sim *sim)
                 gr[d] += fr * dx[d];
                 gp[d] += fp * dx[d];
                 dots += fr * fp * dx[d] * dx[d];
+                dots_p += fp * fp * dx[d] * dx[d];
             }
         }
         if (walls) {
@@ -162,6 +173,8 @@ static void factors(sph_sim *sim)
         const float raw = dots + gr[0] * gp[0] + gr[1] * gp[1] + gr[2] * gp[2];
         const float sign = raw > 1e-6f * rho_r * rho_r / (sim->def.h * sim->def.h) ? 1.0f : -1.0f; /* see the top */
         P->alpha[i] = sign * rho_r / fmaxf(raw, full);
+        /* the divergence solve's: its divergence and its push take one gradient, so this is > 0 (see the top) */
+        P->alpha_v[i] = rho_r / fmaxf(dots_p + gp[0] * gp[0] + gp[1] * gp[1] + gp[2] * gp[2], sim->solver.den_full_v);
     }
 }
 
@@ -228,8 +241,8 @@ static float *reached(sph_sim *sim)
     return xs;
 }
 
-/* rho_df: dt D rho/Dt of v* (density false; linear, Bender & Koschier 2017 eq. 9), or the density rho* summed at
- * the positions x* the step will reach (density true); returns the error: the mean over the particles of
+/* rho_df: dt D rho/Dt of v* (density false; linear, Bender & Koschier 2017 eq. 9, with grad W^p), or the density
+ * rho* summed at the positions x* the step will reach (density true); returns the error: the mean over the particles of
  * max(dt D, 0) / rho_r (Bender & Koschier's average, Algorithm 2), or max (rho* - rho_r) / rho_r. The divergence
  * counts only where the density is at least rho_r: a particle below it (a free surface) may expand or
  * approach, and one with a thin neighbourhood (alpha small) could not be corrected anyway. over (density): the
@@ -273,7 +286,7 @@ static double measure(sph_sim *sim, bool density, double *over)
             const uint32_t j = sph_nbr_at(&row, e);
             float dx[3], r2;
             pair_dx(sim, i, j, dx, &r2);
-            const float f = P->mass[j] * grad_factor(&sim->k_density, r2);
+            const float f = P->mass[j] * grad_factor(&sim->k_pressure, r2); /* the push's gradient (see the top) */
             for (int d = 0; d < dim; d++) sum += f * (vi[d] - P->dv_df[d][j] - P->vel[d][j]) * dx[d];
         }
         float rho = P->rho[i];
@@ -293,7 +306,7 @@ static double measure(sph_sim *sim, bool density, double *over)
 }
 
 /* The divergence: kappa^v += the increment that cancels this particle's
- * error (Bender & Koschier 2017, Algorithm 2). The density: a relaxed,
+ * error (Bender & Koschier 2017, Algorithm 2), with alpha^v. The density: a relaxed,
  * projected Jacobi step, kappa = max(kappa + omega alpha (rho* - rho_r) / dt^2, 0), see the top. */
 static void correct(sph_sim *sim, bool density)
 {
@@ -307,7 +320,7 @@ static void correct(sph_sim *sim, bool density)
             k[i] = fmaxf(k[i] + SPH_DFSPH_OMEGA * (P->rho_df[i] - rho_r) * fabsf(P->alpha[i]) / (dt * dt),
                          -P->kappa_v[i]);
         else
-            k[i] += fmaxf(P->rho_df[i], 0.0f) * fmaxf(P->alpha[i], 0.0f) / (dt * dt); /* rho_df: dt D */
+            k[i] += fmaxf(P->rho_df[i], 0.0f) * P->alpha_v[i] / (dt * dt); /* rho_df: dt D */
     }
 }
 
@@ -328,6 +341,7 @@ static void run(sph_sim *sim)
     if (!(s->rho_rest > 0)) {
         s->rho_rest = sph_sim_lattice_rest_density(sim);
         s->den_full = sph_sim_lattice_dots(sim);
+        s->den_full_v = sph_sim_lattice_dots_pressure(sim);
         sph_solver_wall_table(sim);
     }
     if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */
@@ -378,7 +392,8 @@ const sph_pass sph_pass_dfsph = {
     .summary = "DFSPH: one iteration of the divergence-free or the constant-density solve",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VEL) | SPH_BIT(RHO) | SPH_MASK_ACCELERATIONS |
              SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_RES_LISTS,
-    .writes = SPH_BIT(ALPHA) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(RHO_DF) | SPH_BIT(DV_DF) | SPH_BIT(ACC_DF),
+    .writes = SPH_BIT(ALPHA) | SPH_BIT(ALPHA_V) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(RHO_DF) | SPH_BIT(DV_DF) |
+              SPH_BIT(ACC_DF),
     .group = SPH_GROUP_FORCES,
     .highlight = "dfsph-density",
     .skip_reason = skip_reason,
