@@ -15,6 +15,7 @@
 
 #include "sph_compare.h"
 #include "sph_levels.h"
+#include "test_levels_util.h"
 #include "test_util.h"
 
 #if defined(__AVX2__) && defined(__FMA__)
@@ -29,16 +30,8 @@
     "compact_lists = on\nvector_avx2 = on\n[compute]\nfuse_forces = %s\npacked_records = %s\n"
 
 enum { FUSED = 0, APART = 1, SHARED = 2 };
-
-#define DAM_3D                                                                                                   \
-    "[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0 0\n"                \
-    "max = 0.8 0.4 0.4\n[fluid column]\nmin = 0 0 0\nmax = 0.3 0.3 0.4\nspacing = 0.02\n[physics]\n"           \
-    "stiffness = 1000\nviscosity = 0.002\n[kernels]\nh = 0.04\n[time]\ndt = 0.0005\ncfl = 0\n"
-
-#define DAM_2D                                                                                                   \
-    "[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 1.6 0.8\n" \
-    "[fluid column]\nmin = 0 0\nmax = 0.6 0.6\nspacing = 0.01\n[physics]\nstiffness = 1000\n"                 \
-    "viscosity = 0.002\n[kernels]\nh = 0.02\n[time]\ndt = 0.0002\ncfl = 0\n"
+#define DAM_3D TEST_LEVELS_DAM_3D
+#define DAM_2D TEST_LEVELS_DAM_2D
 
 static sph_sim *make(const char *scene, int variant, bool packed, int threads)
 {
@@ -60,22 +53,6 @@ static void same_rows(const sph_sim *a, const sph_sim *b, const char *what)
     }
 }
 
-/* The first field where a and b differ (pos, vel, rho, acc_p, acc_v), or NULL. */
-static const char *first_difference(const sph_sim *a, const sph_sim *b)
-{
-    const size_t bytes = a->n * sizeof(float);
-    if (a->n != b->n) return "particle count";
-    if (memcmp(a->P.id, b->P.id, a->n * sizeof *a->P.id) != 0) return "order";
-    if (memcmp(a->P.rho, b->P.rho, bytes) != 0) return "rho";
-    for (int d = 0; d < a->dim; d++) {
-        if (memcmp(a->P.pos[d], b->P.pos[d], bytes) != 0) return "pos";
-        if (memcmp(a->P.vel[d], b->P.vel[d], bytes) != 0) return "vel";
-        if (memcmp(a->P.acc_p[d], b->P.acc_p[d], bytes) != 0) return "acc_p";
-        if (a->P.acc_v[d] && b->P.acc_v[d] && memcmp(a->P.acc_v[d], b->P.acc_v[d], bytes) != 0) return "acc_v";
-    }
-    return NULL;
-}
-
 /* L12 and L13 from the same start: the same lists, the same state to the bit
  * after every one of `steps` steps, and the ladder's check of L13 against L12. */
 static void as_l12(const char *scene, int variant, int steps, int threads, const char *what)
@@ -84,7 +61,7 @@ static void as_l12(const char *scene, int variant, int steps, int threads, const
     for (int s = 0; s < steps; s++) {
         sph_sim_step(a);
         sph_sim_step(b);
-        const char *diff = first_difference(a, b);
+        const char *diff = test_levels_first_difference(a, b);
         cr_assert_null(diff, "%s: %s differs from L12's after step %d", what, diff, s + 1);
     }
     same_rows(a, b, what);
@@ -108,7 +85,7 @@ static void same_on_threads(const char *scene, int variant, int steps, const cha
         sph_sim_step(a);
         sph_sim_step(b);
     }
-    const char *diff = first_difference(a, b);
+    const char *diff = test_levels_first_difference(a, b);
     cr_expect_null(diff, "%s: one thread and two differ in %s after %d steps", what, diff, steps);
     sph_sim_destroy(a);
     sph_sim_destroy(b);
@@ -125,26 +102,12 @@ Test(packed_records, same_on_one_and_two_threads_3d) { same_on_threads(DAM_3D, F
 
 /* L12 switched to L13 in mid-run (sph_sim_reconfigure, as the window does) and
  * back: the run goes on as L12's would, to the bit. */
+static bool packed_on(const sph_scene_def *def) { return def->packed_records == SPH_ON; }
+
 Test(packed_records, switched_live_from_l12)
 {
     sph_sim *a = make(DAM_3D, FUSED, false, 2), *b = make(DAM_3D, FUSED, false, 2);
-    sph_error err;
-    for (int s = 0; s < 30; s++) {
-        if (s == 10 || s == 20) {
-            sph_scene_def next = b->def;
-            cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find(s == 10 ? "L13" : "L12")], &next, &err),
-                         SPH_ERR_OK, "%s", err.msg);
-            cr_assert_eq(next.packed_records, s == 10 ? SPH_ON : SPH_OFF);
-            cr_assert_eq(sph_sim_reconfigure(b, &next, &err), SPH_ERR_OK, "%s", err.msg);
-            /* a reconfigure starts a new simulation with the carried state: so does a's twin */
-            next = a->def;
-            cr_assert_eq(sph_sim_reconfigure(a, &next, &err), SPH_ERR_OK, "%s", err.msg);
-        }
-        sph_sim_step(a);
-        sph_sim_step(b);
-        const char *diff = first_difference(a, b);
-        cr_assert_null(diff, "%s differs from L12's after step %d (switched at 10, back at 20)", diff, s + 1);
-    }
+    test_levels_switch_live(a, b, "L12", "L13", packed_on);
     sph_sim_destroy(a);
     sph_sim_destroy(b);
 }

@@ -13,6 +13,7 @@
 
 #include "sph_compare.h"
 #include "sph_levels.h"
+#include "test_levels_util.h"
 #include "test_util.h"
 
 /* L13's keys (fused walk, packed records), uniform_mass on or off (L14: on). */
@@ -22,16 +23,8 @@
     "uniform_mass = %s\n"
 
 enum { FUSED = 0, APART = 1, SHARED = 2 };
-
-#define DAM_3D                                                                                                   \
-    "[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0 0\n"                \
-    "max = 0.8 0.4 0.4\n[fluid column]\nmin = 0 0 0\nmax = 0.3 0.3 0.4\nspacing = 0.02\n[physics]\n"           \
-    "stiffness = 1000\nviscosity = 0.002\n[kernels]\nh = 0.04\n[time]\ndt = 0.0005\ncfl = 0\n"
-
-#define DAM_2D                                                                                                   \
-    "[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 1.6 0.8\n" \
-    "[fluid column]\nmin = 0 0\nmax = 0.6 0.6\nspacing = 0.01\n[physics]\nstiffness = 1000\n"                 \
-    "viscosity = 0.002\n[kernels]\nh = 0.02\n[time]\ndt = 0.0002\ncfl = 0\n"
+#define DAM_3D TEST_LEVELS_DAM_3D
+#define DAM_2D TEST_LEVELS_DAM_2D
 
 static sph_sim *make(const char *scene, int variant, bool uniform, int threads)
 {
@@ -39,22 +32,6 @@ static sph_sim *make(const char *scene, int variant, bool uniform, int threads)
     snprintf(keys, sizeof keys, L13_KEYS, variant & APART ? "off" : "on", uniform ? "on" : "off");
     snprintf(ini, sizeof ini, "%s%s%s", scene, keys, variant & SHARED ? "[physics]\npressure_form = shared\n" : "");
     return test_sim(ini, threads);
-}
-
-/* The first field where a and b differ (order, rho, pos, vel, acc_p, acc_v), or NULL. */
-static const char *first_difference(const sph_sim *a, const sph_sim *b)
-{
-    const size_t bytes = a->n * sizeof(float);
-    if (a->n != b->n) return "particle count";
-    if (memcmp(a->P.id, b->P.id, a->n * sizeof *a->P.id) != 0) return "order";
-    if (memcmp(a->P.rho, b->P.rho, bytes) != 0) return "rho";
-    for (int d = 0; d < a->dim; d++) {
-        if (memcmp(a->P.pos[d], b->P.pos[d], bytes) != 0) return "pos";
-        if (memcmp(a->P.vel[d], b->P.vel[d], bytes) != 0) return "vel";
-        if (memcmp(a->P.acc_p[d], b->P.acc_p[d], bytes) != 0) return "acc_p";
-        if (a->P.acc_v[d] && b->P.acc_v[d] && memcmp(a->P.acc_v[d], b->P.acc_v[d], bytes) != 0) return "acc_v";
-    }
-    return NULL;
 }
 
 /* One particle (by id, wherever the reorder put it) 1.5 times heavier in both runs. */
@@ -77,7 +54,7 @@ static void as_l13(const char *scene, int variant, int steps, int threads, bool 
     for (int s = 0; s < steps; s++) {
         sph_sim_step(a);
         sph_sim_step(b);
-        const char *diff = first_difference(a, b);
+        const char *diff = test_levels_first_difference(a, b);
         cr_assert_null(diff, "%s: %s differs from L13's after step %d", what, diff, s + 1);
     }
     cr_assert(!a->alarm.raised && !b->alarm.raised, "%s: the watchdog stopped a run", what);
@@ -108,7 +85,7 @@ Test(uniform_mass, one_heavier_mass_changes_the_run)
         sph_sim_step(a);
         sph_sim_step(b);
     }
-    cr_expect_not_null(first_difference(a, b), "a 1.5 times heavier particle changed nothing in 5 steps");
+    cr_expect_not_null(test_levels_first_difference(a, b), "a 1.5 times heavier particle changed nothing in 5 steps");
     sph_sim_destroy(a);
     sph_sim_destroy(b);
 }
@@ -120,7 +97,7 @@ Test(uniform_mass, same_on_one_and_two_threads_3d)
         sph_sim_step(a);
         sph_sim_step(b);
     }
-    const char *diff = first_difference(a, b);
+    const char *diff = test_levels_first_difference(a, b);
     cr_expect_null(diff, "one thread and two differ in %s after 30 steps", diff);
     sph_sim_destroy(a);
     sph_sim_destroy(b);
@@ -128,26 +105,12 @@ Test(uniform_mass, same_on_one_and_two_threads_3d)
 
 /* L13 switched to L14 in mid-run (sph_sim_reconfigure, as the window does) and
  * back: the run goes on as L13's would, to the bit. */
+static bool uniform_on(const sph_scene_def *def) { return def->uniform_mass == SPH_ON; }
+
 Test(uniform_mass, switched_live_from_l13)
 {
     sph_sim *a = make(DAM_3D, FUSED, false, 2), *b = make(DAM_3D, FUSED, false, 2);
-    sph_error err;
-    for (int s = 0; s < 30; s++) {
-        if (s == 10 || s == 20) {
-            sph_scene_def next = b->def;
-            cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find(s == 10 ? "L14" : "L13")], &next, &err),
-                         SPH_ERR_OK, "%s", err.msg);
-            cr_assert_eq(next.uniform_mass, s == 10 ? SPH_ON : SPH_OFF);
-            cr_assert_eq(sph_sim_reconfigure(b, &next, &err), SPH_ERR_OK, "%s", err.msg);
-            /* a reconfigure starts a new simulation with the carried state: so does a's twin */
-            next = a->def;
-            cr_assert_eq(sph_sim_reconfigure(a, &next, &err), SPH_ERR_OK, "%s", err.msg);
-        }
-        sph_sim_step(a);
-        sph_sim_step(b);
-        const char *diff = first_difference(a, b);
-        cr_assert_null(diff, "%s differs from L13's after step %d (switched at 10, back at 20)", diff, s + 1);
-    }
+    test_levels_switch_live(a, b, "L13", "L14", uniform_on);
     sph_sim_destroy(a);
     sph_sim_destroy(b);
 }

@@ -14,6 +14,7 @@
 
 #include "sph_compare.h"
 #include "sph_levels.h"
+#include "test_levels_util.h"
 #include "test_util.h"
 
 #if defined(__AVX2__) && defined(__FMA__)
@@ -31,16 +32,8 @@
 /* Variants of L11: the separate pressure_force and viscosity loops, plain 32-bit lists, the shared pressure form,
  * the hash instead of the dense grid (its runs hold cells of other keys: the scan filters them). */
 enum { FUSED = 0, APART = 1, PLAIN = 2, SHARED = 4, HASH = 8 };
-
-#define DAM_3D                                                                                                   \
-    "[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0 0\n"                \
-    "max = 0.8 0.4 0.4\n[fluid column]\nmin = 0 0 0\nmax = 0.3 0.3 0.4\nspacing = 0.02\n[physics]\n"           \
-    "stiffness = 1000\nviscosity = 0.002\n[kernels]\nh = 0.04\n[time]\ndt = 0.0005\ncfl = 0\n"
-
-#define DAM_2D                                                                                                   \
-    "[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n[domain]\nmin = 0 0\nmax = 1.6 0.8\n" \
-    "[fluid column]\nmin = 0 0\nmax = 0.6 0.6\nspacing = 0.01\n[physics]\nstiffness = 1000\n"                 \
-    "viscosity = 0.002\n[kernels]\nh = 0.02\n[time]\ndt = 0.0002\ncfl = 0\n"
+#define DAM_3D TEST_LEVELS_DAM_3D
+#define DAM_2D TEST_LEVELS_DAM_2D
 
 /* The strip of tests/test_compact_lists.c: rows of cells of about 40,000
  * particles, so many compact rows are stored wide. */
