@@ -342,7 +342,8 @@ static bool pack_records(const sph_sim *sim, float *rec, const bool check)
     int differ = 0; /* particles whose mass is not m0 */
 #pragma omp parallel for schedule(static) reduction(+ : differ) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
-        if (check) differ += memcmp(&P->mass[i], &m0, sizeof m0) != 0; /* bits: the very value a gather reads (-0 == 0 as floats) */
+        /* bits: the very value a gather reads (-0 == 0 as floats) */
+        if (check) differ += memcmp(&P->mass[i], &m0, sizeof m0) != 0;
         float *r = rec + 8 * (size_t)i;
         for (int d = 0; d < 3; d++) {
             r[d] = d < dim ? P->pred[d][i] : 0.0f;
