@@ -1,4 +1,4 @@
-// uses: PRED MASS P_PCI X_PCI RHO_PCI DELTA_PCI ACC_PCI ACCELERATIONS ENTRIES START WALL REDUCE
+// uses: PRED MASS P_PCI P_PCI_BEST X_PCI RHO_PCI DELTA_PCI ACC_PCI ACCELERATIONS ENTRIES START WALL REDUCE
 // Pass pcisph (src/passes/pcisph.c): one stage of a predict-correct
 // iteration per dispatch, u_count says which (the host, run_pcisph in
 // src/gpu/gpu_passes.c, calls them in the CPU pass's order):
@@ -15,6 +15,8 @@
 //     S_i = max(G^rho_i . G^p_i, 0) + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, G_i = sum_j m_j grad W_ij + rho_r
 //     grad(walls' share); u_value = the full lattice's delta, kept where S_i is 0 (local_deltas in pcisph.c)
 //   6 correct with those: p += delta_i / dt^2 (rho* - rho_r), u_value = dt^2, clamped as 3
+//   7 keep:      p_best = p (the solve's least error so far)
+//   8 take back: p = p_best (the error rose by the tolerance above that least)
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;
@@ -119,6 +121,10 @@ void main()
 #endif
             precise float den = dots + max(gr.x * gp.x + gr.y * gp.y + gr.z * gp.z, 0.0);
             delta_pci_[i] = den > 0.0 ? RHO_R * RHO_R / (2.0 * den) : u_value;
+        } else if (u_count == 7u) {
+            p_pci_best_[i] = p_pci_[i];
+        } else if (u_count == 8u) {
+            p_pci_[i] = p_pci_best_[i];
         } else {
             float d_i = u_count == 6u ? delta_pci_[i] / u_value : u_value;
             precise float p = p_pci_[i] + d_i * (rho_pci_[i] - RHO_R);

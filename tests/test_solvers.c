@@ -353,6 +353,38 @@ Test(solvers, pcisph_local_delta_corner)
     sph_sim_destroy(sim);
 }
 
+/* A solve that starts to rise takes back the pressure of the least error it
+ * reached and ends there (pcisph.c, at the top). The case below (the 8 g box
+ * of pcisph_cold_does_not_rise) rose from 2.17 % at its second iteration to
+ * 20.1 % at the cap of 2000, and the watchdog stopped the run after the step
+ * (13.7 m/s). Now the step ends at 2.17 %, counted as stopped, and the block
+ * moves at the speeds its fall makes (0.76 m/s after 3 steps, 6 ms of 8 g:
+ * 0.47 m/s of fall). The rise itself is the defect the disabled test keeps. */
+Test(solvers, pcisph_rising_solve_takes_its_least_back, .timeout = 300)
+{
+    sph_sim *sim = test_sim("[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\n"
+                            "min = 0 0 0\nmax = 0.48 0.24 0.08\nwall_damping = 0.3\n[fluid column]\nmin = 0 0 0\n"
+                            "max = 0.16 0.16 0.08\nspacing = 0.01\n[physics]\ngravity = 0 -78.48 0\nviscosity = 0.002\n"
+                            "negative_pressure = clamp\npressure_solver = pcisph\nsolver_tolerance = 0.001\n"
+                            "solver_max_iterations = 2000\n[kernels]\nh = 0.02\n[time]\ndt = 0.002\ncfl = 0.4\n",
+                            1);
+    for (int s = 0; s < 2; s++) sph_sim_step(sim);
+    cr_assert_eq(sim->solver.stopped, 0, "steps 1 and 2 converge (42 and 154 iterations)");
+    double least = INFINITY;
+    const uint64_t step = sim->step;
+    while (sim->step == step)
+        if (sph_sim_step_pass(sim) == SPH_PASS_PCISPH && sim->solver.iteration > 0)
+            least = fmin(least, sim->solver.error);
+    cr_log_info("third step: %d iterations, ended at %g, least %g, max speed %g m/s", sim->solver.iterations,
+                sim->solver.density_error, least, sim->max_speed);
+    cr_assert_eq(sim->solver.stopped, 1, "the third step's solve stops as its error rises");
+    cr_assert_lt(sim->solver.iterations, 2000, "it stops before the cap");
+    cr_assert_float_eq(sim->solver.density_error, least, 1e-6 * least, "it ends at its least %g, not at %g", least,
+                       sim->solver.density_error);
+    cr_assert_lt(sim->max_speed, 2.0f, "the block moves at %g m/s after 6 ms of 8 g", sim->max_speed);
+    sph_sim_destroy(sim);
+}
+
 /* The cold solve's error must not rise: a 3D dam break as the solvers bench
  * builds it (src/bench/bench_solvers.c: s = 1 cm, h = 2 s, dt = 2 ms, walls,
  * viscosity, tolerance 0.1 %, a cap of 2000), 16 x 16 x 8 particles (2048),
@@ -368,7 +400,9 @@ Test(solvers, pcisph_local_delta_corner)
  * run (docs/accuracy.md, section 8): not adopted. Disabled until a fix holds
  * both: the assertion (every iteration's error at most the least seen so far
  * plus the tolerance, and the solve ending within the tolerance) fails on
- * the present code. */
+ * the present code. The guard of pcisph_rising_solve_takes_its_least_back
+ * (above) now ends the rise at the least (2.17 %), which is not a fix: the
+ * solve still ends far above its tolerance. */
 Test(solvers, pcisph_cold_does_not_rise, .timeout = 300, .disabled = true)
 {
     sph_sim *sim = test_sim("[scene]\ndimension = 3\neffects = gravity pressure viscosity walls\n[domain]\n"

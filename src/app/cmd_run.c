@@ -27,7 +27,7 @@ void app_stats_header(FILE *f, const sph_sim *sim)
     for (int k = 0; k < sim->def.n_obstacles; k++) /* the fluid's force on each obstacle [N or N/m] */
         for (int d = 0; d < sim->dim; d++) fprintf(f, ",obstacle_%s_f%c", sim->def.obstacles[k].name, "xyz"[d]);
     if (sim->def.pressure_solver != SPH_PSOLVER_EOS) /* the pressure solver's step: iterations, error reached */
-        fprintf(f, ",iterations,density_error,div_iterations,divergence_error,capped");
+        fprintf(f, ",iterations,density_error,div_iterations,divergence_error,capped,stopped");
     sph_hash_health hh;
     sph_sim_hash_health(sim, false, &hh);
     if (hh.has_table) /* the figures of docs/performance.md's "Hash health" */
@@ -50,8 +50,9 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
             for (int d = 0; d < sim->dim; d++) fprintf(f, ",%.9g", force[k][d]);
     }
     if (sim->def.pressure_solver != SPH_PSOLVER_EOS)
-        fprintf(f, ",%d,%.6g,%d,%.6g,%llu", sim->solver.iterations, sim->solver.density_error,
-                sim->solver.div_iterations, sim->solver.divergence_error, (unsigned long long)sim->solver.capped);
+        fprintf(f, ",%d,%.6g,%d,%.6g,%llu,%llu", sim->solver.iterations, sim->solver.density_error,
+                sim->solver.div_iterations, sim->solver.divergence_error, (unsigned long long)sim->solver.capped,
+                (unsigned long long)sim->solver.stopped);
     sph_hash_health hh;
     sph_sim_hash_health(sim, false, &hh);
     if (hh.has_table) {

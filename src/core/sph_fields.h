@@ -90,6 +90,8 @@
       "PCISPH's predicted position x + dt v + dt^2 a with this iteration's pressure")                           \
     X(RHO_PCI, rho_pci, 1, "kg/m^3", "kg/m^2", DERIVED, PCISPH, NONE, "pcisph-density", "rho pcisph",           \
       "PCISPH's predicted density at the predicted positions, this iteration")                                  \
+    X(P_PCI_BEST, p_pci_best, 1, "Pa", "N/m", DERIVED, PCISPH, NONE, "", "",                                     \
+      "PCISPH's pressure at this solve's least density error so far (a solve that starts to rise takes it back)") \
     X(DELTA_PCI, delta_pci, 1, "m^2", "m^2", DERIVED, PCISPH, NONE, "", "delta pcisph",                         \
       "PCISPH's delta at dt = 1 s from this particle's neighbourhood (pcisph_local_delta = on)")               \
     X(ACC_PCI, acc_pci, V, "m/s^2", "m/s^2", ACCELERATION, PCISPH, NONE, "pcisph-acc", "a pcisph",               \

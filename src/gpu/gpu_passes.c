@@ -328,7 +328,9 @@ static double solver_mean(gpu *g, sph_sim *sim, int p, uint32_t stage)
 }
 
 /* shaders/gpu_pcisph.comp's stages */
-enum { PCI_START, PCI_FORCE, PCI_PREDICT, PCI_CORRECT, PCI_STARTUP, PCI_DELTA, PCI_CORRECT_LOCAL };
+enum {
+    PCI_START, PCI_FORCE, PCI_PREDICT, PCI_CORRECT, PCI_STARTUP, PCI_DELTA, PCI_CORRECT_LOCAL, PCI_KEEP, PCI_TAKE_BACK
+};
 
 static void run_pcisph(gpu *g, sph_sim *sim)
 {
@@ -345,6 +347,14 @@ static void run_pcisph(gpu *g, sph_sim *sim)
         solver_stage(g, sim, p, warm ? PCI_FORCE : PCI_START, 0.0f);
     }
     const double error = solver_measure(g, sim, p, PCI_PREDICT);
+    const int least = sph_solver_least(sim, error, sim->def.solver_tolerance);
+    if (least == SPH_SOLVER_KEEP) solver_stage(g, sim, p, PCI_KEEP, 0.0f);
+    if (least == SPH_SOLVER_TAKE_BACK) { /* rising: back to the least, as pcisph.c */
+        solver_stage(g, sim, p, PCI_TAKE_BACK, 0.0f);
+        solver_stage(g, sim, p, PCI_FORCE, 0.0f);
+        sph_solver_stopped(sim, solver_measure(g, sim, p, PCI_PREDICT));
+        return;
+    }
     if (sph_solver_done(sim, error, sim->def.solver_tolerance)) {
         s->iterations = s->iteration;
         s->density_error = error;

@@ -65,9 +65,10 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
                      so->div_iterations, so->iterations, 100 * so->density_error, 100 * sim->def.solver_tolerance,
                      (unsigned long long)so->capped);
         } else {
-            HUD_LINE("pcisph last step: %d iterations, density error %.3f %% (tol %.3g %%), %llu capped",
+            HUD_LINE("pcisph last step: %d iterations, density error %.3f %% (tol %.3g %%), %llu capped, %llu stopped "
+                     "rising",
                      so->iterations, 100 * so->density_error, 100 * sim->def.solver_tolerance,
-                     (unsigned long long)so->capped);
+                     (unsigned long long)so->capped, (unsigned long long)so->stopped);
         }
         if (so->iteration > 0) {
             HUD_LINE("this step: %s iteration %d, error %.3f %%",

@@ -128,6 +128,34 @@ static inline bool sph_solver_clamped(const sph_sim *sim, const float x[3], floa
     return moved;
 }
 
+/* PCISPH's guard against a diverging solve (pcisph.c, at the top): after an
+ * iteration's error, SPH_SOLVER_KEEP when it is the least so far (the caller
+ * keeps its pressure), SPH_SOLVER_TAKE_BACK when it has risen by the
+ * tolerance above that least (the caller puts that pressure back, measures
+ * again and ends the solve with sph_solver_stopped), else SPH_SOLVER_GO_ON.
+ * NaN (a GL read that failed) goes on. */
+enum { SPH_SOLVER_GO_ON, SPH_SOLVER_KEEP, SPH_SOLVER_TAKE_BACK };
+static inline int sph_solver_least(sph_sim *sim, double error, double tolerance)
+{
+    sph_solver_state *s = &sim->solver;
+    if (s->iteration == 0 || error < s->least) {
+        s->least = error;
+        return SPH_SOLVER_KEEP;
+    }
+    return error > s->least + tolerance ? SPH_SOLVER_TAKE_BACK : SPH_SOLVER_GO_ON;
+}
+
+/* The step's record of a solve that took its least back: error, measured again there. */
+static inline void sph_solver_stopped(sph_sim *sim, double error)
+{
+    sph_solver_state *s = &sim->solver;
+    s->iterations = s->iteration + 1;
+    s->stopped++;
+    s->density_error = s->error = error;
+    s->iteration = 0;
+    s->dt_last = sim->dt;
+}
+
 /* A solve's iteration ends: another call of the pass, or the step's record. */
 static inline bool sph_solver_done(sph_sim *sim, double error, double tolerance)
 {

@@ -498,9 +498,11 @@ bool study_run(const sph_scene_def *def, study_metric m, long steps, double unti
             out->extra[2] = sim->t > 0 ? (double)sim->step / sim->t : NAN;
             out->extra[3] = sim->def.pressure_solver != SPH_PSOLVER_EOS ? pr.iterations / (double)sim->step : 0;
             study_result_timed(m, out);
-            if (sim->solver.capped)
-                snprintf(out->note, sizeof out->note, "%llu pressure solve%s stopped at solver_max_iterations",
-                         (unsigned long long)sim->solver.capped, sim->solver.capped == 1 ? "" : "s");
+            if (sim->solver.capped || sim->solver.stopped)
+                snprintf(out->note, sizeof out->note,
+                         "%llu pressure solve%s stopped at solver_max_iterations, %llu as the error rose",
+                         (unsigned long long)sim->solver.capped, sim->solver.capped == 1 ? "" : "s",
+                         (unsigned long long)sim->solver.stopped);
         } else {
             snprintf(out->note, sizeof out->note, "no step ran");
         }
