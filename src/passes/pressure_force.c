@@ -267,9 +267,10 @@ SPH_INLINE void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, const s
          * indices as a vector (dead lanes 0). */
         const bool by_offset = packed && row.o;
         const __m256i idx = by_offset ? _mm256_setzero_si256() : sph_simd8_nbr(&row, e, end, live);
-        int16_t o_last[8] = {0};
+        int16_t o_last[8];
         const int16_t *o = by_offset ? row.o + e : NULL;
         if (by_offset && end - e < 8) {
+            memset(o_last, 0, sizeof o_last);
             memcpy(o_last, o, (size_t)(end - e) * sizeof *o_last);
             o = o_last;
         }
