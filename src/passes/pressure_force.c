@@ -231,12 +231,16 @@ static inline void forces_one_avx512(const sph_sim *sim, const sph_kernel *k, co
  * (or p) come from its record (two sph_simd8_rec4) instead of 8 gathers: the
  * same values, the same operations, the same result to the bit. With one_mass
  * (uniform_mass = on, every particle's mass the same) the mass is that
- * constant, not a gather: the same value, so the same result again. */
-static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, const sph_kernel *kv, int i,
-                                   const int dim, const bool fused, const float *rec, const bool one_mass)
+ * constant, not a gather: the same value, so the same result again. dim,
+ * fused, packed (rec_or_null holds the records) and one_mass are constants in
+ * each caller (forces_avx2_pick). */
+SPH_INLINE void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, const sph_kernel *kv, int i, const int dim,
+                                const bool fused, const float *rec_or_null, const bool packed, const bool one_mass)
 {
+    const float *const rec = packed ? rec_or_null : NULL; /* packed a constant: the compiler drops the other path */
     const sph_particles *P = &sim->P;
-    const bool symmetric = sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
+    /* one_mass is only ever set in the symmetric form (run): then a constant, and the shared form's vectors go */
+    const bool symmetric = one_mass || sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
     const float rmin = SPH_KERNEL_R_MIN * k->h;
     __m256 xi[3], d3[3];
     sph_simd8_centre(P, i, dim, xi);
@@ -254,18 +258,39 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
     __m256 ax = zero, ay = zero, az = zero, bx = zero, by = zero, bz = zero;
     const sph_nbr_row row = sph_nbr_row_of(&sim->S, (uint32_t)i);
     const uint32_t end = row.n;
+    const float *const rec_i = packed ? rec + 8 * (size_t)i : NULL; /* this particle's record */
     for (uint32_t e = 0; e < end; e += 8) {
-        const __m256i live = sph_simd8_live(e, end), idx = sph_simd8_nbr(&row, e, end, live);
+        const __m256i live = sph_simd8_live(e, end);
+        /* packed, a compact row (the common case): the records' addresses straight from the offsets, no index
+         * vector; the last block's dead lanes get offset 0, the particle's own record, whose lanes the masks
+         * below zero (exact zeros, as for record 0 on the other path: the same sums to the bit). Else the
+         * indices as a vector (dead lanes 0). */
+        const bool by_offset = packed && row.o;
+        const __m256i idx = by_offset ? _mm256_setzero_si256() : sph_simd8_nbr(&row, e, end, live);
+        int16_t o_last[8];
+        const int16_t *o = by_offset ? row.o + e : NULL;
+        if (by_offset && end - e < 8) {
+            memset(o_last, 0, sizeof o_last);
+            memcpy(o_last, o, (size_t)(end - e) * sizeof *o_last);
+            o = o_last;
+        }
         __m256 r2, vol = zero, q[4], g[4]; /* q, g: the records' halves */
-        uint32_t j[8];
-        if (rec) { /* sph_simd8_offsets' sums on the records' positions */
-            sph_simd8_indices(idx, j);
-            sph_simd8_rec4(rec, 8, j, q);
+        uint32_t j[8];                     /* packed, not by_offset: the indices */
+        if (packed) { /* sph_simd8_offsets' sums on the records' positions */
+            if (by_offset) {
+                sph_simd8_rec4_off(rec_i, o, 0, q);
+            } else {
+                sph_simd8_indices(idx, j);
+                sph_simd8_rec4(rec, 8, j, q);
+            }
             for (int d = 0; d < 3; d++) d3[d] = d < dim ? _mm256_sub_ps(xi[d], q[d]) : zero;
             r2 = _mm256_add_ps(_mm256_mul_ps(d3[0], d3[0]), _mm256_mul_ps(d3[1], d3[1]));
             if (dim == 3) r2 = _mm256_add_ps(r2, _mm256_mul_ps(d3[2], d3[2]));
             vol = q[3];
-            sph_simd8_rec4(rec + 4, 8, j, g);
+            if (by_offset) /* the second half after the distances: fewer vectors live at once */
+                sph_simd8_rec4_off(rec_i, o, 4, g);
+            else
+                sph_simd8_rec4(rec + 4, 8, j, g);
         } else {
             r2 = sph_simd8_offsets(P, live, idx, xi, dim, d3);
             if (fused || !symmetric) vol = sph_simd8_gather(live, idx, P->vol);
@@ -274,12 +299,12 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
             const __m256i in = _mm256_and_si256(live, _mm256_castps_si256(_mm256_cmp_ps(r2, h2, _CMP_LT_OQ)));
             __m256 lap = _mm256_max_ps(_mm256_fnmadd_ps(_mm256_sqrt_ps(r2), inv_hv, one), zero); /* 1 - r/h */
             __m256 cv = sph_simd8_keep(in, _mm256_mul_ps(vol, lap));
-            const __m256 ux = rec ? g[0] : sph_simd8_gather(live, idx, vj[0]);
-            const __m256 uy = rec ? g[1] : sph_simd8_gather(live, idx, vj[1]);
+            const __m256 ux = packed ? g[0] : sph_simd8_gather(live, idx, vj[0]);
+            const __m256 uy = packed ? g[1] : sph_simd8_gather(live, idx, vj[1]);
             bx = _mm256_fmadd_ps(cv, _mm256_sub_ps(ux, vxi), bx);
             by = _mm256_fmadd_ps(cv, _mm256_sub_ps(uy, vyi), by);
             if (dim == 3) {
-                const __m256 uz = rec ? g[2] : sph_simd8_gather(live, idx, vj[2]);
+                const __m256 uz = packed ? g[2] : sph_simd8_gather(live, idx, vj[2]);
                 bz = _mm256_fmadd_ps(cv, _mm256_sub_ps(uz, vzi), bz);
             }
         }
@@ -287,7 +312,8 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
         const __m256i close = _mm256_and_si256(live, _mm256_castps_si256(_mm256_cmp_ps(r2, rmin2, _CMP_LT_OQ)));
         const bool any_close = !_mm256_testz_si256(close, close);
         if (any_close) { /* coincident pairs: pushed apart along x, as in pressure_one */
-            const __m256i before = _mm256_cmpgt_epi32(idx, vi); /* i < j (indices below 2^31) */
+            const __m256i jv = by_offset ? sph_simd8_nbr(&row, e, end, live) : idx;
+            const __m256i before = _mm256_cmpgt_epi32(jv, vi); /* i < j (indices below 2^31) */
             __m256 along = sph_simd8_pick(before, _mm256_sub_ps(zero, vrmin), vrmin);
             dx = sph_simd8_pick(close, along, dx);
             dy = sph_simd8_pick(close, zero, dy);
@@ -297,7 +323,7 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
         __m256 r = _mm256_sqrt_ps(r2);
         __m256 t = _mm256_max_ps(_mm256_sub_ps(h, r), zero);
         __m256 dw_over_r = _mm256_div_ps(_mm256_mul_ps(m3s, _mm256_mul_ps(t, t)), r);
-        const __m256 pj = rec ? g[3] : sph_simd8_gather(live, idx, symmetric ? P->p_rho2 : P->p);
+        const __m256 pj = packed ? g[3] : sph_simd8_gather(live, idx, symmetric ? P->p_rho2 : P->p);
         const __m256 mj = one_mass ? mall : symmetric ? sph_simd8_gather(live, idx, P->mass) : zero;
         __m256 coef = symmetric ? _mm256_mul_ps(mj, _mm256_add_ps(pi_over, pj))
                                 : _mm256_mul_ps(_mm256_mul_ps(vol, half_over_rho), _mm256_add_ps(pi, pj));
@@ -322,6 +348,43 @@ static inline void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, cons
     P->acc_v[0][i] = s * sph_simd8_sum(bx);
     P->acc_v[1][i] = s * sph_simd8_sum(by);
     if (dim == 3) P->acc_v[2][i] = s * sph_simd8_sum(bz);
+}
+
+/* One function for each combination, so that dim, fused, packed and one_mass
+ * are constants in its loop: a single forces_one_avx2 with them as arguments
+ * (gcc would not inline it at all twelve calls) kept every path's vectors
+ * live and spilled them. */
+typedef void (*forces_avx2_fn)(const sph_sim *sim, const sph_kernel *k, const sph_kernel *kv, int i,
+                               const float *rec);
+#define SPH_FORCES_AVX2_FN(NAME, DIM, F, R, M)                                                                    \
+    static void NAME(const sph_sim *sim, const sph_kernel *k, const sph_kernel *kv, int i, const float *rec)      \
+    {                                                                                                              \
+        forces_one_avx2(sim, k, kv, i, DIM, F, rec, R, M);                                                         \
+    }
+SPH_FORCES_AVX2_FN(forces3_fused_packed_one, 3, true, true, true)
+SPH_FORCES_AVX2_FN(forces3_packed_one, 3, false, true, true)
+SPH_FORCES_AVX2_FN(forces3_fused_packed, 3, true, true, false)
+SPH_FORCES_AVX2_FN(forces3_packed, 3, false, true, false)
+SPH_FORCES_AVX2_FN(forces3_fused, 3, true, false, false)
+SPH_FORCES_AVX2_FN(forces3, 3, false, false, false)
+SPH_FORCES_AVX2_FN(forces2_fused_packed_one, 2, true, true, true)
+SPH_FORCES_AVX2_FN(forces2_packed_one, 2, false, true, true)
+SPH_FORCES_AVX2_FN(forces2_fused_packed, 2, true, true, false)
+SPH_FORCES_AVX2_FN(forces2_packed, 2, false, true, false)
+SPH_FORCES_AVX2_FN(forces2_fused, 2, true, false, false)
+SPH_FORCES_AVX2_FN(forces2, 2, false, false, false)
+#undef SPH_FORCES_AVX2_FN
+
+/* The variant for this pass's keys: [dim == 3][fused][gathers, records, records and one mass]. */
+static forces_avx2_fn forces_avx2_pick(int dim, bool fused, bool packed, bool one_mass)
+{
+    static const forces_avx2_fn fns[2][2][3] = {
+        {{forces2, forces2_packed, forces2_packed_one},
+         {forces2_fused, forces2_fused_packed, forces2_fused_packed_one}},
+        {{forces3, forces3_packed, forces3_packed_one},
+         {forces3_fused, forces3_fused_packed, forces3_fused_packed_one}},
+    };
+    return fns[dim == 3][fused][packed ? (one_mass ? 2 : 1) : 0];
 }
 #endif
 
@@ -378,6 +441,7 @@ static void run(sph_sim *sim)
         /* uniform_mass: the symmetric form's one gather the records leave, gone when every mass is the same */
         const bool want_one = sim->def.uniform_mass == SPH_ON && sim->def.pressure_form == SPH_PFORM_SYMMETRIC;
         const bool one_mass = rec && pack_records(sim, rec, want_one);
+        const forces_avx2_fn walk = forces_avx2_pick(dim, fused, rec != NULL, one_mass);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) {
             if (sph_is_wall(&sim->P, i)) {
@@ -386,22 +450,7 @@ static void run(sph_sim *sim)
                     for (int d = 0; d < dim; d++) sim->P.acc_v[d][i] = 0.0f;
                 continue;
             }
-            /* each combination its own call, so that dim, fused, rec and one_mass are constants in it */
-#define SPH_FORCES_AVX2(F, R, M)                                                                                   \
-    (dim == 3 ? forces_one_avx2(sim, &k, &kv, i, 3, F, R, M) : forces_one_avx2(sim, &k, &kv, i, 2, F, R, M))
-            if (one_mass && fused)
-                SPH_FORCES_AVX2(true, rec, true);
-            else if (one_mass)
-                SPH_FORCES_AVX2(false, rec, true);
-            else if (rec && fused)
-                SPH_FORCES_AVX2(true, rec, false);
-            else if (rec)
-                SPH_FORCES_AVX2(false, rec, false);
-            else if (fused)
-                SPH_FORCES_AVX2(true, NULL, false);
-            else
-                SPH_FORCES_AVX2(false, NULL, false);
-#undef SPH_FORCES_AVX2
+            walk(sim, &k, &kv, i, rec);
         }
         return;
     }

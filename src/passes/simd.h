@@ -169,6 +169,35 @@ static inline void sph_simd8_rec4(const float *rec, size_t per, const uint32_t j
     f[2] = _mm256_shuffle_ps(t1, t3, 0x44);
     f[3] = _mm256_shuffle_ps(t1, t3, 0xEE);
 }
+
+/* Four floats from `off` of each of 8 records a0 .. a7 (16-byte aligned), as sph_simd8_rec4: the same loads and
+ * shuffles, from addresses the caller already has. */
+SPH_INLINE void sph_simd8_rec4_at(const float *a0, const float *a1, const float *a2, const float *a3, const float *a4,
+                                  const float *a5, const float *a6, const float *a7, size_t off, __m256 f[4])
+{
+#define SPH_REC_PAIR(p, q)                                                                                      \
+    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps((p) + off)), _mm_load_ps((q) + off), 1)
+    const __m256 r0 = SPH_REC_PAIR(a0, a4), r1 = SPH_REC_PAIR(a1, a5), r2 = SPH_REC_PAIR(a2, a6);
+    const __m256 r3 = SPH_REC_PAIR(a3, a7);
+#undef SPH_REC_PAIR
+    const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
+    const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
+    f[0] = _mm256_shuffle_ps(t0, t2, 0x44);
+    f[1] = _mm256_shuffle_ps(t0, t2, 0xEE);
+    f[2] = _mm256_shuffle_ps(t1, t3, 0x44);
+    f[3] = _mm256_shuffle_ps(t1, t3, 0xEE);
+}
+
+/* sph_simd8_rec4 for 8 neighbours of a compact row (offsets j - i), in records of 8 floats, from float `off` of
+ * each: the addresses come from the offsets o[0..7] read as scalars, so each record's loads wait on one 16-bit
+ * load and not on a round trip of the indices through a vector register. rec_i: the row's own record. */
+SPH_INLINE void sph_simd8_rec4_off(const float *rec_i, const int16_t *o, size_t off, __m256 f[4])
+{
+#define SPH_REC_AT(k) (rec_i + 8 * (ptrdiff_t)o[k])
+    sph_simd8_rec4_at(SPH_REC_AT(0), SPH_REC_AT(1), SPH_REC_AT(2), SPH_REC_AT(3), SPH_REC_AT(4), SPH_REC_AT(5),
+                      SPH_REC_AT(6), SPH_REC_AT(7), off, f);
+#undef SPH_REC_AT
+}
 #else
 #define SPH_HAVE_AVX2 0
 #endif
