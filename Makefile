@@ -67,7 +67,7 @@ $(BUILD)/libsphcore.a: $(CORE_OBJ)
 
 $(BUILD)/core/%.o: src/core/%.c src/core/*.h | $(BUILD)/core
 	$(CC) $(CFLAGS) $(CORE_CFLAGS) -c -o $@ $<
-$(BUILD)/passes/%.o: src/passes/%.c src/core/*.h | $(BUILD)/passes
+$(BUILD)/passes/%.o: src/passes/%.c src/passes/*.h src/core/*.h | $(BUILD)/passes
 	$(CC) $(CFLAGS) $(CORE_CFLAGS) -c -o $@ $<
 $(BUILD)/app/%.o: src/app/%.c src/app/*.h src/core/*.h | $(BUILD)/app
 	$(CC) $(CFLAGS) $(CORE_CFLAGS) -Isrc/app -c -o $@ $<

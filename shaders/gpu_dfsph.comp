@@ -1,4 +1,4 @@
-// uses: PRED VEL MASS RHO ALPHA ALPHA_V KAPPA KAPPA_V RHO_DF DV_DF ENTRIES START WALL REDUCE
+// uses: PRED VEL MASS RHO ALPHA ALPHA_V KAPPA KAPPA_V KAPPA_BEST RHO_DF DV_DF ENTRIES START WALL REDUCE
 // Pass dfsph (src/passes/dfsph.c): one stage of an iteration per dispatch,
 // u_count says which (run_dfsph in src/gpu/gpu_passes.c calls them in the
 // CPU pass's order); every walk is over the pairs within h at pred (the
@@ -22,6 +22,8 @@
 //   5 correct: kappa_v += max(dt D, 0) alpha_v / dt^2, u_value = dt^2
 //   6 correct: kappa = max(kappa + OMEGA (rho_df - rho_r) |alpha| / dt^2, -kappa_v) (a relaxed Jacobi step,
 //     kappa_v + kappa kept >= 0; src/passes/dfsph.c says why)
+//   7 keep:      kappa_best = kappa (the density solve's least error so far)
+//   8 take back: kappa = kappa_best (the error rose above twice that least plus the tolerance)
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;
@@ -147,6 +149,10 @@ void main()
         } else if (u == 6u) {
             precise float k = kappa_[i] + OMEGA * (rho_df_[i] - RHO_R) * abs(alpha_[i]) / u_value;
             kappa_[i] = max(k, -kappa_v_[i]);
+        } else if (u == 7u) {
+            kappa_best_[i] = kappa_[i];
+        } else if (u == 8u) {
+            kappa_[i] = kappa_best_[i];
         } else {
             precise float add = max(rho_df_[i], 0.0) * alpha_v_[i] / u_value; // rho_df: dt D
             kappa_v_[i] += add;

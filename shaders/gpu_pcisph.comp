@@ -16,7 +16,7 @@
 //     grad(walls' share); u_value = the full lattice's delta, kept where S_i is 0 (local_deltas in pcisph.c)
 //   6 correct with those: p += delta_i / dt^2 (rho* - rho_r), u_value = dt^2, clamped as 3
 //   7 keep:      p_best = p (the solve's least error so far)
-//   8 take back: p = p_best (the error rose by the tolerance above that least)
+//   8 take back: p = p_best (the error rose above twice that least plus the tolerance)
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;

@@ -104,6 +104,8 @@
       "DFSPH's constant-density stiffness kappa = p / rho of the last step (warm start)")                       \
     X(KAPPA_V, kappa_v, 1, "m^2/s^2", "m^2/s^2", STATE, DFSPH, NONE, "", "kappa div",                            \
       "DFSPH's divergence-free stiffness (times dt) of the last step (warm start)")                             \
+    X(KAPPA_BEST, kappa_best, 1, "m^2/s^2", "m^2/s^2", DERIVED, DFSPH, NONE, "", "",                             \
+      "DFSPH's kappa at this density solve's least error so far (a solve that starts to rise takes it back)")   \
     X(RHO_DF, rho_df, 1, "kg/m^3", "kg/m^2", DERIVED, DFSPH, NONE, "dfsph-density", "rho dfsph",               \
       "DFSPH's predicted density (constant-density solve) or D rho/Dt times dt (divergence solve)")             \
     X(DV_DF, dv_df, V, "m/s", "m/s", DERIVED, DFSPH, NONE, "", "",                                               \

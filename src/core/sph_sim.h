@@ -261,8 +261,9 @@ typedef struct sph_solver_state {
     double density_error;    /* [1] the last complete step: the density error reached */
     double divergence_error; /* [1] the last complete step: mean of max(dt D rho/Dt, 0) / rho_rest (dfsph) */
     uint64_t capped;         /* [1] solves that stopped at solver_max_iterations, since the start */
-    uint64_t stopped;        /* [1] pcisph: solves that stopped because their error rose (see least), since the start */
-    double least;            /* [1] pcisph: the current solve's least error so far, whose pressure p_pci_best keeps */
+    uint64_t stopped;        /* [1] density solves that stopped because their error rose (see least), since the start */
+    double least;            /* [1] the current density solve's least error so far, whose pressure p_pci_best (pcisph)
+                                or kappa_best (dfsph) keeps */
     float rho_rest;          /* [kg/m^dim] the density held: the sum a particle of the initial lattice reads */
     float delta;             /* [m^2] pcisph: delta at dt = 1 s (delta(dt) = delta / dt^2, in m^2/s^2) */
     float den_full;          /* [kg^2/m^(2 dim + 2)] dfsph: alpha's least denominator, a full neighbourhood's */

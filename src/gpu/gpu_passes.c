@@ -371,7 +371,7 @@ static void run_pcisph(gpu *g, sph_sim *sim)
 }
 
 /* shaders/gpu_dfsph.comp's stages */
-enum { DF_FACTORS, DF_WARM_V, DF_WARM, DF_MEASURE_V, DF_MEASURE, DF_CORRECT_V, DF_CORRECT };
+enum { DF_FACTORS, DF_WARM_V, DF_WARM, DF_MEASURE_V, DF_MEASURE, DF_CORRECT_V, DF_CORRECT, DF_KEEP, DF_TAKE_BACK };
 
 /* The share of the last step's kappa a solve starts from: as warm() in
  * src/passes/dfsph.c, SPH_DFSPH_WARM there (0: off, see there), or with
@@ -433,7 +433,17 @@ static void run_dfsph(gpu *g, sph_sim *sim)
     gpu_get(g, g->buf[B_REDUCE], 3 * sizeof bits, sizeof bits, &bits);
     float over;
     memcpy(&over, &bits, sizeof over);
-    const bool done = sph_solver_done(sim, isnan(over) ? over : fmax(error, over), sim->def.solver_tolerance);
+    const double stop = isnan(over) ? over : fmax(error, over);
+    const int least = sph_solver_least(sim, stop, sim->def.solver_tolerance);
+    if (least == SPH_SOLVER_KEEP) solver_stage(g, sim, p, DF_KEEP, 0.0f);
+    if (least == SPH_SOLVER_TAKE_BACK) { /* rising: back to the least kappa, as dfsph.c */
+        solver_stage(g, sim, p, DF_TAKE_BACK, 0.0f);
+        dfsph_force(g, sim, true, false);
+        sph_solver_stopped(sim, solver_measure(g, sim, p, DF_MEASURE));
+        s->phase = 0;
+        return;
+    }
+    const bool done = sph_solver_done(sim, stop, sim->def.solver_tolerance);
     s->error = error;
     if (!done) {
         solver_stage(g, sim, p, DF_CORRECT, dt2);

@@ -82,6 +82,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* The share of the last step's kappa a solve starts from. 0: the warm start
  * is off. Measured with the linearised density solve, whose kappa only grew
@@ -371,6 +372,16 @@ static void run(sph_sim *sim)
     }
     double over = 0;
     const double error = measure(sim, true, &over);
+    /* rising: back to the least kappa, as pcisph.c (solver.h, sph_solver_least) */
+    const int least = sph_solver_least(sim, fmax(error, over), sim->def.solver_tolerance);
+    if (least == SPH_SOLVER_KEEP) memcpy(P->kappa_best, P->kappa, sim->n * sizeof *P->kappa);
+    if (least == SPH_SOLVER_TAKE_BACK) {
+        memcpy(P->kappa, P->kappa_best, sim->n * sizeof *P->kappa);
+        force(sim, true);
+        sph_solver_stopped(sim, measure(sim, true, &over));
+        s->phase = 0;
+        return;
+    }
     /* the solve also goes on while a pushed particle is below rho_r by more than the tolerance (see the top) */
     const bool done = sph_solver_done(sim, fmax(error, over), sim->def.solver_tolerance);
     s->error = error;
@@ -392,8 +403,8 @@ const sph_pass sph_pass_dfsph = {
     .summary = "DFSPH: one iteration of the divergence-free or the constant-density solve",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VEL) | SPH_BIT(RHO) | SPH_MASK_ACCELERATIONS |
              SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_RES_LISTS,
-    .writes = SPH_BIT(ALPHA) | SPH_BIT(ALPHA_V) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(RHO_DF) | SPH_BIT(DV_DF) |
-              SPH_BIT(ACC_DF),
+    .writes = SPH_BIT(ALPHA) | SPH_BIT(ALPHA_V) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(KAPPA_BEST) |
+              SPH_BIT(RHO_DF) | SPH_BIT(DV_DF) | SPH_BIT(ACC_DF),
     .group = SPH_GROUP_FORCES,
     .highlight = "dfsph-density",
     .skip_reason = skip_reason,

@@ -14,9 +14,10 @@
  *      be called again (sim->pass_again): stepping pass by pass shows each iteration.
  * The acceleration written by the last iteration is the one whose density
  * was measured, so the step ends with that density error.
- * A solve whose error rises by the tolerance above the least it has reached
- * is diverging: it takes back the pressure of that least (p_pci_best), ends
- * the step there (counted in `stopped`) and leaves the next step to go on.
+ * A solve whose error rises above twice the least it has reached plus the
+ * tolerance is diverging: it takes back the pressure of that least
+ * (p_pci_best), ends the step there (counted in `stopped`) and leaves the
+ * next step to go on (solver.h, sph_solver_least).
  * On the bench's 3D dam break (50,688 particles, cold, h = 2 s, dt = 2 ms)
  * step 4 fell to 0.118 % by iteration 400, then rose to 36 % and the watchdog
  * stopped the run; it now ends at 0.118 % (docs/accuracy.md, section 8). rho_r is the
