@@ -61,9 +61,10 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
         char why[160];
         HUD_LINE("dt: %s", sph_time_step_reason(sim, why, sizeof why));
         if (sim->def.pressure_solver == SPH_PSOLVER_DFSPH) {
-            HUD_LINE("dfsph last step: %d divergence + %d density iterations, error %.3f %% (tol %.3g %%), %llu capped",
+            HUD_LINE("dfsph last step: %d divergence + %d density iterations, error %.3f %% (tol %.3g %%), %llu capped, "
+                     "%llu stopped rising",
                      so->div_iterations, so->iterations, 100 * so->density_error, 100 * sim->def.solver_tolerance,
-                     (unsigned long long)so->capped);
+                     (unsigned long long)so->capped, (unsigned long long)so->stopped);
         } else {
             HUD_LINE("pcisph last step: %d iterations, density error %.3f %% (tol %.3g %%), %llu capped, %llu stopped "
                      "rising",

@@ -20,9 +20,9 @@
  * next step to go on (solver.h, sph_solver_least).
  * On the bench's 3D dam break (50,688 particles, cold, h = 2 s, dt = 2 ms)
  * step 4 fell to 0.118 % by iteration 400, then rose to 36 % and the watchdog
- * stopped the run; it now ends at 0.118 % (docs/accuracy.md, section 8). rho_r is the
- * density of the lattice at rest (solver.h); the forces divide by it, not by
- * each particle's density, as delta's derivation assumes (eq. 8).
+ * stopped the run; it now ends at 0.118 % (docs/accuracy.md, section 8).
+ * rho_r is the density of the lattice at rest (solver.h); the forces divide
+ * by it, not by each particle's density, as delta's derivation assumes (eq. 8).
  *
  * delta: with p_j = p_i = p~ around a particle whose neighbourhood is full,
  * its pressure moves it and its neighbours by dt^2 a, which changes its

@@ -156,11 +156,16 @@ static inline void sph_simd8_indices(__m256i idx, uint32_t j[8])
  * floats, 16-byte aligned) as 8 16-byte loads and 8 shuffles instead of 4
  * gathers: f[k] holds float k of lane l's four. Written out, not looped, so
  * that the compiler keeps everything in registers. */
-static inline void sph_simd8_rec4(const float *rec, size_t per, const uint32_t j[8], __m256 f[4])
+/* Four floats from `off` of each of 8 records a0 .. a7 (16-byte aligned), as 8 16-byte loads and 8 shuffles instead
+ * of 4 gathers: f[k] holds float k of lane l's four. Written out, not looped, so that the compiler keeps everything
+ * in registers. */
+SPH_INLINE void sph_simd8_rec4_at(const float *a0, const float *a1, const float *a2, const float *a3, const float *a4,
+                                  const float *a5, const float *a6, const float *a7, size_t off, __m256 f[4])
 {
-#define SPH_REC_PAIR(a, b)                                                                                      \
-    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(rec + per * j[a])), _mm_load_ps(rec + per * j[b]), 1)
-    const __m256 r0 = SPH_REC_PAIR(0, 4), r1 = SPH_REC_PAIR(1, 5), r2 = SPH_REC_PAIR(2, 6), r3 = SPH_REC_PAIR(3, 7);
+#define SPH_REC_PAIR(p, q)                                                                                      \
+    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps((p) + off)), _mm_load_ps((q) + off), 1)
+    const __m256 r0 = SPH_REC_PAIR(a0, a4), r1 = SPH_REC_PAIR(a1, a5), r2 = SPH_REC_PAIR(a2, a6);
+    const __m256 r3 = SPH_REC_PAIR(a3, a7);
 #undef SPH_REC_PAIR
     const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1); /* lanes 0 1 0 1 | 4 5 4 5 */
     const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3); /* lanes 2 3 2 3 | 6 7 6 7 */
@@ -170,22 +175,12 @@ static inline void sph_simd8_rec4(const float *rec, size_t per, const uint32_t j
     f[3] = _mm256_shuffle_ps(t1, t3, 0xEE);
 }
 
-/* Four floats from `off` of each of 8 records a0 .. a7 (16-byte aligned), as sph_simd8_rec4: the same loads and
- * shuffles, from addresses the caller already has. */
-SPH_INLINE void sph_simd8_rec4_at(const float *a0, const float *a1, const float *a2, const float *a3, const float *a4,
-                                  const float *a5, const float *a6, const float *a7, size_t off, __m256 f[4])
+/* Four consecutive floats of each neighbour j[l]'s record (records of `per` floats, 16-byte aligned), as
+ * sph_simd8_rec4_at. */
+SPH_INLINE void sph_simd8_rec4(const float *rec, size_t per, const uint32_t j[8], __m256 f[4])
 {
-#define SPH_REC_PAIR(p, q)                                                                                      \
-    _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps((p) + off)), _mm_load_ps((q) + off), 1)
-    const __m256 r0 = SPH_REC_PAIR(a0, a4), r1 = SPH_REC_PAIR(a1, a5), r2 = SPH_REC_PAIR(a2, a6);
-    const __m256 r3 = SPH_REC_PAIR(a3, a7);
-#undef SPH_REC_PAIR
-    const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
-    const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
-    f[0] = _mm256_shuffle_ps(t0, t2, 0x44);
-    f[1] = _mm256_shuffle_ps(t0, t2, 0xEE);
-    f[2] = _mm256_shuffle_ps(t1, t3, 0x44);
-    f[3] = _mm256_shuffle_ps(t1, t3, 0xEE);
+    sph_simd8_rec4_at(rec + per * j[0], rec + per * j[1], rec + per * j[2], rec + per * j[3], rec + per * j[4],
+                      rec + per * j[5], rec + per * j[6], rec + per * j[7], 0, f);
 }
 
 /* sph_simd8_rec4 for 8 neighbours of a compact row (offsets j - i), in records of 8 floats, from float `off` of
