@@ -95,13 +95,24 @@ static inline void density_one_avx2(const sph_sim *sim, const sph_kernel *k, int
     __m256 acc = zero;
     const sph_nbr_row row = sph_nbr_row_of(&sim->S, (uint32_t)i);
     const uint32_t end = row.n;
+    /* records and a compact row (the common case): the records' addresses straight from the offsets, no index
+     * vector (as the force walk, pressure_force.c); the last block's dead lanes get offset 0, the particle's own
+     * record, whose w the mask zeroes: the same sums to the bit */
+    const bool by_offset = rec && row.o;
+    const float *const rec_i = rec ? rec + 4 * (size_t)i : NULL;
     for (uint32_t e = 0; e < end; e += 8) {
-        const __m256i live = sph_simd8_live(e, end), idx = sph_simd8_nbr(&row, e, end, live);
+        const __m256i live = sph_simd8_live(e, end);
+        const __m256i idx = by_offset ? _mm256_setzero_si256() : sph_simd8_nbr(&row, e, end, live);
         __m256 r2, mj, f[4];
         if (rec) { /* sph_simd8_offsets' sums on the records' positions */
-            uint32_t j[8];
-            sph_simd8_indices(idx, j);
-            sph_simd8_rec4(rec, 4, j, f);
+            if (by_offset) {
+                int16_t last[8];
+                sph_simd8_rec4_off_per(rec_i, 4, sph_simd8_block_offsets(row.o, e, end, last), 0, f);
+            } else {
+                uint32_t j[8];
+                sph_simd8_indices(idx, j);
+                sph_simd8_rec4(rec, 4, j, f);
+            }
             for (int d = 0; d < 3; d++) d3[d] = d < dim ? _mm256_sub_ps(xi[d], f[d]) : zero;
             r2 = _mm256_add_ps(_mm256_mul_ps(d3[0], d3[0]), _mm256_mul_ps(d3[1], d3[1]));
             if (dim == 3) r2 = _mm256_add_ps(r2, _mm256_mul_ps(d3[2], d3[2]));

@@ -268,12 +268,7 @@ SPH_INLINE void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, const s
         const bool by_offset = packed && row.o;
         const __m256i idx = by_offset ? _mm256_setzero_si256() : sph_simd8_nbr(&row, e, end, live);
         int16_t o_last[8];
-        const int16_t *o = by_offset ? row.o + e : NULL;
-        if (by_offset && end - e < 8) {
-            memset(o_last, 0, sizeof o_last);
-            memcpy(o_last, o, (size_t)(end - e) * sizeof *o_last);
-            o = o_last;
-        }
+        const int16_t *o = by_offset ? sph_simd8_block_offsets(row.o, e, end, o_last) : NULL;
         __m256 r2, vol = zero, q[4], g[4]; /* q, g: the records' halves */
         uint32_t j[8];                     /* packed, not by_offset: the indices */
         if (packed) { /* sph_simd8_offsets' sums on the records' positions */

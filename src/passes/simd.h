@@ -183,15 +183,32 @@ SPH_INLINE void sph_simd8_rec4(const float *rec, size_t per, const uint32_t j[8]
                       rec + per * j[5], rec + per * j[6], rec + per * j[7], 0, f);
 }
 
-/* sph_simd8_rec4 for 8 neighbours of a compact row (offsets j - i), in records of 8 floats, from float `off` of
- * each: the addresses come from the offsets o[0..7] read as scalars, so each record's loads wait on one 16-bit
+/* sph_simd8_rec4 for 8 neighbours of a compact row (offsets j - i), in records of `per` floats, from float `off`
+ * of each: the addresses come from the offsets o[0..7] read as scalars, so each record's loads wait on one 16-bit
  * load and not on a round trip of the indices through a vector register. rec_i: the row's own record. */
-SPH_INLINE void sph_simd8_rec4_off(const float *rec_i, const int16_t *o, size_t off, __m256 f[4])
+SPH_INLINE void sph_simd8_rec4_off_per(const float *rec_i, ptrdiff_t per, const int16_t *o, size_t off, __m256 f[4])
 {
-#define SPH_REC_AT(k) (rec_i + 8 * (ptrdiff_t)o[k])
+#define SPH_REC_AT(k) (rec_i + per * (ptrdiff_t)o[k])
     sph_simd8_rec4_at(SPH_REC_AT(0), SPH_REC_AT(1), SPH_REC_AT(2), SPH_REC_AT(3), SPH_REC_AT(4), SPH_REC_AT(5),
                       SPH_REC_AT(6), SPH_REC_AT(7), off, f);
 #undef SPH_REC_AT
+}
+
+/* The offsets of a compact row's block of 8 from entry e: the row's own words, or for the last block (fewer than
+ * 8 left) a copy in last[] whose dead lanes hold offset 0, the particle's own record, which the loops then mask. */
+SPH_INLINE const int16_t *sph_simd8_block_offsets(const int16_t *o, uint32_t e, uint32_t end, int16_t last[8])
+{
+    o += e;
+    if (end - e >= 8) return o;
+    memset(last, 0, 8 * sizeof *last);
+    memcpy(last, o, (size_t)(end - e) * sizeof *last);
+    return last;
+}
+
+/* The same in the force walk's records of 8 floats. */
+SPH_INLINE void sph_simd8_rec4_off(const float *rec_i, const int16_t *o, size_t off, __m256 f[4])
+{
+    sph_simd8_rec4_off_per(rec_i, 8, o, off, f);
 }
 #else
 #define SPH_HAVE_AVX2 0
