@@ -292,3 +292,25 @@ Test(gl_solvers, dfsph_warm_passes_match_cpu, .timeout = 300)
 {
     lockstep_keys(dam_2d, "dfsph", WARM " physics.divergence_tolerance=1e-5", 20, 10);
 }
+
+/* Wall particles with a solver run on the CPU only (tests/test_solver_walls.c): the GL backend refuses the pair,
+ * naming both keys, rather than move the wall particles. */
+Test(gl_solvers, wall_particles_refused)
+{
+    need_gl();
+    const char *solvers[] = {"pcisph", "dfsph"};
+    for (int k = 0; k < 2; k++) {
+        sph_scene_def def = test_scene(dam_2d);
+        sph_error err;
+        char set[100];
+        snprintf(set, sizeof set, "physics.pressure_solver=%s", solvers[k]);
+        cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
+        cr_assert_eq(sph_scene_set(&def, "domain.wall_model=particles", &err), SPH_ERR_OK, "%s", err.msg);
+        cr_assert_eq(sph_scene_validate(&def, &err), SPH_ERR_OK, "%s", err.msg);
+        def.backend = SPH_BACKEND_GL;
+        sph_sim *sim = NULL;
+        cr_assert_neq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s: the GL backend accepted wall particles",
+                      solvers[k]);
+        cr_assert(strstr(err.msg, solvers[k]) && strstr(err.msg, "wall_model = particles"), "%s", err.msg);
+    }
+}

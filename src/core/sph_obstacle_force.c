@@ -7,7 +7,9 @@
  *   F_k = - sum_{w in k} sum_{f fluid} m_f a_{f <- w},
  * the same pair terms evaluated here from the wall particles' side with the
  * passes' formulas (pressure_force.c, viscosity.c): symmetric or shared
- * pressure, laplacian, smoothing, morris or artificial viscosity. It reads
+ * pressure, laplacian, smoothing, morris or artificial viscosity; with a
+ * pressure solver, its pair term (pcisph.c, dfsph.c: the wall particle's own
+ * pressure 0). It reads
  * the state the latest step's force passes read (predicted positions,
  * density, pressure, vel_visc); the fluid's velocity, which integration has
  * advanced since, is taken back to what the viscosity pass saw, v - dt a
@@ -35,7 +37,17 @@ static void pair_force(const sph_sim *sim, uint32_t f, uint32_t w, const float v
     }
     const float r = sqrtf(r2), mf = P->mass[f];
     double a[3] = {0, 0, 0};
-    if (P->acc_p[0] && r > SPH_KERNEL_R_MIN * def->h) { /* pressure_force.c */
+    const float rho_r = sim->solver.rho_rest;
+    if (def->pressure_solver != SPH_PSOLVER_EOS && rho_r > 0 && r > SPH_KERNEL_R_MIN * def->h) {
+        /* the solvers' pair term with the wall particle's own p or kappa 0 (pcisph.c, dfsph.c) */
+        const float g = sph_kernel_dw(&sim->k_pressure, r) / r;
+        float coef = 0.0f;
+        if (def->pressure_solver == SPH_PSOLVER_PCISPH && P->p_pci)
+            coef = P->mass[w] * P->p_pci[f] / (rho_r * rho_r);
+        else if (def->pressure_solver == SPH_PSOLVER_DFSPH && P->kappa && P->kappa_v)
+            coef = P->mass[w] * (P->kappa_v[f] + P->kappa[f]) / rho_r;
+        for (int d = 0; d < dim; d++) a[d] -= (double)coef * g * dx[d];
+    } else if (P->acc_p[0] && r > SPH_KERNEL_R_MIN * def->h) { /* pressure_force.c */
         const float g = sph_kernel_dw(&sim->k_pressure, r) / r;
         const float coef = def->pressure_form == SPH_PFORM_SYMMETRIC
                                ? P->mass[w] * (P->p_rho2[f] + P->p_rho2[w])

@@ -313,15 +313,6 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                         loc, blk->name, blk->spacing, count, SPH_MAX_PARTICLES);
     }
     if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)) &&
-        ((def->effects & SPH_EFFECT(WALLS)) && def->wall_model == SPH_WALL_PARTICLES)) {
-        char loc[300];
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] pressure_solver = %s does not run with [domain] wall_model = particles yet (the "
-                        "wall particles' pressure comes from the equation of state; accepted: volume, reflect)",
-                        origin_text(def, def->origin[key_index("physics", "pressure_solver")].line, loc, sizeof loc),
-                        sph_pressure_solver_names[def->pressure_solver]);
-    }
-    if (def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE)) &&
         def->density_method == SPH_DMETHOD_CONTINUITY) {
         char loc[300];
         return sph_fail(err, SPH_ERR_SCENE,

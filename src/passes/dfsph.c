@@ -74,6 +74,12 @@
  * first, so the density solve accounts for the positions it changes. Warm
  * start (Bender & Koschier 2017 start each solve from the last step's kappa):
  * solver_warm_start = on (off by default, see SPH_DFSPH_WARM below).
+ * Wall particles (wall_model = particles, obstacles) are neighbours like the
+ * fluid's in the sums, at their fixed places, with kappa = kappa^v = 0: they
+ * push back with K_i alone, as the volume model's walls do with -K_i
+ * grad(share) (Akinci et al. 2012's boundary force has the same single term),
+ * add to G_i but not to the sums over the neighbours i's push moves, and
+ * count in neither solve's error.
  * rho_r is the lattice's rest density (solver.h); the walls
  * count as the lattice continued behind them (solver.h), in place of the
  * density pass's volume-model term. */
@@ -117,7 +123,9 @@ static void describe(const sph_scene_def *def, char *out, int n)
              "divergence-free solve to dt |D rho/Dt| / rho <= %g, then constant density to %g (at most %d "
              "iterations each)%s",
              def->divergence_tolerance, def->solver_tolerance, def->solver_max_iterations,
-             sph_scene_wall_volume(def) ? ", walls count and push back" : "");
+             sph_scene_wall_volume(def)     ? ", walls count and push back"
+             : sph_scene_wall_particles(def) ? ", wall particles count and push back"
+                                             : "");
 }
 
 /* grad W_ij of kernel k for the pair offset dx (x_i - x_j); r2 = |dx|^2 > 0. */
@@ -148,6 +156,10 @@ static void factors(sph_sim *sim)
     const float full = sim->solver.den_full;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (sph_is_wall(P, i)) { /* a wall particle holds no kappa (see the top) */
+            P->alpha[i] = P->alpha_v[i] = 0.0f;
+            continue;
+        }
         float gr[3] = {0, 0, 0}, gp[3] = {0, 0, 0}, dots = 0, dots_p = 0;
         const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
         for (uint32_t e = 0; e < row.n; e++) {
@@ -156,9 +168,11 @@ static void factors(sph_sim *sim)
             pair_dx(sim, i, j, dx, &r2);
             const float fr = P->mass[j] * grad_factor(&sim->k_density, r2);
             const float fp = P->mass[j] * grad_factor(&sim->k_pressure, r2);
+            const bool still = sph_is_wall(P, j); /* a wall particle counts, but i's push cannot move it */
             for (int d = 0; d < dim; d++) {
                 gr[d] += fr * dx[d];
                 gp[d] += fp * dx[d];
+                if (still) continue;
                 dots += fr * fp * dx[d] * dx[d];
                 dots_p += fp * fp * dx[d] * dx[d];
             }
@@ -189,6 +203,10 @@ static void force(sph_sim *sim, bool with_density)
     const bool walls = sph_sim_wall_volume(sim);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (sph_is_wall(P, i)) { /* wall particles stay where they are */
+            for (int d = 0; d < dim; d++) P->acc_df[d][i] = P->dv_df[d][i] = 0.0f;
+            continue;
+        }
         const float k_i = P->kappa_v[i] + (with_density ? P->kappa[i] : 0.0f);
         float a[3] = {0, 0, 0};
         const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
@@ -236,7 +254,10 @@ static float *reached(sph_sim *sim)
     for (int i = 0; i < n; i++) {
         float x[3] = {0, 0, 0}, c[3];
         for (int d = 0; d < dim; d++) x[d] = sim->P.pred[d][i] + sim->dt * sim->P.dv_df[d][i];
-        sph_solver_clamped(sim, x, c);
+        if (sph_is_wall(&sim->P, i)) /* beyond the box, where they stay */
+            memcpy(c, x, sizeof c);
+        else
+            sph_solver_clamped(sim, x, c);
         for (int d = 0; d < 3; d++) xs[3 * (size_t)i + (size_t)d] = c[d];
     }
     return xs;
@@ -258,8 +279,15 @@ static double measure(sph_sim *sim, bool density, double *over)
     const float *restrict xs = density ? reached(sim) : NULL;
     float worst = 0.0f, pushed = 0.0f;
     double total = 0;
-#pragma omp parallel for schedule(static) reduction(max : worst, pushed) reduction(+ : total) if (n > SPH_PARALLEL_MIN)
+    long fluid = 0; /* the particles the average is over: not the wall particles */
+#pragma omp parallel for schedule(static) reduction(max : worst, pushed) reduction(+ : total, fluid) \
+    if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (sph_is_wall(P, i)) { /* not the fluid's: no error of its own */
+            P->rho_df[i] = density ? rho_r : 0.0f;
+            continue;
+        }
+        fluid++;
         if (density) {
             const float *xi = xs + 3 * (size_t)i;
             float rho = P->mass[i] * sph_kernel_w(&sim->k_density, 0.0f);
@@ -303,7 +331,7 @@ static double measure(sph_sim *sim, bool density, double *over)
         total += fmaxf(P->rho_df[i], 0.0f) / rho_r;
     }
     if (over) *over = pushed;
-    return density ? worst : (n > 0 ? total / n : 0.0);
+    return density ? worst : (fluid > 0 ? total / (double)fluid : 0.0);
 }
 
 /* The divergence: kappa^v += the increment that cancels this particle's
@@ -317,6 +345,7 @@ static void correct(sph_sim *sim, bool density)
     float *restrict k = density ? P->kappa : P->kappa_v;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (sph_is_wall(P, i)) continue; /* kappa stays 0: the walls push with K_i alone (see the top) */
         if (density)
             k[i] = fmaxf(k[i] + SPH_DFSPH_OMEGA * (P->rho_df[i] - rho_r) * fabsf(P->alpha[i]) / (dt * dt),
                          -P->kappa_v[i]);

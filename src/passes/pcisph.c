@@ -21,6 +21,12 @@
  * On the bench's 3D dam break (50,688 particles, cold, h = 2 s, dt = 2 ms)
  * step 4 fell to 0.118 % by iteration 400, then rose to 36 % and the watchdog
  * stopped the run; it now ends at 0.118 % (docs/accuracy.md, section 8).
+ * Wall particles (wall_model = particles, obstacles) are neighbours like the
+ * fluid's in the sums, at their fixed places, with p = 0: in the pair term
+ * -(m_j / rho_r^2) (p_i + p_j) grad W they push back with p_i alone, as the
+ * volume model's walls do with -(p_i / rho_r) grad(share) (the energy's form;
+ * Akinci et al. 2012's boundary force, eq. 10, has the same single term).
+ * Their own pressure, prediction and error are not solved for.
  * rho_r is the density of the lattice at rest (solver.h); the forces divide
  * by it, not by each particle's density, as delta's derivation assumes (eq. 8).
  *
@@ -60,7 +66,9 @@ static void describe(const sph_scene_def *def, char *out, int n)
 {
     snprintf(out, (size_t)n, "predict-correct until the density error <= %g (at most %d iterations)%s",
              def->solver_tolerance, def->solver_max_iterations,
-             sph_scene_wall_volume(def) ? ", walls count and push back" : "");
+             sph_scene_wall_volume(def)     ? ", walls count and push back"
+             : sph_scene_wall_particles(def) ? ", wall particles count and push back"
+                                             : "");
 }
 
 /* delta at dt = 1 s, on the finest block's full lattice (see the top). */
@@ -101,6 +109,10 @@ static void local_deltas(sph_sim *sim)
     const bool walls = sph_sim_wall_volume(sim);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (sph_is_wall(P, i)) { /* a wall particle holds no pressure (see the top) */
+            P->delta_pci[i] = sim->solver.delta;
+            continue;
+        }
         /* in mass-weighted form: m^2 S_i, so that delta_i = rho_r^2 / (2 m^2 S_i) */
         float gr[3] = {0, 0, 0}, gp[3] = {0, 0, 0}, dots = 0;
         const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
@@ -115,10 +127,11 @@ static void local_deltas(sph_sim *sim)
             if (!(r > 0.0f)) continue;
             const float fr = P->mass[j] * sph_kernel_dw(&sim->k_density, r) / r;
             const float fp = P->mass[j] * sph_kernel_dw(&sim->k_pressure, r) / r;
+            const bool still = sph_is_wall(P, j); /* a wall particle counts, but i's pressure cannot move it */
             for (int d = 0; d < dim; d++) {
                 gr[d] += fr * dx[d];
                 gp[d] += fp * dx[d];
-                dots += fr * fp * dx[d] * dx[d];
+                if (!still) dots += fr * fp * dx[d] * dx[d];
             }
         }
         if (walls) {
@@ -146,6 +159,13 @@ static void force(sph_sim *sim)
     const bool walls = sph_sim_wall_volume(sim);
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (sph_is_wall(P, i)) { /* wall particles stay where they are */
+            for (int d = 0; d < dim; d++) {
+                P->acc_pci[d][i] = 0.0f;
+                P->x_pci[d][i] = P->pred[d][i];
+            }
+            continue;
+        }
         float a[3] = {0, 0, 0}, other[3];
         const float p_i = P->p_pci[i];
         const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)i);
@@ -192,6 +212,10 @@ static double predict(sph_sim *sim)
     float worst = 0.0f;
 #pragma omp parallel for schedule(static) reduction(max : worst) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (sph_is_wall(P, i)) { /* not the fluid's: no error of its own */
+            P->rho_pci[i] = rho_r;
+            continue;
+        }
         float xi[3] = {0, 0, 0};
         for (int d = 0; d < dim; d++) xi[d] = P->x_pci[d][i];
         float rho = P->mass[i] * sph_kernel_w(&sim->k_density, 0.0f);
@@ -223,6 +247,7 @@ static void correct(sph_sim *sim)
     const float *restrict local = sim->def.pcisph_local_delta == SPH_ON ? P->delta_pci : NULL;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
+        if (sph_is_wall(P, i)) continue; /* p stays 0: the walls push with p_i alone (see the top) */
         const float d_i = local ? local[i] / (sim->dt * sim->dt) : delta;
         P->p_pci[i] = fmaxf(floor, P->p_pci[i] + d_i * (P->rho_pci[i] - rho_r));
     }

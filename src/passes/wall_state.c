@@ -36,6 +36,10 @@
  *           u_max fast at 10 spacings across (docs/accuracy.md,
  *           "poiseuille and couette").
  * A wall particle with no fluid in reach keeps p = 0 at rest density.
+ * With a pressure solver (pcisph, dfsph) there is no p: the wall particles
+ * then keep the density the summation gave them, hold no pressure (the
+ * solvers' walls push with the fluid particle's own, pcisph.c), and get the
+ * viscous term's velocity only, without the curvature term (it needs p).
  * Fluid particles get vel_visc = their velocity. The pass runs after the
  * equation of state: it overwrites the pressure and density that summation
  * gave the wall particles. It reads p and rho of fluid particles only and
@@ -133,7 +137,8 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
     double sq = 0, sc[3] = {0, 0, 0}, sqc[3] = {0, 0, 0}, scc[3][3] = {{0}}; /* mirror_curvature's sums */
     /* [Pa] q's reference, the wall particle's pressure of the last step: q's gradient is a small difference of
      * large pressures (1e6 Pa in a stiff tank), which the GL backend sums in float */
-    const double qref = P->p[w];
+    const bool eos = P->p != NULL; /* the solvers (pcisph, dfsph) make no p: the walls then give the velocity only */
+    const double qref = eos ? P->p[w] : 0.0;
     const sph_nbr_row row = sph_nbr_row_of(S, (uint32_t)(w));
     for (uint32_t e = 0; e < row.n; e++) {
         uint32_t f = sph_nbr_at(&row, e);
@@ -146,6 +151,10 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
         }
         double W = sph_kernel_w(k, sqrtf(r2));
         sw += W;
+        if (!eos) { /* the viscous term's velocity alone */
+            for (int d = 0; d < dim; d++) sv[d] += (double)P->vel[d][f] * W;
+            continue;
+        }
         sp += (double)P->p[f] * W;
         double q = (double)P->p[f] - qref; /* q_f = p_f + rho_f g . r_wf, less qref */
         for (int d = 0; d < dim; d++) {
@@ -170,15 +179,17 @@ static inline void wall_one(sph_sim *sim, int w, const int dim, const bool perio
         for (int d = 0; d < dim; d++) vt[d] = (float)(sv[d] / sw);
     }
     if (def->negative_pressure == SPH_NEGP_CLAMP) p = fmaxf(p, 0.0f);
-    const float rho = eos_density(def, sim->eos_rho0, p);
-    P->p[w] = p;
-    P->rho[w] = rho;
-    P->p_rho2[w] = p / (rho * rho);
-    P->vol[w] = P->mass[w] / rho;
+    if (eos) { /* with a solver the wall particle keeps the density the summation gave it */
+        const float rho = eos_density(def, sim->eos_rho0, p);
+        P->p[w] = p;
+        P->rho[w] = rho;
+        P->p_rho2[w] = p / (rho * rho);
+        P->vol[w] = P->mass[w] / rho;
+    }
     /* the mirror about the wall's velocity in the step's frame, v_w + g dt (kick): the fluid's v already
      * carries this step's gravity kick, which its pressure force is about to take back */
     float curv[3] = {0, 0, 0};
-    if (inv_nu > 0 && sw > 0 && P->slip[w] == 0.0f) {
+    if (eos && inv_nu > 0 && sw > 0 && P->slip[w] == 0.0f) {
         mirror_curvature(dim, sw, sc, scc, sq, sqc, def->rest_density, inv_nu, curv);
         /* The continuation is the viscous sublayer's Taylor series over |c|: only where viscosity rules
          * across it, the cell Reynolds number |v~_w - v_w| |c| / nu <= 1; beyond, the boundary layer is
