@@ -153,7 +153,8 @@ Test(gl_backend, refuses_what_it_does_not_implement)
                               {"search.sort=none", "[search] sort = none"},
                               {"physics.accumulate=double", "[physics] accumulate = double"},
                               {"compute.packed_records=on", "[compute] packed_records = on"},
-                              {"compute.uniform_mass=on", "[compute] uniform_mass = on"}};
+                              {"compute.uniform_mass=on", "[compute] uniform_mass = on"},
+                              {"search.cell_batch=on", "[search] cell_batch = on"}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         sph_scene_def def = test_scene(scene_2d);
         sph_error err;

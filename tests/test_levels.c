@@ -58,7 +58,7 @@ static void every_level_matches(const char *ini)
         sph_sim_destroy(sim);
         checked++;
     }
-    cr_expect_eq(checked, 15, "levels L0..L14");
+    cr_expect_eq(checked, 16, "levels L0..L15");
 }
 
 Test(levels, every_cpu_level_finds_brute_forces_sets_2d) { every_level_matches(scene_2d); }
@@ -154,4 +154,12 @@ Test(levels, level_of_the_ingredients)
     cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L13")], &def, &err), SPH_ERR_OK);
     cr_expect_eq(def.uniform_mass, SPH_OFF);
     cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L13"));
+    /* L15 is L14 searching a cell's particles together; down to L14 it is off again */
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L15")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.cell_batch, SPH_ON);
+    cr_expect_eq(def.uniform_mass, SPH_ON);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L15"));
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L14")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.cell_batch, SPH_OFF);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L14"));
 }

@@ -59,6 +59,11 @@ const sph_level sph_levels[] = {
      "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
      "compute.packed_records=on compute.uniform_mass=on",
      0, "L13 + une masse pour toutes (pas de collecte des masses)"},
+    {"L15", "L14 + search a cell's particles together",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
+     "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
+     "compute.packed_records=on compute.uniform_mass=on search.cell_batch=on",
+     0, "L14 + recherche des particules d'une cellule ensemble"},
     /* The seed's GPU steps: the passes as GLSL compute shaders (src/gpu/), on
      * whatever OpenGL 4.3 device EGL gives (llvmpipe without a GPU). */
     {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0, "GLSL : force brute"},
@@ -96,6 +101,7 @@ sph_error_code sph_level_apply(const sph_level *L, sph_scene_def *def, sph_error
     def->vector_avx2 = SPH_OFF;
     def->packed_records = SPH_OFF;
     def->uniform_mass = SPH_OFF;
+    def->cell_batch = SPH_OFF;
     def->skin = 0.0f;
     char buf[512];
     snprintf(buf, sizeof buf, "%s", L->sets);
@@ -122,7 +128,8 @@ int sph_level_of(const sph_scene_def *def, int threads, int cores)
             at.vector == def->vector && at.backend == def->backend && at.fuse_forces == def->fuse_forces &&
             at.lists_in_place == def->lists_in_place && at.skin == def->skin &&
             at.compact_lists == def->compact_lists && at.vector_avx2 == def->vector_avx2 &&
-            at.packed_records == def->packed_records && at.uniform_mass == def->uniform_mass)
+            at.packed_records == def->packed_records && at.uniform_mass == def->uniform_mass &&
+            at.cell_batch == def->cell_batch)
             return i;
     }
     return -1;

@@ -262,6 +262,7 @@ typedef struct sph_scene_def {
     sph_onoff reorder;   /* store the particles in cell order after the sort (for memory locality) */
     sph_onoff vector;    /* use the CPU's vector instructions (AVX-512) in the inner loops where written */
     sph_onoff vector_avx2; /* the pair passes' vector loops in AVX2, 8 lanes, instead of AVX-512's 16 */
+    sph_onoff cell_batch;  /* AVX2 search: a cell's particles tested together against each candidate vector */
     sph_onoff lists_in_place; /* the first thread builds its lists straight into the joined array */
     sph_onoff compact_lists;  /* neighbour lists as 16-bit offsets j - i (a wide row's 32-bit indices as escape) */
     float skin;          /* [1] Verlet skin in units of h: lists reach h (1 + skin) and are kept while every

@@ -259,6 +259,11 @@ const sph_key sph_scene_keys[] = {
      "their fused walk) use AVX2 loops, 8 floats at a time, instead of AVX-512's 16: they run on CPUs without "
      "AVX-512 (where vector = on alone leaves the scalar loops); the same lists, and results within round-off "
      "(the pair sums in another order); off: AVX-512 where the build has it, else scalar"},
+    {"search", "cell_batch", SPH_KEY_CHOICE, S(cell_batch), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: with vector_avx2 = on, after a reorder and with no periodic axis, the neighbour search tests the "
+     "particles of one cell together: each 8 candidates of a stencil run are loaded once for all of them instead "
+     "of once per particle, and the rows are packed to 16-bit offsets 8 at a time; the same lists, entry for "
+     "entry, so the same results to the bit. Elsewhere (periodic, no reorder, no AVX2) the search runs as with off"},
     {"search", "lists_in_place", SPH_KEY_CHOICE, S(lists_in_place), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
      "on: the first thread writes its particles' neighbour lists straight into the joined array the other passes "
      "read, instead of into a buffer of its own that is then copied there (the same lists, one copy less of the "

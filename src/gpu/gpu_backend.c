@@ -102,6 +102,11 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [search] vector_avx2 = on is not implemented by the GL backend (it selects the CPU's "
                         "AVX2 loops; the shaders' lanes are the device's; accepted there: off)",
                         def->file);
+    if (def->cell_batch == SPH_ON)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [search] cell_batch = on is not implemented by the GL backend (it selects the CPU's "
+                        "AVX2 search of a cell's particles together; the shaders walk the cells; accepted there: off)",
+                        def->file);
     if (def->packed_records == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [compute] packed_records = on is not implemented by the GL backend (it changes how the "

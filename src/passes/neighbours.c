@@ -10,7 +10,9 @@
  *   grid:  the same walk over the dense grid's cells (no collisions).
  *   brute: every pair, O(N^2): the reference the others are tested against.
  * The stencil's cells have distinct hashes (tests/test_search.c checks the
- * primes), so no entry is visited twice. Every variant gives the same sets. */
+ * primes), so no entry is visited twice. Every variant gives the same sets.
+ * With [search] cell_batch (AVX2, after a reorder) the particles of a cell are
+ * tested together against each vector of candidates (rows_batched). */
 #define _DEFAULT_SOURCE /* madvise */
 #include "sph_memory.h"
 #include "sph_search.h"
@@ -240,7 +242,7 @@ static inline uint32_t run_end(const sph_sim *sim, uint32_t s, uint32_t last)
  * run instead of three, about 3 * 8 candidates at h = 2 spacings, so a
  * 16-lane loop works on full vectors instead of half-empty ones. Not on a
  * periodic x axis, where the row wraps around. */
-static int stencil_rows(const sph_sim *sim, const int32_t c[3], run_range *runs)
+static int stencil_rows(const sph_sim *sim, const int32_t c[3], run_range *runs, const bool by_offsets)
 {
     const sph_search_data *S = &sim->S;
     const sph_cells *g = &S->cells;
@@ -257,20 +259,23 @@ static int stencil_rows(const sph_sim *sim, const int32_t c[3], run_range *runs)
             uint32_t s = SPH_EMPTY;
             for (uint32_t key = last - (uint32_t)(x1 - x0); key <= last && s == SPH_EMPTY; key++) s = S->start[key];
             if (s == SPH_EMPTY) continue;
-            runs[k++] = (run_range){s, run_end(sim, s, last), 0, true};
+            /* by_offsets (cell_batch): the next key's start, where it has entries, ends the run */
+            const uint32_t next = by_offsets && last + 1 < S->table_size ? S->start[last + 1] : SPH_EMPTY;
+            runs[k++] = (run_range){s, next != SPH_EMPTY ? next : run_end(sim, s, last), 0, true};
         }
     }
     return k;
 }
 
 /* The runs of the 3^dim cells around cell c (at most 27). */
-static int stencil_runs(const sph_sim *sim, const int32_t c[3], run_range *runs)
+static int stencil_runs(const sph_sim *sim, const int32_t c[3], run_range *runs, const bool by_offsets)
 {
     const sph_search_data *S = &sim->S;
     const sph_cells *g = &S->cells;
     const sph_entry *en = S->entries;
     const int dim = sim->dim, zr = dim == 3 ? 1 : 0;
-    if (g->dense && !g->wrap[0]) return stencil_rows(sim, c, runs); /* table_size = cell count: no shared keys */
+    if (g->dense && !g->wrap[0]) /* table_size = cell count: no shared keys */
+        return stencil_rows(sim, c, runs, by_offsets);
     int k = 0;
     int32_t cell[3] = {0, 0, 0};
     for (int dz = -zr; dz <= zr; dz++) {
@@ -434,7 +439,7 @@ static inline void rows_reordered(const sph_sim *sim, list *l, words *cw, uint32
             c[d] = sph_cells_coord(g, d, xi[d]);
         }
         if (!have || c[0] != cur[0] || c[1] != cur[1] || c[2] != cur[2]) { /* a new cell: look its stencil up */
-            nruns = stencil_runs(sim, c, runs);
+            nruns = stencil_runs(sim, c, runs, false);
             cur[0] = c[0], cur[1] = c[1], cur[2] = c[2];
             have = true;
         }
@@ -445,6 +450,139 @@ static inline void rows_reordered(const sph_sim *sim, list *l, words *cw, uint32
         sim->S.nbr_start[i + 1] = row_done(l, cw, i);
     }
 }
+
+#ifdef __AVX2__
+/* [search] cell_batch = on (L15): the particles of one cell share its
+ * stencil's runs, so each 8-candidate vector of a run is loaded once and
+ * tested against every particle of the cell in turn (x_i broadcast), instead
+ * of once per particle; and the loops end once per vector and cell, not once
+ * per vector and particle. Each particle's survivors go to its own row in
+ * scratch, in the order scan_run appends them (runs in order, candidates in
+ * order), with the same sums, so the rows are scan_run's to the entry. */
+#define SPH_BATCH_MAX 32 /* particles tested together; a fuller cell is taken in several batches */
+
+/* Row i (m neighbours j[], with 8 entries of slack readable past m) as in
+ * words_row, 8 at a time: the offsets j - i packed to 16 bits in registers
+ * and stored while checked within +-SPH_NBR_NEAR; a row that is not is
+ * written again wide over them. */
+static inline void words_row8(words *c, const uint32_t *j, size_t m, uint32_t i)
+{
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), vi = _mm256_set1_epi32((int)i);
+    const __m256i shift = _mm256_set1_epi32(SPH_NBR_NEAR), lim = _mm256_set1_epi32(2 * SPH_NBR_NEAR);
+    __m256i far = _mm256_setzero_si256();
+    words_reserve(c, m + 8); /* each store writes 8 words */
+    uint16_t *o = c->buf + c->len;
+    for (size_t k = 0; k < m; k += 8) {
+        const __m256i live = _mm256_cmpgt_epi32(_mm256_set1_epi32(m - k >= 8 ? 8 : (int)(m - k)), lane);
+        const __m256i d = _mm256_sub_epi32(_mm256_loadu_si256((const void *)(j + k)), vi);
+        /* near: unsigned d + NEAR <= 2 NEAR, i.e. max(d + NEAR, 2 NEAR) == 2 NEAR */
+        const __m256i u = _mm256_add_epi32(d, shift);
+        far = _mm256_or_si256(far, _mm256_andnot_si256(_mm256_cmpeq_epi32(_mm256_max_epu32(u, lim), lim), live));
+        const __m256i p = _mm256_permute4x64_epi64(_mm256_packs_epi32(d, d), 0x08); /* d0..d3, d4..d7 low */
+        _mm_storeu_si128((__m128i *)(void *)(o + k), _mm256_castsi256_si128(p));
+    }
+    if (_mm256_testz_si256(far, far))
+        c->len += m;
+    else
+        words_row(c, j, m, i); /* wide */
+}
+
+/* rows_reordered for AVX2, no periodic axis, a cell's particles at a time;
+ * inlined so that each dim gets its own copy, without its tests in the loop. */
+__attribute__((always_inline)) static inline void rows_batched(const sph_sim *sim, list *l, words *cw, uint32_t lo,
+                                                              uint32_t hi, const int dim)
+{
+    const sph_cells *g = &sim->S.cells;
+    const float *px = sim->P.pred[0], *py = sim->P.pred[1], *pz = dim == 3 ? sim->P.pred[2] : NULL;
+    const uint32_t *chash = sim->S.cell_hash, n = sim->n;
+    const float reach = sph_skin_radius(sim), h2 = reach * reach; /* h, or h (1 + skin) */
+    const __m256 vh2 = _mm256_set1_ps(h2);
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    /* compress8 unpacked: lane numbers of the set bits, added to the first
+     * index for the survivors' indices (one load, no shifts or permutation) */
+    uint32_t lanes[256][8];
+    for (unsigned m = 0; m < 256; m++)
+        for (unsigned k = 0; k < 8; k++) lanes[m][k] = compress8[m] >> (4 * k) & 15u;
+    run_range runs[27];
+    uint32_t *rows = NULL, len[SPH_BATCH_MAX];
+    size_t rows_cap = 0;
+    for (uint32_t i0 = lo; i0 < hi;) {
+        int32_t c[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) c[d] = sph_cells_coord(g, d, sim->P.pred[d][i0]);
+        uint32_t i1 = i0 + 1; /* the batch: i0 and the particles after it in the same cell */
+        while (i1 < hi && i1 - i0 < SPH_BATCH_MAX) {
+            bool same = true;
+            for (int d = 0; d < dim; d++) same &= sph_cells_coord(g, d, sim->P.pred[d][i1]) == c[d];
+            if (!same) break;
+            i1++;
+        }
+        const uint32_t nb = i1 - i0;
+        const int nruns = stencil_runs(sim, c, runs, true);
+        size_t stride = 8; /* a row's room: every candidate, and a vector's slack */
+        for (int k = 0; k < nruns; k++) stride += runs[k].end - runs[k].start;
+        if (nb * stride > rows_cap) {
+            rows_cap = 2 * nb * stride;
+            free(rows);
+            rows = malloc(rows_cap * sizeof *rows);
+            if (!rows) sph_memory_fail("a thread's rows of one cell could not be held (%s)", SPH_LISTS_WHY);
+        }
+        for (uint32_t b = 0; b < nb; b++) len[b] = 0;
+        for (int k = 0; k < nruns; k++) {
+            const run_range *r = &runs[k];
+            const __m256i vhash = _mm256_set1_epi32((int)r->hash);
+            for (uint32_t j = r->start; j < r->end; j += 8) {
+                const uint32_t left = r->end - j;
+                const __m256i live = _mm256_cmpgt_epi32(_mm256_set1_epi32(left >= 8 ? 8 : (int)left), lane);
+                __m256 xj, yj, zj = _mm256_setzero_ps();
+                if (j + 8 <= n) { /* plain loads (the lanes past the run are masked off below) */
+                    xj = _mm256_loadu_ps(px + j), yj = _mm256_loadu_ps(py + j);
+                    if (dim == 3) zj = _mm256_loadu_ps(pz + j);
+                } else {
+                    xj = _mm256_maskload_ps(px + j, live), yj = _mm256_maskload_ps(py + j, live);
+                    if (dim == 3) zj = _mm256_maskload_ps(pz + j, live);
+                }
+                const __m256i vj = _mm256_set1_epi32((int)j), idx = _mm256_add_epi32(vj, lane);
+                __m256i base = live;
+                if (!r->exact) {
+                    const __m256i hj = _mm256_maskload_epi32((const int *)(const void *)(chash + j), live);
+                    base = _mm256_and_si256(base, _mm256_cmpeq_epi32(hj, vhash));
+                }
+                const bool self = j < i1 && i0 < j + 8; /* the batch's own particles among these 8 */
+                for (uint32_t b = 0; b < nb; b++) { /* scan_run's sums and tests, for i0 + b */
+                    const uint32_t i = i0 + b;
+                    const __m256 dx = _mm256_sub_ps(xj, _mm256_set1_ps(px[i]));
+                    const __m256 dy = _mm256_sub_ps(yj, _mm256_set1_ps(py[i]));
+                    __m256 r2 = _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy));
+                    if (dim == 3) {
+                        const __m256 dz = _mm256_sub_ps(zj, _mm256_set1_ps(pz[i]));
+                        r2 = _mm256_add_ps(r2, _mm256_mul_ps(dz, dz));
+                    }
+                    __m256i m = _mm256_and_si256(base, _mm256_castps_si256(_mm256_cmp_ps(r2, vh2, _CMP_LT_OQ)));
+                    if (self) m = _mm256_andnot_si256(_mm256_cmpeq_epi32(idx, _mm256_set1_epi32((int)i)), m);
+                    const unsigned bits = (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(m));
+                    const __m256i at = _mm256_loadu_si256((const void *)lanes[bits]);
+                    _mm256_storeu_si256((__m256i *)(void *)(rows + b * stride + len[b]), _mm256_add_epi32(vj, at));
+                    len[b] += (uint32_t)__builtin_popcount(bits);
+                }
+            }
+        }
+        for (uint32_t b = 0; b < nb; b++) { /* the rows in order i0 .. i1 - 1, as rows_reordered emits them */
+            const uint32_t *row = rows + b * stride;
+            if (cw) {
+                words_row8(cw, row, len[b], i0 + b);
+                sim->S.nbr_start[i0 + b + 1] = (uint32_t)cw->len;
+            } else {
+                list_reserve(l, len[b]);
+                memcpy(l->buf + l->len, row, len[b] * sizeof *row);
+                l->len += len[b];
+                sim->S.nbr_start[i0 + b + 1] = (uint32_t)l->len;
+            }
+        }
+        i0 = i1;
+    }
+    free(rows);
+}
+#endif
 
 static uintptr_t page_size(void)
 {
@@ -535,6 +673,12 @@ static void run(sph_sim *sim)
         }
         if (S->reordered) {
             const bool periodic = sim->period[0] > 0 || sim->period[1] > 0 || sim->period[2] > 0;
+#ifdef __AVX2__
+            const sph_scene_def *D = &sim->def;
+            if (!periodic && D->vector == SPH_ON && D->vector_avx2 == SPH_ON && D->cell_batch == SPH_ON)
+                sim->dim == 2 ? rows_batched(sim, &l, cw, lo, hi, 2) : rows_batched(sim, &l, cw, lo, hi, 3);
+            else
+#endif
             if (sim->dim == 2)
                 periodic ? rows_reordered(sim, &l, cw, lo, hi, 2, true) : rows_reordered(sim, &l, cw, lo, hi, 2, false);
             else
