@@ -452,3 +452,17 @@ Test(solvers, pcisph_cold_does_not_rise, .timeout = 300, .disabled = true)
                   sim->solver.density_error, sim->solver.iterations);
     sph_sim_destroy(sim);
 }
+
+/* The watchdog's advice with a solver names what caps its time step, [time] dt (the flow speed is 0 at the start,
+ * so dt = 1 s gave a first step of 18 ms on lesson 11 and the watchdog at step 4), not the equation of state's
+ * CFL limit and stiffness (a user's report). */
+Test(solvers, watchdog_advice_names_the_dt_cap, .timeout = 120)
+{
+    char out[16384];
+    const int rc = test_sphlab("run lessons/11-incompressible/lesson.ini --time 0.3 "
+                               "--set physics.pressure_solver=pcisph --set time.dt=1 -q",
+                               out, sizeof out);
+    cr_assert_eq(rc, 4, "want the watchdog's exit status 4, got %d: %.400s", rc, out);
+    cr_assert(strstr(out, "pressure_solver = pcisph") && strstr(out, "capped by [time] dt = 1 s"), "%s", out);
+    cr_assert_null(strstr(out, "a stiffness too high"), "the equation of state's advice: %s", out);
+}

@@ -185,7 +185,18 @@ void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n)
             append(out, n, &used, "\n");
         }
     }
-    append(out, n, &used,
-           "  the state is kept as it was when this was found (--dump writes it). Usual causes: a time step "
-           "above the CFL limit (try [time] cfl = 0.4), a stiffness too high for dt, or particles forced together.\n");
+    if (sim->def.pressure_solver != SPH_PSOLVER_EOS && (sim->def.effects & SPH_EFFECT(PRESSURE)))
+        /* the solvers' dt follows the flow speed, which is 0 at the start: [time] dt is then the only cap */
+        append(out, n, &used,
+               "  the state is kept as it was when this was found (--dump writes it). Usual causes with "
+               "pressure_solver = %s: a time step too long for the solve (its dt follows the flow speed, capped by "
+               "[time] dt = %g s: try a smaller [time] dt or cfl, now %g), a solver_tolerance too loose (now %g), "
+               "or particles forced together.\n",
+               sph_pressure_solver_names[sim->def.pressure_solver], (double)sim->def.dt, (double)sim->def.cfl,
+               (double)sim->def.solver_tolerance);
+    else
+        append(out, n, &used,
+               "  the state is kept as it was when this was found (--dump writes it). Usual causes: a time step "
+               "above the CFL limit (try [time] cfl = 0.4), a stiffness too high for dt, or particles forced "
+               "together.\n");
 }
