@@ -17,6 +17,7 @@
 
 #include "io.h"
 #include "io_json.h"
+#include "test_util.h"
 
 static char g_dir[64];
 
@@ -392,4 +393,23 @@ Test(io, json_layout_and_escapes)
                                               "}\n");
     cr_assert_eq(count_entries(false), 1);
     remove_tree(g_dir);
+}
+
+/* `run` lists the files it wrote, as the other commands do, and -q leaves the list out (as its help says); it listed
+ * none before 2026-11-27 (a user's report). */
+Test(io, run_lists_what_it_wrote)
+{
+    const char *dir = test_temp_dir("runlist");
+    char args[1024], out[8192];
+    snprintf(args, sizeof args,
+             "run lessons/11-incompressible/lesson.ini --steps 2 --stats %s/s.csv --dump %s/d.csv --vtk %s/vtk", dir,
+             dir, dir);
+    cr_assert_eq(test_sphlab(args, out, sizeof out), 0, "%s", out);
+    char want[600];
+    snprintf(want, sizeof want, "wrote %s/s.csv\nwrote %s/d.csv\nwrote %s/vtk/", dir, dir, dir);
+    cr_assert(strstr(out, want), "want the list\n%s\nin\n%s", want, out);
+    snprintf(args + strlen(args), sizeof args - strlen(args), " -q");
+    cr_assert_eq(test_sphlab(args, out, sizeof out), 0, "%s", out);
+    cr_assert_null(strstr(out, "wrote"), "-q: %s", out);
+    test_remove_dir(dir);
 }

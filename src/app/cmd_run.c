@@ -266,6 +266,11 @@ int cmd_run(int argc, char **argv)
     bool stats_ok = app_out_commit(&stats), dump_ok = app_out_commit(&dump); /* both, even if one fails */
     bool ok = stats_ok && dump_ok && vtk_ok;
     if (!quiet) app_run_report(stdout, sim, wall);
+    if (!quiet) { /* what was written, as the other commands list it (-q: none) */
+        if (stats_path && stats_ok) printf("wrote %s\n", stats_path);
+        if (dump_path && dump_ok) printf("wrote %s\n", dump_path);
+        if (vtk_dir && vtk_ok) printf("wrote %s/ (VTK frames)\n", vtk_dir);
+    }
     int code = !ok ? 1 : sim->alarm.raised ? 4 : 0;
     sph_sim_destroy(sim);
     return code;
