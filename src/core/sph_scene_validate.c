@@ -78,38 +78,56 @@ static const char *blocks_overlap(const sph_scene_def *def, char *buf, size_t n)
 
 static const char *origin_text(const sph_scene_def *def, int line, char *buf, size_t n);
 
-/* A [physics] key the file (or --set) gives that the scene's choices leave
- * unread: said, since the run is then not the one written (a csf drop given
- * surface_tension_coefficient ran at the default sigma). */
+/* A key the file (or --set) gives that the scene's choices leave unread:
+ * said, since the run is then not the one written (a csf drop given
+ * surface_tension_coefficient ran at the default sigma; a slip given to
+ * volume walls changed nothing). */
 static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
 {
+    const bool pressure = (def->effects & SPH_EFFECT(PRESSURE)) != 0, walls = (def->effects & SPH_EFFECT(WALLS)) != 0;
+    const bool solver = def->pressure_solver != SPH_PSOLVER_EOS && pressure;
+    const bool particles = walls && pressure && def->wall_model == SPH_WALL_PARTICLES; /* sph_scene_wall_particles */
+    const char *by_solver = "only pressure_solver = pcisph or dfsph reads it, with the effect pressure";
+    const char *by_particles = "only wall_model = particles reads it, with the effects walls and pressure";
     const struct {
-        const char *key;
+        const char *section, *key;
         bool unread;
         const char *reader;
     } keys[] = {
-        {"surface_tension_coefficient", def->surface_tension != SPH_STENSION_AKINCI,
+        {"physics", "surface_tension_coefficient", def->surface_tension != SPH_STENSION_AKINCI,
          "only surface_tension = akinci reads it (its gamma; csf's coefficient is [physics] sigma)"},
-        {"sigma", def->surface_tension != SPH_STENSION_CSF && def->surface_tension != SPH_STENSION_STRESS,
+        {"physics", "sigma", def->surface_tension != SPH_STENSION_CSF && def->surface_tension != SPH_STENSION_STRESS,
          "only surface_tension = csf or stress reads it"},
-        {"delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
-        {"tait_gamma", def->eos != SPH_EOS_TAIT, "only eos = tait reads it"},
+        {"physics", "delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
+        {"physics", "tait_gamma", def->eos != SPH_EOS_TAIT, "only eos = tait reads it"},
         /* the solvers' keys: a tolerance given to the equation of state changed nothing, unsaid */
-        {"solver_tolerance", def->pressure_solver == SPH_PSOLVER_EOS,
-         "only pressure_solver = pcisph or dfsph reads it"},
-        {"solver_max_iterations", def->pressure_solver == SPH_PSOLVER_EOS,
-         "only pressure_solver = pcisph or dfsph reads it"},
-        {"solver_warm_start", def->pressure_solver == SPH_PSOLVER_EOS,
-         "only pressure_solver = pcisph or dfsph reads it"},
-        {"divergence_tolerance", def->pressure_solver != SPH_PSOLVER_DFSPH, "only pressure_solver = dfsph reads it"},
-        {"pcisph_local_delta", def->pressure_solver != SPH_PSOLVER_PCISPH, "only pressure_solver = pcisph reads it"},
+        {"physics", "solver_tolerance", !solver, by_solver},
+        {"physics", "solver_max_iterations", !solver, by_solver},
+        {"physics", "solver_warm_start", !solver, by_solver},
+        {"physics", "divergence_tolerance", !solver || def->pressure_solver != SPH_PSOLVER_DFSPH,
+         "only pressure_solver = dfsph reads it, with the effect pressure"},
+        {"physics", "pcisph_local_delta", !solver || def->pressure_solver != SPH_PSOLVER_PCISPH,
+         "only pressure_solver = pcisph reads it, with the effect pressure"},
+        /* the walls' keys: each model reads its own */
+        {"domain", "wall_model", !walls, "only the effect walls reads it"},
+        {"domain", "wall_force", !walls || def->wall_model != SPH_WALL_VOLUME,
+         "only wall_model = volume reads it, with the effect walls"},
+        {"domain", "wall_slip", !particles, by_particles},
+        {"domain", "wall_slip_xmin", !particles, by_particles},
+        {"domain", "wall_slip_xmax", !particles, by_particles},
+        {"domain", "wall_slip_ymin", !particles, by_particles},
+        {"domain", "wall_slip_ymax", !particles, by_particles},
+        {"domain", "wall_slip_zmin", !particles || def->dim == 2, "a 2D scene has no z sides"},
+        {"domain", "wall_slip_zmax", !particles || def->dim == 2, "a 2D scene has no z sides"},
     };
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
-        int i = key_index("physics", keys[k].key);
+        int i = key_index(keys[k].section, keys[k].key);
         if (i < 0 || def->origin[i].line == 0 || !keys[k].unread) continue;
+        const char *reader = keys[k].reader;
+        if (strncmp(keys[k].key, "wall_slip_z", 11) == 0 && !particles) reader = by_particles;
         char loc[300];
-        snprintf(buf, n, "%s: [physics] %s is set but this scene does not use it: %s",
-                 origin_text(def, def->origin[i].line, loc, sizeof loc), keys[k].key, keys[k].reader);
+        snprintf(buf, n, "%s: [%s] %s is set but this scene does not use it: %s",
+                 origin_text(def, def->origin[i].line, loc, sizeof loc), keys[k].section, keys[k].key, reader);
         return buf;
     }
     return NULL;
