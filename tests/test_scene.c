@@ -868,3 +868,26 @@ Test(scene, group_keys_fit_their_origin_slots)
         cr_expect_leq(n, SPH_GROUP_KEYS_MAX, "[%s] has %d keys, %d origin slots", groups[g], n, SPH_GROUP_KEYS_MAX);
     }
 }
+
+/* A misspelt effect is named with the nearest one; a key under the wrong header names its own section; a misspelt
+ * choice gets the nearest choice (a user's review: "gravity presure" named no word, [time] solver_tolerance no
+ * section). */
+Test(scene, typos_name_the_word_and_the_home)
+{
+    const struct {
+        const char *ini, *want;
+    } cases[] = {
+        {"[scene]\neffects = gravity presure\n", "unknown effect 'presure' (did you mean 'pressure'?)"},
+        {"[time]\nsolver_tolerance = 0.01\n", "unknown key 'solver_tolerance' in [time] (it is a key of [physics])"},
+        {"[domain]\nspacing = 0.01\n", "unknown key 'spacing' in [domain] (it is a key of [fluid NAME])"},
+        {"[physics]\neos = tate\n",
+         "eos = 'tate': unknown choice (did you mean 'tait'?) (accepted: one of: linear, tait)"},
+        {"[physics]\neos = zzzz\n", "eos = 'zzzz': unknown choice (accepted: one of: linear, tait)"},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        sph_scene_def def = sph_default_scene_def();
+        sph_error err;
+        cr_assert_neq(sph_scene_load_string(cases[c].ini, "t.ini", &def, &err), SPH_ERR_OK, "%s", cases[c].ini);
+        cr_assert(strstr(err.msg, cases[c].want), "want \"%s\" in \"%s\"", cases[c].want, err.msg);
+    }
+}

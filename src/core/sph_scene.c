@@ -150,6 +150,24 @@ static int find_choice(const sph_key *k, const char *s, size_t len)
     return -1;
 }
 
+/* why: "unknown choice", or "unknown effect 'word'", with the nearest choice for a typo. */
+static const char *unknown_choice(const sph_key *k, const char *what, const char *s, size_t len, char *why, size_t n)
+{
+    char word[64];
+    snprintf(word, sizeof word, "%.*s", (int)(len < 60 ? len : 60), s);
+    const char *near = NULL;
+    int near_d = 1 << 30;
+    for (int i = 0; i < k->n_choices; i++) {
+        const int d = sph_edit_distance(word, k->choices[i]);
+        if (sph_name_near(word, k->choices[i]) && d < near_d) near = k->choices[i], near_d = d;
+    }
+    /* a choice's word is the whole value, already quoted; an effect is one word of a list */
+    const bool quote = strcmp(what, "choice") != 0;
+    snprintf(why, n, "unknown %s%s%s%s%s%s%s", what, quote ? " '" : "", quote ? word : "", quote ? "'" : "",
+             near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "");
+    return why;
+}
+
 /* Parses one value into the field at `base + k->offset`; sets *ncomp for vectors. */
 static sph_error_code set_value(const sph_key *k, void *base, const char *value, const where *w, int *ncomp,
                                 sph_error *err)
@@ -211,7 +229,10 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
     case SPH_KEY_CHOICE:
     case SPH_KEY_KERNEL: {
         int c = find_choice(k, value, strlen(value));
-        if (c < 0) return bad_value(err, SPH_ERR_PARSE, w, k, value, "unknown choice");
+        char why[160];
+        if (c < 0)
+            return bad_value(err, SPH_ERR_PARSE, w, k, value,
+                             unknown_choice(k, "choice", value, strlen(value), why, sizeof why));
         *(int *)field = c;
         return SPH_ERR_OK;
     }
@@ -225,7 +246,10 @@ static sph_error_code set_value(const sph_key *k, void *base, const char *value,
             while (*q && !isspace((unsigned char)*q) && *q != ',') q++;
             if (!(q - p == 4 && strncmp(p, "none", 4) == 0)) {
                 int c = find_choice(k, p, (size_t)(q - p));
-                if (c < 0) return bad_value(err, SPH_ERR_PARSE, w, k, value, "unknown effect");
+                char why[160];
+                if (c < 0)
+                    return bad_value(err, SPH_ERR_PARSE, w, k, value,
+                                     unknown_choice(k, "effect", p, (size_t)(q - p), why, sizeof why));
                 bits |= 1u << c;
             }
             p = q;
@@ -396,8 +420,17 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
                 near_d = d;
             }
         }
-        return sph_fail(err, SPH_ERR_UNKNOWN_KEY, "%s: unknown key '%.60s' in [%.60s]%s%s%s (accepted: %s)", loc, name,
-                        section, near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "", keys);
+        /* the key of another section, put under the wrong header (a student's [time] solver_tolerance) */
+        const char *home = NULL;
+        for (int i = 0; i < sph_scene_key_count && !near && !home; i++)
+            if (strcmp(sph_scene_keys[i].name, name) == 0) home = sph_scene_keys[i].section;
+        char moved[120] = "";
+        if (home) /* a block kind ([fluid NAME], [obstacle NAME]) takes a name */
+            snprintf(moved, sizeof moved, " (it is a key of [%s%s])", home,
+                     strcmp(home, "fluid") == 0 || strcmp(home, "obstacle") == 0 ? " NAME" : "");
+        return sph_fail(err, SPH_ERR_UNKNOWN_KEY, "%s: unknown key '%.60s' in [%.60s]%s%s%s%s (accepted: %s)", loc,
+                        name, section, near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "", moved,
+                        keys);
     }
     int ncomp;
     const group *g = section_group(section);
