@@ -891,3 +891,15 @@ Test(scene, typos_name_the_word_and_the_home)
         cr_assert(strstr(err.msg, cases[c].want), "want \"%s\" in \"%s\"", cases[c].want, err.msg);
     }
 }
+
+/* A key given twice under one block header is a plain duplicate; the hint to name the blocks apart is for a key
+ * set again under a second header of the same name (a user's review: the hint came with both). */
+Test(scene, duplicate_key_in_a_block_names_the_right_cause)
+{
+    sph_scene_def def = sph_default_scene_def();
+    sph_error err;
+    cr_assert_neq(sph_scene_load_string("[fluid a]\nspacing = 0.02\nspacing = 0.03\n", "t.ini", &def, &err),
+                  SPH_ERR_OK);
+    cr_assert(strstr(err.msg, "t.ini:3: duplicate key 'spacing' in [fluid a] (first set on line 2)"), "%s", err.msg);
+    cr_assert_null(strstr(err.msg, "its own name"), "%s", err.msg);
+}

@@ -478,6 +478,11 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
         }
         for (int t = 0; t < nt; t++) {
             sph_origin *origin = item_origin(g, targets[t]);
+            /* set under this same header: a plain duplicate; under an earlier header of the same name: two
+             * blocks that were meant to be two */
+            if (line > 0 && origin[slot].line > 0 && header_line > 0 && origin[slot].line > header_line)
+                return sph_fail(err, SPH_ERR_DUPLICATE_KEY, "%s: duplicate key '%s' in [%.60s] (first set on line %d)",
+                                loc, name, section, origin[slot].line);
             if (line > 0 && origin[slot].line > 0)
                 return sph_fail(err, SPH_ERR_DUPLICATE_KEY,
                                 "%s: duplicate key '%s' in [%.60s] (first set on line %d); give each %s its own "
