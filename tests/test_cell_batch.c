@@ -138,14 +138,7 @@ Test(cell_batch, strip_has_wide_rows)
 Test(cell_batch, same_on_one_and_two_threads_3d)
 {
     sph_sim *a = make(DAM_3D, GRID, true, 1), *b = make(DAM_3D, GRID, true, 2);
-    for (int s = 0; s < 30; s++) {
-        sph_sim_step(a);
-        sph_sim_step(b);
-    }
-    const char *diff = test_levels_first_difference(a, b);
-    cr_expect_null(diff, "one thread and two differ in %s after 30 steps", diff);
-    sph_sim_destroy(a);
-    sph_sim_destroy(b);
+    test_levels_same_after(a, b, 30, "one thread against two");
 }
 
 /* L14 switched to L15 in mid-run (sph_sim_reconfigure, as the window does) and

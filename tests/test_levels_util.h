@@ -38,6 +38,20 @@ static inline const char *test_levels_first_difference(const sph_sim *a, const s
     return NULL;
 }
 
+/* a and b stepped in turn for `steps` steps must end alike to the bit (e.g. one thread against two); both are
+ * destroyed. */
+static inline void test_levels_same_after(sph_sim *a, sph_sim *b, int steps, const char *what)
+{
+    for (int s = 0; s < steps; s++) {
+        sph_sim_step(a);
+        sph_sim_step(b);
+    }
+    const char *diff = test_levels_first_difference(a, b);
+    cr_expect_null(diff, "%s: the two runs differ in %s after %d steps", what, diff, steps);
+    sph_sim_destroy(a);
+    sph_sim_destroy(b);
+}
+
 /* a and b start alike at level `lower`; b is switched to `upper` before step
  * 11 and back before step 21 (sph_sim_reconfigure), a only reconfigured in
  * place (a reconfigure starts a new simulation with the carried state), and

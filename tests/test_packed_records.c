@@ -81,14 +81,7 @@ static void as_l12(const char *scene, int variant, int steps, int threads, const
 static void same_on_threads(const char *scene, int variant, int steps, const char *what)
 {
     sph_sim *a = make(scene, variant, true, 1), *b = make(scene, variant, true, 2);
-    for (int s = 0; s < steps; s++) {
-        sph_sim_step(a);
-        sph_sim_step(b);
-    }
-    const char *diff = test_levels_first_difference(a, b);
-    cr_expect_null(diff, "%s: one thread and two differ in %s after %d steps", what, diff, steps);
-    sph_sim_destroy(a);
-    sph_sim_destroy(b);
+    test_levels_same_after(a, b, steps, what);
 }
 
 Test(packed_records, same_as_l12_to_the_bit_3d) { as_l12(DAM_3D, FUSED, 40, 2, "3D dam"); }
