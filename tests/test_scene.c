@@ -903,3 +903,18 @@ Test(scene, duplicate_key_in_a_block_names_the_right_cause)
     cr_assert(strstr(err.msg, "t.ini:3: duplicate key 'spacing' in [fluid a] (first set on line 2)"), "%s", err.msg);
     cr_assert_null(strstr(err.msg, "its own name"), "%s", err.msg);
 }
+
+/* --set obstacle.rock.KEY and fluid.pool.KEY name their blocks as the file does, [obstacle rock] and [fluid pool]
+ * (a user's review: "[obstacle.rock]"). */
+Test(scene, set_names_blocks_as_the_file_does)
+{
+    sph_scene_def def = test_scene("[domain]\nmin = 0 0\nmax = 1 1\nwall_model = particles\n[fluid pool]\nmin = 0 0\n"
+                                   "max = 0.2 0.2\n[obstacle rock]\nshape = circle\ncentre = 0.5 0.5\nradius = 0.1\n");
+    sph_error err;
+    cr_assert_neq(sph_scene_set(&def, "obstacle.rock.centre=nan", &err), SPH_ERR_OK);
+    cr_assert(strstr(err.msg, "--set: [obstacle rock] centre = 'nan'"), "%s", err.msg);
+    cr_assert_neq(sph_scene_set(&def, "fluid.pool.spacing=zz", &err), SPH_ERR_OK);
+    cr_assert(strstr(err.msg, "--set: [fluid pool] spacing = 'zz'"), "%s", err.msg);
+    cr_assert_eq(sph_scene_set(&def, "fluid.pool.spacing=0.01", &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_float_eq(def.blocks[0].spacing, 0.01, 1e-9);
+}

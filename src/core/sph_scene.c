@@ -709,6 +709,9 @@ sph_error_code sph_scene_set(sph_scene_def *def, const char *assignment, sph_err
     while (kl > 0 && isspace((unsigned char)key[kl - 1])) key[--kl] = '\0';
     size_t sl = strlen(left);
     while (sl > 0 && isspace((unsigned char)left[sl - 1])) left[--sl] = '\0';
+    /* "obstacle.rock" names the block [obstacle rock]: written so in the messages */
+    const group *g = section_group(left);
+    if (g && left[strlen(g->kind)] == '.') left[strlen(g->kind)] = ' ';
     return apply_key(def, def->file, -1, 0, left, key, value, err);
 }
 
