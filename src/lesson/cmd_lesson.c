@@ -428,8 +428,7 @@ int cmd_lesson(int argc, char **argv)
     }
     long num;
     if (!app_parse_int("lesson", opt.pos[0], 1, sph_lesson_count, &num)) {
-        fprintf(stderr, "sphlab lesson: want a lesson number from 1 to %d (sphlab lesson --list)\n",
-                sph_lesson_count);
+        fprintf(stderr, "  (sphlab lesson --list names them)\n"); /* app_parse_int said what and why */
         return 2;
     }
     const lesson *L = &sph_lessons[num - 1];
