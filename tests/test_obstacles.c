@@ -380,3 +380,15 @@ Test(obstacles, reconfigure_changes_slip_not_shape)
     cr_expect(strstr(err.msg, "reset the scene"), "%s", err.msg);
     sph_sim_destroy(sim);
 }
+
+/* An obstacle refused after a --set of one of its keys says so, beside the file's line it names (a user's review:
+ * a radius set by --set was blamed on the centre's line alone). */
+Test(obstacles, set_value_named_in_the_refusal)
+{
+    sph_scene_def def = test_scene("[domain]\nmin = 0 0\nmax = 1 1\nwall_model = particles\n[fluid w]\nmin = 0 0\n"
+                                   "max = 0.2 0.2\n[obstacle rock]\nshape = circle\ncentre = 0.5 0.5\nradius = 0.1\n");
+    sph_error err;
+    cr_assert_eq(sph_scene_set(&def, "obstacle.rock.radius=5", &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_neq(sph_scene_validate(&def, &err), SPH_ERR_OK, "a circle of radius 5 m around a 1 m box");
+    cr_assert(strstr(err.msg, ":10 and --set: [obstacle rock]"), "%s", err.msg);
+}

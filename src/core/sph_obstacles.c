@@ -234,7 +234,11 @@ static sph_error_code fail_at(sph_error *err, const sph_scene_def *def, const sp
 {
     int line = slot >= 0 && o->origin[slot].line ? o->origin[slot].line : o->line;
     if (line < 0) return sph_fail(err, SPH_ERR_SCENE, "--set: [obstacle %s] %s", o->name, what);
-    return sph_fail(err, SPH_ERR_SCENE, "%s:%d: [obstacle %s] %s", def->file, line, o->name, what);
+    /* another of its keys given by --set may be the cause (a radius set there, the centre blamed) */
+    bool set = false;
+    for (int k = 0; k < SPH_GROUP_KEYS_MAX; k++) set |= o->origin[k].line < 0;
+    return sph_fail(err, SPH_ERR_SCENE, "%s:%d%s: [obstacle %s] %s", def->file, line, set ? " and --set" : "",
+                    o->name, what);
 }
 
 /* Wall particles an obstacle could make at most, before cutting: refuses an
