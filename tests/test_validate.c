@@ -560,3 +560,16 @@ Test(validate, verdicts_name_the_scale_of_their_percentages, .timeout = 120)
                   want[k][0], want[k][1], out);
     }
 }
+
+/* Into a file or a pipe (a log, CI) the progress is whole lines, not a line rewritten with carriage returns (a
+ * user's review: a log of `validate dam-break` held one line of thousands of "\r" updates). */
+Test(validate, progress_into_a_pipe_has_no_carriage_returns, .timeout = 120)
+{
+    const char *dir = test_temp_dir("valpipe");
+    char args[512], out[16384];
+    snprintf(args, sizeof args, "validate couette --quick --out %s", dir);
+    cr_assert_eq(test_sphlab(args, out, sizeof out), 0, "%s", out);
+    cr_assert(strstr(out, "done: "), "no progress at all: %s", out);
+    cr_assert_null(strchr(out, '\r'), "a carriage return in: %s", out);
+    test_remove_dir(dir);
+}

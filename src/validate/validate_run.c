@@ -111,6 +111,7 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
     bool ok = true;
     const val_clock clock = val_clock_start();
     double shown = clock.ms, start = shown;
+    const bool tty = isatty(STDERR_FILENO) != 0;
     fn(ctx, sim);
     while (sim->t < t_end - 1e-12) {
         sph_sim_step(sim);
@@ -126,14 +127,18 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
         }
         fn(ctx, sim);
         double now = sph_now_ms();
-        if (!c->quiet && now - shown > 250) {
+        /* on a terminal a line rewritten in place; into a file or a pipe (a log, CI) a line every 30 s */
+        if (!c->quiet && now - shown > (tty ? 250 : 30000)) {
             shown = now;
-            fprintf(stderr, "\r  %-40.40s %3.0f%%  %5.0f s", label, 100 * sim->t / t_end, (now - start) / 1e3);
+            fprintf(stderr, tty ? "\r  %-40.40s %3.0f%%  %5.0f s" : "  %-40.40s %3.0f%%  %5.0f s\n", label,
+                    100 * sim->t / t_end, (now - start) / 1e3);
         }
     }
-    if (!c->quiet)
-        fprintf(stderr, "\r%-62s\r  %-40.40s done: %u particles, %llu steps, %.1f s\n", "", label, sim->n,
+    if (!c->quiet) {
+        if (tty) fprintf(stderr, "\r%-62s\r", ""); /* the progress line's place, blanked */
+        fprintf(stderr, "  %-40.40s done: %u particles, %llu steps, %.1f s\n", label, sim->n,
                 (unsigned long long)sim->step, (sph_now_ms() - start) / 1e3);
+    }
     val_cost_add(label, sim, clock);
     sph_sim_destroy(sim);
     return ok;
