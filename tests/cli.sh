@@ -290,6 +290,15 @@ for p in dam-break hydrostatic taylor-green poiseuille couette; do
         [ -s "$tmp/val/$p.csv" ] && [ -s "$tmp/val/$p.png" ] && [ -s "$tmp/val/$p.pdf" ] && ok ||
         { bad "validate $p --quick: rc $rc, want 0 or 1, a verdict line and the three files"; cat "$tmp/val.txt"; }
 done
+# validate hydrostatic with a pressure solver (a user's copy of the scene: pcisph, summation density) reads the
+# solver's pressure against the incompressible column; it crashed on the equation of state's p, absent then
+mkdir -p "$tmp/vsolver/scenes/validate"
+sed -e 's/^density_method = continuity/pressure_solver = pcisph/' -e '/^delta/d' scenes/validate/hydrostatic.ini \
+    > "$tmp/vsolver/scenes/validate/hydrostatic.ini"
+(cd "$tmp/vsolver" && sph validate hydrostatic --quick --quiet --out v > "$tmp/val.txt" 2>&1)
+rc=$?
+{ [ "$rc" -eq 0 ] || [ "$rc" -eq 1 ]; } && grep -Eq "^validate hydrostatic: (PASS|FAIL): .*incompressible" "$tmp/val.txt" &&
+    ok || { bad "validate hydrostatic with pcisph: rc $rc, want a verdict against the incompressible column"; cat "$tmp/val.txt"; }
 # --quick samples the channels' start-up at the full run's start-up times (the steady sample left out), so a
 # student's first run reads the figures the full run prints first, and passes where it does (Couette's
 # quick once sampled t = 0.005 s, where the moving wall's layer is 0.7 spacing thick, and failed at 4.1 %)

@@ -104,6 +104,10 @@ double val_hydrostatic_column(const sph_sim *sim, val_eos *e)
     double mass = 0;
     for (uint32_t i = 0; i < sim->n; i++)
         if (!sph_is_wall(&sim->P, i)) mass += sim->P.mass[i];
+    if (def->pressure_solver != SPH_PSOLVER_EOS) { /* pcisph, dfsph: incompressible, p = rho0 g (H - y) */
+        *e = (val_eos){def->rest_density, INFINITY, 0.0};
+        return mass / (def->rest_density * ((double)def->domain_max[0] - def->domain_min[0]));
+    }
     const double rho0 = sim->eos_rho0; /* the equation of state's p = 0, as pressure.c's */
     *e = (val_eos){rho0, def->stiffness, def->eos == SPH_EOS_TAIT ? def->tait_gamma : 0.0};
     return mass / (rho0 * ((double)def->domain_max[0] - def->domain_min[0]));
