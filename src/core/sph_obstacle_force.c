@@ -9,7 +9,7 @@
  * passes' formulas (pressure_force.c, viscosity.c): symmetric or shared
  * pressure, laplacian, smoothing, morris or artificial viscosity; with a
  * pressure solver, its pair term (pcisph.c, dfsph.c: the wall particle's own
- * pressure 0). It reads
+ * pressure 0, or the fluid's with solver_wall_pressure = extrapolated). It reads
  * the state the latest step's force passes read (predicted positions,
  * density, pressure, vel_visc); the fluid's velocity, which integration has
  * advanced since, is taken back to what the viscosity pass saw, v - dt a
@@ -39,13 +39,14 @@ static void pair_force(const sph_sim *sim, uint32_t f, uint32_t w, const float v
     double a[3] = {0, 0, 0};
     const float rho_r = sim->solver.rho_rest;
     if (def->pressure_solver != SPH_PSOLVER_EOS && rho_r > 0 && r > SPH_KERNEL_R_MIN * def->h) {
-        /* the solvers' pair term with the wall particle's own p or kappa 0 (pcisph.c, dfsph.c) */
+        /* the solvers' pair term (pcisph.c, dfsph.c): the wall particle's own p or kappa is 0, or with
+         * solver_wall_pressure = extrapolated the fluid's (solver_walls.c) */
         const float g = sph_kernel_dw(&sim->k_pressure, r) / r;
         float coef = 0.0f;
         if (def->pressure_solver == SPH_PSOLVER_PCISPH && P->p_pci)
-            coef = P->mass[w] * P->p_pci[f] / (rho_r * rho_r);
+            coef = P->mass[w] * (P->p_pci[f] + P->p_pci[w]) / (rho_r * rho_r);
         else if (def->pressure_solver == SPH_PSOLVER_DFSPH && P->kappa && P->kappa_v)
-            coef = P->mass[w] * (P->kappa_v[f] + P->kappa[f]) / rho_r;
+            coef = P->mass[w] * (P->kappa_v[f] + P->kappa[f] + P->kappa_v[w] + P->kappa[w]) / rho_r;
         for (int d = 0; d < dim; d++) a[d] -= (double)coef * g * dx[d];
     } else if (P->acc_p[0] && r > SPH_KERNEL_R_MIN * def->h) { /* pressure_force.c */
         const float g = sph_kernel_dw(&sim->k_pressure, r) / r;

@@ -68,6 +68,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_ONOFF_CHOICES(X) X(OFF, "off") X(ON, "on")
 #define SPH_BACKEND_CHOICES(X) X(CPU, "cpu") X(GL, "gl")
 #define SPH_PSOLVER_CHOICES(X) X(EOS, "eos") X(PCISPH, "pcisph") X(DFSPH, "dfsph")
+#define SPH_SWALLP_CHOICES(X) X(NONE, "none") X(EXTRAPOLATED, "extrapolated")
 #define SPH_STENSION_CHOICES(X) X(NONE, "none") X(AKINCI, "akinci") X(CSF, "csf") X(STRESS, "stress")
 
 #define SPH_DECLARE_CHOICES(type, PREFIX, LIST)                          \
@@ -95,6 +96,7 @@ extern const char *const sph_effect_about[SPH_EFFECT_COUNT];
 #define SPH_CHOICE_ITEM_SPH_BACKEND(id, name) SPH_BACKEND_##id,
 #define SPH_CHOICE_ITEM_SPH_PSOLVER(id, name) SPH_PSOLVER_##id,
 #define SPH_CHOICE_ITEM_SPH_STENSION(id, name) SPH_STENSION_##id,
+#define SPH_CHOICE_ITEM_SPH_SWALLP(id, name) SPH_SWALLP_##id,
 SPH_DECLARE_CHOICES(sph_eos, SPH_EOS, SPH_EOS_CHOICES)
 SPH_DECLARE_CHOICES(sph_eos_rest, SPH_EOSREST, SPH_EOS_REST_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_form, SPH_PFORM, SPH_PFORM_CHOICES)
@@ -118,6 +120,7 @@ SPH_DECLARE_CHOICES(sph_onoff, SPH_ONOFF, SPH_ONOFF_CHOICES)
 SPH_DECLARE_CHOICES(sph_backend_kind, SPH_BACKEND, SPH_BACKEND_CHOICES)
 SPH_DECLARE_CHOICES(sph_pressure_solver, SPH_PSOLVER, SPH_PSOLVER_CHOICES)
 SPH_DECLARE_CHOICES(sph_surface_tension, SPH_STENSION, SPH_STENSION_CHOICES)
+SPH_DECLARE_CHOICES(sph_solver_wall_pressure, SPH_SWALLP, SPH_SWALLP_CHOICES)
 
 extern const char *const sph_eos_names[SPH_EOS_COUNT];
 extern const char *const sph_wall_force_names[SPH_WFORCE_COUNT];
@@ -143,6 +146,7 @@ extern const char *const sph_onoff_names[SPH_ONOFF_COUNT];
 extern const char *const sph_backend_names[SPH_BACKEND_COUNT];
 extern const char *const sph_pressure_solver_names[SPH_PSOLVER_COUNT];
 extern const char *const sph_surface_tension_names[SPH_STENSION_COUNT];
+extern const char *const sph_solver_wall_pressure_names[SPH_SWALLP_COUNT];
 
 /* Where a value came from, for messages: the file's line, or 0 for the default. */
 typedef struct sph_origin {
@@ -241,6 +245,8 @@ typedef struct sph_scene_def {
     float divergence_tolerance; /* [1] dfsph: largest dt |D rho/Dt| / rho_rest the divergence solve may leave */
     sph_onoff solver_warm_start; /* pcisph, dfsph: each solve starts from the last step's pressure, not from 0 */
     sph_onoff pcisph_local_delta; /* pcisph: delta from each particle's own neighbourhood, not the full lattice's */
+    sph_solver_wall_pressure solver_wall_pressure; /* pcisph, dfsph with wall particles: none (they push with the
+                                                      fluid particle's own) or extrapolated from the fluid (Adami) */
     sph_surface_tension surface_tension; /* none; akinci: Akinci 2013 (passes cohesion, normals, curvature); csf: a
                                             continuum surface force of stated sigma (passes normals, csf) */
     float surface_tension_coefficient;   /* [m^4/(kg s^2)] gamma of surface_tension = akinci (the cohesion pass's

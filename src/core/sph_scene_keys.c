@@ -29,6 +29,7 @@ const char *const sph_onoff_names[SPH_ONOFF_COUNT] = {SPH_ONOFF_CHOICES(NAMES)};
 const char *const sph_backend_names[SPH_BACKEND_COUNT] = {SPH_BACKEND_CHOICES(NAMES)};
 const char *const sph_pressure_solver_names[SPH_PSOLVER_COUNT] = {SPH_PSOLVER_CHOICES(NAMES)};
 const char *const sph_surface_tension_names[SPH_STENSION_COUNT] = {SPH_STENSION_CHOICES(NAMES)};
+const char *const sph_solver_wall_pressure_names[SPH_SWALLP_COUNT] = {SPH_SWALLP_CHOICES(NAMES)};
 #undef NAMES
 #define EFFECT_NAME(id, name, about, needs) name,
 const char *const sph_effect_names[SPH_EFFECT_COUNT] = {SPH_EFFECTS(EFFECT_NAME)};
@@ -186,6 +187,12 @@ const sph_key sph_scene_keys[] = {
      "DFSPH's alpha and IISPH's a_ii are, instead of the full lattice's (Solenthaler & Pajarola 2009's prototype "
      "particle): a corner or wall particle with fewer neighbours is corrected at its own rate; on the GL "
      "backend too"},
+    {"physics", "solver_wall_pressure", SPH_KEY_CHOICE, S(solver_wall_pressure), 0, 0, 0, 0,
+     CH(sph_solver_wall_pressure_names), "", "none",
+     "pcisph, dfsph with wall particles: none: the wall particles hold no pressure and push back with the fluid "
+     "particle's own (the row at a wall then reads twice its pressure); extrapolated: after each iteration each "
+     "wall particle takes the pressure of its fluid neighbours with the hydrostatic term (Adami, Hu & Adams 2012, "
+     "eq. 27), so the pair term is symmetric at the wall and the row there reads its own pressure; CPU only"},
     {"physics", "surface_tension", SPH_KEY_CHOICE, S(surface_tension), 0, 0, 0, 0, CH(sph_surface_tension_names), "",
      "none",
      "none; akinci: Akinci, Akinci & Teschner 2013 (ACM TOG 32(6)), the cohesion term (eq. 1-2, the cohesion pass) "

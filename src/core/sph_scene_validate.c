@@ -108,6 +108,8 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
          "only pressure_solver = dfsph reads it, with the effect pressure"},
         {"physics", "pcisph_local_delta", !solver || def->pressure_solver != SPH_PSOLVER_PCISPH,
          "only pressure_solver = pcisph reads it, with the effect pressure"},
+        {"physics", "solver_wall_pressure", !solver || !particles,
+         "only pressure_solver = pcisph or dfsph with wall_model = particles reads it"},
         /* the walls' keys: each model reads its own */
         {"domain", "wall_model", !walls, "only the effect walls reads it"},
         {"domain", "wall_force", !walls || def->wall_model != SPH_WALL_VOLUME,

@@ -79,7 +79,9 @@
  * push back with K_i alone, as the volume model's walls do with -K_i
  * grad(share) (Akinci et al. 2012's boundary force has the same single term),
  * add to G_i but not to the sums over the neighbours i's push moves, and
- * count in neither solve's error.
+ * count in neither solve's error. With solver_wall_pressure = extrapolated
+ * they take the fluid's kappa and kappa^v after each correction
+ * (solver_walls.c; kappa with the hydrostatic term).
  * rho_r is the lattice's rest density (solver.h); the walls
  * count as the lattice continued behind them (solver.h), in place of the
  * density pass's volume-model term. */
@@ -352,6 +354,8 @@ static void correct(sph_sim *sim, bool density)
         else
             k[i] += fmaxf(P->rho_df[i], 0.0f) * P->alpha_v[i] / (dt * dt); /* rho_df: dt D */
     }
+    if (sim->def.solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED && sph_scene_wall_particles(&sim->def))
+        sph_solver_wall_extrapolate(sim, k, density ? 1.0f : 0.0f, 0.0f); /* kappa = p / rho_r (solver_walls.c) */
 }
 
 /* The share of the last step's kappa this solve starts from: SPH_DFSPH_WARM, or with solver_warm_start = on

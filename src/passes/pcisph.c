@@ -26,7 +26,9 @@
  * -(m_j / rho_r^2) (p_i + p_j) grad W they push back with p_i alone, as the
  * volume model's walls do with -(p_i / rho_r) grad(share) (the energy's form;
  * Akinci et al. 2012's boundary force, eq. 10, has the same single term).
- * Their own pressure, prediction and error are not solved for.
+ * Their own pressure, prediction and error are not solved for. With
+ * solver_wall_pressure = extrapolated they take the fluid's pressure after
+ * each correction (solver_walls.c), and the pair term is the interior's.
  * rho_r is the density of the lattice at rest (solver.h); the forces divide
  * by it, not by each particle's density, as delta's derivation assumes (eq. 8).
  *
@@ -251,6 +253,8 @@ static void correct(sph_sim *sim)
         const float d_i = local ? local[i] / (sim->dt * sim->dt) : delta;
         P->p_pci[i] = fmaxf(floor, P->p_pci[i] + d_i * (P->rho_pci[i] - rho_r));
     }
+    if (sim->def.solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED && sph_scene_wall_particles(&sim->def))
+        sph_solver_wall_extrapolate(sim, P->p_pci, rho_r, floor); /* or from the fluid's (solver_walls.c) */
 }
 
 static void run(sph_sim *sim)

@@ -173,4 +173,8 @@ static inline bool sph_solver_done(sph_sim *sim, double error, double tolerance)
     return false;
 }
 
+/* solver_wall_pressure = extrapolated: the wall particles' q (PCISPH's p, c = rho_rest; DFSPH's kappa, c = 1;
+ * its kappa_v, c = 0: no hydrostatic term) from their fluid neighbours, at least floor (solver_walls.c). */
+void sph_solver_wall_extrapolate(sph_sim *sim, float *q, float c, float floor);
+
 #endif
