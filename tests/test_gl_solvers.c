@@ -6,7 +6,8 @@
  * solver is called once per iteration on GL too, and reads back only the
  * error of each iteration. Pass by pass, each iteration's fields are
  * compared in test_gl_backend.c (passes_match_cpu_solvers); with the keys
- * solver_warm_start and pcisph_local_delta, here (lockstep_keys). */
+ * solver_warm_start and pcisph_local_delta, and with wall particles and an
+ * obstacle, here (lockstep). */
 #define _GNU_SOURCE /* setenv */
 #include <criterion/criterion.h>
 #include <float.h>
