@@ -396,3 +396,36 @@ Test(gl_solvers, wall_particles_accepted, .timeout = 300)
         sph_sim_destroy(sim);
     }
 }
+
+/* The solvers' programs within the 16 storage blocks a shader may have (Mesa's limit) with every acceleration
+ * field a solver scene can have (viscosity, Akinci's two terms, XSPH, the mouse) and the wall particles' FIXED:
+ * PCISPH's single program declared 17 with the volume walls and 18 with wall particles ("Too many compute
+ * shader storage blocks") before its force moved to gpu_pcisph_force.comp. */
+Test(gl_solvers, every_acceleration_within_the_storage_blocks, .timeout = 300)
+{
+    need_gl();
+    const char *solvers[] = {"pcisph", "dfsph"}, *walls[] = {"volume", "particles"};
+    for (int k = 0; k < 4; k++) {
+        sph_scene_def def = test_scene(dam_2d);
+        sph_error err;
+        const char *sets[] = {"scene.effects=gravity pressure viscosity walls interaction",
+                              "physics.surface_tension=akinci", "physics.xsph=0.1"};
+        for (int i = 0; i < 3; i++) cr_assert_eq(sph_scene_set(&def, sets[i], &err), SPH_ERR_OK, "%s", err.msg);
+        char set[100];
+        snprintf(set, sizeof set, "physics.pressure_solver=%s", solvers[k / 2]);
+        cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
+        snprintf(set, sizeof set, "domain.wall_model=%s", walls[k % 2]);
+        cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
+        def.backend = SPH_BACKEND_GL;
+        sph_sim *sim = NULL;
+        cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s, %s walls: %s", solvers[k / 2],
+                     walls[k % 2], err.msg);
+        for (int f = 0; f < SPH_FIELD_COUNT; f++) /* every acceleration field the registry has but three */
+            if (sph_field_infos[f].kind == SPH_KIND_ACCELERATION && f != SPH_FIELD_ACC_P && f != SPH_FIELD_ACC_S &&
+                f != SPH_FIELD_ACC_T && f != (k < 2 ? SPH_FIELD_ACC_DF : SPH_FIELD_ACC_PCI))
+                cr_expect(sim->P.field[f][0], "%s, %s walls: no %s", solvers[k / 2], walls[k % 2],
+                          sph_field_infos[f].name);
+        for (int s = 0; s < 2; s++) sph_sim_step(sim);
+        sph_sim_destroy(sim);
+    }
+}
