@@ -235,6 +235,8 @@ Test(gl_solvers, pcisph_obstacle_2d, .timeout = 300)
     compare_runs(dam_2d_obstacle, "pcisph", "particles", NULL, 40);
 }
 Test(gl_solvers, dfsph_obstacle_2d, .timeout = 300) { compare_runs(dam_2d_obstacle, "dfsph", "particles", NULL, 40); }
+Test(gl_solvers, pcisph_wall_particles_3d, .timeout = 300) { compare_runs(dam_3d, "pcisph", "particles", NULL, 20); }
+Test(gl_solvers, dfsph_wall_particles_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "particles", NULL, 20); }
 
 /* solver_warm_start = on (each solve from the last step's pressure, DFSPH's
  * kappa scaled by (dt_last / dt)^2) and pcisph_local_delta = on (each
