@@ -1,10 +1,10 @@
-// uses: PRED VEL MASS RHO ALPHA ALPHA_V KAPPA KAPPA_V KAPPA_BEST RHO_DF DV_DF ENTRIES START WALL REDUCE
+// uses: PRED VEL MASS RHO ALPHA ALPHA_V KAPPA KAPPA_V KAPPA_BEST RHO_DF DV_DF ENTRIES START WALL REDUCE FIXED
 // Pass dfsph (src/passes/dfsph.c): one stage of an iteration per dispatch,
 // u_count says which (run_dfsph in src/gpu/gpu_passes.c calls them in the
 // CPU pass's order); every walk is over the pairs within h at pred (the
 // CPU's lists). The force is gpu_dfsph_force.comp, a program of its own:
 // with every acceleration field this one would declare more than the 16
-// storage blocks a shader may have.
+// storage blocks a shader may have (with wall particles, FIXED makes this one's 16).
 //   0 factors: alpha_i = rho_r / max(G^rho_i . G^p_i + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, DEN_FULL), walls in G
 //     negative where that sum is not above ALPHA_MIN (src/passes/dfsph.c says why), and the divergence
 //     solve's alpha_v_i = rho_r / max(|G^p_i|^2 + sum_j m_j^2 |grad W^p_ij|^2, DEN_FULL_V)
@@ -17,13 +17,18 @@
 //     pushed particle (kappa + kappa_v > 0), at least 0, into reduce_[3] (the stopping test, dfsph.c): per work
 //     group in shared memory, then one
 //     atomicMax on the float's bits (non-negative floats order as their bits do; a NaN counts as 0, as fmaxf
-//     leaves it out on the CPU); 3 the sum of max(error, 0), in units of 2^-28 N (so that the host reads the
-//     mean over the N particles as the count times 2^-28): per work group in shared memory, then one atomicAdd
+//     leaves it out on the CPU); 3 the sum of max(error, 0), in units of 2^-28 N_FLUID (so that the host reads
+//     the mean over the N_FLUID fluid particles as the count times 2^-28): per work group in shared memory, then
+//     one atomicAdd
 //   5 correct: kappa_v += max(dt D, 0) alpha_v / dt^2, u_value = dt^2
 //   6 correct: kappa = max(kappa + OMEGA (rho_df - rho_r) |alpha| / dt^2, -kappa_v) (a relaxed Jacobi step,
 //     kappa_v + kappa kept >= 0; src/passes/dfsph.c says why)
 //   7 keep:      kappa_best = kappa (the density solve's least error so far)
 //   8 take back: kappa = kappa_best (the error rose above twice that least plus the tolerance)
+// Wall particles (wall_model = particles, obstacles; FIXED) are neighbours at their fixed places with
+// kappa = kappa_v = 0, as in dfsph.c: alpha = alpha_v = 0 (0), they add to G_i but not to the sums over the
+// neighbours i's push moves (0), their x* is pred + dt dv unclamped (beyond the box, where they stay), and
+// they count in neither solve's error (3: rho_df = 0; 4: rho_df = rho_r) nor in the mean (N_FLUID).
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;
@@ -33,6 +38,15 @@ shared float s_sum[WG];
 vec3 gr, gp, vi, xs;
 float dots, dots_p, sum;
 const float OMEGA = 0.5; // SPH_DFSPH_OMEGA in src/passes/dfsph.c
+
+bool is_wall(uint i)
+{
+#if HAS_FIXED
+    return fixed_[i] != 0.0;
+#else
+    return false;
+#endif
+}
 
 float grad_factor(int kind, float s, float r2)
 {
@@ -56,7 +70,7 @@ vec3 reached(uint j)
         uint k = uint(d) * N + j;
         precise float y = pred_[k] + u_dt * dv_df_[k];
 #if HAS_WALLS
-        if (PER[d] <= 0.0) y = min(max(y, DOM_MIN[d]), DOM_MAX[d]);
+        if (PER[d] <= 0.0 && !is_wall(j)) y = min(max(y, DOM_MIN[d]), DOM_MAX[d]);
 #endif
         x[d] = y;
     }
@@ -75,9 +89,11 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
         sum += mass_[j] * kernel_w(KD, SIG_D, sqrt(q2));
     } else if (u_count == 0u) {
         float fr = mass_[j] * grad_factor(KD, SIG_D, r2), fp = mass_[j] * grad_factor(KP, SIG_P, r2);
+        bool still = is_wall(j); // a wall particle counts, but i's push cannot move it
         for (int d = 0; d < DIM; d++) {
             gr[d] += fr * dx[d];
             gp[d] += fp * dx[d];
+            if (still) continue;
             dots += fr * fp * dx[d] * dx[d];
             dots_p += fp * fp * dx[d] * dx[d];
         }
@@ -93,7 +109,24 @@ void main()
 {
     uint i = gid(), l = gl_LocalInvocationID.x, u = u_count;
     uint err = 0u, over = 0u;
-    if (i < N) {
+    if (i < N && is_wall(i)) { // no kappa, no error of its own (see the top)
+        if (u == 0u) {
+            alpha_[i] = 0.0;
+            alpha_v_[i] = 0.0;
+        } else if (u == 3u) {
+            rho_df_[i] = 0.0;
+        } else if (u == 4u) {
+            rho_df_[i] = RHO_R;
+        } else if (u == 1u) {
+            kappa_v_[i] *= u_value;
+        } else if (u == 2u) {
+            kappa_[i] *= u_value;
+        } else if (u == 7u) {
+            kappa_best_[i] = kappa_[i];
+        } else if (u == 8u) {
+            kappa_[i] = kappa_best_[i];
+        }
+    } else if (i < N) {
         vec3 xi = PRED3(i), g = vec3(0.0);
         float share = 0.0;
 #if WALL_VOLUME
@@ -166,7 +199,7 @@ void main()
             if (l < off) s_sum[l] += s_sum[l + off];
             barrier();
         }
-        if (l == 0u) atomicAdd(reduce_[2], uint(min(round(s_sum[0] * (268435456.0 / float(N))), 4294967040.0)));
+        if (l == 0u) atomicAdd(reduce_[2], uint(min(round(s_sum[0] * (268435456.0 / float(N_FLUID))), 4294967040.0)));
         return;
     }
     s_err[l] = err;

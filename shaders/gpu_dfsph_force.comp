@@ -1,9 +1,10 @@
-// uses: PRED MASS KAPPA KAPPA_V DV_DF ACC_DF ACCELERATIONS ENTRIES START WALL
+// uses: PRED MASS KAPPA KAPPA_V DV_DF ACC_DF ACCELERATIONS ENTRIES START WALL FIXED
 // Pass dfsph's force (src/passes/dfsph.c, force()), a program of its own
 // beside gpu_dfsph.comp: a_i = -sum_j m_j (K_i + K_j) / rho_r grad W^p_ij -
 // K_i grad(walls' share) over the pairs within h at pred, dv = dt (the other
 // accelerations + a), K = kappa_v, plus kappa where u_count = 1 (the
 // constant-density solve); u_count = 2: the start-up evaluation (dt = 0), a = 0.
+// Wall particles (FIXED) stay where they are: a = dv = 0 (dfsph.c); as neighbours their K is 0.
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;
@@ -31,6 +32,12 @@ void main()
         for (int d = 0; d < DIM; d++) acc_df_[uint(d) * N + i] = 0.0;
         return;
     }
+#if HAS_FIXED
+    if (fixed_[i] != 0.0) {
+        for (int d = 0; d < DIM; d++) acc_df_[uint(d) * N + i] = dv_df_[uint(d) * N + i] = 0.0;
+        return;
+    }
+#endif
     vec3 xi = PRED3(i);
     k_i = kappa_sum(i);
     acc = vec3(0.0);

@@ -1,48 +1,54 @@
-// uses: PRED MASS P_PCI P_PCI_BEST X_PCI RHO_PCI DELTA_PCI ACC_PCI ACCELERATIONS ENTRIES START WALL REDUCE
+// uses: PRED MASS P_PCI P_PCI_BEST X_PCI RHO_PCI DELTA_PCI ENTRIES START WALL REDUCE FIXED
 // Pass pcisph (src/passes/pcisph.c): one stage of a predict-correct
 // iteration per dispatch, u_count says which (the host, run_pcisph in
-// src/gpu/gpu_passes.c, calls them in the CPU pass's order):
-//   0 start:   p = 0, a = 0, x* = pred + dt^2 (other accelerations); with solver_warm_start = on (and a last
-//              step) the host calls 1 instead, from the p the last step ended with
-//   1 force:   a_i = -(1/rho_r^2) sum_j m_j (p_i + p_j) grad W^p_ij at pred, walls push back; x* as above plus a
+// src/gpu/gpu_passes.c, calls them in the CPU pass's order). The pressure
+// force and x* (stages 0, 1 and 4 below) are gpu_pcisph_force.comp, a program
+// of its own: with every acceleration field this one would declare more than
+// the 16 storage blocks a shader may have.
+//   0 start, 1 force: gpu_pcisph_force.comp
 //   2 predict: rho*_i = sum_j m_j W^rho(x*_i - x*_j) + rho_r (walls' share at x*_i), over the pairs within h at
 //              pred (the CPU's lists); the largest (rho* - rho_r) / rho_r, at least 0, into reduce_[2] (per work
 //              group in shared memory, then one atomicMax on the float's bits: non-negative floats order as their
 //              bits do; a NaN counts as 0, as fmaxf leaves it out on the CPU)
 //   3 correct: p += delta (rho* - rho_r), u_value = delta / dt^2, clamped at 0 with negative_pressure = clamp
-//   4 the start-up evaluation (dt = 0): a = 0, x* = pred
+//   4 the start-up evaluation (dt = 0): gpu_pcisph_force.comp
 //   5 pcisph_local_delta = on: delta_i at dt = 1 s from i's neighbourhood at pred, rho_r^2 / (2 S_i) with
 //     S_i = max(G^rho_i . G^p_i, 0) + sum_j m_j^2 grad W^rho_ij . grad W^p_ij, G_i = sum_j m_j grad W_ij + rho_r
 //     grad(walls' share); u_value = the full lattice's delta, kept where S_i is 0 (local_deltas in pcisph.c)
 //   6 correct with those: p += delta_i / dt^2 (rho* - rho_r), u_value = dt^2, clamped as 3
 //   7 keep:      p_best = p (the solve's least error so far)
 //   8 take back: p = p_best (the error rose above twice that least plus the tolerance)
+// Wall particles (wall_model = particles, obstacles; FIXED) are neighbours at their fixed places with p = 0, as
+// in pcisph.c: they count in G_i but not in the sum over the neighbours i's pressure moves (5), have
+// rho* = rho_r and no error of their own (2), and no p (3, 6).
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;
 uniform float u_value;
 shared uint s_err[WG];
-vec3 acc, xs, gr, gp;
-float p_i, rho, dots;
+vec3 xs, gr, gp;
+float rho, dots;
+
+bool is_wall(uint i)
+{
+#if HAS_FIXED
+    return fixed_[i] != 0.0;
+#else
+    return false;
+#endif
+}
 
 void sph_pair(uint i, uint j, vec3 dx, float r2)
 {
-    if (u_count == 1u) {
-        if (r2 < R_MIN * R_MIN) { // coincident: apart along x, as pressure_force.c
-            dx = vec3(i < j ? -R_MIN : R_MIN, 0.0, 0.0);
-            r2 = R_MIN * R_MIN;
-        }
-        float r = sqrt(r2);
-        float c = mass_[j] * (p_i + p_pci_[j]) * INV_RHO_R2 * kernel_dw(KP, SIG_P, r) / r;
-        for (int d = 0; d < DIM; d++) acc[d] -= c * dx[d];
-    } else if (u_count == 5u) {
+    if (u_count == 5u) {
         float r = sqrt(r2);
         if (!(r > 0.0)) return;
         float fr = mass_[j] * kernel_dw(KD, SIG_D, r) / r, fp = mass_[j] * kernel_dw(KP, SIG_P, r) / r;
+        bool still = is_wall(j); // a wall particle counts, but i's pressure cannot move it
         for (int d = 0; d < DIM; d++) {
             gr[d] += fr * dx[d];
             gp[d] += fp * dx[d];
-            dots += fr * fp * dx[d] * dx[d];
+            if (!still) dots += fr * fp * dx[d] * dx[d];
         }
     } else {
         precise float q2 = 0.0;
@@ -55,46 +61,17 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
 }
 #include_walk
 
-// x* = pred + dt^2 (a + the other accelerations), clamped into the box as
-// the walls pass will (sph_solver_clamped in src/passes/solver.h), and a stored
-void put_prediction(uint i, vec3 a)
-{
-    for (int d = 0; d < DIM; d++) {
-        uint k = uint(d) * N + i;
-        acc_pci_[k] = a[d];
-        precise float x = pred_[k] + u_dt * u_dt * (a[d] + ACC_OTHER(k));
-#if HAS_WALLS
-        if (PER[d] <= 0.0) x = min(max(x, DOM_MIN[d]), DOM_MAX[d]);
-#endif
-        x_pci_[k] = x;
-    }
-}
-
 void main()
 {
     uint i = gid(), l = gl_LocalInvocationID.x;
     uint err = 0u;
-    if (i < N) {
-        if (u_count == 4u) {
-            for (int d = 0; d < DIM; d++) {
-                acc_pci_[uint(d) * N + i] = 0.0;
-                x_pci_[uint(d) * N + i] = pred_[uint(d) * N + i];
-            }
-        } else if (u_count == 0u) {
-            p_pci_[i] = 0.0;
-            put_prediction(i, vec3(0.0));
-        } else if (u_count == 1u) {
-            acc = vec3(0.0);
-            p_i = p_pci_[i];
-            vec3 xi = PRED3(i);
-            sph_walk(i, xi);
-#if WALL_VOLUME
-            vec3 grad;
-            solver_walls(xi, grad);
-            for (int d = 0; d < DIM; d++) acc[d] -= p_i * INV_RHO_R * grad[d];
-#endif
-            put_prediction(i, acc);
-        } else if (u_count == 2u) {
+    if (i < N && is_wall(i)) { // no pressure, no error (see the top)
+        if (u_count == 2u) rho_pci_[i] = RHO_R;
+        if (u_count == 5u) delta_pci_[i] = u_value;
+        if (u_count == 7u) p_pci_best_[i] = p_pci_[i];
+        if (u_count == 8u) p_pci_[i] = p_pci_best_[i];
+    } else if (i < N) {
+        if (u_count == 2u) {
             xs = LOAD3(x_pci_, i);
             rho = mass_[i] * kernel_w(KD, SIG_D, 0.0);
             sph_walk(i, PRED3(i));

@@ -13,6 +13,10 @@
 // a few roundings apart. u_gscale: the share of g of the step (the
 // gravity_ramp, src/core/sph_start.h), so the walls' hydrostatic term is the
 // fluid's weight in this step, as on the CPU.
+// With a pressure solver (pcisph, dfsph) the scene has no p (HAS_P 0): the wall
+// particles keep the density the summation gave them, hold no pressure (the
+// solvers' walls push with the fluid particle's own) and get the viscous
+// term's velocity only, without the curvature term (it needs p), as wall_state.c.
 layout(local_size_x = WG) in;
 uniform float u_gscale;
 uniform vec3 u_kick; // [m/s] the wall's velocity in the step's frame, g dt (wall_state.c)
@@ -24,6 +28,9 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
     if (fixed_[j] != 0.0) return; // only the fluid extrapolates into the wall
     float W = kernel_w(KD, SIG_D, sqrt(r2));
     sw += W;
+#if !HAS_P
+    for (int d = 0; d < DIM; d++) sv[d] += vel_[uint(d) * N + j] * W; // the viscous term's velocity alone
+#else
     sp += p_[j] * W;
     float rw = rho_[j] * W;
     vec3 vj = VEL3(j);
@@ -42,6 +49,7 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
         sqc[d] -= q * dx[d] * W;
         for (int e = 0; e < DIM; e++) scc[d][e] += dx[d] * dx[e] * W;
     }
+#endif
 #endif
 }
 // The mirror's curvature term -(a_t/nu) (|c|^2/4 + var_c/2) (wall_state.c's mirror_curvature).
@@ -88,7 +96,11 @@ void main()
     srr = vec3(0.0);
     sv = vec3(0.0);
     sq = 0.0;
+#if HAS_P
     qref = p_[i]; // the wall particle's pressure of the last step, q's reference
+#else
+    qref = 0.0;
+#endif
     sc = vec3(0.0);
     sqc = vec3(0.0);
     scc = mat3(0.0);
@@ -103,6 +115,7 @@ void main()
         p = q / sw;
         for (int d = 0; d < DIM; d++) vt[d] = sv[d] / sw;
     }
+#if HAS_P // with a solver the wall particle keeps the density the summation gave it
 #if CLAMP_NEG
     p = max(p, 0.0);
 #endif
@@ -111,9 +124,10 @@ void main()
     rho_[i] = rho;
     p_rho2_[i] = p / (rho * rho);
     vol_[i] = mass_[i] / rho;
+#endif
     bool free_slip = slip_[i] != 0.0;
     vec3 curv = vec3(0.0);
-#if WALL_CURV
+#if WALL_CURV && HAS_P
     if (sw > 0.0 && !free_slip) {
         curv = mirror_curvature();
         // at most the fluid's speed relative to the wall, |v~_w - v_w|, and off beyond a cell Reynolds number 1

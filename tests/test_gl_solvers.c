@@ -6,7 +6,8 @@
  * solver is called once per iteration on GL too, and reads back only the
  * error of each iteration. Pass by pass, each iteration's fields are
  * compared in test_gl_backend.c (passes_match_cpu_solvers); with the keys
- * solver_warm_start and pcisph_local_delta, here (lockstep_keys). */
+ * solver_warm_start and pcisph_local_delta, and with wall particles and an
+ * obstacle, here (lockstep). */
 #define _GNU_SOURCE /* setenv */
 #include <criterion/criterion.h>
 #include <float.h>
@@ -16,6 +17,8 @@
 #include <string.h>
 
 #include "gpu.h"
+#include "sph_obstacles.h"
+#include "sph_walls.h"
 #include "test_gl_util.h"
 #include "test_util.h"
 
@@ -87,6 +90,32 @@ static int count_difference(const sph_sim *a, const sph_sim *b)
     return abs(a->solver.iterations - b->solver.iterations) + abs(a->solver.div_iterations - b->solver.div_iterations);
 }
 
+/* Each particle's position by id (3 floats a particle). */
+static float *wall_positions(const sph_sim *sim)
+{
+    float *x = calloc(3 * (size_t)sim->n, sizeof *x);
+    cr_assert_not_null(x);
+    for (uint32_t i = 0; i < sim->n; i++)
+        for (int d = 0; d < sim->dim; d++) x[3 * (size_t)sim->P.id[i] + (size_t)d] = sim->P.pos[d][i];
+    return x;
+}
+
+/* Every wall particle of sim (synchronised) exactly where x0 had it; returns how many there are. */
+static uint32_t walls_still(const sph_sim *sim, const float *x0)
+{
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        if (!sph_is_wall(&sim->P, i)) continue;
+        count++;
+        const uint32_t id = sim->P.id[i];
+        for (int d = 0; d < sim->dim; d++)
+            cr_assert_eq(sim->P.pos[d][i], x0[3 * (size_t)id + (size_t)d],
+                         "wall particle %u moved along %d on GL: %g -> %g", id, d, x0[3 * (size_t)id + (size_t)d],
+                         sim->P.pos[d][i]);
+    }
+    return count;
+}
+
 /* The CPU run, the GL run and, as the measure of what rounding alone does,
  * the CPU run again with every x moved by one ulp. How many iterations a
  * solve takes is a threshold on a maximum over particles; DFSPH's
@@ -106,6 +135,7 @@ static void compare_runs(const char *ini, const char *solver, const char *walls,
     const bool df = g->def.pressure_solver == SPH_PSOLVER_DFSPH;
     const int p = df ? SPH_PASS_DFSPH : SPH_PASS_PCISPH;
     const bool exact = software_device();
+    float *walls0 = wall_positions(g); /* wall particles (wall_model = particles, obstacles) must not move */
     int same = 0, worst = 0, spread = 0;
     long total = 0, total_gl = 0;
     double err_worst = 0;
@@ -152,13 +182,27 @@ static void compare_runs(const char *ini, const char *solver, const char *walls,
             err_u = fmax(err_u, fabs((double)u->P.pos[d][i] - c->P.pos[d][i]));
         }
     free(where);
+    const uint32_t still = walls_still(g, walls0);
+    free(walls0);
+    /* the fluid's force on each obstacle (the solvers' pair term, sph_obstacle_force.c), as obstacles_match_cpu */
+    double fc[SPH_MAX_OBSTACLES][3], fg[SPH_MAX_OBSTACLES][3], ferr = 0, fbig = 0;
+    const int no = sph_obstacle_forces(c, fc);
+    cr_assert_eq(sph_obstacle_forces(g, fg), no);
+    for (int k = 0; k < no; k++)
+        for (int d = 0; d < c->dim; d++) {
+            ferr = fmax(ferr, fabs(fg[k][d] - fc[k][d]));
+            fbig = fmax(fbig, fabs(fc[k][d]));
+        }
     if (getenv("SPH_TEST_VERBOSE"))
         fprintf(stderr,
                 "%s %dD %s walls%s%s, %d steps: %ld iterations on the CPU, %ld on GL, %d steps with the same count "
                 "(worst difference %d; CPU shifted by one ulp: %d), density errors differ by %.3g at most, %llu bytes "
-                "read back, positions differ by %.3g m (CPU shifted by one ulp: %.3g m)\n",
+                "read back, positions differ by %.3g m (CPU shifted by one ulp: %.3g m), %u wall particles held "
+                "still, obstacle forces differ by %.3g of %.4g N/m\n",
                 solver, c->dim, walls, extra ? ", " : "", extra ? extra : "", steps, total, total_gl, same, worst,
-                spread, err_worst, (unsigned long long)bytes, err, err_u);
+                spread, err_worst, (unsigned long long)bytes, err, err_u, still, ferr, fbig);
+    cr_expect(no == 0 || (fbig > 0 && ferr <= 1e-3 * fbig), "%s: obstacle forces differ by %.3g N/m of %.4g", solver,
+              ferr, fbig);
     cr_expect(total > (df ? 2 : 1) * steps, "%s: %ld iterations in %d steps: the solver did not iterate", solver,
               total, steps);
     cr_expect(labs(total_gl - total) <= total / 20, "%s: %ld iterations on GL, %ld on the CPU", solver, total_gl,
@@ -174,6 +218,25 @@ Test(gl_solvers, pcisph_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "pc
 Test(gl_solvers, dfsph_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "dfsph", "volume", NULL, 40); }
 Test(gl_solvers, pcisph_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "pcisph", "volume", NULL, 20); }
 Test(gl_solvers, dfsph_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "volume", NULL, 20); }
+
+/* Wall particles (wall_model = particles): neighbours held still with no pressure of their own
+ * (src/passes/pcisph.c, dfsph.c); with an obstacle the column leans on from the start, and the fluid's force on
+ * it. The wall particles' positions are checked bit for bit. */
+static const char *dam_2d_obstacle =
+    "[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n"
+    "[domain]\nmin=0 0\nmax=0.8 0.5\nwall_damping=0.3\nwall_model=particles\n"
+    "[fluid column]\nmin=0 0\nmax=0.3 0.3\nspacing=0.02\n"
+    "[obstacle step]\nmin=0.3 0\nmax=0.4 0.1\n"
+    "[physics]\nstiffness=1000\nviscosity=0.002\n[kernels]\nh=0.04\n[time]\ndt=0.0005\ncfl=0\n";
+Test(gl_solvers, pcisph_wall_particles_2d, .timeout = 300) { compare_runs(dam_2d, "pcisph", "particles", NULL, 40); }
+Test(gl_solvers, dfsph_wall_particles_2d, .timeout = 300) { compare_runs(dam_2d, "dfsph", "particles", NULL, 40); }
+Test(gl_solvers, pcisph_obstacle_2d, .timeout = 300)
+{
+    compare_runs(dam_2d_obstacle, "pcisph", "particles", NULL, 40);
+}
+Test(gl_solvers, dfsph_obstacle_2d, .timeout = 300) { compare_runs(dam_2d_obstacle, "dfsph", "particles", NULL, 40); }
+Test(gl_solvers, pcisph_wall_particles_3d, .timeout = 300) { compare_runs(dam_3d, "pcisph", "particles", NULL, 20); }
+Test(gl_solvers, dfsph_wall_particles_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "particles", NULL, 20); }
 
 /* solver_warm_start = on (each solve from the last step's pressure, DFSPH's
  * kappa scaled by (dt_last / dt)^2) and pcisph_local_delta = on (each
@@ -217,10 +280,10 @@ static void expect_written(const sph_sim *c, const sph_sim *g, sph_pass_id p, do
  * TOL_SOLVER and the error measured within a few roundings, as
  * passes_match_cpu_solvers does; the reorder pass moves the kept pressures
  * exactly. */
-static void lockstep_keys(const char *ini, const char *solver, const char *extra, int before, int steps)
+static void lockstep(const char *ini, const char *solver, const char *walls, const char *extra, int before, int steps)
 {
     need_gl();
-    sph_sim *c = make(ini, solver, "volume", extra, false), *g = make(ini, solver, "volume", extra, true);
+    sph_sim *c = make(ini, solver, walls, extra, false), *g = make(ini, solver, walls, extra, true);
     for (int s = 0; s < before; s++) sph_sim_step(c); /* where the water meets the far wall */
     /* the particles in reverse order, so that the first step's reorder pass moves every kept pressure (in a
      * sorted block few particles change cells in a few steps) */
@@ -269,8 +332,8 @@ static void lockstep_keys(const char *ini, const char *solver, const char *extra
         } while (c->next_pass != 0);
     }
     if (getenv("SPH_TEST_VERBOSE")) {
-        fprintf(stderr, "%s %dD %s: %d steps pass by pass after %d, %d calls of the solver; largest error / scale:",
-                solver, c->dim, extra, steps, before, calls);
+        fprintf(stderr, "%s %dD %s walls %s: %d steps pass by pass after %d, %d calls of the solver; largest error "
+                "/ scale:", solver, c->dim, walls, extra ? extra : "", steps, before, calls);
         for (int f = 0; f < SPH_FIELD_COUNT; f++)
             if ((sph_passes[solver_pass]->writes & SPH_FIELD_BIT(f)) && c->P.field[f][0])
                 fprintf(stderr, " %s %.2g", sph_field_infos[f].name, worst[f]);
@@ -279,6 +342,11 @@ static void lockstep_keys(const char *ini, const char *solver, const char *extra
     cr_expect(calls > steps, "%d calls of the solver in %d steps: it did not iterate", calls, steps);
     sph_sim_destroy(g);
     sph_sim_destroy(c);
+}
+
+static void lockstep_keys(const char *ini, const char *solver, const char *extra, int before, int steps)
+{
+    lockstep(ini, solver, "volume", extra, before, steps);
 }
 
 Test(gl_solvers, pcisph_warm_passes_match_cpu, .timeout = 300) { lockstep_keys(dam_2d, "pcisph", WARM, 20, 10); }
@@ -293,9 +361,22 @@ Test(gl_solvers, dfsph_warm_passes_match_cpu, .timeout = 300)
     lockstep_keys(dam_2d, "dfsph", WARM " physics.divergence_tolerance=1e-5", 20, 10);
 }
 
-/* Wall particles with a solver run on the CPU only (tests/test_solver_walls.c): the GL backend refuses the pair,
- * naming both keys, rather than move the wall particles. */
-Test(gl_solvers, wall_particles_refused)
+/* Wall particles and an obstacle, pass by pass: each solver iteration's fields (the wall particles' zero
+ * pressure, alpha and x* among them) and the error it measured, DFSPH's divergence mean over the fluid alone
+ * included (a tighter divergence tolerance, so that that solve iterates). */
+Test(gl_solvers, pcisph_wall_particles_passes_match_cpu, .timeout = 300)
+{
+    lockstep(dam_2d_obstacle, "pcisph", "particles", NULL, 20, 10);
+    lockstep(dam_2d_obstacle, "pcisph", "particles", LOCAL, 20, 5);
+}
+Test(gl_solvers, dfsph_wall_particles_passes_match_cpu, .timeout = 300)
+{
+    lockstep(dam_2d_obstacle, "dfsph", "particles", "physics.divergence_tolerance=1e-5", 20, 10);
+}
+
+/* Wall particles with a solver: the GL backend takes the pair (it refused it before the solver shaders held
+ * wall particles still), and a few steps run. */
+Test(gl_solvers, wall_particles_accepted, .timeout = 300)
 {
     need_gl();
     const char *solvers[] = {"pcisph", "dfsph"};
@@ -309,8 +390,44 @@ Test(gl_solvers, wall_particles_refused)
         cr_assert_eq(sph_scene_validate(&def, &err), SPH_ERR_OK, "%s", err.msg);
         def.backend = SPH_BACKEND_GL;
         sph_sim *sim = NULL;
-        cr_assert_neq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s: the GL backend accepted wall particles",
-                      solvers[k]);
-        cr_assert(strstr(err.msg, solvers[k]) && strstr(err.msg, "wall_model = particles"), "%s", err.msg);
+        cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s with wall particles on GL: %s", solvers[k],
+                     err.msg);
+        cr_assert(sim->backend, "the GL simulation has no backend");
+        for (int s = 0; s < 3; s++) sph_sim_step(sim);
+        cr_assert(!sim->alarm.raised, "%s: the watchdog stopped the run", solvers[k]);
+        sph_sim_destroy(sim);
+    }
+}
+
+/* The solvers' programs within the 16 storage blocks a shader may have (Mesa's limit) with every acceleration
+ * field a solver scene can have (viscosity, Akinci's two terms, XSPH, the mouse) and the wall particles' FIXED:
+ * PCISPH's single program declared 17 with the volume walls and 18 with wall particles ("Too many compute
+ * shader storage blocks") before its force moved to gpu_pcisph_force.comp. */
+Test(gl_solvers, every_acceleration_within_the_storage_blocks, .timeout = 300)
+{
+    need_gl();
+    const char *solvers[] = {"pcisph", "dfsph"}, *walls[] = {"volume", "particles"};
+    for (int k = 0; k < 4; k++) {
+        sph_scene_def def = test_scene(dam_2d);
+        sph_error err;
+        const char *sets[] = {"scene.effects=gravity pressure viscosity walls interaction",
+                              "physics.surface_tension=akinci", "physics.xsph=0.1"};
+        for (int i = 0; i < 3; i++) cr_assert_eq(sph_scene_set(&def, sets[i], &err), SPH_ERR_OK, "%s", err.msg);
+        char set[100];
+        snprintf(set, sizeof set, "physics.pressure_solver=%s", solvers[k / 2]);
+        cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
+        snprintf(set, sizeof set, "domain.wall_model=%s", walls[k % 2]);
+        cr_assert_eq(sph_scene_set(&def, set, &err), SPH_ERR_OK, "%s", err.msg);
+        def.backend = SPH_BACKEND_GL;
+        sph_sim *sim = NULL;
+        cr_assert_eq(sph_sim_create(&def, 2, &sim, &err), SPH_ERR_OK, "%s, %s walls: %s", solvers[k / 2],
+                     walls[k % 2], err.msg);
+        for (int f = 0; f < SPH_FIELD_COUNT; f++) /* every acceleration field the registry has but three */
+            if (sph_field_infos[f].kind == SPH_KIND_ACCELERATION && f != SPH_FIELD_ACC_P && f != SPH_FIELD_ACC_S &&
+                f != SPH_FIELD_ACC_T && f != (k < 2 ? SPH_FIELD_ACC_DF : SPH_FIELD_ACC_PCI))
+                cr_expect(sim->P.field[f][0], "%s, %s walls: no %s", solvers[k / 2], walls[k % 2],
+                          sph_field_infos[f].name);
+        for (int s = 0; s < 2; s++) sph_sim_step(sim);
+        sph_sim_destroy(sim);
     }
 }

@@ -128,12 +128,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [search] skin = %g (Verlet lists) is not implemented by the GL backend (its passes "
                         "walk the cells every step and keep no lists; accepted there: 0)",
                         def->file, (double)def->skin);
-    if (def->pressure_solver != SPH_PSOLVER_EOS && sph_scene_wall_particles(def))
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] pressure_solver = %s with [domain] wall_model = particles is not implemented by "
-                        "the GL backend (its solver shaders do not hold wall particles still yet; accepted there: "
-                        "wall_model = volume or reflect; the CPU runs both)",
-                        def->file, sph_pressure_solver_names[def->pressure_solver]);
     if (def->surface_tension == SPH_STENSION_STRESS)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] surface_tension = stress is not implemented by the GL backend (no shader "

@@ -327,31 +327,40 @@ static double solver_mean(gpu *g, sph_sim *sim, int p, uint32_t stage)
     return ldexp((double)count, -28);
 }
 
-/* shaders/gpu_pcisph.comp's stages */
-enum {
-    PCI_START, PCI_FORCE, PCI_PREDICT, PCI_CORRECT, PCI_STARTUP, PCI_DELTA, PCI_CORRECT_LOCAL, PCI_KEEP, PCI_TAKE_BACK
-};
+/* shaders/gpu_pcisph.comp's stages, and gpu_pcisph_force.comp's (the force and x*: a program of its own, as
+ * DFSPH's, for the storage blocks) */
+enum { PCI_PREDICT = 2, PCI_CORRECT, PCI_DELTA = 5, PCI_CORRECT_LOCAL, PCI_KEEP, PCI_TAKE_BACK };
+enum { PCI_START, PCI_FORCE, PCI_STARTUP };
+
+static void pcisph_force(gpu *g, sph_sim *sim, uint32_t stage)
+{
+    const int p = PROG_H(pcisph_force);
+    use_walk(g, sim, p);
+    gpu_set_u(g, p, U_count, stage);
+    gpu_set_f(g, p, U_dt, sim->dt);
+    gpu_dispatch(g, g->n);
+}
 
 static void run_pcisph(gpu *g, sph_sim *sim)
 {
     const int p = SPH_PASS_PCISPH;
     sph_solver_state *s = &sim->solver;
     if (!(sim->dt > 0)) { /* the start-up evaluation (dt = 0): nothing moves, no pressure yet */
-        solver_stage(g, sim, p, PCI_STARTUP, 0.0f);
+        pcisph_force(g, sim, PCI_STARTUP);
         return;
     }
     const bool local = sim->def.pcisph_local_delta == SPH_ON;
     if (s->iteration == 0) { /* the step's first call: from p = 0, or the last step's p (a warm start) */
         if (local) solver_stage(g, sim, p, PCI_DELTA, s->delta);
         const bool warm = sim->def.solver_warm_start == SPH_ON && s->dt_last > 0;
-        solver_stage(g, sim, p, warm ? PCI_FORCE : PCI_START, 0.0f);
+        pcisph_force(g, sim, warm ? PCI_FORCE : PCI_START);
     }
     const double error = solver_measure(g, sim, p, PCI_PREDICT);
     const int least = sph_solver_least(sim, error, sim->def.solver_tolerance);
     if (least == SPH_SOLVER_KEEP) solver_stage(g, sim, p, PCI_KEEP, 0.0f);
     if (least == SPH_SOLVER_TAKE_BACK) { /* rising: back to the least, as pcisph.c */
         solver_stage(g, sim, p, PCI_TAKE_BACK, 0.0f);
-        solver_stage(g, sim, p, PCI_FORCE, 0.0f);
+        pcisph_force(g, sim, PCI_FORCE);
         sph_solver_stopped(sim, solver_measure(g, sim, p, PCI_PREDICT));
         return;
     }
@@ -366,8 +375,14 @@ static void run_pcisph(gpu *g, sph_sim *sim)
         solver_stage(g, sim, p, PCI_CORRECT_LOCAL, sim->dt * sim->dt);
     else
         solver_stage(g, sim, p, PCI_CORRECT, s->delta / (sim->dt * sim->dt));
-    solver_stage(g, sim, p, PCI_FORCE, 0.0f);
+    pcisph_force(g, sim, PCI_FORCE);
     sim->pass_again = true;
+}
+
+static unsigned pcisph_helpers(const sph_scene_def *def)
+{
+    (void)def;
+    return HELPER_BIT(pcisph_force);
 }
 
 /* shaders/gpu_dfsph.comp's stages */
@@ -573,7 +588,7 @@ const gpu_pass_row gpu_pass_rows[SPH_PASS_COUNT] = {
     [SPH_PASS_CSF] = {.source = shader_gpu_csf_comp, .run = run_csf, .helpers = csf_helpers},
     [SPH_PASS_XSPH] = {.source = shader_gpu_xsph_comp, .run = run_xsph},
     [SPH_PASS_INTERACTION] = {.source = shader_gpu_interaction_comp, .run = run_interaction},
-    [SPH_PASS_PCISPH] = {.source = shader_gpu_pcisph_comp, .run = run_pcisph},
+    [SPH_PASS_PCISPH] = {.source = shader_gpu_pcisph_comp, .run = run_pcisph, .helpers = pcisph_helpers},
     [SPH_PASS_DFSPH] = {.source = shader_gpu_dfsph_comp, .run = run_dfsph, .helpers = dfsph_helpers},
     [SPH_PASS_INTEGRATE] = {.source = shader_gpu_integrate_comp, .run = run_integrate},
     [SPH_PASS_SHIFTING] = {.source = shader_gpu_shifting_comp, .run = run_shifting},

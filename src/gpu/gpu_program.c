@@ -12,6 +12,7 @@
 #include "csf.h"
 #include "gpu_internal.h"
 #include "sph_start.h"
+#include "sph_walls.h"
 
 const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT] = {
 #define GPU_B_NAME(name) #name,
@@ -180,6 +181,11 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put_float(&t, "DEN_FULL", sim->solver.den_full);
     put_float(&t, "DEN_FULL_V", sim->solver.den_full_v);
     put(&t, "#define SOLVER_WALL_AT %d\n#define SOLVER_WALL_SAMPLES %d\n", GPU_WALL_FLOATS, SPH_SOLVER_WALL_SAMPLES);
+    /* the particles DFSPH's divergence error is the mean over: the fluid's, not the wall particles' (dfsph.c);
+     * at least 1, as the mean of none is 0 there */
+    uint32_t fluid = 0;
+    for (uint32_t i = 0; i < sim->n; i++) fluid += !sph_is_wall(&sim->P, i);
+    put(&t, "#define N_FLUID %uu\n", fluid > 0 ? fluid : 1u);
     put_float(&t, "SOLVER_WALL_SCALE", (float)SPH_SOLVER_WALL_SAMPLES / def->h);
     put(&t, "#define ACC_OTHER(k) (0.0");
     for (int f = 0; f < SPH_FIELD_COUNT; f++)
