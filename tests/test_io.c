@@ -355,6 +355,26 @@ Test(io, mkdir_p_makes_nested_folders)
     remove_tree(g_dir);
 }
 
+Test(io, failed_command_takes_back_only_the_empty_folders_it_made)
+{
+    make_dir();
+    char err[512];
+    sph_dirs_made_remove_empty(); /* what earlier tests made is gone or not empty */
+    cr_assert(mkdir(in_dir("kept"), 0777) == 0, "%s", strerror(errno)); /* a folder the user had */
+    cr_assert(sph_mkdir_p(in_dir("a/b/c"), err, sizeof err), "%s", err);
+    cr_assert(sph_mkdir_p(in_dir("a/x"), err, sizeof err), "%s", err);
+    cr_assert(sph_mkdir_p(in_dir("kept/y"), err, sizeof err), "%s", err);
+    put_file(in_dir("a/x/file"), "x");
+    sph_dirs_made_remove_empty();
+    struct stat st;
+    cr_expect(stat(in_dir("a/b"), &st) != 0, "a/b: empty, made here, still there");
+    cr_expect(stat(in_dir("kept/y"), &st) != 0, "kept/y: empty, made here, still there");
+    cr_expect(stat(in_dir("a/x/file"), &st) == 0, "a/x/file: something written was removed");
+    cr_expect(stat(in_dir("kept"), &st) == 0, "kept: made before, removed");
+    cr_expect(stat(g_dir, &st) == 0, "the folder that was there is gone");
+    remove_tree(g_dir);
+}
+
 /* ---- JSON ------------------------------------------------------------------------------- */
 
 Test(io, json_layout_and_escapes)

@@ -209,8 +209,13 @@ int main(int argc, char **argv)
         usage(stdout);
         return 0;
     }
-#define SPH_COMMAND_RUN(name, args, about) \
-    if (strcmp(cmd, #name) == 0) return cmd_##name(argc - 1, argv + 1);
+    /* a command that fails takes back the output folders it made and left empty */
+#define SPH_COMMAND_RUN(name, args, about)                      \
+    if (strcmp(cmd, #name) == 0) {                              \
+        int rc_ = cmd_##name(argc - 1, argv + 1);               \
+        if (rc_ != 0) sph_dirs_made_remove_empty();             \
+        return rc_;                                             \
+    }
     SPH_COMMANDS(SPH_COMMAND_RUN)
 #undef SPH_COMMAND_RUN
     /* the error first, the nearest command for a typo, and a hint, not the whole list */
