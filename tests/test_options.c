@@ -252,3 +252,14 @@ Test(options, color_help_names_every_colour)
         cr_expect(strstr(help, word), "--color's help does not name '%s': %s", name, color->help);
     }
 }
+
+/* A whole number too large for a long is out of range, not "not a whole number"; a negative lesson
+ * number is out of range, not a missing one (a user's review). */
+Test(options, numbers_out_of_range_are_named_so, .timeout = 30)
+{
+    cr_assert_eq(test_sphlab("run lessons/scenes/rest-2d.ini --steps 99999999999999999999", g_out, sizeof g_out), 2,
+                 "%s", g_out);
+    cr_expect(strstr(g_out, "--steps 99999999999999999999: out of range (accepted: 0 to") != NULL, "%s", g_out);
+    cr_assert_eq(test_sphlab("lesson -1", g_out, sizeof g_out), 2, "%s", g_out);
+    cr_expect(strstr(g_out, "lesson -1: out of range (accepted: 1 to") != NULL, "%s", g_out);
+}
