@@ -918,3 +918,14 @@ Test(scene, set_names_blocks_as_the_file_does)
     cr_assert_eq(sph_scene_set(&def, "fluid.pool.spacing=0.01", &err), SPH_ERR_OK, "%s", err.msg);
     cr_assert_float_eq(def.blocks[0].spacing, 0.01, 1e-9);
 }
+
+/* A path that is not a file is named for what it is: /dev/null is no directory (a user's review). */
+Test(scene, load_names_what_a_non_file_is)
+{
+    sph_scene_def def = sph_default_scene_def();
+    sph_error err;
+    cr_assert_neq(sph_scene_load("/tmp", &def, &err), SPH_ERR_OK);
+    cr_expect(strstr(err.msg, "/tmp: a directory, not a scene file") != NULL, "%s", err.msg);
+    cr_assert_neq(sph_scene_load("/dev/null", &def, &err), SPH_ERR_OK);
+    cr_expect(strstr(err.msg, "/dev/null: a device, not a scene file") != NULL, "%s", err.msg);
+}
