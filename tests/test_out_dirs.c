@@ -41,6 +41,10 @@ Test(out_dirs, validate_without_its_scene_leaves_no_out_folder, .timeout = 60)
     char path[256];
     snprintf(path, sizeof path, "%s/v1", dir);
     cr_expect(!exists(path), "%s: made by a command that failed before writing anything", path);
+    /* the message names where it looked */
+    snprintf(cmd, sizeof cmd, "grep -q 'scenes/validate/couette.ini: not found in %s nor %s ' '%s/err.txt'", dir, dir,
+             dir);
+    cr_expect_eq(shell(cmd), 0, "the message does not name the folders looked in (%s/err.txt)", dir);
     test_remove_dir(dir);
 }
 
