@@ -213,8 +213,8 @@ static void check_hud_fits(const char *path, int solver, bool timings, int selec
     if (getenv("HUD_DEBUG"))
         for (int i = 0; i < fit.n_rows; i++) fprintf(stderr, "%s\n", fit.row[i]);
     if (all_fit)
-        cr_expect_eq(fit.hidden, 0, "%s at %dx%d: %d HUD rows left out (%d lines, %d timings)", path, w, h, fit.hidden, nl,
-                 bars);
+        cr_expect_eq(fit.hidden, 0, "%s at %dx%d: %d HUD rows left out (%d lines, %d timings)", path, w, h,
+                     fit.hidden, nl, bars);
     cr_expect_leq(room[1] + fit.h, (float)h, "%s: the HUD's bottom %.0f px is below the window", path,
                   room[1] + fit.h);
     cr_expect_leq(room[0] + fit.w, (float)w, "%s: the HUD's right edge %.0f px is past the window", path,
@@ -239,11 +239,16 @@ Test(render_layout, hud_rows_all_show_in_a_1024x720_window, .timeout = 120)
         bool timings;
         int select;
     } lessons[] = {
-        {"lessons/01-kernel-estimation/lesson.ini", false, 625}, {"lessons/02-density-summation/lesson.ini", false, 585},
-        {"lessons/03-pressure-gradient/lesson.ini", false, -1},  {"lessons/04-viscosity/lesson.ini", false, -1},
-        {"lessons/05-spatial-hash/lesson.ini", false, 7},        {"lessons/06-sorting-offsets/lesson.ini", false, 7},
-        {"lessons/07-full-simulation/lesson.ini", true, -1},     {"lessons/08-optimisation-ladder/lesson.ini", true, -1},
-        {"lessons/09-accuracy/lesson.ini", true, -1},            {"lessons/10-boundaries/lesson.ini", false, 15},
+        {"lessons/01-kernel-estimation/lesson.ini", false, 625},
+        {"lessons/02-density-summation/lesson.ini", false, 585},
+        {"lessons/03-pressure-gradient/lesson.ini", false, -1},
+        {"lessons/04-viscosity/lesson.ini", false, -1},
+        {"lessons/05-spatial-hash/lesson.ini", false, 7},
+        {"lessons/06-sorting-offsets/lesson.ini", false, 7},
+        {"lessons/07-full-simulation/lesson.ini", true, -1},
+        {"lessons/08-optimisation-ladder/lesson.ini", true, -1},
+        {"lessons/09-accuracy/lesson.ini", true, -1},
+        {"lessons/10-boundaries/lesson.ini", false, 15},
         {"lessons/11-incompressible/lesson.ini", true, -1},
     };
     for (size_t k = 0; k < sizeof lessons / sizeof *lessons; k++)
@@ -263,7 +268,8 @@ Test(render_layout, hud_long_lines_wrap_and_rows_that_cannot_fit_are_counted)
     char ferr[256];
     cr_assert(sph_font_load(&font, 14, 17, ferr, sizeof ferr), "%s", ferr);
     char lines[3][128] = {"short", "", "last"};
-    snprintf(lines[1], sizeof lines[1], "%s", "hash: 16384 keys, load 0.55, 1234 occupied, 56 colliding (5 %), longest run 4");
+    snprintf(lines[1], sizeof lines[1], "%s",
+             "hash: 16384 keys, load 0.55, 1234 occupied, 56 colliding (5 %), longest run 4");
     static sph_hud_fit fit;
     const float max_w = 200;
     sph_hud_fit_compute((const char(*)[128])lines, 3, 0, 0, max_w, 1000, 14, 14, 17, font_width, &font, &fit);
