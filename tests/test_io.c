@@ -332,6 +332,30 @@ Test(io, a_signal_removes_the_temporaries_and_says_so)
     remove_tree(g_dir);
 }
 
+/* Interrupted before it wrote anything, a command leaves no empty folder it made either. */
+Test(io, a_signal_takes_back_the_empty_folders_made)
+{
+    make_dir();
+    fflush(NULL);
+    pid_t pid = fork();
+    cr_assert(pid >= 0);
+    if (pid == 0) {
+        int fd = open("/dev/null", O_WRONLY);
+        if (fd < 0 || dup2(fd, STDERR_FILENO) < 0) _exit(90);
+        signal(SIGINT, SIG_DFL);
+        sph_out a;
+        if (!sph_mkdir_p(in_dir("made/frames"), NULL, 0) || !sph_out_open(&a, in_dir("made/frames/a.csv"), NULL, 0))
+            _exit(91);
+        raise(SIGINT);
+        _exit(92);
+    }
+    int st;
+    cr_assert_eq(waitpid(pid, &st, 0), pid);
+    cr_assert(WIFSIGNALED(st) && WTERMSIG(st) == SIGINT, "want death by SIGINT; status %d", st);
+    cr_expect(access(in_dir("made"), F_OK) != 0, "the empty folder made was left");
+    remove_tree(g_dir);
+}
+
 /* ---- folders ---------------------------------------------------------------------------- */
 
 Test(io, mkdir_p_makes_nested_folders)
