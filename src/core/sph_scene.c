@@ -702,9 +702,12 @@ sph_error_code sph_scene_set(sph_scene_def *def, const char *assignment, sph_err
                         assignment);
     snprintf(left, sizeof left, "%.*s", (int)(eq - assignment), assignment);
     char *dot = strrchr(left, '.');
-    if (!dot || dot == left || !dot[1])
-        return sph_fail(err, SPH_ERR_USAGE, "--set '%.80s': expected section.key=value, e.g. kernels.h=0.05",
-                        assignment);
+    if (!dot || dot == left || !dot[1]) {
+        char hint[400];
+        sph_scene_key_sections(left, eq + 1, hint, sizeof hint); /* the sections that have this key */
+        return sph_fail(err, SPH_ERR_USAGE, "--set '%.80s': expected section.key=value%s%s%s", assignment,
+                        *hint ? " (did you mean " : ", e.g. kernels.h=0.05", hint, *hint ? "?)" : "");
+    }
     *dot = '\0';
     const char *value = eq + 1;
     while (isspace((unsigned char)*value)) value++;
