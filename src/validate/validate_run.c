@@ -37,7 +37,7 @@ static bool scene_path(const char *file, char *out, size_t n, char *where, size_
     return false;
 }
 
-bool val_scene(const char *file, double spacing, sph_scene_def *def)
+bool val_scene_unchecked(const char *file, double spacing, sph_scene_def *def)
 {
     char path[PATH_MAX + 64];
     char where[2 * PATH_MAX + 8];
@@ -58,6 +58,13 @@ bool val_scene(const char *file, double spacing, sph_scene_def *def)
     double ratio = def->h / def->blocks[0].spacing;
     for (int b = 0; b < def->n_blocks; b++) def->blocks[b].spacing = (float)spacing;
     def->h = (float)(ratio * spacing);
+    return true;
+}
+
+bool val_scene(const char *file, double spacing, sph_scene_def *def)
+{
+    if (!val_scene_unchecked(file, spacing, def)) return false;
+    sph_error err;
     if (sph_scene_validate(def, &err) != SPH_ERR_OK) {
         fprintf(stderr, "sphlab validate: %s (at spacing %g m)\n", err.msg, spacing);
         return false;
