@@ -337,7 +337,7 @@ typedef struct sph_key {
 extern const sph_key sph_scene_keys[];
 extern const int sph_scene_key_count;
 /* "physics.viscosity=VALUE" for each section that has a key NAME, joined by ", " and " or "; "" if none
- * (the hint of a --set without its section). */
+ * (the hint of a --set without its section); value NULL: "physics.viscosity". */
 void sph_scene_key_sections(const char *name, const char *value, char *out, size_t n);
 
 /* The value of key k stored at base (the def, or a block for fluid keys) as a

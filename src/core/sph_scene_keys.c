@@ -350,7 +350,7 @@ void sph_scene_key_sections(const char *name, const char *value, char *out, size
     if (n) out[0] = '\0';
     for (int j = 0; j < k && len < n; j++) {
         const char *sep = j == 0 ? "" : j == k - 1 ? " or " : ", ";
-        int w = snprintf(out + len, n - len, "%s%s.%s=%s", sep, hits[j], name, value);
+        int w = snprintf(out + len, n - len, "%s%s.%s%s%s", sep, hits[j], name, value ? "=" : "", value ? value : "");
         if (w < 0) break;
         len += (size_t)w;
     }
