@@ -279,6 +279,12 @@ Test(render_layout, hud_long_lines_wrap_and_rows_that_cannot_fit_are_counted)
     for (int i = 0; i < fit.n_rows; i++) cr_expect_leq(font_width(&font, fit.row[i]), max_w - 12, "%s", fit.row[i]);
     cr_expect_str_eq(fit.row[fit.n_rows - 1], "last");
     cr_expect(strncmp(fit.row[1], "hash: ", 6) == 0 && fit.row[2][0] == ' ', "%s / %s", fit.row[1], fit.row[2]);
+    /* broken after a comma where one is near, not inside "(40 %)" (lesson 5's line in the 1024 x 720 column) */
+    char hash5[1][128] = {"hash: 10 keys, load 1.00, 5 occupied, 2 colliding (40 %), longest run 4"};
+    sph_hud_fit_compute((const char(*)[128])hash5, 1, 0, 0, 349, 1000, 14, 14, 17, font_width, &font, &fit);
+    cr_expect_eq(fit.n_rows, 2);
+    for (int i = 0; i < fit.n_rows; i++)
+        cr_expect((strchr(fit.row[i], '(') != NULL) == (strchr(fit.row[i], ')') != NULL), "'%s'", fit.row[i]);
     /* 20 timing rows in a 100 px box: the spacing shrinks to 1.0, then rows are left out and counted */
     sph_hud_fit_compute((const char(*)[128])lines, 1, 20, 150, 400, 100, 14, 14, 17, font_width, &font, &fit);
     cr_expect_gt(fit.hidden, 0);

@@ -93,9 +93,10 @@ static void wrap_line(const char *text, float avail, sph_text_width_fn width, co
             snprintf(out->row[out->n_rows++], sizeof out->row[0], "%s", row);
             return;
         }
-        /* the longest prefix ending before a space that fits; else the most characters that fit */
+        /* the longest prefix ending before a space that fits, after a ',', ';', ':' or between fields
+         * ("   ") when that keeps half the row; else the most characters that fit */
         const size_t ind = strlen(indent), len = strlen(row);
-        size_t cut = 0, chars = ind + 1;
+        size_t cut = 0, cut_sep = 0, chars = ind + 1;
         for (size_t k = ind + 1; k < len; k++) {
             char keep = row[k];
             row[k] = '\0';
@@ -103,8 +104,12 @@ static void wrap_line(const char *text, float avail, sph_text_width_fn width, co
             row[k] = keep;
             if (!fits) break;
             chars = k;
-            if (keep == ' ' && row[k - 1] != ' ') cut = k;
+            if (keep == ' ' && row[k - 1] != ' ') {
+                cut = k;
+                if (strchr(",;:", row[k - 1]) || (row[k + 1] == ' ')) cut_sep = k;
+            }
         }
+        if (cut_sep > ind && 2 * (cut_sep - ind) >= cut - ind) cut = cut_sep;
         if (!cut) cut = chars;
         row[cut] = '\0';
         snprintf(out->row[out->n_rows++], sizeof out->row[0], "%s", row);
