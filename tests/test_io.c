@@ -332,6 +332,30 @@ Test(io, a_signal_removes_the_temporaries_and_says_so)
     remove_tree(g_dir);
 }
 
+/* Interrupted before it wrote anything, a command leaves no empty folder it made either. */
+Test(io, a_signal_takes_back_the_empty_folders_made)
+{
+    make_dir();
+    fflush(NULL);
+    pid_t pid = fork();
+    cr_assert(pid >= 0);
+    if (pid == 0) {
+        int fd = open("/dev/null", O_WRONLY);
+        if (fd < 0 || dup2(fd, STDERR_FILENO) < 0) _exit(90);
+        signal(SIGINT, SIG_DFL);
+        sph_out a;
+        if (!sph_mkdir_p(in_dir("made/frames"), NULL, 0) || !sph_out_open(&a, in_dir("made/frames/a.csv"), NULL, 0))
+            _exit(91);
+        raise(SIGINT);
+        _exit(92);
+    }
+    int st;
+    cr_assert_eq(waitpid(pid, &st, 0), pid);
+    cr_assert(WIFSIGNALED(st) && WTERMSIG(st) == SIGINT, "want death by SIGINT; status %d", st);
+    cr_expect(access(in_dir("made"), F_OK) != 0, "the empty folder made was left");
+    remove_tree(g_dir);
+}
+
 /* ---- folders ---------------------------------------------------------------------------- */
 
 Test(io, mkdir_p_makes_nested_folders)
@@ -352,6 +376,26 @@ Test(io, mkdir_p_makes_nested_folders)
     cr_assert(!sph_mkdir_p("", err, sizeof err));
     cr_assert(sph_output_dir(in_dir("out/frames"), err, sizeof err), "%s", err);
     cr_assert(!sph_output_dir("/proc/self", err, sizeof err), "/proc/self taken as writable");
+    remove_tree(g_dir);
+}
+
+Test(io, failed_command_takes_back_only_the_empty_folders_it_made)
+{
+    make_dir();
+    char err[512];
+    sph_dirs_made_remove_empty(); /* what earlier tests made is gone or not empty */
+    cr_assert(mkdir(in_dir("kept"), 0777) == 0, "%s", strerror(errno)); /* a folder the user had */
+    cr_assert(sph_mkdir_p(in_dir("a/b/c"), err, sizeof err), "%s", err);
+    cr_assert(sph_mkdir_p(in_dir("a/x"), err, sizeof err), "%s", err);
+    cr_assert(sph_mkdir_p(in_dir("kept/y"), err, sizeof err), "%s", err);
+    put_file(in_dir("a/x/file"), "x");
+    sph_dirs_made_remove_empty();
+    struct stat st;
+    cr_expect(stat(in_dir("a/b"), &st) != 0, "a/b: empty, made here, still there");
+    cr_expect(stat(in_dir("kept/y"), &st) != 0, "kept/y: empty, made here, still there");
+    cr_expect(stat(in_dir("a/x/file"), &st) == 0, "a/x/file: something written was removed");
+    cr_expect(stat(in_dir("kept"), &st) == 0, "kept: made before, removed");
+    cr_expect(stat(g_dir, &st) == 0, "the folder that was there is gone");
     remove_tree(g_dir);
 }
 

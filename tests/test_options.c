@@ -252,3 +252,24 @@ Test(options, color_help_names_every_colour)
         cr_expect(strstr(help, word), "--color's help does not name '%s': %s", name, color->help);
     }
 }
+
+/* A whole number too large for a long is out of range, not "not a whole number"; a negative lesson
+ * number is out of range, not a missing one (a user's review). */
+Test(options, numbers_out_of_range_are_named_so, .timeout = 30)
+{
+    cr_assert_eq(test_sphlab("run lessons/scenes/rest-2d.ini --steps 99999999999999999999", g_out, sizeof g_out), 2,
+                 "%s", g_out);
+    cr_expect(strstr(g_out, "--steps 99999999999999999999: out of range (accepted: 0 to") != NULL, "%s", g_out);
+    cr_assert_eq(test_sphlab("lesson -1", g_out, sizeof g_out), 2, "%s", g_out);
+    cr_expect(strstr(g_out, "lesson -1: out of range (accepted: 1 to") != NULL, "%s", g_out);
+}
+
+/* `sphlab keys` given an option it lacks or a key's name says so, not "no section" alone (a user's review). */
+Test(options, keys_names_an_unknown_option_and_a_key_given_for_a_section, .timeout = 30)
+{
+    cr_assert_eq(test_sphlab("keys --bogus", g_out, sizeof g_out), 2, "%s", g_out);
+    cr_expect(strstr(g_out, "unknown option '--bogus'") != NULL, "%s", g_out);
+    cr_assert_eq(test_sphlab("keys stiffness", g_out, sizeof g_out), 2, "%s", g_out);
+    cr_expect(strstr(g_out, "'stiffness' is a key: physics.stiffness (sphlab keys physics lists it)") != NULL, "%s",
+              g_out);
+}

@@ -8,7 +8,10 @@
 #include <string.h>
 
 #include "camera.h"
+#include "font.h"
 #include "layout.h"
+#include "sph_overlay.h"
+#include "view_ladder.h"
 
 typedef struct box {
     float x0, y0, x1, y1; /* [px] */
@@ -153,4 +156,142 @@ Test(render_layout, legend_labels_tell_a_narrow_range_apart)
     cr_expect_str_eq(s, "2.5");
     sph_legend_label(s, sizeof s, 1234.5678f, 0.0f, 2000.0f);
     cr_expect_str_eq(s, "1235", "a wide range keeps 4 significant digits");
+}
+
+/* ---- the HUD in a 1024 x 720 window (a user's review: rows fell off the bottom and the right) ---------------- */
+
+static float font_width(const void *ctx, const char *s)
+{
+    return sph_font_width(ctx, SPH_TEXT_SMALL, s);
+}
+
+/* The window's HUD for the scene at path, with the timings (and the ladder's lines) or not, and the
+ * inspector's panel of particle select below it (-1: none), as `sphlab lesson N` opens it; with a message
+ * and the pass-by-pass line, the rows that come and go. all_fit: every row must show, else only nothing
+ * may run off the window. */
+static void check_hud_fits(const char *path, int solver, bool timings, int select, int w, int h, bool all_fit)
+{
+    sph_scene_def def = sph_default_scene_def();
+    sph_error err;
+    cr_assert_eq(sph_scene_load(path, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    if (solver >= 0) def.pressure_solver = (sph_pressure_solver)solver;
+    cr_assert_eq(sph_scene_validate(&def, &err), SPH_ERR_OK, "%s", err.msg);
+    sph_sim *sim;
+    cr_assert_eq(sph_sim_create(&def, 1, &sim, &err), SPH_ERR_OK, "%s", err.msg);
+    for (int s = 0; s < 3; s++) sph_sim_step(sim);
+    sim->enabled[SPH_PASS_VISCOSITY] = false; /* the "passes: off" line at its longest */
+
+    view_ladder ladder;
+    memset(&ladder, 0, sizeof ladder);
+    char extra[8][128];
+    sph_hud_info info = {.steps_per_s = timings ? 60 : -1, .frames_per_s = 60, .last_pass = SPH_PASS_DENSITY,
+                         .message = "screenshot saved: /home/teacher/sphlab/out/screenshot-0001.png"};
+    info.n_extra = view_ladder_lines(&ladder, sim, extra, 8);
+    info.extra = (const char(*)[128])extra;
+    char lines[24][128], panel[24][128];
+    const int nl = sph_hud_lines(sim, &info, lines, 24);
+    const int np = select >= 0 ? sph_inspect_lines(sim, (uint32_t)select, panel, 24) : 0;
+    int bars = 0;
+    for (int p = 0; p < SPH_PASS_COUNT && timings; p++) bars += sim->in_pipeline[p];
+
+    float fs, fn;
+    sph_layout_font_sizes(h, &fs, &fn);
+    sph_font font;
+    char ferr[256];
+    cr_assert(sph_font_load(&font, fs, fn, ferr, sizeof ferr), "%s", ferr);
+    sph_layout L;
+    sph_layout_compute(w, h, sph_layout_side_width(w, h), true, false, &L);
+    /* the HUD, as hud_draw places it, then the inspector below it, as hud_panel does */
+    float room[4];
+    sph_layout_hud_room(L.view, L.side, 0, sph_hud_panel_reserve(np, fs), room);
+    const float name_w = sph_font_width(&font, SPH_TEXT_SMALL, ">18 density_gradient ");
+    const float ms_w = sph_font_width(&font, SPH_TEXT_SMALL, " 00.000 ms");
+    const float bar_w = fmaxf(fminf(6.0f * fn, room[2] - 12 - name_w - ms_w), fn);
+    static sph_hud_fit fit, pfit;
+    sph_hud_fit_compute((const char(*)[128])lines, nl, bars, name_w + bar_w + ms_w, room[2], room[3], fs, fs, fn,
+                        font_width, &font, &fit);
+    if (getenv("HUD_DEBUG"))
+        for (int i = 0; i < fit.n_rows; i++) fprintf(stderr, "%s\n", fit.row[i]);
+    if (all_fit)
+        cr_expect_eq(fit.hidden, 0, "%s at %dx%d: %d HUD rows left out (%d lines, %d timings)", path, w, h,
+                     fit.hidden, nl, bars);
+    cr_expect_leq(room[1] + fit.h, (float)h, "%s: the HUD's bottom %.0f px is below the window", path,
+                  room[1] + fit.h);
+    cr_expect_leq(room[0] + fit.w, (float)w, "%s: the HUD's right edge %.0f px is past the window", path,
+                  room[0] + fit.w);
+    for (int i = 0; i < fit.n_rows; i++)
+        cr_expect_leq(room[0] + 6 + font_width(&font, fit.row[i]), (float)w, "%s: row '%s' runs off the right", path,
+                      fit.row[i]);
+    sph_layout_hud_room(L.view, L.side, room[1] + fit.h - (float)L.side[1], 0, room);
+    sph_hud_fit_compute((const char(*)[128])panel, np, 0, 0, room[2], room[3], fs, fs, fn, font_width, &font, &pfit);
+    if (all_fit) cr_expect_eq(pfit.hidden, 0, "%s: %d inspector rows left out", path, pfit.hidden);
+    cr_expect_leq(room[1] + pfit.h, (float)h, "%s: the inspector's bottom %.0f px is below the window", path,
+                  room[1] + pfit.h);
+    sph_font_free(&font);
+    sph_sim_destroy(sim);
+}
+
+Test(render_layout, hud_rows_all_show_in_a_1024x720_window, .timeout = 120)
+{
+    /* each lesson's window as `sphlab lesson N --dry-run` opens it: its timings and its selected particle */
+    static const struct {
+        const char *path;
+        bool timings;
+        int select;
+    } lessons[] = {
+        {"lessons/01-kernel-estimation/lesson.ini", false, 625},
+        {"lessons/02-density-summation/lesson.ini", false, 585},
+        {"lessons/03-pressure-gradient/lesson.ini", false, -1},
+        {"lessons/04-viscosity/lesson.ini", false, -1},
+        {"lessons/05-spatial-hash/lesson.ini", false, 7},
+        {"lessons/06-sorting-offsets/lesson.ini", false, 7},
+        {"lessons/07-full-simulation/lesson.ini", true, -1},
+        {"lessons/08-optimisation-ladder/lesson.ini", true, -1},
+        {"lessons/09-accuracy/lesson.ini", true, -1},
+        {"lessons/10-boundaries/lesson.ini", false, 15},
+        {"lessons/11-incompressible/lesson.ini", true, -1},
+    };
+    for (size_t k = 0; k < sizeof lessons / sizeof *lessons; k++)
+        check_hud_fits(lessons[k].path, -1, lessons[k].timings, lessons[k].select, 1024, 720, true);
+    /* the pressure solvers add their iteration rows */
+    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_DFSPH, true, -1, 1024, 720, true);
+    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_PCISPH, true, -1, 1024, 720, true);
+    /* everything at once, and a smaller window: rows may be left out (and counted), none runs off */
+    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_DFSPH, true, 0, 1024, 720, false);
+    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_PCISPH, true, 0, 800, 600, false);
+    check_hud_fits("lessons/05-spatial-hash/lesson.ini", -1, true, 7, 640, 480, false);
+}
+
+Test(render_layout, hud_long_lines_wrap_and_rows_that_cannot_fit_are_counted)
+{
+    sph_font font;
+    char ferr[256];
+    cr_assert(sph_font_load(&font, 14, 17, ferr, sizeof ferr), "%s", ferr);
+    char lines[3][128] = {"short", "", "last"};
+    snprintf(lines[1], sizeof lines[1], "%s",
+             "hash: 16384 keys, load 0.55, 1234 occupied, 56 colliding (5 %), longest run 4");
+    static sph_hud_fit fit;
+    const float max_w = 200;
+    sph_hud_fit_compute((const char(*)[128])lines, 3, 0, 0, max_w, 1000, 14, 14, 17, font_width, &font, &fit);
+    cr_expect_gt(fit.n_rows, 3, "the long line is not wrapped");
+    cr_expect_eq(fit.hidden, 0);
+    cr_expect_leq(fit.w, max_w);
+    for (int i = 0; i < fit.n_rows; i++) cr_expect_leq(font_width(&font, fit.row[i]), max_w - 12, "%s", fit.row[i]);
+    cr_expect_str_eq(fit.row[fit.n_rows - 1], "last");
+    cr_expect(strncmp(fit.row[1], "hash: ", 6) == 0 && fit.row[2][0] == ' ', "%s / %s", fit.row[1], fit.row[2]);
+    /* broken after a comma where one is near, not inside "(40 %)" (lesson 5's line in the 1024 x 720 column) */
+    char hash5[1][128] = {"hash: 10 keys, load 1.00, 5 occupied, 2 colliding (40 %), longest run 4"};
+    sph_hud_fit_compute((const char(*)[128])hash5, 1, 0, 0, 349, 1000, 14, 14, 17, font_width, &font, &fit);
+    cr_expect_eq(fit.n_rows, 2);
+    for (int i = 0; i < fit.n_rows; i++)
+        cr_expect((strchr(fit.row[i], '(') != NULL) == (strchr(fit.row[i], ')') != NULL), "'%s'", fit.row[i]);
+    /* 20 timing rows in a 100 px box: the spacing shrinks to 1.0, then rows are left out and counted */
+    sph_hud_fit_compute((const char(*)[128])lines, 1, 20, 150, 400, 100, 14, 14, 17, font_width, &font, &fit);
+    cr_expect_gt(fit.hidden, 0);
+    cr_expect_leq(fit.h, 100.0f, "%.1f", fit.h);
+    cr_expect_eq(fit.n_rows + fit.n_bars + fit.hidden, 1 + 20 + 1, "rows drawn and left out: %d + %d + %d",
+                 fit.n_rows, fit.n_bars, fit.hidden);
+    cr_expect(strstr(fit.row[fit.n_rows - 1], "more rows") != NULL, "%s", fit.row[fit.n_rows - 1]);
+    cr_expect_float_eq(fit.text_pitch, 14.0f, 1e-4);
+    sph_font_free(&font);
 }

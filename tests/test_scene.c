@@ -918,3 +918,30 @@ Test(scene, set_names_blocks_as_the_file_does)
     cr_assert_eq(sph_scene_set(&def, "fluid.pool.spacing=0.01", &err), SPH_ERR_OK, "%s", err.msg);
     cr_assert_float_eq(def.blocks[0].spacing, 0.01, 1e-9);
 }
+
+/* A path that is not a file is named for what it is: /dev/null is no directory (a user's review). */
+Test(scene, load_names_what_a_non_file_is)
+{
+    sph_scene_def def = sph_default_scene_def();
+    sph_error err;
+    cr_assert_neq(sph_scene_load("/tmp", &def, &err), SPH_ERR_OK);
+    cr_expect(strstr(err.msg, "/tmp: a directory, not a scene file") != NULL, "%s", err.msg);
+    cr_assert_neq(sph_scene_load("/dev/null", &def, &err), SPH_ERR_OK);
+    cr_expect(strstr(err.msg, "/dev/null: a device, not a scene file") != NULL, "%s", err.msg);
+}
+
+/* --set KEY=VALUE without its section names the sections that have KEY (a user's review). */
+Test(scene, set_without_a_section_names_where_the_key_is)
+{
+    sph_scene_def def = test_scene("[fluid a]\nmin=0 0\nmax=0.2 0.2\nspacing=0.02\n[domain]\nmin=0 0\nmax=1 1\n");
+    sph_error err;
+    cr_assert_eq(sph_scene_set(&def, "stiffness=400", &err), SPH_ERR_USAGE);
+    cr_expect(strstr(err.msg, "did you mean physics.stiffness=400?") != NULL, "%s", err.msg);
+    cr_assert_eq(sph_scene_set(&def, "viscosity=0.1", &err), SPH_ERR_USAGE); /* a physics and a kernels key */
+    cr_expect(strstr(err.msg, "did you mean physics.viscosity=0.1 or kernels.viscosity=0.1?") != NULL, "%s", err.msg);
+    cr_assert_eq(sph_scene_set(&def, "radius=0.1", &err), SPH_ERR_USAGE);
+    cr_expect(strstr(err.msg, "did you mean interaction.radius=0.1 or obstacle.radius=0.1?") != NULL, "%s", err.msg);
+    cr_assert_eq(sph_scene_set(&def, "nosuch=1", &err), SPH_ERR_USAGE);
+    cr_expect(strstr(err.msg, "expected section.key=value") != NULL && strstr(err.msg, "did you mean") == NULL, "%s",
+              err.msg);
+}

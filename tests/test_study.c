@@ -499,6 +499,7 @@ Test(study, command_rejects_bad_input)
         {"--vary fluid.spacing=0.02", "--out"},
         {"--vary fluid.spacing=0.02 --out %s/plain-file/sub", "plain-file"},
         {"--vary fluid.spacing=0.02 --metric nonsense --out %s/o", "nonsense"},
+        {"--vary fluid.spacing=0.02 --metric taylorgreen --out %s/o", "(did you mean taylor-green?)"},
         {"--vary fluid.spacing=0.02 --metric taylor-green --out %s/o", "taylor-green"},
         {"--vary fluid.spacing=0.02 --repeats 0 --out %s/o", "--repeats"},
         {"--bogus --out %s/o", "unknown option"},

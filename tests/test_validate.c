@@ -526,6 +526,30 @@ Test(validate, bad_input_is_refused_with_exit_2)
     cr_assert(strstr(out, "couette") && strstr(out, "obstacle"), "%s", out);
 }
 
+/* Every resolution --resolution accepts makes a scene that runs: the smallest gave a refused scene (the
+ * periodic domain shorter than 3 h) with exit 3 for couette and poiseuille at 4 to 7 and taylor-green at 8
+ * to 12 (a user's review); one below it is refused as out of range. */
+Test(validate, smallest_accepted_resolution_runs, .timeout = 600)
+{
+    static char out[8192];
+    static const char *const names[] = {"dam-break", "hydrostatic", "taylor-green", "poiseuille",
+                                        "couette",   "drop",        "drop-3d",      "obstacle"};
+    const char *dir = test_temp_dir("valmin");
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+        /* the range as the refusal of --resolution 0 states it */
+        char args[512];
+        snprintf(args, sizeof args, "validate %s --resolution 0", names[i]);
+        cr_assert_eq(test_sphlab(args, out, sizeof out), 2, "%s: %s", args, out);
+        const char *acc = strstr(out, "accepted: ");
+        int lo = 0;
+        cr_assert(acc && sscanf(acc, "accepted: %d to", &lo) == 1 && lo > 1, "%s: %s", args, out);
+        snprintf(args, sizeof args, "validate %s --resolution %d --quick --quiet --out %s", names[i], lo, dir);
+        int rc = test_sphlab(args, out, sizeof out);
+        cr_expect(rc == 0 || rc == 1, "%s: exit %d, want a verdict: %s", args, rc, out);
+    }
+    test_remove_dir(dir);
+}
+
 /* The drop's verdict names a period it could not measure (a record that crossed its mean fewer than 3 times:
  * R/20's growing mode) in words, not as "period nan s (+nan%)". */
 Test(validate, drop_period_text_says_when_there_is_no_period)

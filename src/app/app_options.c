@@ -249,11 +249,15 @@ bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out)
     char *end;
     errno = 0;
     long v = s ? strtol(s, &end, 10) : 0;
-    if (!s || end == s || *end || errno) {
+    if (!s || end == s || *end || (errno && errno != ERANGE)) {
         fprintf(stderr, "sphlab: %s '%s': not a whole number\n", opt, s ? s : "");
         return false;
     }
-    if (v < lo || v > hi) {
+    if (errno == ERANGE || v < lo || v > hi) { /* ERANGE: whole, but beyond a long */
+        if (errno == ERANGE) {
+            fprintf(stderr, "sphlab: %s %s: out of range (accepted: %ld to %ld)\n", opt, s, lo, hi);
+            return false;
+        }
         fprintf(stderr, "sphlab: %s %ld: out of range (accepted: %ld to %ld)\n", opt, v, lo, hi);
         return false;
     }

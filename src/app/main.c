@@ -73,6 +73,18 @@ int cmd_keys(int argc, char **argv)
     int n_want = 0;
     for (int a = 1; a < argc && n_want < 64; a++) {
         const char *sec = keys_section_named(argv[a]);
+        if (!sec && argv[a][0] == '-') {
+            fprintf(stderr, "sphlab keys: unknown option '%s'\nsee `sphlab keys --help`\n", argv[a]);
+            return 2;
+        }
+        char as_key[400];
+        sph_scene_key_sections(argv[a], NULL, as_key, sizeof as_key);
+        if (!sec && *as_key) { /* a key's name where a section was wanted: where it is */
+            const char *dot = strchr(as_key, '.');
+            fprintf(stderr, "sphlab keys: no section '%s'; '%s' is a key: %s (sphlab keys %.*s lists it)\n", argv[a],
+                    argv[a], as_key, (int)(dot - as_key), as_key);
+            return 2;
+        }
         if (!sec) {
             const char *near = NULL;
             for (int i = 0; i < sph_scene_key_count && !near; i++)
@@ -209,8 +221,13 @@ int main(int argc, char **argv)
         usage(stdout);
         return 0;
     }
-#define SPH_COMMAND_RUN(name, args, about) \
-    if (strcmp(cmd, #name) == 0) return cmd_##name(argc - 1, argv + 1);
+    /* a command that fails takes back the output folders it made and left empty */
+#define SPH_COMMAND_RUN(name, args, about)                      \
+    if (strcmp(cmd, #name) == 0) {                              \
+        int rc_ = cmd_##name(argc - 1, argv + 1);               \
+        if (rc_ != 0) sph_dirs_made_remove_empty();             \
+        return rc_;                                             \
+    }
     SPH_COMMANDS(SPH_COMMAND_RUN)
 #undef SPH_COMMAND_RUN
     /* the error first, the nearest command for a typo, and a hint, not the whole list */

@@ -657,7 +657,13 @@ sph_error_code sph_scene_load(const char *path, sph_scene_def *def, sph_error *e
     struct stat st;
     if (stat(path, &st) != 0)
         return sph_fail(err, SPH_ERR_IO, "%s: cannot open scene file: %s", path, strerror(errno));
-    if (!S_ISREG(st.st_mode)) return sph_fail(err, SPH_ERR_IO, "%s: not a regular file (a directory?)", path);
+    if (!S_ISREG(st.st_mode)) {
+        const char *what = S_ISDIR(st.st_mode)                        ? "a directory"
+                           : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                           : S_ISFIFO(st.st_mode)                       ? "a pipe (read once; give a file)"
+                                                                        : "not a regular file";
+        return sph_fail(err, SPH_ERR_IO, "%s: %s, not a scene file", path, what);
+    }
     if (st.st_size > (1 << 20)) return sph_fail(err, SPH_ERR_IO, "%s: larger than 1 MiB: not a scene file", path);
     FILE *f = fopen(path, "rb");
     if (!f) return sph_fail(err, SPH_ERR_IO, "%s: cannot open scene file: %s", path, strerror(errno));
@@ -696,9 +702,12 @@ sph_error_code sph_scene_set(sph_scene_def *def, const char *assignment, sph_err
                         assignment);
     snprintf(left, sizeof left, "%.*s", (int)(eq - assignment), assignment);
     char *dot = strrchr(left, '.');
-    if (!dot || dot == left || !dot[1])
-        return sph_fail(err, SPH_ERR_USAGE, "--set '%.80s': expected section.key=value, e.g. kernels.h=0.05",
-                        assignment);
+    if (!dot || dot == left || !dot[1]) {
+        char hint[400];
+        sph_scene_key_sections(left, eq + 1, hint, sizeof hint); /* the sections that have this key */
+        return sph_fail(err, SPH_ERR_USAGE, "--set '%.80s': expected section.key=value%s%s%s", assignment,
+                        *hint ? " (did you mean " : ", e.g. kernels.h=0.05", hint, *hint ? "?)" : "");
+    }
     *dot = '\0';
     const char *value = eq + 1;
     while (isspace((unsigned char)*value)) value++;

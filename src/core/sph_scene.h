@@ -342,6 +342,9 @@ typedef struct sph_key {
 
 extern const sph_key sph_scene_keys[];
 extern const int sph_scene_key_count;
+/* "physics.viscosity=VALUE" for each section that has a key NAME, joined by ", " and " or "; "" if none
+ * (the hint of a --set without its section); value NULL: "physics.viscosity". */
+void sph_scene_key_sections(const char *name, const char *value, char *out, size_t n);
 
 /* The value of key k stored at base (the def, or a block for fluid keys) as a
  * scene file writes it (floats with 9 digits, so they read back exactly). */

@@ -3,6 +3,8 @@
 #include "sph_scene.h"
 
 #include <stddef.h>
+#include <stdio.h>
+#include <string.h>
 
 #define NAMES(id, name) name,
 const char *const sph_eos_names[SPH_EOS_COUNT] = {SPH_EOS_CHOICES(NAMES)};
@@ -339,3 +341,24 @@ const sph_key sph_scene_keys[] = {
 };
 const int sph_scene_key_count = (int)(sizeof sph_scene_keys / sizeof sph_scene_keys[0]);
 _Static_assert(sizeof sph_scene_keys / sizeof sph_scene_keys[0] <= SPH_MAX_KEYS, "raise SPH_MAX_KEYS (sph_scene_def.origin)");
+
+void sph_scene_key_sections(const char *name, const char *value, char *out, size_t n)
+{
+    /* "physics.viscosity=V", then ", " or " or " between them; each section once */
+    const char *hits[8];
+    int k = 0;
+    for (int i = 0; i < sph_scene_key_count && k < 8; i++) {
+        if (strcmp(sph_scene_keys[i].name, name) != 0) continue;
+        bool seen = false;
+        for (int j = 0; j < k; j++) seen = seen || strcmp(hits[j], sph_scene_keys[i].section) == 0;
+        if (!seen) hits[k++] = sph_scene_keys[i].section;
+    }
+    size_t len = 0;
+    if (n) out[0] = '\0';
+    for (int j = 0; j < k && len < n; j++) {
+        const char *sep = j == 0 ? "" : j == k - 1 ? " or " : ", ";
+        int w = snprintf(out + len, n - len, "%s%s.%s%s%s", sep, hits[j], name, value ? "=" : "", value ? value : "");
+        if (w < 0) break;
+        len += (size_t)w;
+    }
+}

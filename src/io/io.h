@@ -69,6 +69,10 @@ void sph_io_catch_signals(void);
 
 /* mkdir -p: makes DIR and its missing parents; false unless DIR ends up a directory. */
 bool sph_mkdir_p(const char *dir, char *err, size_t n);
+/* Removes the folders sph_mkdir_p made in this process that are still empty,
+ * the deepest first: called when a command fails, so that it leaves no empty
+ * output folder behind. A folder that was there before is never touched. */
+void sph_dirs_made_remove_empty(void);
 /* mkdir -p DIR, then checks that a file can be made in it (one is made and removed). */
 bool sph_output_dir(const char *dir, char *err, size_t n);
 

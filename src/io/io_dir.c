@@ -7,6 +7,19 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+/* The folders this process made, in order, so that a command that fails can
+ * take back the ones it left empty (sph_dirs_made_remove_empty). */
+enum { MAX_MADE = 64 };
+static char g_made[MAX_MADE][SPH_IO_PATH];
+static int g_n_made;
+
+void sph_dirs_made_remove_empty(void)
+{
+    /* the deepest first: a parent is empty only once its children are gone;
+     * rmdir refuses a folder that holds anything, which is the test wanted */
+    while (g_n_made > 0) rmdir(g_made[--g_n_made]);
+}
+
 bool sph_mkdir_p(const char *dir, char *err, size_t n)
 {
     char p[SPH_IO_PATH];
@@ -20,7 +33,9 @@ bool sph_mkdir_p(const char *dir, char *err, size_t n)
         if (*s != '/' && *s != '\0') continue;
         char keep = *s;
         *s = '\0';
-        if (mkdir(p, 0777) != 0 && errno != EEXIST) {
+        if (mkdir(p, 0777) == 0) {
+            if (g_n_made < MAX_MADE) snprintf(g_made[g_n_made++], SPH_IO_PATH, "%s", p);
+        } else if (errno != EEXIST) {
             if (err && n) snprintf(err, n, "%s: cannot create the directory: %s", p, strerror(errno));
             return false;
         }

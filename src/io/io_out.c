@@ -43,6 +43,7 @@ static void on_signal(int sig)
     int saved = errno;
     for (int i = 0; i < MAX_OPEN; i++)
         if (g_open[i].used) unlink(g_open[i].tmp);
+    sph_dirs_made_remove_empty(); /* rmdir only: safe in a handler */
     static const char msg[] = "\nsphlab: interrupted; partial outputs removed\n";
     ssize_t w = write(STDERR_FILENO, msg, sizeof msg - 1);
     (void)w;

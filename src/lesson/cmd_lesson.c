@@ -2,6 +2,7 @@
  * running this binary's `view` with the lesson's scene and overlays), or
  * exports its figures and report headless. */
 #define _DEFAULT_SOURCE /* realpath */
+#include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
 #include <stdlib.h>
@@ -421,6 +422,12 @@ int cmd_lesson(int argc, char **argv)
             return 2;
         }
         return list();
+    }
+    if (!opt.n_pos && opt.n_rest && opt.rest[0][0] == '-' && isdigit((unsigned char)opt.rest[0][1])) {
+        /* a negative number reads as an option for the window: name it as the lesson number it meant */
+        fprintf(stderr, "sphlab: lesson %s: out of range (accepted: 1 to %d)\n  (sphlab lesson --list names them)\n",
+                opt.rest[0], sph_lesson_count);
+        return 2;
     }
     if (!opt.n_pos) {
         app_opts_usage_error(&spec, "name a lesson (sphlab lesson --list names them)");

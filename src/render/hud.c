@@ -54,17 +54,28 @@ static double hud_frames_per_s(sph_renderer *r)
     return now > oldest ? 1e3 * (double)k / (now - oldest) : 0;
 }
 
+typedef struct hud_measure {
+    const sph_font *font;
+    int size; /* SPH_TEXT_SMALL or SPH_TEXT_NORMAL */
+} hud_measure;
+
+static float hud_text_width(const void *ctx, const char *s)
+{
+    const hud_measure *m = ctx;
+    return sph_font_width(m->font, m->size, s);
+}
+
 void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
 {
     const float fn = r->font.px[SPH_TEXT_NORMAL], fs = r->font.px[SPH_TEXT_SMALL];
     const bool timings = v->overlays & SPH_OV_BIT(TIMINGS), hud = v->overlays & SPH_OV_BIT(HUD);
-    char lines[16][128];
+    char lines[24][128];
     int nl = 0;
     if (hud) {
         sph_hud_info info = v->hud;
         if (!timings) info.steps_per_s = -1; /* changes from run to run: only with the timings */
         info.frames_per_s = hud_frames_per_s(r);
-        nl = sph_hud_lines(sim, &info, lines, 16);
+        nl = sph_hud_lines(sim, &info, lines, 24);
     }
     int bars = 0;
     double mx = 0;
@@ -75,27 +86,32 @@ void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
                 if (sim->timing[p].last_ms > mx) mx = sim->timing[p].last_ms;
             }
     if (!nl && !bars) return;
-    float w = 0;
-    /* in the side column the lines take the small size, so they fit its width */
+    /* in the side column the lines take the small size, so more fit its width */
     const bool side = r->side[2] > 0;
     const int tsz = side ? SPH_TEXT_SMALL : SPH_TEXT_NORMAL;
-    const float ft = r->font.px[tsz];
-    for (int i = 0; i < nl; i++) w = fmaxf(w, sph_font_width(&r->font, tsz, lines[i]));
-    const float name_w = sph_font_width(&r->font, SPH_TEXT_SMALL, ">18 density_gradient "), bar_w = 6.0f * fn;
+    /* the text panel below keeps room for its rows at the tightest spacing, up to half the column */
+    float room[4];
+    sph_layout_hud_room(r->cam.rect, r->side, r->side_used, v->panel ? sph_hud_panel_reserve(v->panel_lines, fs) : 0,
+                        room);
+    const float x0 = room[0], y0 = room[1], max_w = room[2], max_h = room[3];
+    const float name_w = sph_font_width(&r->font, SPH_TEXT_SMALL, ">18 density_gradient ");
     const float ms_w = sph_font_width(&r->font, SPH_TEXT_SMALL, " 00.000 ms");
-    if (bars) w = fmaxf(w, name_w + bar_w + ms_w);
-    /* in the side column when there is one (the window), else over the view's top-left corner */
-    float x0 = side ? (float)r->side[0] + 4 : (float)r->cam.rect[0] + 4;
-    float y0 = side ? (float)r->side[1] + (float)r->cam.rect[1] : (float)r->cam.rect[1] + 4;
-    float hgt = (float)nl * ft * 1.2f + (float)bars * fs * 1.25f + (bars ? 0.3f * fn : 0) + 8;
-    if (side) r->side_used = y0 + hgt - (float)r->side[1];
-    canvas_rect(r, x0, y0, x0 + w + 12, y0 + hgt, SPH_RGBA(0, 0, 0, 160));
+    /* the bar takes what the name and the time leave of the box, 6 normal sizes at most */
+    const float bar_w = fmaxf(fminf(6.0f * fn, max_w - 12 - name_w - ms_w), fn);
+    static sph_hud_fit fit; /* large (its rows); one renderer draws at a time */
+    const hud_measure m = {&r->font, tsz};
+    sph_hud_fit_compute((const char(*)[128])lines, nl, bars, name_w + bar_w + ms_w, max_w, max_h, r->font.px[tsz], fs,
+                        fn, hud_text_width, &m, &fit);
+    if (side) r->side_used = y0 + fit.h - (float)r->side[1];
+    canvas_rect(r, x0, y0, x0 + fit.w, y0 + fit.h, SPH_RGBA(0, 0, 0, 160));
     float y = y0 + 4;
-    for (int i = 0; i < nl; i++, y += ft * 1.2f) canvas_text(r, tsz, x0 + 6, y, SPH_RGBA(235, 235, 240, 255), lines[i]);
-    if (bars) y += 0.3f * fn;
-    int number = 0;
-    for (int p = 0; p < SPH_PASS_COUNT && bars; p++) {
+    for (int i = 0; i < fit.n_rows; i++, y += fit.text_pitch)
+        canvas_text(r, tsz, x0 + 6, y, SPH_RGBA(235, 235, 240, 255), fit.row[i]);
+    y += fit.gap;
+    int number = 0, drawn = 0;
+    for (int p = 0; p < SPH_PASS_COUNT && drawn < fit.n_bars; p++) {
         if (!sim->in_pipeline[p]) continue;
+        drawn++;
         bool on = sim->enabled[p];
         uint32_t col = on ? SPH_RGBA(220, 220, 225, 255) : SPH_RGBA(120, 120, 125, 255);
         /* numbered as `sphlab check` numbers them; the window's chosen pass marked */
@@ -111,32 +127,29 @@ void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
         char ms_s[32];
         snprintf(ms_s, sizeof ms_s, " %.3f ms", ms);
         canvas_text(r, SPH_TEXT_SMALL, bx + bar_w, y, col, on ? ms_s : " off");
-        y += fs * 1.25f;
+        y += fit.bar_pitch;
     }
 }
 
 void hud_panel(sph_renderer *r, const char (*lines)[128], int n)
 {
-    const float fs = r->font.px[SPH_TEXT_SMALL];
-    float w = 0;
-    for (int i = 0; i < n; i++) w = fmaxf(w, sph_font_width(&r->font, SPH_TEXT_SMALL, lines[i]));
     /* in the side column, below the HUD, when there is one (the window); else at the view's top-right corner */
     const bool side = r->side[2] > 0;
-    float x0, x1, y0;
-    if (side) {
-        x0 = (float)r->side[0] + 4;
-        x1 = x0 + w + 12;
-        y0 = (float)r->side[1] + r->side_used + 4;
-        if (r->side_used == 0) y0 += (float)r->cam.rect[1];
-    } else {
-        x1 = (float)(r->cam.rect[0] + r->cam.rect[2]) - 4;
-        x0 = x1 - w - 12;
-        y0 = (float)r->cam.rect[1] + 4;
-    }
-    canvas_rect(r, x0, y0, x1, y0 + (float)n * 1.25f * fs + 8, SPH_RGBA(0, 0, 0, 185));
-    if (side) r->side_used = y0 + (float)n * 1.25f * fs + 8 - (float)r->side[1];
-    for (int i = 0; i < n; i++)
-        canvas_text(r, SPH_TEXT_SMALL, x0 + 6, y0 + 4 + (float)i * 1.25f * fs, SPH_RGBA(235, 235, 240, 255), lines[i]);
+    float room[4];
+    sph_layout_hud_room(r->cam.rect, r->side, r->side_used, 0, room);
+    float x0 = room[0], max_w = room[2];
+    const float y0 = room[1], max_h = room[3];
+    if (!side) max_w *= 0.5f; /* the right half of the view: the HUD has the left */
+    static sph_hud_fit fit;
+    const hud_measure m = {&r->font, SPH_TEXT_SMALL};
+    const float fs = r->font.px[SPH_TEXT_SMALL];
+    sph_hud_fit_compute(lines, n, 0, 0, max_w, max_h, fs, fs, r->font.px[SPH_TEXT_NORMAL], hud_text_width, &m, &fit);
+    if (!side) x0 = (float)(r->cam.rect[0] + r->cam.rect[2]) - 4 - fit.w;
+    canvas_rect(r, x0, y0, x0 + fit.w, y0 + fit.h, SPH_RGBA(0, 0, 0, 185));
+    if (side) r->side_used = y0 + fit.h - (float)r->side[1];
+    for (int i = 0; i < fit.n_rows; i++)
+        canvas_text(r, SPH_TEXT_SMALL, x0 + 6, y0 + 4 + (float)i * fit.text_pitch, SPH_RGBA(235, 235, 240, 255),
+                    fit.row[i]);
 }
 
 void hud_legend(sph_renderer *r, const sph_sim *sim, sph_color_field f, float lo, float hi)

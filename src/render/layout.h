@@ -33,4 +33,44 @@ int sph_layout_side_width(int w, int h);
  * times), so that the labels at lo, the middle and hi differ where the range is not zero. */
 void sph_legend_label(char *out, size_t n, float v, float lo, float hi);
 
+/* ---- the HUD's box ----------------------------------------------------------------------------------- */
+
+enum { SPH_HUD_MAX_ROWS = 64 };
+
+/* Width [px] of the string s in the font and size ctx stands for. */
+typedef float (*sph_text_width_fn)(const void *ctx, const char *s);
+
+/* Where the HUD's rows go in a box of at most max_w x max_h pixels: text
+ * rows (lines wrapped at spaces to the box, continuations indented), then the
+ * timing rows. The spacing shrinks from 1.2 (text) and 1.25 (timings) times
+ * the font size down to 1.0 when the rows would not fit; rows that still do
+ * not fit are left out from the end and counted in hidden (the caller says
+ * so in the last row). */
+typedef struct sph_hud_fit {
+    char row[SPH_HUD_MAX_ROWS][128]; /* the text rows drawn */
+    int n_rows;                      /* [1] text rows drawn */
+    int n_bars;                      /* [1] timing rows drawn */
+    int hidden;                      /* [1] rows (text or timings) left out, and the last text row says so */
+    float text_pitch, bar_pitch;     /* [px] from one row's top to the next */
+    float gap;                       /* [px] between the text and the timing rows */
+    float w, h;                      /* [px] the box, margins (6 px left and right, 4 px top and bottom) included */
+} sph_hud_fit;
+
+/* The box the HUD or the text panel may take, room = x, y (top-left), width,
+ * height [px]: in the side column below the side_used pixels already drawn
+ * there (the window), else inside the view (`sphlab render`, side width 0).
+ * reserve [px]: kept free below it for the text panel, half the room at most. */
+void sph_layout_hud_room(const int view[4], const int side[4], float side_used, float reserve, float room[4]);
+/* The reserve [px] for a text panel of n rows at the small size fs [px] (0 without one). */
+static inline float sph_hud_panel_reserve(int n, float fs)
+{
+    return n > 0 ? (float)n * fs + 12 : 0;
+}
+
+/* lines: n_lines text lines, each measured by width(ctx, .) at the text size
+ * ft [px]; n_bars timing rows of bar_w pixels each at the small size fs [px];
+ * fn [px]: the normal size (the gap before the timings). */
+void sph_hud_fit_compute(const char (*lines)[128], int n_lines, int n_bars, float bar_w, float max_w, float max_h,
+                         float ft, float fs, float fn, sph_text_width_fn width, const void *ctx, sph_hud_fit *out);
+
 #endif

@@ -14,6 +14,7 @@
 #include "../io/io.h"
 #include "study_cmd.h"
 #include "study_plot.h"
+#include "sph_names.h"
 
 static const app_cmd_spec spec = {
     .name = "study",
@@ -155,7 +156,13 @@ int study_cmd_run(const study_cmd *cmd)
     if (metric_name && (metric = study_metric_find(metric_name)) < 0) {
         fprintf(stderr, "sphlab study: --metric '%s': unknown (accepted:", metric_name);
         for (int m = 0; m < STUDY_METRIC_COUNT; m++) fprintf(stderr, "%s %s", m ? "," : "", study_metric_names[m]);
-        fprintf(stderr, ")\n");
+        fprintf(stderr, ")");
+        for (int m = 0; m < STUDY_METRIC_COUNT; m++)
+            if (sph_name_near(metric_name, study_metric_names[m])) {
+                fprintf(stderr, " (did you mean %s?)", study_metric_names[m]);
+                break;
+            }
+        fprintf(stderr, "\n");
         return 2;
     }
     long combos = study_plan_count(&plan);

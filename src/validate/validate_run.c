@@ -14,11 +14,14 @@
 #include "sph_walls.h"
 
 /* scenes/validate/FILE from the working directory, else beside the binary
- * (a build run from elsewhere still finds the scenes it was built with). */
-static bool scene_path(const char *file, char *out, size_t n)
+ * (a build run from elsewhere still finds the scenes it was built with);
+ * where: the folders looked in, for the message when neither has it. */
+static bool scene_path(const char *file, char *out, size_t n, char *where, size_t wn)
 {
     snprintf(out, n, "scenes/validate/%s", file);
     if (access(out, R_OK) == 0) return true;
+    char cwd[PATH_MAX];
+    snprintf(where, wn, "%s", getcwd(cwd, sizeof cwd) ? cwd : ".");
     char exe[PATH_MAX];
     ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
     if (len > 0) {
@@ -27,17 +30,22 @@ static bool scene_path(const char *file, char *out, size_t n)
         if (slash) *slash = '\0';
         snprintf(out, n, "%s/scenes/validate/%s", exe, file);
         if (access(out, R_OK) == 0) return true;
+        size_t used = strlen(where);
+        snprintf(where + used, wn - used, " nor %s", exe);
     }
     snprintf(out, n, "scenes/validate/%s", file);
     return false;
 }
 
-bool val_scene(const char *file, double spacing, sph_scene_def *def)
+bool val_scene_unchecked(const char *file, double spacing, sph_scene_def *def)
 {
     char path[PATH_MAX + 64];
-    if (!scene_path(file, path, sizeof path)) {
-        fprintf(stderr, "sphlab validate: %s: not found (run from the project's directory, or beside the binary)\n",
-                path);
+    char where[2 * PATH_MAX + 8];
+    if (!scene_path(file, path, sizeof path, where, sizeof where)) {
+        fprintf(stderr,
+                "sphlab validate: %s: not found in %s (run sphlab from the project's directory, or keep the "
+                "project's scenes/ beside the binary)\n",
+                path, where);
         return false;
     }
     sph_error err;
@@ -50,6 +58,13 @@ bool val_scene(const char *file, double spacing, sph_scene_def *def)
     double ratio = def->h / def->blocks[0].spacing;
     for (int b = 0; b < def->n_blocks; b++) def->blocks[b].spacing = (float)spacing;
     def->h = (float)(ratio * spacing);
+    return true;
+}
+
+bool val_scene(const char *file, double spacing, sph_scene_def *def)
+{
+    if (!val_scene_unchecked(file, spacing, def)) return false;
+    sph_error err;
     if (sph_scene_validate(def, &err) != SPH_ERR_OK) {
         fprintf(stderr, "sphlab validate: %s (at spacing %g m)\n", err.msg, spacing);
         return false;

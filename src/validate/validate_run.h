@@ -10,6 +10,9 @@
  * and h scaled with it (the scene's h / spacing kept); message and false on
  * failure. */
 bool val_scene(const char *file, double spacing, sph_scene_def *def);
+/* The same without the scene's checks, for a problem that sizes the domain
+ * to the spacing before it checks the scene itself (the channels). */
+bool val_scene_unchecked(const char *file, double spacing, sph_scene_def *def);
 
 /* Called at t = 0 and after every step. */
 typedef void (*val_observe_fn)(void *ctx, const sph_sim *sim);
