@@ -28,7 +28,9 @@
 // Wall particles (wall_model = particles, obstacles; FIXED) are neighbours at their fixed places with
 // kappa = kappa_v = 0, as in dfsph.c: alpha = alpha_v = 0 (0), they add to G_i but not to the sums over the
 // neighbours i's push moves (0), their x* is pred + dt dv unclamped (beyond the box, where they stay), and
-// they count in neither solve's error (3: rho_df = 0; 4: rho_df = rho_r) nor in the mean (N_FLUID).
+// they count in neither solve's error (3: rho_df = 0; 4: rho_df = rho_r) nor in the mean (N_FLUID). With
+// solver_wall_pressure = extrapolated the host gives them the fluid's kappa and kappa_v after each correction
+// (5, 6: gpu_wall_extrapolate.comp), which the force then reads.
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;

@@ -4,7 +4,8 @@
 // K_i grad(walls' share) over the pairs within h at pred, dv = dt (the other
 // accelerations + a), K = kappa_v, plus kappa where u_count = 1 (the
 // constant-density solve); u_count = 2: the start-up evaluation (dt = 0), a = 0.
-// Wall particles (FIXED) stay where they are: a = dv = 0 (dfsph.c); as neighbours their K is 0.
+// Wall particles (FIXED) stay where they are: a = dv = 0 (dfsph.c); as neighbours their K is 0, or the fluid's
+// with solver_wall_pressure = extrapolated (gpu_wall_extrapolate.comp).
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;

@@ -20,7 +20,8 @@
 //   8 take back: p = p_best (the error rose above twice that least plus the tolerance)
 // Wall particles (wall_model = particles, obstacles; FIXED) are neighbours at their fixed places with p = 0, as
 // in pcisph.c: they count in G_i but not in the sum over the neighbours i's pressure moves (5), have
-// rho* = rho_r and no error of their own (2), and no p (3, 6).
+// rho* = rho_r and no error of their own (2), and no p (3, 6); with solver_wall_pressure = extrapolated the
+// host then gives them the fluid's p (gpu_wall_extrapolate.comp) before the force reads it.
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;

@@ -7,7 +7,8 @@
 //              step) the host calls 1 instead, from the p the last step ended with
 //   1 force:   a_i = -(1/rho_r^2) sum_j m_j (p_i + p_j) grad W^p_ij at pred, walls push back; x* as above plus a
 //   2 the start-up evaluation (dt = 0): a = 0, x* = pred
-// Wall particles (FIXED) keep a = 0 and x* = pred, and p = 0: as neighbours they push back with p_i alone.
+// Wall particles (FIXED) keep a = 0 and x* = pred, and p = 0: as neighbours they push back with p_i alone
+// (solver_wall_pressure = extrapolated: with p_i + their p, extrapolated by gpu_wall_extrapolate.comp).
 layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;

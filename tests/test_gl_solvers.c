@@ -238,6 +238,35 @@ Test(gl_solvers, dfsph_obstacle_2d, .timeout = 300) { compare_runs(dam_2d_obstac
 Test(gl_solvers, pcisph_wall_particles_3d, .timeout = 300) { compare_runs(dam_3d, "pcisph", "particles", NULL, 20); }
 Test(gl_solvers, dfsph_wall_particles_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "particles", NULL, 20); }
 
+/* solver_wall_pressure = extrapolated: after each correction every wall particle takes its fluid neighbours'
+ * PCISPH p, DFSPH kappa (with the hydrostatic term) or kappa_v (src/passes/solver_walls.c), which the pair terms
+ * and the obstacle's force then read: the same whole runs. */
+#define EXTRAP "physics.solver_wall_pressure=extrapolated"
+Test(gl_solvers, pcisph_extrapolated_wall_particles_2d, .timeout = 300)
+{
+    compare_runs(dam_2d, "pcisph", "particles", EXTRAP, 40);
+}
+Test(gl_solvers, dfsph_extrapolated_wall_particles_2d, .timeout = 300)
+{
+    compare_runs(dam_2d, "dfsph", "particles", EXTRAP, 40);
+}
+Test(gl_solvers, pcisph_extrapolated_obstacle_2d, .timeout = 300)
+{
+    compare_runs(dam_2d_obstacle, "pcisph", "particles", EXTRAP, 40);
+}
+Test(gl_solvers, dfsph_extrapolated_obstacle_2d, .timeout = 300)
+{
+    compare_runs(dam_2d_obstacle, "dfsph", "particles", EXTRAP, 40);
+}
+Test(gl_solvers, pcisph_extrapolated_wall_particles_3d, .timeout = 300)
+{
+    compare_runs(dam_3d, "pcisph", "particles", EXTRAP, 20);
+}
+Test(gl_solvers, dfsph_extrapolated_wall_particles_3d, .timeout = 300)
+{
+    compare_runs(dam_3d, "dfsph", "particles", EXTRAP, 20);
+}
+
 /* solver_warm_start = on (each solve from the last step's pressure, DFSPH's
  * kappa scaled by (dt_last / dt)^2) and pcisph_local_delta = on (each
  * particle's delta from its own neighbourhood, walls included): the same
@@ -372,6 +401,18 @@ Test(gl_solvers, pcisph_wall_particles_passes_match_cpu, .timeout = 300)
 Test(gl_solvers, dfsph_wall_particles_passes_match_cpu, .timeout = 300)
 {
     lockstep(dam_2d_obstacle, "dfsph", "particles", "physics.divergence_tolerance=1e-5", 20, 10);
+}
+/* solver_wall_pressure = extrapolated, pass by pass: the wall particles' p (kappa, kappa_v) after each call, from
+ * the same state, within TOL_SOLVER of the CPU's, as the fluid's. */
+Test(gl_solvers, pcisph_extrapolated_passes_match_cpu, .timeout = 300)
+{
+    lockstep(dam_2d_obstacle, "pcisph", "particles", EXTRAP, 20, 10);
+    lockstep(dam_2d_obstacle, "pcisph", "particles", EXTRAP " " LOCAL " " WARM, 20, 5);
+}
+Test(gl_solvers, dfsph_extrapolated_passes_match_cpu, .timeout = 300)
+{
+    lockstep(dam_2d_obstacle, "dfsph", "particles", EXTRAP " physics.divergence_tolerance=1e-5", 20, 10);
+    lockstep(dam_2d_obstacle, "dfsph", "particles", EXTRAP " " WARM " physics.divergence_tolerance=1e-5", 20, 5);
 }
 
 /* Wall particles with a solver: the GL backend takes the pair (it refused it before the solver shaders held

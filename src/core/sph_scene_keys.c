@@ -194,7 +194,8 @@ const sph_key sph_scene_keys[] = {
      "pcisph, dfsph with wall particles: none: the wall particles hold no pressure and push back with the fluid "
      "particle's own (the row at a wall then reads twice its pressure); extrapolated: after each iteration each "
      "wall particle takes the pressure of its fluid neighbours with the hydrostatic term (Adami, Hu & Adams 2012, "
-     "eq. 27), so the pair term is symmetric at the wall and the row there reads its own pressure; CPU only"},
+     "eq. 27), so the pair term is symmetric at the wall and the row there reads its own pressure; on the GL "
+     "backend too"},
     {"physics", "surface_tension", SPH_KEY_CHOICE, S(surface_tension), 0, 0, 0, 0, CH(sph_surface_tension_names), "",
      "none",
      "none; akinci: Akinci, Akinci & Teschner 2013 (ACM TOG 32(6)), the cohesion term (eq. 1-2, the cohesion pass) "

@@ -117,12 +117,6 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [compute] uniform_mass = on is not implemented by the GL backend (it changes how the "
                         "CPU's AVX2 force walk reads the mass; the shaders read buffers; accepted there: off)",
                         def->file);
-    if (def->pressure_solver != SPH_PSOLVER_EOS && sph_scene_wall_particles(def) &&
-        def->solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED)
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] solver_wall_pressure = extrapolated is not implemented by the GL backend (no "
-                        "shader extrapolates the solvers' pressure into the wall particles yet; accepted there: none)",
-                        def->file);
     if (def->skin > 0)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] skin = %g (Verlet lists) is not implemented by the GL backend (its passes "

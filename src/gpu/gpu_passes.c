@@ -327,6 +327,35 @@ static double solver_mean(gpu *g, sph_sim *sim, int p, uint32_t stage)
     return ldexp((double)count, -28);
 }
 
+/* solver_wall_pressure = extrapolated with wall particles (src/passes/solver_walls.c) */
+static bool wall_extrapolated(const sph_scene_def *def)
+{
+    return def->pressure_solver != SPH_PSOLVER_EOS && def->solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED &&
+           sph_scene_wall_particles(def);
+}
+
+/* The wall particles' q (the solver's field f) from their fluid neighbours (gpu_wall_extrapolate.comp), after
+ * each correction as the CPU's correct() calls sph_solver_wall_extrapolate: c g of the step as it computes it
+ * (c = rho_rest for p, 1 for kappa, 0 for kappa_v), at least 0 where clamp. */
+static void wall_extrapolate(gpu *g, sph_sim *sim, int f, float c, bool clamp)
+{
+    if (!wall_extrapolated(&sim->def)) return;
+    const int p = PROG_H(wall_extrapolate);
+    const float gs = (sim->def.effects & SPH_EFFECT(GRAVITY)) ? c * sph_start_gravity_scale(sim) : 0.0f;
+    float g0[3] = {0, 0, 0};
+    for (int d = 0; d < sim->dim; d++) g0[d] = gs * sim->def.gravity[d];
+    use_walk(g, sim, p);
+    gpu_set_u(g, p, U_count, clamp);
+    if (g->loc[p][U_g0] >= 0) g->gl.Uniform3f(g->loc[p][U_g0], g0[0], g0[1], g0[2]);
+    gpu_bind(g, B_DST, g->buf[f]);
+    gpu_dispatch(g, g->n);
+}
+
+static unsigned wall_extrapolate_helper(const sph_scene_def *def)
+{
+    return wall_extrapolated(def) ? HELPER_BIT(wall_extrapolate) : 0u;
+}
+
 /* shaders/gpu_pcisph.comp's stages, and gpu_pcisph_force.comp's (the force and x*: a program of its own, as
  * DFSPH's, for the storage blocks) */
 enum { PCI_PREDICT = 2, PCI_CORRECT, PCI_DELTA = 5, PCI_CORRECT_LOCAL, PCI_KEEP, PCI_TAKE_BACK };
@@ -375,14 +404,14 @@ static void run_pcisph(gpu *g, sph_sim *sim)
         solver_stage(g, sim, p, PCI_CORRECT_LOCAL, sim->dt * sim->dt);
     else
         solver_stage(g, sim, p, PCI_CORRECT, s->delta / (sim->dt * sim->dt));
+    wall_extrapolate(g, sim, SPH_FIELD_P_PCI, s->rho_rest, sim->def.negative_pressure == SPH_NEGP_CLAMP);
     pcisph_force(g, sim, PCI_FORCE);
     sim->pass_again = true;
 }
 
 static unsigned pcisph_helpers(const sph_scene_def *def)
 {
-    (void)def;
-    return HELPER_BIT(pcisph_force);
+    return HELPER_BIT(pcisph_force) | wall_extrapolate_helper(def);
 }
 
 /* shaders/gpu_dfsph.comp's stages */
@@ -429,6 +458,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
         const double error = solver_mean(g, sim, p, DF_MEASURE_V);
         if (!sph_solver_done(sim, error, sim->def.divergence_tolerance)) {
             solver_stage(g, sim, p, DF_CORRECT_V, dt2);
+            wall_extrapolate(g, sim, SPH_FIELD_KAPPA_V, 0.0f, true); /* no hydrostatic term (dfsph.c) */
             dfsph_force(g, sim, false, false);
             sim->pass_again = true;
             return;
@@ -462,6 +492,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
     s->error = error;
     if (!done) {
         solver_stage(g, sim, p, DF_CORRECT, dt2);
+        wall_extrapolate(g, sim, SPH_FIELD_KAPPA, 1.0f, true); /* kappa = p / rho_r (dfsph.c) */
         dfsph_force(g, sim, true, false);
         sim->pass_again = true;
         return;
@@ -475,8 +506,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
 
 static unsigned dfsph_helpers(const sph_scene_def *def)
 {
-    (void)def;
-    return HELPER_BIT(dfsph_force);
+    return HELPER_BIT(dfsph_force) | wall_extrapolate_helper(def);
 }
 
 /* [compute] fuse_forces = on: the pressure force and the viscosity in one
