@@ -309,6 +309,11 @@ for p in poiseuille couette; do
         "$tmp/val.txt" &&
         ok || { bad "validate $p --quick: rc $rc, want PASS at the full run's start-up times"; cat "$tmp/val.txt"; }
 done
+# --out naming a file: exit 3 (its outputs cannot be written), the path said once
+: > "$tmp/afile"
+sph validate couette --quick --out "$tmp/afile" > "$tmp/val.txt" 2>&1
+[ $? -eq 3 ] && grep -q "^sphlab validate: --out: $tmp/afile: not a directory$" "$tmp/val.txt" && ok ||
+    { bad "validate --out FILE: want exit 3 and the path once"; cat "$tmp/val.txt"; }
 sph validate nosuch > "$tmp/val.txt" 2>&1
 [ $? -eq 2 ] && grep -q "unknown problem 'nosuch'" "$tmp/val.txt" && ok || { bad "validate nosuch: want exit 2"; cat "$tmp/val.txt"; }
 sph validate taylor-green --resolution 20,x > "$tmp/val.txt" 2>&1

@@ -18,7 +18,7 @@ bool plot_out_dir(const char *dir)
 {
     char err[SPH_IO_PATH + 200];
     if (sph_mkdir_p(dir, err, sizeof err)) return true;
-    fprintf(stderr, "sphlab %s: --out %s: %s\n", g_cmd, dir, err);
+    fprintf(stderr, "sphlab %s: --out: %s\n", g_cmd, err); /* err names dir */
     return false;
 }
 
