@@ -187,6 +187,16 @@ else
     else
         bad "run --backend gl"; cat "$tmp/gl.txt"
     fi
+    # validate on GL reads the device's fields: the hydrostatic tank's figures as the CPU's (it read p = 0 and
+    # v = 0, and passed)
+    mkdir -p "$tmp/vgl/scenes/validate"
+    { cat scenes/validate/hydrostatic.ini; printf '[compute]\nbackend = gl\n'; } > "$tmp/vgl/scenes/validate/hydrostatic.ini"
+    (cd "$tmp/vgl" && sphe "$sw" validate hydrostatic --quick --quiet --out v > "$tmp/vgl.txt" 2>&1)
+    sph validate hydrostatic --quick --quiet --out "$tmp/vcpu" > "$tmp/vcpu.txt" 2>&1
+    pgl=$(sed -n 's/.*R=8 p \([0-9.]*\)%.*/\1/p' "$tmp/vgl.txt")
+    pcpu=$(sed -n 's/.*R=8 p \([0-9.]*\)%.*/\1/p' "$tmp/vcpu.txt")
+    [ -n "$pgl" ] && [ -n "$pcpu" ] && awk -v a="$pgl" -v b="$pcpu" 'BEGIN { d = a - b; exit !(d < 0.05 && d > -0.05) }' &&
+        ok || { bad "validate hydrostatic on GL: p $pgl% against the CPU's $pcpu%"; cat "$tmp/vgl.txt" "$tmp/vcpu.txt"; }
     # --stats on GL: the hash health's columns, hash_share empty (no neighbour lists to count it from)
     if sphe "$sw" run "$scene" --backend gl --steps 2 --quiet --stats "$tmp/hgl.csv" > "$tmp/gl.txt" 2>&1; then
         head -1 "$tmp/hgl.csv" | grep -q ',hash_candidates,hash_share$' && tail -1 "$tmp/hgl.csv" | grep -Eq ',[0-9.e+-]+,$' &&

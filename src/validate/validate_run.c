@@ -127,6 +127,10 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
     const val_clock clock = val_clock_start();
     double shown = clock.ms, start = shown;
     const bool tty = isatty(STDERR_FILENO) != 0;
+    /* the observers read the particles' fields: on the GL backend the host copies are refreshed on demand
+     * (the hydrostatic tank read p = 0 and v = 0 there, and passed) */
+    const sph_mask fields = SPH_SYNC_ALL & ~(SPH_SYNC_INDEX | SPH_SYNC_LISTS);
+    sph_sim_sync(sim, fields);
     fn(ctx, sim);
     while (sim->t < t_end - 1e-12) {
         sph_sim_step(sim);
@@ -140,6 +144,7 @@ bool val_run(const val_ctx *c, const char *label, const sph_scene_def *def, doub
             ok = false;
             break;
         }
+        sph_sim_sync(sim, fields);
         fn(ctx, sim);
         double now = sph_now_ms();
         /* on a terminal a line rewritten in place; into a file or a pipe (a log, CI) a line every 30 s */
