@@ -186,6 +186,30 @@ Test(solvers, accepted_with_wall_particles)
     }
 }
 
+/* PCISPH with negative_pressure = keep is refused, naming both keys: a free surface's particles sum less than
+ * rho_rest and each iteration lowers their pressure further (lesson 11's dam break stopped at the watchdog at
+ * step 32, -2e5 Pa at its surface, with advice about dt and the tolerance). DFSPH's kappa is held at
+ * -kappa_v, so it runs keep. */
+Test(solvers, pcisph_refuses_negative_pressure_keep)
+{
+    const char *solvers[] = {"pcisph", "dfsph"};
+    for (int k = 0; k < 2; k++) {
+        char ini[sizeof DAM_2D + 200];
+        snprintf(ini, sizeof ini, "%s[physics]\npressure_solver = %s\nnegative_pressure = keep\n", DAM_2D,
+                 solvers[k]);
+        sph_scene_def def = sph_default_scene_def();
+        sph_error err;
+        cr_assert_eq(sph_scene_load_string(ini, "t.ini", &def, &err), SPH_ERR_OK, "%s", err.msg);
+        const sph_error_code rc = sph_scene_validate(&def, &err);
+        if (k == 1) {
+            cr_assert_eq(rc, SPH_ERR_OK, "dfsph with keep: %s", err.msg);
+            continue;
+        }
+        cr_assert_eq(rc, SPH_ERR_SCENE, "pcisph with keep should be refused");
+        cr_assert(strstr(err.msg, "negative_pressure = keep") && strstr(err.msg, "t.ini:"), "%s", err.msg);
+    }
+}
+
 /* The largest compression over the fluid at the positions the step reached,
  * summed over every pair (no lists), the walls as the solvers count them. */
 static double reached_compression(const sph_sim *sim)
