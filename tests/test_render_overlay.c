@@ -10,6 +10,7 @@
 
 #include "sph_overlay.h"
 #include "sph_search.h"
+#include "sph_walls.h"
 #include "test_util.h"
 #include "vtk.h"
 
@@ -349,4 +350,42 @@ Test(render_overlay, inspector_names_cell_key_and_forces)
     cr_expect(pressure);
     cr_expect_eq(sph_inspect_lines(sim, sim->n, lines, 16), 0);
     sph_sim_destroy(sim);
+}
+
+/* The HUD's density error is the fluid's, against the density the pressure
+ * model holds: wall particles (their sums near the fluid read well above it)
+ * are left out, and the solvers' rho_rest (a lattice particle's sum, above
+ * rest_density) is the reference, named in the line. */
+Test(render_overlay, hud_density_error_is_the_fluids_against_the_held_density)
+{
+    const char *ini = "[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=0.2 0.2\n"
+                      "wall_model=particles\n[fluid a]\nmin=0 0\nmax=0.1 0.1\nspacing=0.005\n"
+                      "[physics]\npressure_solver=%s\n[kernels]\nh=0.015\ndensity=wendland\npressure=wendland\n"
+                      "[time]\ndt=0.001\n";
+    const char *solvers[] = {"pcisph", "dfsph", "eos"};
+    for (int k = 0; k < 3; k++) {
+        char buf[512];
+        snprintf(buf, sizeof buf, ini, solvers[k]);
+        sph_sim *sim = test_sim(buf, 1);
+        for (int s = 0; s < 5; s++) sph_sim_step(sim);
+        const bool solver = k < 2;
+        double fluid = -INFINITY, all = -INFINITY;
+        for (uint32_t i = 0; i < sim->n; i++) {
+            all = fmax(all, sim->P.rho[i]);
+            if (!sph_is_wall(&sim->P, i)) fluid = fmax(fluid, sim->P.rho[i]);
+        }
+        cr_assert_gt(all, fluid, "%s: the walls' sums read above the fluid's (%g, %g)", solvers[k], all, fluid);
+        const double held = solver ? sim->solver.rho_rest : sim->eos_rho0;
+        cr_assert_gt(held, 0);
+        if (solver) cr_assert_gt(held, sim->def.rest_density * 1.001, "%s: rho_rest %g", solvers[k], held);
+        cr_expect(fabs(sph_density_error(sim) - (fluid - held) / held) < 1e-6, "%s: %g, want %g", solvers[k],
+                  sph_density_error(sim), (fluid - held) / held);
+        char lines[8][128];
+        sph_hud_info info = {.steps_per_s = -1, .last_pass = -1};
+        sph_hud_lines(sim, &info, lines, 8);
+        cr_expect(strstr(lines[2], solver ? "(rho_max - rho_rest)/rho_rest" : "(rho_max - rho0)/rho0") != NULL,
+                  "%s: %s", solvers[k], lines[2]);
+        cr_expect(strstr(lines[2], "fluid") != NULL, "%s: %s", solvers[k], lines[2]);
+        sph_sim_destroy(sim);
+    }
 }
