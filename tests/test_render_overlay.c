@@ -389,3 +389,31 @@ Test(render_overlay, hud_density_error_is_the_fluids_against_the_held_density)
         sph_sim_destroy(sim);
     }
 }
+
+/* DFSPH's pressure, rho (kappa + kappa_v) as sph_sim_pressure gives it, has a
+ * colour (`pressure` is the equation of state's, which a DFSPH run lacks). */
+Test(render_overlay, dfsph_pressure_is_a_colour)
+{
+    const int f = sph_color_field_find("dfsph-pressure");
+    cr_assert_geq(f, 0, "no colour dfsph-pressure");
+    sph_sim *eos = test_sim(scene_2d, 1);
+    cr_expect_not_null(sph_color_field_missing(eos, (sph_color_field)f), "an eos run has no DFSPH pressure");
+    sph_sim_destroy(eos);
+    char ini[512];
+    snprintf(ini, sizeof ini, "%s[physics]\npressure_solver=dfsph\n", scene_2d);
+    sph_sim *sim = test_sim(ini, 1);
+    for (int s = 0; s < 100; s++) sph_sim_step(sim);
+    cr_assert_null(sph_color_field_missing(sim, (sph_color_field)f), "%s", sph_color_field_missing(sim, f));
+    cr_expect_str_eq(sph_color_field_unit((sph_color_field)f, 2), "N/m");
+    float *v = malloc(sizeof *v * sim->n), lo, hi;
+    cr_assert(sph_color_field_values(sim, (sph_color_field)f, v, &lo, &hi));
+    float top = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        cr_expect_float_eq(v[i], sph_sim_pressure(sim, i), 1e-6f * (1 + fabsf(v[i])), "particle %u", i);
+        top = fmaxf(top, v[i]);
+    }
+    cr_expect_gt(top, 0, "water under gravity has a pressure (t = %g s)", sim->t);
+    cr_expect_eq(hi, top);
+    free(v);
+    sph_sim_destroy(sim);
+}

@@ -50,11 +50,13 @@ int sph_overlay_find(const char *name);
 
 /* What particles can be coloured by: every field of the registry that has a
  * colour name (sph_fields.h; a vector by its length), numbered as the field,
- * then what the index gives each particle. A colour number below
+ * then what the index gives each particle and what is made from fields. A colour number below
  * SPH_FIELD_COUNT whose field has no colour name is not a colour. */
 typedef enum sph_color_field {
     SPH_COLOR_KEY = SPH_FIELD_COUNT, /* the cell's key in the hash table (categorical colours) */
     SPH_COLOR_NEIGHBOURS,            /* number of neighbours within h */
+    SPH_COLOR_DFSPH_PRESSURE,        /* DFSPH's pressure rho (kappa + kappa_v) (sph_sim_pressure): kept as its two
+                                        stiffnesses, not as a field */
     SPH_COLOR_COUNT
 } sph_color_field;
 #define SPH_COLOR_DENSITY ((sph_color_field)SPH_FIELD_RHO)
