@@ -159,7 +159,7 @@ got=$(sph keys '[time]' physics time | grep '^\[' | tr '\n' ' ')
 sph validate dam-brake > "$tmp/combo.txt" 2>&1
 [ $? -eq 2 ] && grep -q "did you mean dam-break?" "$tmp/combo.txt" && ok || { bad "validate dam-brake: want the nearest name"; cat "$tmp/combo.txt"; }
 sph check "$oscene" --set domain.wall_model=volume > "$tmp/ob.txt" 2>&1
-[ $? -eq 1 ] && grep -q "dam-break-obstacle.ini:25: \[obstacle box\] needs wall particles.*wall_model = particles (it is volume)" "$tmp/ob.txt" && ok || { bad "obstacle without wall particles: want exit 1 and the reason"; cat "$tmp/ob.txt"; }
+[ $? -eq 1 ] && grep -q "dam-break-obstacle.ini:25: \[obstacle box\] needs wall particles.*\[domain\] wall_model = volume (--set)" "$tmp/ob.txt" && ok || { bad "obstacle without wall particles: want exit 1 and the reason"; cat "$tmp/ob.txt"; }
 
 # The GL backend (compute shaders; llvmpipe without a GPU): a run, its dump
 # beside the CPU's, and the refusals. Forced onto llvmpipe, as CI has no GPU.
