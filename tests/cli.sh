@@ -159,7 +159,7 @@ got=$(sph keys '[time]' physics time | grep '^\[' | tr '\n' ' ')
 sph validate dam-brake > "$tmp/combo.txt" 2>&1
 [ $? -eq 2 ] && grep -q "did you mean dam-break?" "$tmp/combo.txt" && ok || { bad "validate dam-brake: want the nearest name"; cat "$tmp/combo.txt"; }
 sph check "$oscene" --set domain.wall_model=volume > "$tmp/ob.txt" 2>&1
-[ $? -eq 1 ] && grep -q "dam-break-obstacle.ini:25: \[obstacle box\] needs wall particles.*wall_model = particles (it is volume)" "$tmp/ob.txt" && ok || { bad "obstacle without wall particles: want exit 1 and the reason"; cat "$tmp/ob.txt"; }
+[ $? -eq 1 ] && grep -q "dam-break-obstacle.ini:25: \[obstacle box\] needs wall particles.*\[domain\] wall_model = volume (--set)" "$tmp/ob.txt" && ok || { bad "obstacle without wall particles: want exit 1 and the reason"; cat "$tmp/ob.txt"; }
 
 # The GL backend (compute shaders; llvmpipe without a GPU): a run, its dump
 # beside the CPU's, and the refusals. Forced onto llvmpipe, as CI has no GPU.
@@ -462,6 +462,12 @@ sph hardcases --only nosuch > "$tmp/hc.txt" 2>&1
 sph render lessons/scenes/drop-2d.ini --set physics.pressure_solver=pcisph --steps 1 --color pressure --out "$tmp/rp" > "$tmp/rp.txt" 2>&1
 [ $? -eq 2 ] && grep -q "cannot colour by pressure: .*--color pcisph-pressure" "$tmp/rp.txt" && ok ||
     { bad "render --color pressure with pcisph: want exit 2 naming pcisph-pressure"; cat "$tmp/rp.txt"; }
+# and with DFSPH: refused, naming dfsph-pressure (rho (kappa + kappa_v)), which renders
+sph render lessons/scenes/drop-2d.ini --set physics.pressure_solver=dfsph --steps 1 --color pressure --out "$tmp/rp" > "$tmp/rp.txt" 2>&1
+[ $? -eq 2 ] && grep -q "cannot colour by pressure: .*--color dfsph-pressure" "$tmp/rp.txt" && ok ||
+    { bad "render --color pressure with dfsph: want exit 2 naming dfsph-pressure"; cat "$tmp/rp.txt"; }
+sph render lessons/scenes/drop-2d.ini --set physics.pressure_solver=dfsph --steps 1 --color dfsph-pressure --out "$tmp/rp" > "$tmp/rp.txt" 2>&1 &&
+    ok || { bad "render --color dfsph-pressure with dfsph: want exit 0"; cat "$tmp/rp.txt"; }
 # the GL levels are G0-G3 (bench ladder's table): the README and lesson 8 name them all
 for f in README.md lessons/08-optimisation-ladder/README.md; do
     grep -q "G3" "$f" && ! grep -q "G0-G2\|G0, G1, G2 |" "$f" && ok || bad "$f: the GL levels are G0-G3"

@@ -319,7 +319,22 @@ Test(obstacles, parse_errors)
     cr_assert_eq(sph_scene_load_string(ini, "test.ini", &def, &err), SPH_ERR_OK, "%s", err.msg);
     cr_assert_neq(sph_scene_validate(&def, &err), SPH_ERR_OK);
     cr_expect(strstr(err.msg, "test.ini:14: [obstacle b] needs wall particles") &&
-                  strstr(err.msg, "wall_model = particles (it is volume)"),
+                  strstr(err.msg, "[domain] wall_model = volume (test.ini:7)") && !strstr(err.msg, "effects"),
+              "%s", err.msg);
+    /* the failed condition named, and where its value came from: --set, not the file's particles */
+    snprintf(ini, sizeof ini, "%s[obstacle b]\nmin=0.4 0.4\nmax=0.6 0.6\n", head);
+    def = sph_default_scene_def();
+    cr_assert_eq(sph_scene_load_string(ini, "test.ini", &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_eq(sph_scene_set(&def, "domain.wall_model=volume", &err), SPH_ERR_OK);
+    cr_assert_neq(sph_scene_validate(&def, &err), SPH_ERR_OK);
+    cr_expect(strstr(err.msg, "[domain] wall_model = volume (--set)") && !strstr(err.msg, "it is particles"), "%s",
+              err.msg);
+    def = sph_default_scene_def();
+    cr_assert_eq(sph_scene_load_string(ini, "test.ini", &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_assert_eq(sph_scene_set(&def, "scene.effects=gravity walls viscosity", &err), SPH_ERR_OK);
+    cr_assert_neq(sph_scene_validate(&def, &err), SPH_ERR_OK);
+    cr_expect(strstr(err.msg, "[scene] effects (--set) do not list pressure") && !strstr(err.msg, "it is particles") &&
+                  !strstr(err.msg, "wall_model ="),
               "%s", err.msg);
     /* periodic axes: an obstacle may not cross the domain's ends there */
     snprintf(ini, sizeof ini, "%s[obstacle b]\nmin=0.9 0.4\nmax=1.1 0.6\n", head);

@@ -10,6 +10,7 @@
 
 #include "sph_overlay.h"
 #include "sph_search.h"
+#include "sph_walls.h"
 #include "test_util.h"
 #include "vtk.h"
 
@@ -348,5 +349,71 @@ Test(render_overlay, inspector_names_cell_key_and_forces)
     cr_expect(nbrs);
     cr_expect(pressure);
     cr_expect_eq(sph_inspect_lines(sim, sim->n, lines, 16), 0);
+    sph_sim_destroy(sim);
+}
+
+/* The HUD's density error is the fluid's, against the density the pressure
+ * model holds: wall particles (their sums near the fluid read well above it)
+ * are left out, and the solvers' rho_rest (a lattice particle's sum, above
+ * rest_density) is the reference, named in the line. */
+Test(render_overlay, hud_density_error_is_the_fluids_against_the_held_density)
+{
+    const char *ini = "[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=0.2 0.2\n"
+                      "wall_model=particles\n[fluid a]\nmin=0 0\nmax=0.1 0.1\nspacing=0.005\n"
+                      "[physics]\npressure_solver=%s\n[kernels]\nh=0.015\ndensity=wendland\npressure=wendland\n"
+                      "[time]\ndt=0.001\n";
+    const char *solvers[] = {"pcisph", "dfsph", "eos"};
+    for (int k = 0; k < 3; k++) {
+        char buf[512];
+        snprintf(buf, sizeof buf, ini, solvers[k]);
+        sph_sim *sim = test_sim(buf, 1);
+        for (int s = 0; s < 5; s++) sph_sim_step(sim);
+        const bool solver = k < 2;
+        double fluid = -INFINITY, all = -INFINITY;
+        for (uint32_t i = 0; i < sim->n; i++) {
+            all = fmax(all, sim->P.rho[i]);
+            if (!sph_is_wall(&sim->P, i)) fluid = fmax(fluid, sim->P.rho[i]);
+        }
+        cr_assert_gt(all, fluid, "%s: the walls' sums read above the fluid's (%g, %g)", solvers[k], all, fluid);
+        const double held = solver ? sim->solver.rho_rest : sim->eos_rho0;
+        cr_assert_gt(held, 0);
+        if (solver) cr_assert_gt(held, sim->def.rest_density * 1.001, "%s: rho_rest %g", solvers[k], held);
+        cr_expect(fabs(sph_density_error(sim) - (fluid - held) / held) < 1e-6, "%s: %g, want %g", solvers[k],
+                  sph_density_error(sim), (fluid - held) / held);
+        char lines[8][128];
+        sph_hud_info info = {.steps_per_s = -1, .last_pass = -1};
+        sph_hud_lines(sim, &info, lines, 8);
+        cr_expect(strstr(lines[2], solver ? "(rho_max - rho_rest)/rho_rest" : "(rho_max - rho0)/rho0") != NULL,
+                  "%s: %s", solvers[k], lines[2]);
+        cr_expect(strstr(lines[2], "fluid") != NULL, "%s: %s", solvers[k], lines[2]);
+        sph_sim_destroy(sim);
+    }
+}
+
+/* DFSPH's pressure, rho (kappa + kappa_v) as sph_sim_pressure gives it, has a
+ * colour (`pressure` is the equation of state's, which a DFSPH run lacks). */
+Test(render_overlay, dfsph_pressure_is_a_colour)
+{
+    const int f = sph_color_field_find("dfsph-pressure");
+    cr_assert_geq(f, 0, "no colour dfsph-pressure");
+    sph_sim *eos = test_sim(scene_2d, 1);
+    cr_expect_not_null(sph_color_field_missing(eos, (sph_color_field)f), "an eos run has no DFSPH pressure");
+    sph_sim_destroy(eos);
+    char ini[512];
+    snprintf(ini, sizeof ini, "%s[physics]\npressure_solver=dfsph\n", scene_2d);
+    sph_sim *sim = test_sim(ini, 1);
+    for (int s = 0; s < 100; s++) sph_sim_step(sim);
+    cr_assert_null(sph_color_field_missing(sim, (sph_color_field)f), "%s", sph_color_field_missing(sim, f));
+    cr_expect_str_eq(sph_color_field_unit((sph_color_field)f, 2), "N/m");
+    float *v = malloc(sizeof *v * sim->n), lo, hi;
+    cr_assert(sph_color_field_values(sim, (sph_color_field)f, v, &lo, &hi));
+    float top = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        cr_expect_float_eq(v[i], sph_sim_pressure(sim, i), 1e-6f * (1 + fabsf(v[i])), "particle %u", i);
+        top = fmaxf(top, v[i]);
+    }
+    cr_expect_gt(top, 0, "water under gravity has a pressure (t = %g s)", sim->t);
+    cr_expect_eq(hi, top);
+    free(v);
     sph_sim_destroy(sim);
 }

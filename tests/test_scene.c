@@ -945,3 +945,40 @@ Test(scene, set_without_a_section_names_where_the_key_is)
     cr_expect(strstr(err.msg, "expected section.key=value") != NULL && strstr(err.msg, "did you mean") == NULL, "%s",
               err.msg);
 }
+
+/* The equation of state's keys under a pressure solver: pcisph and dfsph hold
+ * rho_rest without an equation of state, so eos, tait_gamma and eos_rest set
+ * there are unread and said so, with their line; stiffness is read (the
+ * artificial viscosity's speed of sound), and a velocity field's initial
+ * pressure (field_pressure = on) reads the equation of state under a solver
+ * too. */
+Test(scene, eos_keys_unread_under_a_solver)
+{
+    const char *base = "[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.2 0.2\n[physics]\n"
+                       "pressure_solver = %s\n%s = %s\nstiffness = 400\n";
+    const struct {
+        const char *key, *value;
+    } keys[] = {{"eos", "tait"}, {"tait_gamma", "7"}, {"eos_rest", "lattice"}};
+    char ini[512], buf[512];
+    for (size_t k = 0; k < 3; k++)
+        for (int s = 0; s < 3; s++) {
+            const char *solver = s == 0 ? "eos" : s == 1 ? "pcisph" : "dfsph";
+            /* tait_gamma is read by eos = tait only */
+            snprintf(ini, sizeof ini, base, solver, keys[k].key, keys[k].value);
+            if (k == 1) strcat(ini, "eos = tait\n");
+            sph_scene_def def = test_scene(ini);
+            const char *w = sph_scene_warning(&def, buf, sizeof buf);
+            char want[128];
+            snprintf(want, sizeof want, "test.ini:9: [physics] %s is set but this scene does not use it", keys[k].key);
+            if (s == 0)
+                cr_expect(!w || !strstr(w, "does not use it"), "eos with %s: %s", keys[k].key, w);
+            else
+                cr_expect(w && strstr(w, want) && strstr(w, "pressure_solver = eos"), "%s with %s: %s", solver,
+                          keys[k].key, w ? w : "(no warning)");
+        }
+    /* stiffness stays unsaid under a solver */
+    snprintf(ini, sizeof ini, base, "pcisph", "viscosity_form", "artificial");
+    sph_scene_def def = test_scene(ini);
+    const char *w = sph_scene_warning(&def, buf, sizeof buf);
+    cr_expect(!w || !strstr(w, "does not use it"), "pcisph with stiffness: %s", w);
+}

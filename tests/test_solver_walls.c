@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "sph_obstacles.h"
+#include "sph_pass.h"
 #include "sph_walls.h"
 #include "test_util.h"
 
@@ -193,3 +194,36 @@ Test(solver_walls, pcisph_dam_break_on_obstacle, .timeout = 300) { check_dam("pc
 Test(solver_walls, dfsph_dam_break_on_obstacle, .timeout = 300) { check_dam("dfsph", "none"); }
 Test(solver_walls, pcisph_extrapolated_dam_break_on_obstacle, .timeout = 300) { check_dam("pcisph", "extrapolated"); }
 Test(solver_walls, dfsph_extrapolated_dam_break_on_obstacle, .timeout = 300) { check_dam("dfsph", "extrapolated"); }
+
+/* `sphlab check` says which wall pressure the solvers use: the pcisph and
+ * dfsph passes' descriptions differ between solver_wall_pressure = none and
+ * extrapolated, and wall_state's says it gives the velocity only under a
+ * solver (it makes no pressure there). */
+Test(solver_walls, describe_says_the_wall_pressure)
+{
+    const char *solvers[] = {"pcisph", "dfsph"};
+    const sph_pass_id pass[] = {SPH_PASS_PCISPH, SPH_PASS_DFSPH};
+    for (int k = 0; k < 2; k++) {
+        char ini[512], a[256], b[256], w[256];
+        const char *fmt = "[scene]\neffects=gravity pressure walls\n[domain]\nmax=0.2 0.2\nwall_model=particles\n"
+                          "[fluid a]\nmax=0.1 0.1\nspacing=0.01\n[physics]\npressure_solver=%s\n"
+                          "solver_wall_pressure=%s\n[kernels]\nh=0.02\n";
+        snprintf(ini, sizeof ini, fmt, solvers[k], "none");
+        sph_scene_def def = test_scene(ini);
+        sph_passes[pass[k]]->describe(&def, a, sizeof a);
+        sph_passes[SPH_PASS_WALL_STATE]->describe(&def, w, sizeof w);
+        snprintf(ini, sizeof ini, fmt, solvers[k], "extrapolated");
+        def = test_scene(ini);
+        sph_passes[pass[k]]->describe(&def, b, sizeof b);
+        cr_expect(strstr(a, "push back with the fluid particle's own pressure") != NULL, "%s none: %s", solvers[k], a);
+        cr_expect(strstr(b, "hold the fluid's pressure (extrapolated)") != NULL, "%s extrapolated: %s", solvers[k], b);
+        cr_expect(strstr(w, "wall pressure from the fluid") == NULL && strstr(w, "velocity only") != NULL,
+                  "%s: wall_state: %s", solvers[k], w);
+    }
+    /* under the equation of state wall_state still makes the walls' pressure */
+    char w[256];
+    sph_scene_def def = test_scene("[scene]\neffects=gravity pressure walls\n[domain]\nmax=0.2 0.2\n"
+                                   "wall_model=particles\n[fluid a]\nmax=0.1 0.1\nspacing=0.01\n[kernels]\nh=0.02\n");
+    sph_passes[SPH_PASS_WALL_STATE]->describe(&def, w, sizeof w);
+    cr_expect(strstr(w, "wall pressure from the fluid") != NULL, "eos: wall_state: %s", w);
+}

@@ -93,8 +93,8 @@ const app_opt app_options[] = {
     {"--color", "--colour", "FIELD",
      "colour by: density pressure speed key neighbours, or a field of a pass the scene runs: pressure-acc "
      "viscosity-acc cohesion-acc normal curvature-acc curvature csf-acc stress-acc xsph-acc density-rate "
-     "pcisph-pressure pcisph-density pcisph-acc dfsph-density dfsph-acc (with pressure_solver = pcisph, "
-     "pcisph-pressure is the pressure)",
+     "pcisph-pressure pcisph-density pcisph-acc dfsph-pressure dfsph-density dfsph-acc (with pressure_solver = "
+     "pcisph or dfsph, pcisph-pressure or dfsph-pressure is the pressure)",
      RENDER | VIEW, STRING(color)},
     {"--range", NULL, "LO,HI",
      "fixed colour range (LO:HI also); render: 'run' (default): one range for the whole\n"

@@ -263,10 +263,22 @@ sph_error_code sph_obstacles_validate(const sph_scene_def *def, sph_error *err)
         const sph_obstacle_def *o = &def->obstacles[k];
         const bool box = o->shape == SPH_SHAPE_BOX;
         if (def->wall_model != SPH_WALL_PARTICLES || !sph_scene_wall_particles(def)) {
-            snprintf(what, sizeof what,
-                     "needs wall particles: an obstacle is made of them, so set [domain] wall_model = particles "
-                     "(it is %s) with walls and pressure among [scene] effects",
-                     sph_wall_model_names[def->wall_model]);
+            /* the condition that failed, and where its value came from (the file's line or --set) */
+            char at[300];
+            if (def->wall_model != SPH_WALL_PARTICLES)
+                snprintf(what, sizeof what,
+                         "needs wall particles (an obstacle is made of them): [domain] wall_model = %s (%s); accepted: "
+                         "wall_model = particles",
+                         sph_wall_model_names[def->wall_model],
+                         sph_scene_key_where(def, "domain", "wall_model", at, sizeof at));
+            else {
+                const bool walls = def->effects & SPH_EFFECT(WALLS), pressure = def->effects & SPH_EFFECT(PRESSURE);
+                snprintf(what, sizeof what,
+                         "needs wall particles (an obstacle is made of them): [scene] effects (%s) do not list %s; "
+                         "wall particles need walls and pressure among them",
+                         sph_scene_key_where(def, "scene", "effects", at, sizeof at),
+                         !walls && !pressure ? "walls or pressure" : !walls ? "walls" : "pressure");
+            }
             return fail_at(err, def, o, -1, what);
         }
         int wrong = box ? (o->origin[SLOT_CENTRE].line ? SLOT_CENTRE : o->origin[SLOT_RADIUS].line ? SLOT_RADIUS : -1)

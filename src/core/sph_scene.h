@@ -301,6 +301,10 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err);
 /* Choices valid alone that do not work together (sph_scene_combos.c); part of
  * sph_scene_validate. */
 sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error *err);
+/* Where [section] name's value came from, in buf: "file:line", "--set", or the
+ * file's name alone for a default (sph_scene_combos.c). */
+const char *sph_scene_key_where(const sph_scene_def *def, const char *section, const char *name, char *buf,
+                                size_t n);
 /* Its first check (sph_scene.c, where the parser records the components):
  * in a 3D scene every vector given has 3 components. */
 sph_error_code sph_scene_check_components(const sph_scene_def *def, sph_error *err);

@@ -9,7 +9,7 @@
 #include "sph_scene.h"
 
 /* "file:line", "--set", or the file, for a top-level key. */
-static const char *key_where(const sph_scene_def *def, const char *section, const char *name, char *buf, size_t n)
+const char *sph_scene_key_where(const sph_scene_def *def, const char *section, const char *name, char *buf, size_t n)
 {
     int line = 0;
     for (int i = 0; i < sph_scene_key_count; i++)
@@ -74,7 +74,7 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
                             "%s: [physics] shifting = tvf needs a fluid that fills its domain (no free surface): "
                             "the transport velocity's background pressure drives a free surface outward; the "
                             "[fluid] blocks fill %.0f %% of the domain (accepted here: none, lind)",
-                            key_where(def, "physics", "shifting", a, sizeof a), 100 * share);
+                            sph_scene_key_where(def, "physics", "shifting", a, sizeof a), 100 * share);
     }
     if (def->pressure_solver != SPH_PSOLVER_EOS && pressure) {
         /* the solvers predict positions without wrapping them around a
@@ -83,9 +83,9 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
             return sph_fail(err, SPH_ERR_SCENE,
                             "%s: [physics] pressure_solver = %s does not run on a periodic domain yet (its predicted "
                             "positions are not wrapped; [domain] periodic at %s); accepted there: eos",
-                            key_where(def, "physics", "pressure_solver", a, sizeof a),
+                            sph_scene_key_where(def, "physics", "pressure_solver", a, sizeof a),
                             sph_pressure_solver_names[def->pressure_solver],
-                            key_where(def, "domain", "periodic", b, sizeof b));
+                            sph_scene_key_where(def, "domain", "periodic", b, sizeof b));
         /* the solvers hold the lattice's rest density for every particle;
          * a hydrostatic start gives the particles different masses */
         for (int k = 0; k < def->n_blocks; k++)
@@ -97,7 +97,7 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
                                 "pressure_solver = eos",
                                 block_key_where(def, k, "initial_pressure", a, sizeof a), def->blocks[k].name,
                                 sph_pressure_solver_names[def->pressure_solver],
-                                key_where(def, "physics", "pressure_solver", b, sizeof b));
+                                sph_scene_key_where(def, "physics", "pressure_solver", b, sizeof b));
     }
     /* a hydrostatic start is the column at rest under the full gravity */
     for (int k = 0; k < def->n_blocks; k++) {
@@ -121,7 +121,7 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
                             "the ramp starts from no gravity, so the column would not be at rest; set one of them "
                             "(initial_pressure = none, or gravity_ramp = 0)",
                             a, def->blocks[k].name, (double)def->gravity_ramp,
-                            key_where(def, "physics", "gravity_ramp", b, sizeof b));
+                            sph_scene_key_where(def, "physics", "gravity_ramp", b, sizeof b));
     }
     /* Verlet lists hold pairs out to h (1 + skin): only the passes whose
      * kernels vanish beyond h (and whose vector loops mask r >= h) may walk
@@ -134,7 +134,7 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
                             "%s: [search] skin = %g: the %s pass walks the neighbour lists and does not yet skip "
                             "their pairs beyond h; Verlet lists run with density, pressure_force and viscosity only "
                             "(accepted here: skin = 0)",
-                            key_where(def, "search", "skin", a, sizeof a), (double)def->skin, sph_passes[p]->name);
+                            sph_scene_key_where(def, "search", "skin", a, sizeof a), (double)def->skin, sph_passes[p]->name);
         }
     /* compact lists are read by the passes of the ladder's levels (density and the
      * forces); the others are not tried with them */
@@ -146,7 +146,7 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
                             "%s: [search] compact_lists = on: the %s pass walks the neighbour lists and is not "
                             "measured with compact ones; they run with density, pressure_force and viscosity only "
                             "(accepted here: off)",
-                            key_where(def, "search", "compact_lists", a, sizeof a), sph_passes[p]->name);
+                            sph_scene_key_where(def, "search", "compact_lists", a, sizeof a), sph_passes[p]->name);
         }
     /* field_pressure is the pressure of a velocity field: without one it would
      * do nothing, silently */

@@ -89,6 +89,13 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
     const bool particles = walls && pressure && def->wall_model == SPH_WALL_PARTICLES; /* sph_scene_wall_particles */
     const char *by_solver = "only pressure_solver = pcisph or dfsph reads it, with the effect pressure";
     const char *by_particles = "only wall_model = particles reads it, with the effects walls and pressure";
+    /* the solvers hold rho_rest with no equation of state; only a velocity field's initial pressure
+     * (field_pressure = on, sph_sim.c) reads it under one. stiffness stays read: the artificial
+     * viscosity's speed of sound */
+    bool eos_read = !solver;
+    for (int k = 0; k < def->n_blocks; k++) eos_read |= def->blocks[k].field_pressure == SPH_ON;
+    const char *by_eos = "only pressure_solver = eos reads it (pcisph and dfsph hold the lattice's rho_rest, with no "
+                         "equation of state)";
     const struct {
         const char *section, *key;
         bool unread;
@@ -99,7 +106,10 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
         {"physics", "sigma", def->surface_tension != SPH_STENSION_CSF && def->surface_tension != SPH_STENSION_STRESS,
          "only surface_tension = csf or stress reads it"},
         {"physics", "delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
-        {"physics", "tait_gamma", def->eos != SPH_EOS_TAIT, "only eos = tait reads it"},
+        {"physics", "tait_gamma", def->eos != SPH_EOS_TAIT || !eos_read,
+         def->eos != SPH_EOS_TAIT ? "only eos = tait reads it" : by_eos},
+        {"physics", "eos", !eos_read, by_eos},
+        {"physics", "eos_rest", !eos_read, by_eos},
         /* the solvers' keys: a tolerance given to the equation of state changed nothing, unsaid */
         {"physics", "solver_tolerance", !solver, by_solver},
         {"physics", "solver_max_iterations", !solver, by_solver},

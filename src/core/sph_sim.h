@@ -189,7 +189,7 @@ typedef struct sph_stats {
     double rho_min, rho_mean, rho_max; /* [kg/m^dim] 0 if density is not computed */
     double max_speed; /* [m/s] */
     double rho_max_all; /* [kg/m^dim] the largest density of any particle, walls' included (the HUD's
-                           density error); 0 if density is not computed */
+                           density error is the fluid's, rho_max); 0 if density is not computed */
 } sph_stats;
 
 /* A compute backend: runs the passes on data kept elsewhere (the GL backend,

@@ -37,6 +37,7 @@ const char *const sph_color_field_names[SPH_COLOR_COUNT] = {
 #undef SPH_COLOR_NAME
     [SPH_COLOR_KEY] = "key",
     [SPH_COLOR_NEIGHBOURS] = "neighbours",
+    [SPH_COLOR_DFSPH_PRESSURE] = "dfsph-pressure",
 };
 
 int sph_color_field_find(const char *name)
@@ -48,6 +49,7 @@ int sph_color_field_find(const char *name)
 
 const char *sph_color_field_unit(sph_color_field f, int dim)
 {
+    if (f == SPH_COLOR_DFSPH_PRESSURE) return sph_field_unit(SPH_FIELD_P, dim);
     return (int)f < SPH_FIELD_COUNT ? sph_field_unit((int)f, dim) : "1";
 }
 
@@ -71,6 +73,10 @@ const char *sph_color_field_missing(const sph_sim *sim, sph_color_field f)
     switch (f) {
     case SPH_COLOR_KEY: return sim->in_pipeline[SPH_PASS_HASH] ? NULL : "the scene has no spatial hash (no neighbours, or search = brute)";
     case SPH_COLOR_NEIGHBOURS: return sim->in_pipeline[SPH_PASS_NEIGHBOURS] ? NULL : "no effect of the scene needs neighbours";
+    case SPH_COLOR_DFSPH_PRESSURE: {
+        const char *why = sph_passes[SPH_PASS_DFSPH]->skip_reason(&sim->def);
+        return why ? why : sim->P.kappa && sim->P.kappa_v && sim->P.rho ? NULL : "the scene does not compute it";
+    }
     default: return "unknown field";
     }
 }
@@ -112,6 +118,9 @@ bool sph_color_field_values(const sph_sim *sim, sph_color_field f, float *out, f
         memset(out, 0, n * sizeof *out);
         if (sph_ov_lists_built(sim))
             for (uint32_t i = 0; i < n; i++) out[i] = (float)(sim->S.nbr_start[i + 1] - sim->S.nbr_start[i]);
+        break;
+    case SPH_COLOR_DFSPH_PRESSURE:
+        for (uint32_t i = 0; i < n; i++) out[i] = sph_sim_pressure(sim, i);
         break;
     default:
         if ((int)f >= SPH_FIELD_COUNT) return false;

@@ -9,21 +9,32 @@
 #include "overlay_internal.h"
 #include "sph_hash_health.h"
 #include "sph_search.h"
+#include "sph_walls.h"
 
 /* ---- HUD ----------------------------------------------------------------- */
 
+double sph_density_held(const sph_sim *sim, const char **name)
+{
+    const bool solver = sim->def.pressure_solver != SPH_PSOLVER_EOS && sim->solver.rho_rest > 0;
+    if (name) *name = solver ? "rho_rest" : "rho0";
+    return solver ? sim->solver.rho_rest : sim->eos_rho0;
+}
+
 double sph_density_error(const sph_sim *sim)
 {
-    if (!sim->P.rho || !sim->n || !(sim->def.rest_density > 0) || !sim->timing[SPH_PASS_DENSITY].calls) return NAN;
+    const double held = sph_density_held(sim, NULL); /* [kg/m^dim] */
+    if (!sim->P.rho || !sim->n || !(held > 0) || !sim->timing[SPH_PASS_DENSITY].calls) return NAN;
     if (sim->backend) { /* reduced on the device where the host copy is stale: no field read back */
         sph_stats s;
         sph_sim_stats(sim, &s);
-        return (s.rho_max_all - sim->def.rest_density) / sim->def.rest_density;
+        return s.rho_max > 0 ? (s.rho_max - held) / held : NAN;
     }
+    /* wall particles left out: their sums near the fluid read above it (a particle wall's
+     * own density says nothing of the fluid's compression) */
     float mx = -INFINITY;
     for (uint32_t i = 0; i < sim->n; i++)
-        if (sim->P.rho[i] > mx) mx = sim->P.rho[i];
-    return ((double)mx - sim->def.rest_density) / sim->def.rest_density;
+        if (!sph_is_wall(&sim->P, i) && sim->P.rho[i] > mx) mx = sim->P.rho[i];
+    return mx > -INFINITY ? ((double)mx - held) / held : NAN;
 }
 
 /* Whether a scene's name already says its dimension ("dam break 2D"), so the
@@ -50,7 +61,13 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
              info && info->paused ? "   PAUSED" : "");
     double e = sph_density_error(sim);
     if (e == e) {
-        HUD_LINE("density error (rho_max - rho0)/rho0 = %+.2f %%", 100 * e);
+        const char *r0;
+        const double held = sph_density_held(sim, &r0);
+        const bool solver = sim->def.pressure_solver != SPH_PSOLVER_EOS && sim->solver.rho_rest > 0;
+        HUD_LINE("fluid's density error (rho_max - %s)/%s = %+.2f %%, %s = %.5g (%s)", r0, r0, 100 * e, r0, held,
+                 solver ? sph_pressure_solver_names[sim->def.pressure_solver]
+                 : sim->def.eos_rest == SPH_EOSREST_LATTICE ? "eos_rest = lattice"
+                                                            : "rest_density");
     } else if (sim->P.rho) {
         HUD_LINE("density error: not computed yet");
     } else {

@@ -50,11 +50,13 @@ int sph_overlay_find(const char *name);
 
 /* What particles can be coloured by: every field of the registry that has a
  * colour name (sph_fields.h; a vector by its length), numbered as the field,
- * then what the index gives each particle. A colour number below
+ * then what the index gives each particle and what is made from fields. A colour number below
  * SPH_FIELD_COUNT whose field has no colour name is not a colour. */
 typedef enum sph_color_field {
     SPH_COLOR_KEY = SPH_FIELD_COUNT, /* the cell's key in the hash table (categorical colours) */
     SPH_COLOR_NEIGHBOURS,            /* number of neighbours within h */
+    SPH_COLOR_DFSPH_PRESSURE,        /* DFSPH's pressure rho (kappa + kappa_v) (sph_sim_pressure): kept as its two
+                                        stiffnesses, not as a field */
     SPH_COLOR_COUNT
 } sph_color_field;
 #define SPH_COLOR_DENSITY ((sph_color_field)SPH_FIELD_RHO)
@@ -190,7 +192,13 @@ float sph_grid_size(const sph_sim *sim, int d);
 
 /* ---- HUD ----------------------------------------------------------------- */
 
-/* Density error shown in the HUD: (rho_max - rho0) / rho0, the largest
+/* The density the pressure model holds: the solvers' rho_rest once a solve
+ * set it (pcisph, dfsph), else the equation of state's reference eos_rho0
+ * (rest_density, or the lattice's with eos_rest = lattice); *name (if not
+ * NULL): its name in the HUD, "rho_rest" or "rho0". [kg/m^dim] */
+double sph_density_held(const sph_sim *sim, const char **name);
+/* Density error shown in the HUD: (rho_max - held) / held over the fluid
+ * particles (wall particles left out), held = sph_density_held: the largest
  * compression (what incompressible solvers bound); NaN without density, or
  * before the density pass has run. */
 double sph_density_error(const sph_sim *sim);

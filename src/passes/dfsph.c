@@ -126,8 +126,10 @@ static void describe(const sph_scene_def *def, char *out, int n)
              "iterations each)%s",
              def->divergence_tolerance, def->solver_tolerance, def->solver_max_iterations,
              sph_scene_wall_volume(def)     ? ", walls count and push back"
-             : sph_scene_wall_particles(def) ? ", wall particles count and push back"
-                                             : "");
+             : !sph_scene_wall_particles(def) ? ""
+             : def->solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED
+                 ? ", wall particles count and hold the fluid's pressure (extrapolated)"
+                 : ", wall particles count and push back with the fluid particle's own pressure");
 }
 
 /* grad W_ij of kernel k for the pair offset dx (x_i - x_j); r2 = |dx|^2 > 0. */

@@ -69,8 +69,10 @@ static void describe(const sph_scene_def *def, char *out, int n)
     snprintf(out, (size_t)n, "predict-correct until the density error <= %g (at most %d iterations)%s",
              def->solver_tolerance, def->solver_max_iterations,
              sph_scene_wall_volume(def)     ? ", walls count and push back"
-             : sph_scene_wall_particles(def) ? ", wall particles count and push back"
-                                             : "");
+             : !sph_scene_wall_particles(def) ? ""
+             : def->solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED
+                 ? ", wall particles count and hold the fluid's pressure (extrapolated)"
+                 : ", wall particles count and push back with the fluid particle's own pressure");
 }
 
 /* delta at dt = 1 s, on the finest block's full lattice (see the top). */

@@ -66,7 +66,11 @@ static void describe(const sph_scene_def *def, char *out, int n)
         mixed |= def->wall_slip_side[k] != SPH_SIDE_SLIP_SAME &&
                  (def->wall_slip_side[k] == SPH_SIDE_SLIP_FREE) != (def->wall_slip == SPH_SLIP_FREE);
     for (int k = 0; k < def->n_obstacles; k++) mixed |= def->obstacles[k].slip != def->wall_slip;
-    snprintf(out, (size_t)n, "Adami et al. 2012: wall pressure from the fluid, %s walls%s",
+    /* under a solver the walls' pressure is the solver's (solver_wall_pressure): this pass gives the velocity */
+    snprintf(out, (size_t)n, "Adami et al. 2012: %s, %s walls%s",
+             def->pressure_solver != SPH_PSOLVER_EOS ? "wall velocity only (the walls' pressure is the "
+                                                       "solver's: solver_wall_pressure)"
+                                                     : "wall pressure from the fluid",
              mixed ? "no-slip and free-slip" : def->wall_slip == SPH_SLIP_FREE ? "free-slip" : "no-slip",
              def->n_obstacles ? ", obstacles" : "");
 }

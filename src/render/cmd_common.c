@@ -136,9 +136,11 @@ bool view_opts_apply(const view_opts *o, const char *cmd, const sph_sim *sim, sp
         const char *why = sph_color_field_missing(sim, v->field);
         if (why) {
             /* the solver's own pressure has a colour: name it */
-            const bool pci = v->field == SPH_COLOR_PRESSURE && sim->def.pressure_solver == SPH_PSOLVER_PCISPH;
+            const sph_pressure_solver ps = v->field == SPH_COLOR_PRESSURE ? sim->def.pressure_solver : SPH_PSOLVER_EOS;
             fprintf(stderr, "sphlab %s: cannot colour by %s: %s%s\n", cmd, o->color, why,
-                    pci ? " (PCISPH's pressure: --color pcisph-pressure)" : "");
+                    ps == SPH_PSOLVER_PCISPH  ? " (PCISPH's pressure: --color pcisph-pressure)"
+                    : ps == SPH_PSOLVER_DFSPH ? " (DFSPH's pressure rho (kappa + kappa_v): --color dfsph-pressure)"
+                                              : "");
             return false;
         }
     }
