@@ -15,7 +15,10 @@ void study_live_update(study_live *l, const sph_sim *sim)
 {
     sph_stats s;
     sph_sim_stats(sim, &s);
-    double e = s.ekin + s.epot + s.eint, rho0 = sim->def.rest_density;
+    /* against the density the pressure model holds, as the HUD's (sph_density_held): a solver's rho_rest, the
+     * lattice's summed density, or the equation of state's reference */
+    const bool solver = sim->def.pressure_solver != SPH_PSOLVER_EOS && sim->solver.rho_rest > 0;
+    double e = s.ekin + s.epot + s.eint, held = solver ? sim->solver.rho_rest : sim->eos_rho0;
     if (!l->started) {
         l->started = true;
         l->e0 = e;
@@ -30,11 +33,11 @@ void study_live_update(study_live *l, const sph_sim *sim)
         uint32_t n_fluid = 0;
         for (uint32_t i = 0; i < sim->n; i++) {
             if (sph_is_wall(&sim->P, i)) continue; /* wall particles (wall_model = particles) */
-            double d = sim->P.rho[i] / rho0 - 1.0;
+            double d = sim->P.rho[i] / held - 1.0;
             sum += d * d;
             n_fluid++;
         }
         l->density_rms = n_fluid ? sqrt(sum / n_fluid) : 0.0;
-        l->density_error = (s.rho_max - rho0) / rho0;
+        l->density_error = (s.rho_max - held) / held;
     }
 }
