@@ -86,6 +86,17 @@ sph_error_code sph_scene_check_combinations(const sph_scene_def *def, sph_error 
                             sph_scene_key_where(def, "physics", "pressure_solver", a, sizeof a),
                             sph_pressure_solver_names[def->pressure_solver],
                             sph_scene_key_where(def, "domain", "periodic", b, sizeof b));
+        /* a free surface's particles sum less than rho_rest, and each PCISPH
+         * iteration lowers their pressure further: lesson 11's dam break
+         * reached -2e5 Pa at its surface and the watchdog at step 32; DFSPH
+         * holds kappa at -kappa_v */
+        if (def->pressure_solver == SPH_PSOLVER_PCISPH && def->negative_pressure == SPH_NEGP_KEEP)
+            return sph_fail(err, SPH_ERR_SCENE,
+                            "%s: [physics] pressure_solver = pcisph with negative_pressure = keep (at %s): a free "
+                            "surface's particles sum less than the rest density, and each iteration pulls them in "
+                            "harder, without bound; accepted together: negative_pressure = clamp (dfsph runs keep)",
+                            sph_scene_key_where(def, "physics", "pressure_solver", a, sizeof a),
+                            sph_scene_key_where(def, "physics", "negative_pressure", b, sizeof b));
         /* the solvers hold the lattice's rest density for every particle;
          * a hydrostatic start gives the particles different masses */
         for (int k = 0; k < def->n_blocks; k++)

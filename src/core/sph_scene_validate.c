@@ -351,19 +351,6 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
                         origin_text(def, def->origin[key_index("physics", "pressure_solver")].line, loc, sizeof loc),
                         sph_pressure_solver_names[def->pressure_solver]);
     }
-    if (def->pressure_solver == SPH_PSOLVER_PCISPH && (def->effects & SPH_EFFECT(PRESSURE)) &&
-        def->negative_pressure == SPH_NEGP_KEEP) {
-        /* a free surface's particles sum less than rho_rest, and each iteration lowers their pressure further:
-         * lesson 11's dam break reached -2e5 Pa at its surface and the watchdog at step 32 */
-        char loc[300], at[300];
-        origin_text(def, def->origin[key_index("physics", "negative_pressure")].line, at, sizeof at);
-        return sph_fail(err, SPH_ERR_SCENE,
-                        "%s: [physics] pressure_solver = pcisph with negative_pressure = keep (at %s): a free "
-                        "surface's particles sum less than the rest density, and each iteration pulls them in "
-                        "harder, without bound; accepted together: negative_pressure = clamp (dfsph runs keep)",
-                        origin_text(def, def->origin[key_index("physics", "pressure_solver")].line, loc, sizeof loc),
-                        at);
-    }
     if (def->surface_tension == SPH_STENSION_AKINCI && (def->effects & SPH_EFFECT(COHESION))) {
         char loc[300];
         return sph_fail(err, SPH_ERR_SCENE,
