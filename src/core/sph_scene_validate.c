@@ -106,10 +106,6 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
         {"physics", "sigma", def->surface_tension != SPH_STENSION_CSF && def->surface_tension != SPH_STENSION_STRESS,
          "only surface_tension = csf or stress reads it"},
         {"physics", "delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
-        {"physics", "tait_gamma", def->eos != SPH_EOS_TAIT || !eos_read,
-         def->eos != SPH_EOS_TAIT ? "only eos = tait reads it" : by_eos},
-        {"physics", "eos", !eos_read, by_eos},
-        {"physics", "eos_rest", !eos_read, by_eos},
         /* the solvers' keys: a tolerance given to the equation of state changed nothing, unsaid */
         {"physics", "solver_tolerance", !solver, by_solver},
         {"physics", "solver_max_iterations", !solver, by_solver},
@@ -131,6 +127,12 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
         {"domain", "wall_slip_ymax", !particles, by_particles},
         {"domain", "wall_slip_zmin", !particles || def->dim == 2, "a 2D scene has no z sides"},
         {"domain", "wall_slip_zmax", !particles || def->dim == 2, "a 2D scene has no z sides"},
+        /* last: a scene written for the equation of state and run with --set pressure_solver says its own
+         * keys for the solver first */
+        {"physics", "tait_gamma", def->eos != SPH_EOS_TAIT || !eos_read,
+         def->eos != SPH_EOS_TAIT ? "only eos = tait reads it" : by_eos},
+        {"physics", "eos", !eos_read, by_eos},
+        {"physics", "eos_rest", !eos_read, by_eos},
     };
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++) {
         int i = key_index(keys[k].section, keys[k].key);
