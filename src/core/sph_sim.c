@@ -758,6 +758,13 @@ float sph_sim_pressure(const sph_sim *sim, uint32_t i)
     }
 }
 
+double sph_density_held(const sph_sim *sim, const char **name)
+{
+    const bool solver = sim->def.pressure_solver != SPH_PSOLVER_EOS && sim->solver.rho_rest > 0;
+    if (name) *name = solver ? "rho_rest" : "rho0";
+    return solver ? sim->solver.rho_rest : sim->eos_rho0;
+}
+
 double sph_sim_energy_drift(const sph_sim *sim)
 {
     if (sim->step < 1) return NAN;

@@ -408,6 +408,12 @@ void sph_sim_compression_lattice(sph_sim *sim, double *largest, double *mean);
  * effect). --dump's p column and the study's pressure read it: the field p
  * exists only with the equation of state. */
 float sph_sim_pressure(const sph_sim *sim, uint32_t i);
+
+/* The density the pressure model holds: the solvers' rho_rest once a solve
+ * set it (pcisph, dfsph), else the equation of state's reference eos_rho0
+ * (rest_density, or the lattice's with eos_rest = lattice); *name (if not
+ * NULL): its name in the HUD, "rho_rest" or "rho0". [kg/m^dim] */
+double sph_density_held(const sph_sim *sim, const char **name);
 /* A field of the particles; false if the scene does not allocate it. */
 bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out);
 /* The watchdog's report: step, pass, particle, its values and neighbours. */

@@ -13,13 +13,6 @@
 
 /* ---- HUD ----------------------------------------------------------------- */
 
-double sph_density_held(const sph_sim *sim, const char **name)
-{
-    const bool solver = sim->def.pressure_solver != SPH_PSOLVER_EOS && sim->solver.rho_rest > 0;
-    if (name) *name = solver ? "rho_rest" : "rho0";
-    return solver ? sim->solver.rho_rest : sim->eos_rho0;
-}
-
 double sph_density_error(const sph_sim *sim)
 {
     const double held = sph_density_held(sim, NULL); /* [kg/m^dim] */
@@ -63,7 +56,7 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
     if (e == e) {
         const char *r0;
         const double held = sph_density_held(sim, &r0);
-        const bool solver = sim->def.pressure_solver != SPH_PSOLVER_EOS && sim->solver.rho_rest > 0;
+        const bool solver = strcmp(r0, "rho_rest") == 0;
         HUD_LINE("fluid's density error (rho_max - %s)/%s = %+.2f %%, %s = %.5g (%s)", r0, r0, 100 * e, r0, held,
                  solver ? sph_pressure_solver_names[sim->def.pressure_solver]
                  : sim->def.eos_rest == SPH_EOSREST_LATTICE ? "eos_rest = lattice"

@@ -192,13 +192,8 @@ float sph_grid_size(const sph_sim *sim, int d);
 
 /* ---- HUD ----------------------------------------------------------------- */
 
-/* The density the pressure model holds: the solvers' rho_rest once a solve
- * set it (pcisph, dfsph), else the equation of state's reference eos_rho0
- * (rest_density, or the lattice's with eos_rest = lattice); *name (if not
- * NULL): its name in the HUD, "rho_rest" or "rho0". [kg/m^dim] */
-double sph_density_held(const sph_sim *sim, const char **name);
 /* Density error shown in the HUD: (rho_max - held) / held over the fluid
- * particles (wall particles left out), held = sph_density_held: the largest
+ * particles (wall particles left out), held = sph_density_held (sph_sim.h): the largest
  * compression (what incompressible solvers bound); NaN without density, or
  * before the density pass has run. */
 double sph_density_error(const sph_sim *sim);

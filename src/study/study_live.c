@@ -15,10 +15,9 @@ void study_live_update(study_live *l, const sph_sim *sim)
 {
     sph_stats s;
     sph_sim_stats(sim, &s);
-    /* against the density the pressure model holds, as the HUD's (sph_density_held): a solver's rho_rest, the
-     * lattice's summed density, or the equation of state's reference */
-    const bool solver = sim->def.pressure_solver != SPH_PSOLVER_EOS && sim->solver.rho_rest > 0;
-    double e = s.ekin + s.epot + s.eint, held = solver ? sim->solver.rho_rest : sim->eos_rho0;
+    /* against the density the pressure model holds, as the HUD's: a solver's rho_rest, else the equation of
+     * state's reference */
+    double e = s.ekin + s.epot + s.eint, held = sph_density_held(sim, NULL);
     if (!l->started) {
         l->started = true;
         l->e0 = e;
