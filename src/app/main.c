@@ -119,8 +119,7 @@ int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def)
         for (int i = 0; i < o->n_sets; i++)
             if (sph_scene_set(def, o->sets[i], &err) != SPH_ERR_OK) goto fail;
         if (sph_scene_validate(def, &err) == SPH_ERR_OK) {
-            char warning[512];
-            if (sph_scene_warning(def, warning, sizeof warning)) fprintf(stderr, "sphlab: warning: %s\n", warning);
+            sph_scene_warnings_print(def, stderr);
             return 0;
         }
     }

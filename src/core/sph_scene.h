@@ -318,8 +318,11 @@ double sph_scene_particle_count(const sph_scene_def *def);
 /* Neighbours a particle of the finest block has inside its support:
  * pi (h/s)^2 in 2D, 4/3 pi (h/s)^3 in 3D (about 12 and 33 at h = 2s). */
 double sph_scene_neighbour_estimate(const sph_scene_def *def);
-/* A warning for a scene that is valid but will be slow or poor (NULL if none). */
+/* The warnings for a scene that is valid but not the one written, or will be slow or poor: every one that
+ * applies, one per line in buf (NULL if none). */
 const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n);
+/* Each warning on its own line "sphlab: warning: ..." on f. */
+void sph_scene_warnings_print(const sph_scene_def *def, FILE *f);
 
 /* Positions of block b's lattice along axis a: count of nodes. */
 int64_t sph_block_nodes(const sph_scene_def *def, int b, int axis);

@@ -78,11 +78,19 @@ static const char *blocks_overlap(const sph_scene_def *def, char *buf, size_t n)
 
 static const char *origin_text(const sph_scene_def *def, int line, char *buf, size_t n);
 
-/* A key the file (or --set) gives that the scene's choices leave unread:
- * said, since the run is then not the one written (a csf drop given
- * surface_tension_coefficient ran at the default sigma; a slip given to
- * volume walls changed nothing). */
-static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
+/* Appends a warning to buf, the warnings one per line. */
+static void add_warning(char *buf, size_t n, const char *line)
+{
+    const size_t used = strlen(buf);
+    if (used + 1 < n) snprintf(buf + used, n - used, "%s%s", used ? "\n" : "", line);
+}
+
+/* Every key the file (or --set) gives that the scene's choices leave unread,
+ * each said (appended to buf), since the run is then not the one written (a
+ * csf drop given surface_tension_coefficient ran at the default sigma; a slip
+ * given to volume walls changed nothing). All of them: a user who fixes one
+ * warning must not find the next only on the following run. */
+static void unread_keys(const sph_scene_def *def, char *buf, size_t n)
 {
     const bool pressure = (def->effects & SPH_EFFECT(PRESSURE)) != 0, walls = (def->effects & SPH_EFFECT(WALLS)) != 0;
     const bool solver = def->pressure_solver != SPH_PSOLVER_EOS && pressure;
@@ -106,6 +114,8 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
         {"physics", "sigma", def->surface_tension != SPH_STENSION_CSF && def->surface_tension != SPH_STENSION_STRESS,
          "only surface_tension = csf or stress reads it"},
         {"physics", "delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
+        {"physics", "delta_form", def->density_method != SPH_DMETHOD_CONTINUITY,
+         "only density_method = continuity reads it"},
         /* the solvers' keys: a tolerance given to the equation of state changed nothing, unsaid */
         {"physics", "solver_tolerance", !solver, by_solver},
         {"physics", "solver_max_iterations", !solver, by_solver},
@@ -127,8 +137,8 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
         {"domain", "wall_slip_ymax", !particles, by_particles},
         {"domain", "wall_slip_zmin", !particles || def->dim == 2, "a 2D scene has no z sides"},
         {"domain", "wall_slip_zmax", !particles || def->dim == 2, "a 2D scene has no z sides"},
-        /* last: a scene written for the equation of state and run with --set pressure_solver says its own
-         * keys for the solver first */
+        /* last: a scene written for the equation of state and run with --set pressure_solver says the
+         * solver's keys first */
         {"physics", "tait_gamma", def->eos != SPH_EOS_TAIT || !eos_read,
          def->eos != SPH_EOS_TAIT ? "only eos = tait reads it" : by_eos},
         {"physics", "eos", !eos_read, by_eos},
@@ -139,19 +149,41 @@ static const char *unread_key(const sph_scene_def *def, char *buf, size_t n)
         if (i < 0 || def->origin[i].line == 0 || !keys[k].unread) continue;
         const char *reader = keys[k].reader;
         if (strncmp(keys[k].key, "wall_slip_z", 11) == 0 && !particles) reader = by_particles;
-        char loc[300];
-        snprintf(buf, n, "%s: [%s] %s is set but this scene does not use it: %s",
+        char loc[300], line[700];
+        snprintf(line, sizeof line, "%s: [%s] %s is set but this scene does not use it: %s",
                  origin_text(def, def->origin[i].line, loc, sizeof loc), keys[k].section, keys[k].key, reader);
-        return buf;
+        add_warning(buf, n, line);
     }
-    return NULL;
 }
+
+static const char *estimate_warning(const sph_scene_def *def, char *buf, size_t n);
 
 const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n)
 {
-    if (sph_scene_ignored_z(def, buf, n)) return buf; /* first: the scene is not the one written */
-    if (blocks_overlap(def, buf, n)) return buf;
-    if (unread_key(def, buf, n)) return buf;
+    char one[1024];
+    if (n == 0) return NULL;
+    buf[0] = '\0';
+    if (sph_scene_ignored_z(def, one, sizeof one)) add_warning(buf, n, one); /* first: not the scene written */
+    if (blocks_overlap(def, one, sizeof one)) add_warning(buf, n, one);
+    unread_keys(def, buf, n);
+    if (estimate_warning(def, one, sizeof one)) add_warning(buf, n, one);
+    return buf[0] ? buf : NULL;
+}
+
+void sph_scene_warnings_print(const sph_scene_def *def, FILE *f)
+{
+    char buf[8192];
+    if (!sph_scene_warning(def, buf, sizeof buf)) return;
+    for (char *line = buf, *end; line; line = end ? end + 1 : NULL) {
+        end = strchr(line, '\n');
+        if (end) *end = '\0';
+        fprintf(f, "sphlab: warning: %s\n", line);
+    }
+}
+
+/* The neighbour count and the kernels' pairing. */
+static const char *estimate_warning(const sph_scene_def *def, char *buf, size_t n)
+{
     double nb = sph_scene_neighbour_estimate(def);
     double count = sph_scene_particle_count(def);
     if (def->n_blocks == 0 || !(def->effects & (SPH_EFFECT(DENSITY) | SPH_EFFECT(PRESSURE) | SPH_EFFECT(VISCOSITY))))

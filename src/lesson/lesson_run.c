@@ -98,8 +98,7 @@ static bool load_into_log(const app_scene_opts *so, sph_scene_def *def, FILE *lf
         fprintf(lf, "sphlab: %s\n", err.msg);
         return false;
     }
-    char warning[512];
-    if (sph_scene_warning(def, warning, sizeof warning)) fprintf(lf, "sphlab: warning: %s\n", warning);
+    sph_scene_warnings_print(def, lf);
     return true;
 }
 
