@@ -9,7 +9,8 @@ layout(location = 2) in vec4 a_color;    // per instance, normalised bytes
 uniform mat4 u_view;
 uniform mat4 u_proj;
 uniform float u_radius;                  // [m]
-uniform float u_cut;                     // [m] 3D: particles with z above this are not drawn (a cut-away at the slice)
+uniform vec3 u_keep_lo;                  // [m] 3D: particles whose centre lies outside [u_keep_lo, u_keep_hi]
+uniform vec3 u_keep_hi;                  // are not drawn (cut-aways: the slice, the walls facing the camera)
 
 out vec2 v_uv;
 out vec4 v_color;
@@ -17,8 +18,8 @@ out vec3 v_center;                       // eye space
 
 void main()
 {
-    if (a_center.z > u_cut) {            // outside the clip volume: no fragments
-        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    if (any(lessThan(a_center, u_keep_lo)) || any(greaterThan(a_center, u_keep_hi))) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: no fragments
         return;
     }
     vec4 c = u_view * vec4(a_center, 1.0);

@@ -20,7 +20,8 @@ layout(binding = 1) uniform sampler2D u_cmap; // 256 x 1: sph_colormap_viridis(k
 uniform mat4 u_view;
 uniform mat4 u_proj;
 uniform float u_radius;                  // [m]
-uniform float u_cut;                     // [m] 3D: particles with z above this are not drawn
+uniform vec3 u_keep_lo;                  // [m] 3D: particles whose centre lies outside [u_keep_lo, u_keep_hi]
+uniform vec3 u_keep_hi;                  // are not drawn (as particles.vert)
 uniform int u_dim;
 uniform int u_comps;                     // 1: a scalar field; 2 or 3: a vector's length
 uniform int u_fixed;                     // 1: u_range instead of the keys
@@ -38,8 +39,8 @@ float key_float(uint k)
 void main()
 {
     vec3 center = vec3(a_x, a_y, u_dim == 3 ? a_z : 0.0);
-    if (center.z > u_cut) {              // outside the clip volume: no fragments
-        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    if (any(lessThan(center, u_keep_lo)) || any(greaterThan(center, u_keep_hi))) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: no fragments
         return;
     }
     float v = a_v0;

@@ -1,7 +1,8 @@
 /* Headless rendering, checked by its pixels: particles are drawn where they
  * are, grid lines lie on cell borders, an overlay switched off leaves no
  * pixel, renders are reproducible to the byte, the two GL backends agree,
- * and with no usable GL the tool says so. Needs no GPU and no display. */
+ * 3D wall particles leave the water in sight, and with no usable GL the tool
+ * says so. Needs no GPU and no display. */
 #define _GNU_SOURCE /* setenv, mkdtemp */
 #include <criterion/criterion.h>
 #include <math.h>
@@ -223,6 +224,116 @@ Test(render, a_3d_scene_draws_spheres_inside_the_view)
     }
     cr_expect_eq(lit, (int)sim->n, "a particle's pixel is background");
     free(img);
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+}
+
+/* A 3D tank of wall particles (wall_model = particles) holding a block of
+ * water and a box obstacle: the walls' layers cover all six faces, so drawn
+ * whole they hide the water from every side. */
+static const char *scene_3d_walls =
+    "[scene]\ndimension=3\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0 0\nmax=0.4 0.3 0.2\n"
+    "wall_model=particles\n[fluid a]\nmin=0 0 0\nmax=0.16 0.16 0.2\nspacing=0.02\n"
+    "[obstacle b]\nshape=box\nmin=0.26 0 0.06\nmax=0.32 0.08 0.14\n[kernels]\nh=0.04\n"
+    "[physics]\ngravity=0 -9.81 0\n";
+
+/* Colours the fluid yellow and every wall particle purple: speed over a fixed
+ * range [0, 1] m/s, the fluid given 1 m/s (nothing steps, the render only
+ * reads it), the walls at rest. Counts the pixels of each colour. */
+static void count_fluid_and_wall_pixels(const sph_sim *sim, sph_renderer *r, const sph_orbit *o, int *fluid,
+                                        int *wall)
+{
+    sph_view v = sph_view_default(sim);
+    v.overlays = 0; /* no legend: its bar has both colours */
+    v.field = SPH_COLOR_SPEED;
+    v.fixed_range = true;
+    v.range[0] = 0;
+    v.range[1] = 1;
+    if (o) v.orbit = *o;
+    uint8_t *img = draw(r, sim, &v);
+    *fluid = *wall = 0;
+    for (size_t k = 0; k < (size_t)W * H; k++) {
+        int R = img[3 * k], G = img[3 * k + 1], B = img[3 * k + 2];
+        *fluid += G > B + 60 && R > B + 60;   /* viridis(1), shaded: yellow */
+        *wall += B > G + 40 && R > G + 20;    /* viridis(0), shaded: purple */
+    }
+    free(img);
+}
+
+/* The box's wall particles on the faces turned towards the camera are not
+ * drawn (a cut-away box), so the water is seen from any orbit; the far faces'
+ * walls still are. 2D is not concerned. */
+Test(render, water_is_seen_through_the_walls_in_3d)
+{
+    sph_sim *sim = test_sim(scene_3d_walls, 1);
+    cr_assert_not_null(sim->P.fixed);
+    int n_fluid = 0;
+    for (uint32_t i = 0; i < sim->n; i++)
+        if (!sph_is_wall(&sim->P, i)) {
+            sim->P.vel[0][i] = 1.0f;
+            n_fluid++;
+        }
+    cr_assert_gt(n_fluid, 100);
+    sph_renderer *r = renderer(SPH_GL_EGL);
+    const sph_orbit orbits[4] = {sph_orbit_default(),
+                                 {.yaw = -140, .pitch = -30, .zoom = 1},
+                                 {.yaw = 200, .pitch = 60, .zoom = 1},
+                                 {.yaw = 0, .pitch = 0, .zoom = 1}};
+    for (int k = 0; k < 4; k++) {
+        int fluid, wall;
+        count_fluid_and_wall_pixels(sim, r, &orbits[k], &fluid, &wall);
+        cr_log_info("orbit yaw %g pitch %g: %d pixels of water, %d of walls", orbits[k].yaw, orbits[k].pitch, fluid,
+                    wall);
+        /* counts of pixels (not timings): the water covers a good part of the view (320 x 240 px), and walls
+         * (the far faces) are still drawn */
+        cr_expect_gt(fluid, 2000, "orbit yaw %g pitch %g: %d pixels of water, %d of walls", orbits[k].yaw,
+                     orbits[k].pitch, fluid, wall);
+        cr_expect_gt(wall, 2000, "orbit yaw %g pitch %g: %d pixels of walls", orbits[k].yaw, orbits[k].pitch, wall);
+    }
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+}
+
+/* The rule itself (sph_renderer_shows, which picking uses too): the default
+ * orbit's eye is past the domain's x, y and z maxima, so the box's wall
+ * particles beyond those faces are left out; the water, the obstacle and the
+ * far walls are drawn; in 2D every particle is. */
+Test(render, only_the_near_walls_are_left_out_in_3d)
+{
+    sph_sim *sim = test_sim(scene_3d_walls, 1);
+    sph_renderer *r = renderer(SPH_GL_EGL);
+    sph_view v = sph_view_default(sim);
+    free(draw(r, sim, &v));
+    const float hi[3] = {0.4f, 0.3f, 0.2f}; /* [m] the domain's maxima (scene_3d_walls) */
+    int hidden_inner = 0, near = 0, near_shown = 0, far = 0, far_shown = 0, obstacle = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        float x[3] = {sim->P.pos[0][i], sim->P.pos[1][i], sim->P.pos[2][i]};
+        bool shown = sph_renderer_shows(r, x), beyond = x[0] > hi[0] || x[1] > hi[1] || x[2] > hi[2];
+        bool inside = x[0] > 0 && x[1] > 0 && x[2] > 0 && !beyond;
+        if (sim->P.obstacle[i] != 0.0f) obstacle++;
+        if (inside) hidden_inner += !shown; /* the water and the obstacle */
+        else if (beyond) near++, near_shown += shown;
+        else far++, far_shown += shown;
+    }
+    cr_expect_gt(obstacle, 10);
+    cr_expect_eq(hidden_inner, 0, "%d particles inside the domain left out", hidden_inner);
+    cr_expect_gt(near, 100);
+    cr_expect_eq(near_shown, 0, "%d of %d wall particles past the near faces drawn", near_shown, near);
+    cr_expect_gt(far, 100);
+    cr_expect_eq(far_shown, far, "%d of %d wall particles of the far faces drawn", far_shown, far);
+    /* the same scene in 2D: nothing is cut away */
+    sph_sim *flat = test_sim("[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=0.3 0.6\n"
+                             "wall_model=particles\n[fluid a]\nmin=0 0\nmax=0.3 0.3\nspacing=0.02\n[kernels]\nh=0.04\n",
+                             1);
+    sph_view vf = sph_view_default(flat);
+    free(draw(r, flat, &vf));
+    int flat_hidden = 0;
+    for (uint32_t i = 0; i < flat->n; i++) {
+        float x[3] = {flat->P.pos[0][i], flat->P.pos[1][i], 0};
+        flat_hidden += !sph_renderer_shows(r, x);
+    }
+    cr_expect_eq(flat_hidden, 0, "2D: %d particles left out", flat_hidden);
+    sph_sim_destroy(flat);
     sph_renderer_destroy(r);
     sph_sim_destroy(sim);
 }

@@ -35,6 +35,14 @@ static const char *scene_3d =
     "[kernels]\nh=0.05\n[time]\ndt=0.0002\ncfl=0\n"
     "[fluid a]\nmin=-0.2 -0.2 -0.2\nmax=0.0 0.0 0.0\nspacing=0.025\nvelocity=0 0 0.3\n";
 
+/* a tank of wall particles (wall_model = particles): the near faces' walls
+ * are cut away (sph_renderer_shows) by the direct program as by the host's */
+static const char *scene_3d_walls =
+    "[scene]\nname=direct 3d walls\ndimension=3\neffects=gravity pressure viscosity walls\n"
+    "[domain]\nmin=0 0 0\nmax=0.3 0.25 0.2\nwall_model=particles\n[physics]\nviscosity=0.005\n"
+    "[kernels]\nh=0.05\n[time]\ndt=0.0002\ncfl=0\n"
+    "[fluid a]\nmin=0 0 0\nmax=0.15 0.15 0.2\nspacing=0.025\n";
+
 typedef struct pair {
     sph_renderer *r_gl, *r_cpu;
     sph_sim *gl, *cpu;
@@ -163,6 +171,11 @@ Test(render_gl, direct_2d_speed_downloads_nothing_and_matches_the_cpu)
 Test(render_gl, direct_3d_pressure_acc_downloads_nothing_and_matches_the_cpu)
 {
     check_scene(scene_3d, SPH_COLOR_ACC_P, SPH_OV_BIT(GRID));
+}
+
+Test(render_gl, direct_3d_wall_particles_cut_away_as_on_the_cpu)
+{
+    check_scene(scene_3d_walls, SPH_COLOR_DENSITY, 0);
 }
 
 /* The legend's numbers cost the range's 8 bytes; the HUD syncs what it

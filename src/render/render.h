@@ -99,7 +99,17 @@ void sph_renderer_side_free(const sph_renderer *r, int rc[4]);
 /* The camera and overlays of the last frame (picking, tests). */
 const sph_camera *sph_renderer_camera(const sph_renderer *r);
 const sph_overlay *sph_renderer_overlay(const sph_renderer *r);
-/* Particle drawn nearest to pixel px within max_px; -1 if none. */
+/* Whether a particle centred at x [m] is drawn in the last frame's view. 2D:
+ * always. 3D, cut-aways: with the slice's overlays (grid, keys, collisions)
+ * none beyond the slice on the camera's side (z > slice_z + r / 2); with
+ * wall particles (wall_model = particles) none beyond a face of the domain
+ * that is turned towards the camera (the eye outside the domain past that
+ * face) by more than r / 2, r the drawn radius (sph_particle_radius): the
+ * box's near walls are left out, the far walls, the water and the
+ * obstacles inside the domain are drawn. */
+bool sph_renderer_shows(const sph_renderer *r, const float x[3]);
+/* Particle drawn nearest to pixel px within max_px; -1 if none (only those
+ * sph_renderer_shows). */
 int32_t sph_renderer_pick(const sph_renderer *r, const sph_sim *sim, const float px[2], float max_px);
 /* [m] radius particles are drawn with. */
 float sph_particle_radius(const sph_sim *sim);

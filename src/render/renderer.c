@@ -107,7 +107,8 @@ static void locate(sph_renderer *r, GLuint prog, ploc *l)
     l->proj = gl->GetUniformLocation(prog, "u_proj");
     l->radius = gl->GetUniformLocation(prog, "u_radius");
     l->sphere = gl->GetUniformLocation(prog, "u_sphere");
-    l->cut = gl->GetUniformLocation(prog, "u_cut");
+    l->keep_lo = gl->GetUniformLocation(prog, "u_keep_lo");
+    l->keep_hi = gl->GetUniformLocation(prog, "u_keep_hi");
     l->rim = gl->GetUniformLocation(prog, "u_rim");
     l->dim = gl->GetUniformLocation(prog, "u_dim");
     l->comps = gl->GetUniformLocation(prog, "u_comps");
@@ -434,6 +435,38 @@ static void bind_direct(sph_renderer *r, const sph_sim *sim, unsigned pos, unsig
                                 (const void *)(uintptr_t)(c < comps ? (size_t)c * row : 0));
 }
 
+/* The box of the particles drawn (sph_renderer_shows says the rule), into
+ * r->keep_lo and keep_hi; the camera is fitted. Unbounded: 3e38 m, as the
+ * shaders' floats hold. */
+static void keep_box(sph_renderer *r, const sph_sim *sim, const sph_view *v)
+{
+    for (int d = 0; d < 3; d++) r->keep_lo[d] = -3.0e38f, r->keep_hi[d] = 3.0e38f;
+    if (sim->dim != 3) return;
+    const float margin = 0.5f * sph_particle_radius(sim);
+    /* the slice's overlays: the fluid cut open at the slice, the camera's
+     * side removed, so the slice's cells are seen, not hidden */
+    if (v->overlays & (SPH_OV_BIT(GRID) | SPH_OV_BIT(KEYS) | SPH_OV_BIT(COLLISIONS)))
+        r->keep_hi[2] = v->slice_z + margin;
+    /* the box's wall particles cover its six faces and would hide what is
+     * inside from any side: those of the faces turned towards the eye are
+     * left out, as a cut-away drawing does; the fluid and the obstacles lie
+     * inside the domain, the near walls' layers outside it (the first half a
+     * spacing out: sph_wall_particles_place) */
+    if (sim->def.wall_model != SPH_WALL_PARTICLES) return;
+    for (int d = 0; d < 3; d++) {
+        const float lo = (float)sim->def.domain_min[d], hi = (float)sim->def.domain_max[d];
+        if (r->cam.eye[d] < lo) r->keep_lo[d] = fmaxf(r->keep_lo[d], lo - margin);
+        if (r->cam.eye[d] > hi) r->keep_hi[d] = fminf(r->keep_hi[d], hi + margin);
+    }
+}
+
+bool sph_renderer_shows(const sph_renderer *r, const float x[3])
+{
+    for (int d = 0; d < 3; d++)
+        if (!(x[d] >= r->keep_lo[d] && x[d] <= r->keep_hi[d])) return false;
+    return true;
+}
+
 bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *err, size_t n)
 {
     sph_gl *gl = &r->gl;
@@ -464,6 +497,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
     float dom_lo[3], dom_hi[3]; /* the domain and the wall particles outside it */
     sph_wall_particles_bounds(&sim->def, dom_lo, dom_hi);
     sph_camera_fit(&r->cam, sim->dim, dom_lo, dom_hi, &v->orbit, r->w, r->h, rc);
+    keep_box(r, sim, v);
 
     /* overlays (GL-free) */
     sph_overlay_opts oo = {.layers = L, .selected = v->selected, .slice_z = v->slice_z, .px_per_m = r->cam.px_per_m};
@@ -574,10 +608,9 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         /* a rim keeps touching discs apart; on discs of a few pixels it would be all there is */
         gl->Uniform1f(pl->rim, r->radius_px >= 4.0f ? 0.35f : 0.0f);
         gl->Uniform1i(pl->sphere, sim->dim == 3);
-        /* 3D with the slice's overlays: cut the fluid open at the slice, the
-         * camera's side removed, so the slice's cells are seen, not hidden */
-        bool cut = sim->dim == 3 && (L & (SPH_OV_BIT(GRID) | SPH_OV_BIT(KEYS) | SPH_OV_BIT(COLLISIONS)));
-        gl->Uniform1f(pl->cut, cut ? v->slice_z + 0.5f * sph_particle_radius(sim) : 3.0e38f);
+        /* the cut-aways (keep_box) */
+        gl->Uniform3f(pl->keep_lo, r->keep_lo[0], r->keep_lo[1], r->keep_lo[2]);
+        gl->Uniform3f(pl->keep_hi, r->keep_hi[0], r->keep_hi[1], r->keep_hi[2]);
         if (sim->dim == 3) {
             gl->Enable(GL_DEPTH_TEST);
             gl->DepthFunc(GL_LESS);
@@ -687,7 +720,7 @@ int32_t sph_renderer_pick(const sph_renderer *r, const sph_sim *sim, const float
     float best_d = max_px * max_px, best_depth = INFINITY;
     for (uint32_t i = 0; i < sim->n; i++) {
         float x[3] = {sim->P.pos[0][i], sim->P.pos[1][i], sim->dim == 3 ? sim->P.pos[2][i] : 0.0f}, p[2], depth = 0;
-        if (!sph_camera_project(&r->cam, x, p, &depth)) continue;
+        if (!sph_renderer_shows(r, x) || !sph_camera_project(&r->cam, x, p, &depth)) continue;
         float d = (p[0] - px[0]) * (p[0] - px[0]) + (p[1] - px[1]) * (p[1] - px[1]);
         /* nearest on screen; among those under the cursor, nearest to the eye */
         bool under = d <= r->radius_px * r->radius_px;

@@ -20,7 +20,7 @@ typedef struct inst {
 
 /* Uniforms of a particle program. */
 typedef struct ploc {
-    GLint view, proj, radius, sphere, cut, rim, dim, comps, fixed, range;
+    GLint view, proj, radius, sphere, keep_lo, keep_hi, rim, dim, comps, fixed, range;
 } ploc;
 
 struct sph_renderer {
@@ -52,6 +52,9 @@ struct sph_renderer {
     sph_camera cam;
     sph_overlay ov;
     float radius_px;
+    /* [m] 3D: the box outside which particles' centres are not drawn (the
+     * cut-aways, sph_renderer_shows); unbounded in 2D */
+    float keep_lo[3], keep_hi[3];
     int strip[4], legend[4];
     int side[4];     /* [px] the side column (HUD, timings, text panel); width 0: none */
     float side_used; /* [px] height of the column the HUD and text panel took, from its top */
