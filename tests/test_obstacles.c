@@ -290,7 +290,11 @@ Test(obstacles, parse_errors)
         {"[obstacle c]\nshape=circle\ncentre=0.5 0.5\nradius=0.1\nmin=0 0\n", "not min"},
         {"[obstacle b]\nmin=0.4 0.4\n", "shape = box needs max"},
         {"[obstacle b]\nmin=0.4 0.4\nmax=0.41 0.6\n", "test.ini:16: [obstacle b] max.x = 0.41: the box is 0.01 m thick"},
-        {"[obstacle b]\nmin=2 2\nmax=3 3\n", "test.ini:15: [obstacle b] lies outside the domain"},
+        {"[obstacle b]\nmin=2 2\nmax=3 3\n", "test.ini:15: [obstacle b] x from 2 to 3, y from 2 to 3 lies outside the domain"},
+        /* a circle wholly inside an earlier box: the box is named, with its line (a review: the circle alone was
+         * named, "outside the domain (or inside an earlier obstacle)", when the user had grown the box) */
+        {"[obstacle big]\nmin=0.3 0.3\nmax=0.9 0.9\n[obstacle c]\nshape=circle\ncentre=0.6 0.6\nradius=0.1\n",
+         "test.ini:19: [obstacle c] lies inside [obstacle big] (test.ini:14 to 16): it makes no wall particle"},
         {"[obstacle b]\nshape=cylinder\n", "test.ini:15: [obstacle b] shape = 'cylinder': unknown choice (accepted: one of: box, circle)"},
         {"[obstacle b]\nslip=partial\n", "[obstacle b] slip = 'partial': unknown choice (accepted: one of: no, free)"},
         {"[obstacle b]\ncolour=red\n", "test.ini:15: unknown key 'colour' in [obstacle b] (accepted: shape, min, max, centre, radius, slip)"},

@@ -319,8 +319,39 @@ sph_error_code sph_obstacles_validate(const sph_scene_def *def, sph_error *err)
             return fail_at(err, def, o, -1, what);
         }
         if (sph_obstacle_wall_count(def, k) == 0) {
-            snprintf(what, sizeof what, "lies outside the domain (or inside an earlier obstacle): it makes no wall "
-                     "particle (accepted: some of it within [domain] min and max)");
+            /* two causes: name the earlier obstacle that holds it (the one the user may have grown), or say where
+             * it lies against the domain */
+            double mid[3] = {0, 0, 0};
+            bool meets = true;
+            for (int a = 0; a < def->dim; a++) {
+                mid[a] = 0.5 * (lo[a] + hi[a]);
+                meets &= hi[a] > def->domain_min[a] && lo[a] < def->domain_max[a];
+            }
+            const int holder = meets ? sph_obstacles_holding(def, k, mid) : -1;
+            if (holder >= 0) {
+                const sph_obstacle_def *e = &def->obstacles[holder];
+                int last = e->line; /* its section: from the header to its last key in the file */
+                bool set = false;
+                for (int g = 0; g < SPH_GROUP_KEYS_MAX; g++) {
+                    set |= e->origin[g].line < 0;
+                    if (e->origin[g].line > last) last = e->origin[g].line;
+                }
+                char where[320] = "--set";
+                if (e->line > 0 && last > e->line)
+                    snprintf(where, sizeof where, "%s:%d to %d%s", def->file, e->line, last, set ? " and --set" : "");
+                else if (e->line > 0)
+                    snprintf(where, sizeof where, "%s:%d%s", def->file, e->line, set ? " and --set" : "");
+                snprintf(what, sizeof what, "lies inside [obstacle %s] (%s): it makes no wall particle (accepted: an "
+                         "obstacle with some of its surface outside every earlier one)", e->name, where);
+            } else {
+                int w = 0;
+                for (int a = 0; a < def->dim && w < (int)sizeof what; a++)
+                    w += snprintf(what + w, sizeof what - (size_t)w, "%s%c from %g to %g", a ? ", " : "", axes[a],
+                                  lo[a], hi[a]);
+                if (w < (int)sizeof what)
+                    snprintf(what + w, sizeof what - (size_t)w, " lies outside the domain: it makes no wall particle "
+                             "(accepted: some of it within [domain] min and max)");
+            }
             return fail_at(err, def, o, box ? SLOT_MIN : SLOT_CENTRE, what);
         }
     }
