@@ -168,8 +168,10 @@ static float font_width(const void *ctx, const char *s)
 /* The window's HUD for the scene at path, with the timings (and the ladder's lines) or not, and the
  * inspector's panel of particle select below it (-1: none), as `sphlab lesson N` opens it; with a message
  * and the pass-by-pass line, the rows that come and go. all_fit: every row must show, else only nothing
- * may run off the window. */
-static void check_hud_fits(const char *path, int solver, bool timings, int select, int w, int h, bool all_fit)
+ * may run off the window. keep [px]: the parameter panel's least height (0: the panel hidden). Returns the
+ * height [px] left below the inspector for the parameter panel. */
+static float check_hud_fits(const char *path, int solver, bool timings, int select, int w, int h, bool all_fit,
+                            float keep)
 {
     sph_scene_def def = sph_default_scene_def();
     sph_error err;
@@ -203,7 +205,7 @@ static void check_hud_fits(const char *path, int solver, bool timings, int selec
     sph_layout_compute(w, h, sph_layout_side_width(w, h), true, false, &L);
     /* the HUD, as hud_draw places it, then the inspector below it, as hud_panel does */
     float room[4];
-    sph_layout_hud_room(L.view, L.side, 0, sph_hud_panel_reserve(np, fs), room);
+    sph_layout_hud_room(L.view, L.side, 0, sph_hud_panel_reserve(np, fs), keep, room);
     const float name_w = sph_font_width(&font, SPH_TEXT_SMALL, ">18 density_gradient ");
     const float ms_w = sph_font_width(&font, SPH_TEXT_SMALL, " 00.000 ms");
     const float bar_w = fmaxf(fminf(6.0f * fn, room[2] - 12 - name_w - ms_w), fn);
@@ -222,13 +224,15 @@ static void check_hud_fits(const char *path, int solver, bool timings, int selec
     for (int i = 0; i < fit.n_rows; i++)
         cr_expect_leq(room[0] + 6 + font_width(&font, fit.row[i]), (float)w, "%s: row '%s' runs off the right", path,
                       fit.row[i]);
-    sph_layout_hud_room(L.view, L.side, room[1] + fit.h - (float)L.side[1], 0, room);
+    sph_layout_hud_room(L.view, L.side, room[1] + fit.h - (float)L.side[1], 0, keep, room);
     sph_hud_fit_compute((const char(*)[128])panel, np, 0, 0, room[2], room[3], fs, fs, fn, font_width, &font, &pfit);
     if (all_fit) cr_expect_eq(pfit.hidden, 0, "%s: %d inspector rows left out", path, pfit.hidden);
     cr_expect_leq(room[1] + pfit.h, (float)h, "%s: the inspector's bottom %.0f px is below the window", path,
                   room[1] + pfit.h);
+    const float below = (float)(L.side[1] + L.side[3]) - (np ? room[1] + pfit.h : room[1]);
     sph_font_free(&font);
     sph_sim_destroy(sim);
+    return below;
 }
 
 Test(render_layout, hud_rows_all_show_in_a_1024x720_window, .timeout = 120)
@@ -251,15 +255,43 @@ Test(render_layout, hud_rows_all_show_in_a_1024x720_window, .timeout = 120)
         {"lessons/10-boundaries/lesson.ini", false, 15},
         {"lessons/11-incompressible/lesson.ini", true, -1},
     };
+    /* with the parameter panel open, as the window opens it (its least height kept below) */
+    const float keep = sph_layout_panel_keep(15); /* SPH_PANEL_FONT_PX, src/panel/panel.h */
     for (size_t k = 0; k < sizeof lessons / sizeof *lessons; k++)
-        check_hud_fits(lessons[k].path, -1, lessons[k].timings, lessons[k].select, 1024, 720, true);
-    /* the pressure solvers add their iteration rows */
-    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_DFSPH, true, -1, 1024, 720, true);
-    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_PCISPH, true, -1, 1024, 720, true);
+        check_hud_fits(lessons[k].path, -1, lessons[k].timings, lessons[k].select, 1024, 720, true, keep);
+    /* the pressure solvers add their iteration rows: all show with the panel hidden (tab); with it open the
+     * last two timing rows are left out and counted (the_parameter_panel_keeps_room_... below) */
+    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_DFSPH, true, -1, 1024, 720, true, 0);
+    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_PCISPH, true, -1, 1024, 720, true, 0);
+    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_DFSPH, true, -1, 1024, 720, false, keep);
     /* everything at once, and a smaller window: rows may be left out (and counted), none runs off */
-    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_DFSPH, true, 0, 1024, 720, false);
-    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_PCISPH, true, 0, 800, 600, false);
-    check_hud_fits("lessons/05-spatial-hash/lesson.ini", -1, true, 7, 640, 480, false);
+    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_DFSPH, true, 0, 1024, 720, false, 0);
+    check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_PCISPH, true, 0, 800, 600, false, 0);
+    check_hud_fits("lessons/05-spatial-hash/lesson.ini", -1, true, 7, 640, 480, false, 0);
+}
+
+/* The window's parameter panel (Dear ImGui) takes what the HUD and the inspector leave of the column: with
+ * everything on (lesson 11 under dfsph, its timings, an inspected particle) it got 4 px in windows of
+ * 1024 x 720, 1280 x 800 and 800 x 600, not even its title bar. It keeps sph_layout_panel_keep of its font
+ * now, the HUD and the inspector leaving out (and counting) the rows that no longer fit; half the column at
+ * most, so a small window still shows the HUD's first rows. */
+Test(render_layout, the_parameter_panel_keeps_room_below_the_hud_and_the_inspector, .timeout = 120)
+{
+    const float font_px = 15; /* the panel's font (SPH_PANEL_FONT_PX, src/panel/panel.h), a window of scale 1 */
+    const float keep = sph_layout_panel_keep(font_px);
+    cr_assert_gt(keep, 8 * font_px, "the title bar, the save row and a few rows of widgets");
+    static const int size[][2] = {{1024, 720}, {1280, 800}, {800, 600}};
+    for (int k = 0; k < 3; k++) {
+        const int w = size[k][0], h = size[k][1];
+        float below = check_hud_fits("lessons/11-incompressible/lesson.ini", SPH_PSOLVER_DFSPH, true, 0, w, h, false,
+                                     keep);
+        cr_expect_geq(below, fminf(keep, 0.5f * (float)h), "%dx%d: the panel gets %.0f px, wants %.0f", w, h, below,
+                      keep);
+    }
+    /* a small window: the panel takes half the column at most, the HUD keeps the rest */
+    float below = check_hud_fits("lessons/05-spatial-hash/lesson.ini", -1, true, 7, 640, 400, false, 2.0f * keep);
+    cr_expect_leq(below, 0.5f * 400 + 8, "640x400: the panel took %.0f px of 400", below);
+    cr_expect_geq(below, 0.5f * 400 - 8, "640x400: the panel got %.0f px of 400", below);
 }
 
 Test(render_layout, hud_long_lines_wrap_and_rows_that_cannot_fit_are_counted)

@@ -224,6 +224,37 @@ Test(render_overlay, forces_draw_arrows_along_the_accelerations)
     sph_sim_destroy(sim);
 }
 
+/* Wall particles ([domain] wall_model = particles) never move: their
+ * accelerations are never integrated, so an arrow on one means nothing.
+ * No arrow may start at a wall particle, and the fluid still gets its own. */
+Test(render_overlay, forces_skip_wall_particles)
+{
+    static const char *ini = "[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=0.3 0.3\n"
+                             "wall_model=particles\n[fluid a]\nmin=0 0\nmax=0.1 0.1\nspacing=0.02\n"
+                             "[kernels]\nh=0.04\n";
+    sph_sim *sim = test_sim(ini, 1);
+    sph_sim_step(sim);
+    uint32_t walls = 0;
+    for (uint32_t i = 0; i < sim->n; i++) walls += sph_is_wall(&sim->P, i);
+    cr_assert_gt(walls, 0, "the scene has wall particles");
+    cr_assert_lt(walls, sim->n, "and fluid particles");
+    sph_overlay ov = build(sim, SPH_OV_BIT(FORCES), -1);
+    cr_assert_gt(ov.n_lines, 0);
+    int gravity = 0;
+    for (int l = 0; l < ov.n_lines; l++) {
+        if (ov.lines[l].rgba == SPH_RGBA(90, 220, 90, 230)) gravity++;
+        for (uint32_t i = 0; i < sim->n; i++) {
+            if (!sph_is_wall(&sim->P, i)) continue;
+            bool at = fabsf(ov.lines[l].a[0] - sim->P.pos[0][i]) < 1e-7f &&
+                      fabsf(ov.lines[l].a[1] - sim->P.pos[1][i]) < 1e-7f;
+            cr_assert(!at, "an arrow starts at wall particle %u (%g, %g)", i, sim->P.pos[0][i], sim->P.pos[1][i]);
+        }
+    }
+    cr_expect_eq(gravity, (int)(sim->n - walls), "one gravity arrow per fluid particle");
+    sph_overlay_free(&ov);
+    sph_sim_destroy(sim);
+}
+
 Test(render_overlay, colour_fields_and_maps)
 {
     sph_sim *sim = test_sim("[scene]\neffects=gravity\n[domain]\nmax=1 1\n[fluid a]\nmax=0.2 0.2\nspacing=0.05\n", 1);

@@ -1,6 +1,7 @@
-/* Scene files: defaults and the INI parser (libinih); the key table is in sph_scene_keys.c, the checks of a
- * scene as a whole in sph_scene_validate.c. */
+/* Scene files: the INI parser (libinih) and --set; the key table is in sph_scene_keys.c, one value's parsing
+ * and the defaults in sph_scene_values.c, the checks of a scene as a whole in sph_scene_validate.c. */
 #include "sph_scene.h"
+#include "sph_scene_values.h"
 #include "sph_obstacles.h"
 #include "sph_memory.h"
 #include "sph_names.h"
@@ -19,49 +20,20 @@
 
 static const char *const known_sections[] = {"scene", "domain", "physics", "kernels", "time", "search", "interaction", "compute"};
 
-/* ---- values ------------------------------------------------------------- */
+/* ---- the named-section groups' records (the table: sph_scene_values.c) ----- */
 
-/* Sections that name a record of a list: [fluid NAME] blocks and
- * [obstacle NAME]s. Both are parsed by the same code through this table. */
-typedef struct group {
-    const char *kind, *noun, *example; /* "fluid", "fluid block", "[fluid pool]" */
-    size_t size, name_off, line_off, origin_off, items_off, count_off;
-    int max, name_max;
-} group;
-#define GROUP(T, field, n, max, name_max)                                                                      \
-    sizeof(T), offsetof(T, name), offsetof(T, line), offsetof(T, origin), offsetof(sph_scene_def, field),      \
-        offsetof(sph_scene_def, n), max, name_max
-static const group groups[] = {
-    {"fluid", "fluid block", "[fluid pool]", GROUP(sph_block_def, blocks, n_blocks, SPH_MAX_BLOCKS, SPH_BLOCK_NAME_MAX)},
-    {"obstacle", "obstacle", "[obstacle rock]",
-     GROUP(sph_obstacle_def, obstacles, n_obstacles, SPH_MAX_OBSTACLES, SPH_OBSTACLE_NAME_MAX)},
-};
-#undef GROUP
-#define N_GROUPS (int)(sizeof groups / sizeof groups[0])
-
-/* The group a section header names ("fluid", "fluid pool", "obstacle.rock"), or NULL. */
-static const group *section_group(const char *section)
-{
-    for (int g = 0; g < N_GROUPS; g++) {
-        size_t n = strlen(groups[g].kind);
-        if (strncmp(section, groups[g].kind, n) != 0) continue; /* before reading section[n]: it may be shorter */
-        char c = section[n];
-        if (c == '\0' || c == ' ' || c == '.' || c == '\t') return &groups[g];
-    }
-    return NULL;
-}
-#define is_fluid_section(section) (section_group(section) != NULL)
+#define is_fluid_section(section) (sph_scene_section_group(section) != NULL)
 
 /* "fluid pool", "fluid.pool" and "fluid   pool" all name the block "pool". */
 static const char *fluid_block_name(const char *section)
 {
-    const char *p = section + strlen(section_group(section)->kind);
+    const char *p = section + strlen(sph_scene_section_group(section)->kind);
     while (*p == ' ' || *p == '.' || *p == '\t') p++;
     return p;
 }
 
 /* Record r of the group's list, its count, and the parts every record has. */
-static char *group_item(const group *g, sph_scene_def *def, int r)
+static char *group_item(const sph_scene_group *g, sph_scene_def *def, int r)
 {
     return (char *)def + g->items_off + (size_t)r * g->size;
 }
@@ -69,226 +41,6 @@ static char *group_item(const group *g, sph_scene_def *def, int r)
 #define item_name(g, rec) ((char *)(rec) + (g)->name_off)
 #define item_line(g, rec) ((int *)((char *)(rec) + (g)->line_off))
 #define item_origin(g, rec) ((sph_origin *)((char *)(rec) + (g)->origin_off))
-
-static void range_text(const sph_key *k, char *out, size_t n)
-{
-    if (k->type == SPH_KEY_CHOICE || k->type == SPH_KEY_KERNEL || k->type == SPH_KEY_FLAGS) {
-        size_t used = (size_t)snprintf(out, n, "%s", k->type == SPH_KEY_FLAGS ? "a list of (or none): " : "one of: ");
-        for (int i = 0; i < k->n_choices && used < n; i++)
-            used += (size_t)snprintf(out + used, n - used, "%s%s", i ? ", " : "", k->choices[i]);
-        return;
-    }
-    if (k->type == SPH_KEY_STRING) {
-        snprintf(out, n, "any text up to 63 characters");
-        return;
-    }
-    const char *unit = k->unit && *k->unit ? k->unit : "";
-    const char *what = k->type == SPH_KEY_VEC || k->type == SPH_KEY_POINT ? "2 or 3 numbers, each " : "";
-    snprintf(out, n, "%s%s %g and %s %g%s%s", what, k->min_open ? "above" : "from", k->min,
-             k->max_open ? "below" : "up to", k->max, *unit ? " " : "", unit);
-}
-
-typedef struct where {
-    const char *file;
-    int line;          /* > 0: a file line; -1: --set */
-    const char *section;
-} where;
-
-static void where_text(const where *w, char *out, size_t n)
-{
-    if (w->line > 0)
-        snprintf(out, n, "%s:%d", w->file, w->line);
-    else
-        snprintf(out, n, "--set");
-}
-
-static sph_error_code bad_value(sph_error *err, sph_error_code code, const where *w, const sph_key *k,
-                                const char *value, const char *why)
-{
-    char loc[320], range[256];
-    where_text(w, loc, sizeof loc);
-    range_text(k, range, sizeof range);
-    return sph_fail(err, code, "%s: [%s] %s = '%.80s': %s (accepted: %s)", loc, w->section, k->name, value, why,
-                    range);
-}
-
-static bool parse_double(const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s) return false;
-    while (isspace((unsigned char)*end)) end++;
-    if (*end != '\0') return false;
-    *out = v;
-    return true;
-}
-
-static bool in_range(const sph_key *k, double v)
-{
-    if (!isfinite(v)) return false;
-    if (k->min_open ? !(v > k->min) : !(v >= k->min)) return false;
-    if (k->max_open ? !(v < k->max) : !(v <= k->max)) return false;
-    return true;
-}
-
-/* A stored float is compared with the bounds rounded to float as well, so a
- * bound such as 1e-4, which a float cannot hold exactly, is itself accepted. */
-static bool stored_in_range(const sph_key *k, float f)
-{
-    float lo = (float)k->min, hi = (float)k->max;
-    if (!isfinite(f)) return false;
-    if (k->min_open ? !(f > lo) : !(f >= lo)) return false;
-    if (k->max_open ? !(f < hi) : !(f <= hi)) return false;
-    return true;
-}
-
-static int find_choice(const sph_key *k, const char *s, size_t len)
-{
-    for (int i = 0; i < k->n_choices; i++)
-        if (strlen(k->choices[i]) == len && strncmp(k->choices[i], s, len) == 0) return i;
-    return -1;
-}
-
-/* why: "unknown choice", or "unknown effect 'word'", with the nearest choice for a typo. */
-static const char *unknown_choice(const sph_key *k, const char *what, const char *s, size_t len, char *why, size_t n)
-{
-    char word[64];
-    snprintf(word, sizeof word, "%.*s", (int)(len < 60 ? len : 60), s);
-    const char *near = NULL;
-    int near_d = 1 << 30;
-    for (int i = 0; i < k->n_choices; i++) {
-        const int d = sph_edit_distance(word, k->choices[i]);
-        if (sph_name_near(word, k->choices[i]) && d < near_d) near = k->choices[i], near_d = d;
-    }
-    /* a choice's word is the whole value, already quoted; an effect is one word of a list */
-    const bool quote = strcmp(what, "choice") != 0;
-    snprintf(why, n, "unknown %s%s%s%s%s%s%s", what, quote ? " '" : "", quote ? word : "", quote ? "'" : "",
-             near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "");
-    return why;
-}
-
-/* Parses one value into the field at `base + k->offset`; sets *ncomp for vectors. */
-static sph_error_code set_value(const sph_key *k, void *base, const char *value, const where *w, int *ncomp,
-                                sph_error *err)
-{
-    char *field = (char *)base + k->offset;
-    *ncomp = 1;
-    switch (k->type) {
-    case SPH_KEY_STRING:
-        if (strlen(value) > 63) return bad_value(err, SPH_ERR_RANGE, w, k, value, "too long");
-        snprintf(field, 64, "%s", value);
-        return SPH_ERR_OK;
-    case SPH_KEY_FLOAT: {
-        double v;
-        if (!parse_double(value, &v)) return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a number");
-        if (!in_range(k, v) || !stored_in_range(k, (float)v))
-            return bad_value(err, SPH_ERR_RANGE, w, k, value,
-                             in_range(k, v) ? "out of range once stored as a float" : "out of range");
-        *(float *)field = (float)v;
-        return SPH_ERR_OK;
-    }
-    case SPH_KEY_INT:
-    case SPH_KEY_UINT: {
-        double v;
-        if (!parse_double(value, &v) || v != floor(v))
-            return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a whole number");
-        if (!in_range(k, v)) return bad_value(err, SPH_ERR_RANGE, w, k, value, "out of range");
-        if (k->type == SPH_KEY_INT)
-            *(int *)field = (int)v;
-        else
-            *(uint32_t *)field = (uint32_t)v;
-        return SPH_ERR_OK;
-    }
-    case SPH_KEY_VEC:
-    case SPH_KEY_POINT: {
-        double v[3] = {0, 0, 0};
-        int n = 0;
-        const char *p = value;
-        while (*p) {
-            while (isspace((unsigned char)*p) || *p == ',') p++;
-            if (!*p) break;
-            if (n == 3) return bad_value(err, SPH_ERR_PARSE, w, k, value, "more than 3 numbers");
-            char *end;
-            double d = strtod(p, &end);
-            if (end == p || (*end && !isspace((unsigned char)*end) && *end != ','))
-                return bad_value(err, SPH_ERR_PARSE, w, k, value, "not a list of numbers");
-            if (!in_range(k, d) || !stored_in_range(k, (float)d))
-                return bad_value(err, SPH_ERR_RANGE, w, k, value, "a component is out of range");
-            v[n++] = k->type == SPH_KEY_POINT ? d : (float)d;
-            p = end;
-        }
-        if (n < 2) return bad_value(err, SPH_ERR_PARSE, w, k, value, "needs 2 (2D) or 3 (3D) numbers");
-        if (k->type == SPH_KEY_POINT)
-            memcpy(field, v, sizeof v);
-        else
-            for (int c = 0; c < 3; c++) ((float *)field)[c] = (float)v[c];
-        *ncomp = n;
-        return SPH_ERR_OK;
-    }
-    case SPH_KEY_CHOICE:
-    case SPH_KEY_KERNEL: {
-        int c = find_choice(k, value, strlen(value));
-        char why[160];
-        if (c < 0)
-            return bad_value(err, SPH_ERR_PARSE, w, k, value,
-                             unknown_choice(k, "choice", value, strlen(value), why, sizeof why));
-        *(int *)field = c;
-        return SPH_ERR_OK;
-    }
-    case SPH_KEY_FLAGS: {
-        unsigned bits = 0;
-        const char *p = value;
-        while (*p) {
-            while (isspace((unsigned char)*p) || *p == ',') p++;
-            if (!*p) break;
-            const char *q = p;
-            while (*q && !isspace((unsigned char)*q) && *q != ',') q++;
-            if (!(q - p == 4 && strncmp(p, "none", 4) == 0)) {
-                int c = find_choice(k, p, (size_t)(q - p));
-                char why[160];
-                if (c < 0)
-                    return bad_value(err, SPH_ERR_PARSE, w, k, value,
-                                     unknown_choice(k, "effect", p, (size_t)(q - p), why, sizeof why));
-                bits |= 1u << c;
-            }
-            p = q;
-        }
-        *(unsigned *)field = bits;
-        return SPH_ERR_OK;
-    }
-    }
-    return SPH_ERR_OK;
-}
-
-/* ---- defaults ----------------------------------------------------------- */
-
-/* kind: the group whose keys to set ("fluid", "obstacle"), NULL: the scene's own keys. */
-static void apply_defaults(void *base, const char *kind)
-{
-    for (int i = 0; i < sph_scene_key_count; i++) {
-        const sph_key *k = &sph_scene_keys[i];
-        const group *g = section_group(k->section);
-        if (kind ? !g || strcmp(g->kind, kind) != 0 : g != NULL) continue;
-        where w = {"(defaults)", 0, k->section};
-        int nc;
-        sph_error e;
-        if (set_value(k, base, k->def, &w, &nc, &e) != SPH_ERR_OK) abort(); /* table bug */
-    }
-}
-
-void sph_scene_block_defaults(void *block, const char *kind)
-{
-    apply_defaults(block, kind);
-}
-
-sph_scene_def sph_default_scene_def(void)
-{
-    sph_scene_def def;
-    memset(&def, 0, sizeof def);
-    apply_defaults(&def, NULL);
-    return def;
-}
 
 /* ---- parsing ------------------------------------------------------------ */
 
@@ -310,7 +62,7 @@ typedef struct parse_ctx {
 
 static const sph_key *find_key(const char *section, const char *name, int *index)
 {
-    const group *g = section_group(section);
+    const sph_scene_group *g = sph_scene_section_group(section);
     for (int i = 0; i < sph_scene_key_count; i++) {
         const sph_key *k = &sph_scene_keys[i];
         bool match = strcmp(k->section, g ? g->kind : section) == 0;
@@ -366,7 +118,7 @@ static int fluid_slot(int key_index)
     return slot;
 }
 
-static char *find_block(const group *g, sph_scene_def *def, const char *name)
+static char *find_block(const sph_scene_group *g, sph_scene_def *def, const char *name)
 {
     for (int b = 0; b < *group_count(g, def); b++)
         if (strcmp(item_name(g, group_item(g, def, b)), name) == 0) return group_item(g, def, b);
@@ -377,9 +129,9 @@ static char *find_block(const group *g, sph_scene_def *def, const char *name)
 static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, int header_line,
                                 const char *section, const char *name, const char *value, sph_error *err)
 {
-    where w = {file, line, section};
+    sph_scene_where w = {file, line, section};
     char loc[320];
-    where_text(&w, loc, sizeof loc);
+    sph_scene_where_text(&w, loc, sizeof loc);
     char hint[96];
     if (!*section) { /* a key above every header: name the sections that have it */
         char homes[160] = "";
@@ -403,7 +155,7 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
         char keys[512];
         size_t used = 0;
         keys[0] = '\0';
-        const group *g = section_group(section);
+        const sph_scene_group *g = sph_scene_section_group(section);
         for (int i = 0; i < sph_scene_key_count && used < sizeof keys; i++) {
             const sph_key *c = &sph_scene_keys[i];
             if (strcmp(c->section, g ? g->kind : section) == 0)
@@ -433,7 +185,7 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
                         keys);
     }
     int ncomp;
-    const group *g = section_group(section);
+    const sph_scene_group *g = sph_scene_section_group(section);
     if (g) {
         const char *bname = fluid_block_name(section);
         int slot = fluid_slot(index), *count = group_count(g, def);
@@ -470,7 +222,7 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
                                     section, g->noun, g->name_max);
                 b = group_item(g, def, (*count)++);
                 memset(b, 0, g->size);
-                apply_defaults(b, g->kind);
+                sph_scene_block_defaults(b, g->kind);
                 snprintf(item_name(g, b), 48, "%s", bname);
                 *item_line(g, b) = header_line > 0 ? header_line : line;
             }
@@ -488,7 +240,7 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
                                 "%s: duplicate key '%s' in [%.60s] (first set on line %d); give each %s its own "
                                 "name, e.g. %s",
                                 loc, name, section, origin[slot].line, g->noun, g->example);
-            sph_error_code c = set_value(k, targets[t], value, &w, &ncomp, err);
+            sph_error_code c = sph_scene_value_set(k, targets[t], value, &w, &ncomp, err);
             if (c) return c;
             origin[slot].line = line;
             origin[slot].ncomp = ncomp;
@@ -498,7 +250,7 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
     if (line > 0 && def->origin[index].line > 0)
         return sph_fail(err, SPH_ERR_DUPLICATE_KEY, "%s: duplicate key '%s' in [%s] (first set on line %d)", loc,
                         name, section, def->origin[index].line);
-    sph_error_code c = set_value(k, def, value, &w, &ncomp, err);
+    sph_error_code c = sph_scene_value_set(k, def, value, &w, &ncomp, err);
     if (c) return c;
     def->origin[index].line = line;
     def->origin[index].ncomp = ncomp;
@@ -519,9 +271,9 @@ static int on_key(void *user, const char *section, const char *name, const char 
  * once, whatever separator ("fluid a", "fluid.a", "fluid  a") names it. */
 static bool fluid_header(parse_ctx *ctx, const char *header, char *str, int num)
 {
-    const group *g = section_group(header);
+    const sph_scene_group *g = sph_scene_section_group(header);
     const char *bname = fluid_block_name(header);
-    const bool fluid = g == &groups[0];
+    const bool fluid = g == &sph_scene_groups[0];
     size_t len = strlen(bname);
     if (len > (size_t)g->name_max) {
         ctx->code = sph_fail(ctx->err, SPH_ERR_RANGE,
@@ -542,7 +294,7 @@ static bool fluid_header(parse_ctx *ctx, const char *header, char *str, int num)
         }
     for (int k = 0; k < ctx->n_sections; k++) {
         const char *seen = ctx->sections[k];
-        if (section_group(seen) != g || strcmp(fluid_block_name(seen), bname) != 0) continue;
+        if (sph_scene_section_group(seen) != g || strcmp(fluid_block_name(seen), bname) != 0) continue;
         bool same = strcmp(seen, header) == 0;
         ctx->code = sph_fail(ctx->err, SPH_ERR_DUPLICATE_KEY,
                              "%s:%d: [%.60s] opens the %s '%s' again (first as [%.60s] on line %d)%s; give "
@@ -719,7 +471,7 @@ sph_error_code sph_scene_set(sph_scene_def *def, const char *assignment, sph_err
     size_t sl = strlen(left);
     while (sl > 0 && isspace((unsigned char)left[sl - 1])) left[--sl] = '\0';
     /* "obstacle.rock" names the block [obstacle rock]: written so in the messages */
-    const group *g = section_group(left);
+    const sph_scene_group *g = sph_scene_section_group(left);
     if (g && left[strlen(g->kind)] == '.') left[strlen(g->kind)] = ' ';
     return apply_key(def, def->file, -1, 0, left, key, value, err);
 }
@@ -754,7 +506,7 @@ const char *sph_scene_ignored_z(const sph_scene_def *def, char *buf, size_t n)
     for (int i = 0; i < sph_scene_key_count; i++) {
         const sph_key *k = &sph_scene_keys[i];
         if (k->type != SPH_KEY_VEC && k->type != SPH_KEY_POINT) continue;
-        const group *g = section_group(k->section);
+        const sph_scene_group *g = sph_scene_section_group(k->section);
         char loc[300];
         if (g) {
             int slot = fluid_slot(i);
@@ -786,7 +538,7 @@ sph_error_code sph_scene_check_components(const sph_scene_def *def, sph_error *e
     for (int i = 0; i < sph_scene_key_count; i++) {
         const sph_key *k = &sph_scene_keys[i];
         if (k->type != SPH_KEY_VEC && k->type != SPH_KEY_POINT) continue;
-        const group *g = section_group(k->section);
+        const sph_scene_group *g = sph_scene_section_group(k->section);
         if (g) {
             int slot = fluid_slot(i);
             for (int b = 0; b < *group_count(g, def); b++) {

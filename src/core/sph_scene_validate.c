@@ -1,8 +1,8 @@
 /* Validation of a scene as a whole (sph_scene_validate): what no single
  * key's range can say: the domain and the blocks in it, the keys that must
  * go together, the particle count; then the limits of sph_scene_limits.c.
- * Each error names the file and line of the value it refuses. The parser,
- * which checks each value on its own, is sph_scene.c. */
+ * Each error names the file and line of the value it refuses. The parser
+ * is sph_scene.c; each value on its own is checked in sph_scene_values.c. */
 #include "sph_scene.h"
 #include "sph_obstacles.h"
 #include "sph_memory.h"

@@ -9,6 +9,7 @@
 
 #include "overlay_internal.h"
 #include "sph_search.h"
+#include "sph_walls.h"
 
 const char *const sph_overlay_names[SPH_OV_COUNT] = {
 #define SPH_OVERLAY_NAME(id, name, about) name,
@@ -430,8 +431,14 @@ static void build_forces(builder *b, const sph_sim *sim, const sph_overlay_opts 
             gn += g[d] * g[d];
         }
     gn = sqrtf(gn);
+    /* wall particles never move: their accelerations are never integrated,
+     * so they get no arrow and do not set the scale; the subset is taken over
+     * the particles that move */
+    uint32_t n_moving = 0;
+    for (uint32_t i = 0; i < sim->n; i++) n_moving += !sph_is_wall(P, i);
     int max_arrows = o->max_arrows > 0 ? o->max_arrows : 400;
-    uint32_t stride = sim->n > (uint32_t)max_arrows ? (sim->n + (uint32_t)max_arrows - 1) / (uint32_t)max_arrows : 1;
+    uint32_t stride =
+        n_moving > (uint32_t)max_arrows ? (n_moving + (uint32_t)max_arrows - 1) / (uint32_t)max_arrows : 1;
     /* every acceleration field of the registry the scene has, then gravity */
     float *const *acc[SPH_FIELD_COUNT];
     uint32_t col[SPH_FIELD_COUNT + 1];
@@ -443,8 +450,11 @@ static void build_forces(builder *b, const sph_sim *sim, const sph_overlay_opts 
         }
     float ref = gn;
     if (!(ref > 0)) { /* no gravity: the largest drawn acceleration sets the scale */
-        for (uint32_t i = 0; i < sim->n; i += stride)
+        for (uint32_t i = 0, m = 0; i < sim->n; i++) {
+            if (sph_is_wall(P, i)) continue;
+            if (m++ % stride) continue;
             for (int k = 0; k < n_acc; k++) ref = fmaxf(ref, sph_ov_vec_norm(acc[k], dim, i));
+        }
     }
     if (!(ref > 0)) {
         note(ov, "no forces to draw");
@@ -452,8 +462,9 @@ static void build_forces(builder *b, const sph_sim *sim, const sph_overlay_opts 
     }
     ov->arrow_m_per_acc = 0.8f * h / ref;
     const float cap = 2.5f * h;
-    for (uint32_t i = 0; i < sim->n; i++) {
-        if (i % stride && (int32_t)i != o->selected) continue;
+    for (uint32_t i = 0, m = 0; i < sim->n; i++) {
+        if (sph_is_wall(P, i)) continue;
+        if (m++ % stride && (int32_t)i != o->selected) continue;
         float x[3];
         particle_pos(sim, i, x, false);
         if (dim == 3 && fabsf(x[2] - slice_zm) > 0.5f * h && (int32_t)i != o->selected) continue;

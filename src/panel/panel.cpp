@@ -79,7 +79,7 @@ extern "C" sph_panel *sph_panel_create(SDL_Window *win, void *gl_context, const 
     FILE *f = font_path ? std::fopen(font_path, "rb") : NULL;
     if (f) {
         std::fclose(f);
-        io.Fonts->AddFontFromFileTTF(font_path, 15.0f);
+        io.Fonts->AddFontFromFileTTF(font_path, SPH_PANEL_FONT_PX);
     }
     p->sdl_ok = ImGui_ImplSDL2_InitForOpenGL(win, gl_context);
     p->gl_ok = p->sdl_ok && ImGui_ImplOpenGL3_Init("#version 330 core");

@@ -20,6 +20,10 @@
 extern "C" {
 #endif
 
+/* [px, window units] the panel's font size; the side column keeps room for
+ * the panel's first rows at it (sph_layout_panel_keep, src/render/layout.h). */
+#define SPH_PANEL_FONT_PX 15.0f
+
 struct SDL_Window;
 union SDL_Event;
 typedef struct sph_panel sph_panel;

@@ -378,6 +378,9 @@ int cmd_view(int argc, char **argv)
         /* the HUD, timings, text panel and parameter panel sit in a column beside the view */
         const bool column = w.params_open || (w.v.overlays & (SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS))) || w.v.panel_lines;
         w.v.side_px = column ? sph_layout_side_width(dw, dh) : 0;
+        /* the parameter panel keeps its first rows below the HUD and the inspector (drawable pixels) */
+        w.v.panel_keep_px =
+            w.params && w.params_open ? (int)ceilf(sph_layout_panel_keep(SPH_PANEL_FONT_PX) * scale) : 0;
         /* the push/pull reach at the cursor, over the view (2D: in the plane; 3D: on the slice) */
         w.v.ring_radius = 0;
         const sph_camera *cam = sph_renderer_camera(w.r);

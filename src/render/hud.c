@@ -92,7 +92,7 @@ void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
     /* the text panel below keeps room for its rows at the tightest spacing, up to half the column */
     float room[4];
     sph_layout_hud_room(r->cam.rect, r->side, r->side_used, v->panel ? sph_hud_panel_reserve(v->panel_lines, fs) : 0,
-                        room);
+                        (float)v->panel_keep_px, room);
     const float x0 = room[0], y0 = room[1], max_w = room[2], max_h = room[3];
     const float name_w = sph_font_width(&r->font, SPH_TEXT_SMALL, ">18 density_gradient ");
     const float ms_w = sph_font_width(&r->font, SPH_TEXT_SMALL, " 00.000 ms");
@@ -131,12 +131,12 @@ void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v)
     }
 }
 
-void hud_panel(sph_renderer *r, const char (*lines)[128], int n)
+void hud_panel(sph_renderer *r, const char (*lines)[128], int n, int keep_px)
 {
     /* in the side column, below the HUD, when there is one (the window); else at the view's top-right corner */
     const bool side = r->side[2] > 0;
     float room[4];
-    sph_layout_hud_room(r->cam.rect, r->side, r->side_used, 0, room);
+    sph_layout_hud_room(r->cam.rect, r->side, r->side_used, 0, (float)keep_px, room);
     float x0 = room[0], max_w = room[2];
     const float y0 = room[1], max_h = room[3];
     if (!side) max_w *= 0.5f; /* the right half of the view: the HUD has the left */

@@ -63,13 +63,17 @@ int sph_layout_side_width(int w, int h)
     return want < most ? want : most;
 }
 
-void sph_layout_hud_room(const int view[4], const int side[4], float side_used, float reserve, float room[4])
+void sph_layout_hud_room(const int view[4], const int side[4], float side_used, float reserve, float keep,
+                         float room[4])
 {
     if (side[2] > 0) {
         room[0] = (float)side[0] + 4;
         room[1] = (float)side[1] + (side_used > 0 ? side_used + 4 : (float)view[1]);
         room[2] = (float)side[2] - 8;
-        room[3] = (float)(side[1] + side[3]) - 4 - room[1];
+        /* the parameter panel's least height first: the HUD and the text panel shrink (their rows left out and
+         * counted), the panel's widgets would otherwise get a strip of a title bar (~30 px) */
+        const float bottom = (float)(side[1] + side[3]) - fminf(fmaxf(keep, 0), 0.5f * (float)side[3]);
+        room[3] = fmaxf(bottom - 4 - room[1], 0);
         room[3] -= fminf(reserve, 0.5f * room[3]);
     } else {
         room[0] = (float)view[0] + 4;

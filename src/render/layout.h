@@ -59,8 +59,20 @@ typedef struct sph_hud_fit {
 /* The box the HUD or the text panel may take, room = x, y (top-left), width,
  * height [px]: in the side column below the side_used pixels already drawn
  * there (the window), else inside the view (`sphlab render`, side width 0).
- * reserve [px]: kept free below it for the text panel, half the room at most. */
-void sph_layout_hud_room(const int view[4], const int side[4], float side_used, float reserve, float room[4]);
+ * keep [px]: kept free at the column's bottom for the window's parameter panel
+ * (sph_layout_panel_keep; 0: none), half the column at most; reserve [px]:
+ * kept free below the box for the text panel, half of what keep leaves at most.
+ * What no longer fits, the HUD and the text panel leave out and count. */
+void sph_layout_hud_room(const int view[4], const int side[4], float side_used, float reserve, float keep,
+                         float room[4]);
+/* The least height [px] of the window's parameter panel (Dear ImGui) at its font size font_px [px]: seven
+ * ImGui rows (the font, 2 x 3 px frame padding and 4 px item spacing: about 1.65 fonts each), so its title
+ * bar, the save row and about four rows of widgets; it scrolls inside for the rest. More took the last
+ * timing rows of lessons 7, 8, 9 and 11 in a 1024 x 720 window (tests/test_render_layout.c). */
+static inline float sph_layout_panel_keep(float font_px)
+{
+    return 7.0f * 1.65f * font_px;
+}
 /* The reserve [px] for a text panel of n rows at the small size fs [px] (0 without one). */
 static inline float sph_hud_panel_reserve(int n, float fs)
 {

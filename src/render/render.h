@@ -50,6 +50,10 @@ typedef struct sph_view {
      * parameter panel; sph_layout_side_width); 0: none, they sit over the
      * view's top corners (sphlab render). */
     int side_px;
+    /* [px] the least height the window's parameter panel keeps at the column's
+     * bottom (sph_layout_panel_keep; the HUD and the text panel shrink for it);
+     * 0: no panel. */
+    int panel_keep_px;
     /* A circle of radius ring_radius [m] about ring_at [m] in the x-y plane
      * (the window's push/pull reach at the cursor); radius 0: none. */
     float ring_at[3];

@@ -653,7 +653,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
                                     (float)(r->side[1] + r->side[3]), SPH_RGBA(24, 26, 32, 255));
     if (L & (SPH_OV_BIT(HUD) | SPH_OV_BIT(TIMINGS))) hud_draw(r, sim, v);
     if (legend_w) hud_legend(r, sim, f, lo, hi);
-    if (v->panel && v->panel_lines > 0) hud_panel(r, v->panel, v->panel_lines);
+    if (v->panel && v->panel_lines > 0) hud_panel(r, v->panel, v->panel_lines, v->panel_keep_px);
     if (!canvas_flush(r)) goto oom;
     gl->BindVertexArray(0);
     GLenum e = gl->GetError();

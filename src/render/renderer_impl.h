@@ -90,8 +90,9 @@ bool hud_layout(sph_renderer *r, const sph_sim *sim, unsigned layers, int side_w
 /* The overlay builder's notes, upwards from the bottom of the view rc. */
 void hud_notes(sph_renderer *r, const int rc[4]);
 void hud_draw(sph_renderer *r, const sph_sim *sim, const sph_view *v);
-/* A box of text lines: in the side column below the HUD, or at the view's top-right corner without one. */
-void hud_panel(sph_renderer *r, const char (*lines)[128], int n);
+/* A box of text lines: in the side column below the HUD, or at the view's top-right corner without one;
+ * keep_px [px] left free at the column's bottom for the parameter panel (sph_view's panel_keep_px). */
+void hud_panel(sph_renderer *r, const char (*lines)[128], int n, int keep_px);
 void hud_legend(sph_renderer *r, const sph_sim *sim, sph_color_field f, float lo, float hi);
 
 #endif

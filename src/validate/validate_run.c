@@ -84,6 +84,10 @@ static struct val_cost {
     double error;                /* the problem's error measure, NaN: none given */
 } costs[VAL_MAX_COSTS];
 static int ncosts;
+/* The pressure model the problem's runs used when it is not the equation of
+ * state (a user's copy of the scene, with pressure_solver), for the verdict:
+ * its line is otherwise the same as the shipped scene's. "" for eos. */
+static char model[96];
 
 static double cpu_seconds(void)
 {
@@ -103,6 +107,14 @@ val_clock val_clock_start(void)
 
 void val_cost_add(const char *label, const sph_sim *sim, val_clock since)
 {
+    const sph_scene_def *def = &sim->def;
+    if (!*model && def->pressure_solver != SPH_PSOLVER_EOS) {
+        /* the walls' pressure under a solver only where there are wall particles */
+        bool walls = val_fluid_count(sim) < (double)sim->n;
+        snprintf(model, sizeof model, "pressure_solver = %s%s%s", sph_pressure_solver_names[def->pressure_solver],
+                 walls ? ", solver_wall_pressure = " : "",
+                 walls ? sph_solver_wall_pressure_names[def->solver_wall_pressure] : "");
+    }
     if (ncosts >= VAL_MAX_COSTS) return;
     struct val_cost *k = &costs[ncosts++];
     snprintf(k->label, sizeof k->label, "%s", label);
@@ -200,6 +212,9 @@ static const char *load_text(void)
 
 int val_verdict(const val_ctx *c, const val_problem *p, bool outputs_ok, bool pass, const char *fmt, ...)
 {
+    char run_with[128] = "";
+    if (*model) snprintf(run_with, sizeof run_with, " (run with %s)", model);
+    model[0] = '\0'; /* the next problem (validate all) starts without */
     if (!outputs_ok) {
         plot_out_abort();
         fprintf(stderr, "sphlab validate %s: the run or its outputs failed (above); no verdict\n", p->name);
@@ -241,7 +256,7 @@ int val_verdict(const val_ctx *c, const val_problem *p, bool outputs_ok, bool pa
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    printf("validate %s: %s: %s%s\n", p->name, pass ? "PASS" : "FAIL", text,
+    printf("validate %s: %s: %s%s%s\n", p->name, pass ? "PASS" : "FAIL", text, run_with,
            c->quick ? " [--quick: one small resolution and a short run, to try the command; the targets are meant "
                       "for the default resolutions, so a FAIL here says little]"
                     : "");
