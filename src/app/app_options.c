@@ -62,11 +62,13 @@ const app_opt app_options[] = {
      RUN | RENDER | VIEW, CHOICE(backend, "cpu|gl")},
     /* run's outputs */
     {"--stats", NULL, "FILE.csv",
-     "one row per step: step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed,\n"
+     "one row per step: step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed\n"
+     "(rho_*: with summation, the density pass's sums at x + dt v, before any pressure acts),\n"
      "then the milliseconds of each pass in the pipeline, then with [obstacle NAME]s\n"
      "the force the fluid exerts on each, obstacle_NAME_fx,obstacle_NAME_fy(,_fz) [N, N/m in 2D],\n"
      "then with pressure_solver pcisph or dfsph: iterations,density_error,div_iterations,divergence_error,capped,stopped\n"
-     "(capped and stopped: running totals of the solves since step 0 that reached the iteration cap or were\n"
+     "(density_error: the solver's largest (rho - rho_rest)/rho_rest at the step's end;\n"
+     "capped and stopped: running totals of the solves since step 0 that reached the iteration cap or were\n"
      "stopped rising; DFSPH's two solves count apart),\n"
      "then with a hash table, its health: hash_keys,hash_load,hash_occupied,hash_colliding,hash_longest_run,\n"
      "hash_candidates,hash_share (empty with --backend gl,\n"

@@ -74,7 +74,7 @@ const sph_key sph_scene_keys[] = {
      "near a wall miss none of their support and a lattice's first row reads its interior's density; reflect: only the seed's damped "
      "reflection (particles near walls lack neighbours and sink into them); particles: layers of fixed wall "
      "particles outside the box, on the fluid's lattice, whose pressure is extrapolated from the fluid (Adami, Hu "
-     "& Adams 2012)"},
+     "& Adams 2012; under pcisph and dfsph only with solver_wall_pressure = extrapolated)"},
     {"domain", "wall_force", SPH_KEY_CHOICE, S(wall_force), 0, 0, 0, 0, CH(sph_wall_force_names), "", "energy",
      "with wall_model = volume, how the hidden lattice pushes: energy: -(p_i / rho_i^2) grad(rho0 H), the "
      "gradient of the walls' density term (conserves energy; a lattice's overpressure pushes the first rows into "
@@ -170,7 +170,8 @@ const sph_key sph_scene_keys[] = {
      "eos: pressure from the equation of state (weakly compressible, dt bound by the speed of sound); pcisph: "
      "predictive-corrective iterations (Solenthaler & Pajarola 2009); dfsph: divergence-free and constant-density "
      "solves (Bender & Koschier 2015/2017); both iterate until solver_tolerance, and dt follows the flow speed "
-     "(walls: volume or reflect)"},
+     "(walls: volume, reflect or particles, obstacles too; wall particles push back with the fluid particle's "
+     "pressure alone, or with their own under solver_wall_pressure = extrapolated)"},
     {"physics", "solver_tolerance", SPH_KEY_FLOAT, S(solver_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
      "pcisph, dfsph: the largest relative density error (rho - rho_rest) / rho_rest a step may end with"},
     {"physics", "solver_max_iterations", SPH_KEY_INT, S(solver_max_iterations), 1, 10000, 0, 0, NULL, 0, "", "100",
@@ -191,8 +192,8 @@ const sph_key sph_scene_keys[] = {
      "backend too"},
     {"physics", "solver_wall_pressure", SPH_KEY_CHOICE, S(solver_wall_pressure), 0, 0, 0, 0,
      CH(sph_solver_wall_pressure_names), "", "none",
-     "pcisph, dfsph with wall particles: none: the wall particles hold no pressure and push back with the fluid "
-     "particle's own (the row at a wall then reads twice its pressure); extrapolated: after each iteration each "
+     "pcisph, dfsph with wall particles: none (the default): the wall particles hold no pressure and push back "
+     "with the fluid particle's own (the row at a wall then reads twice its pressure); extrapolated: after each iteration each "
      "wall particle takes the pressure of its fluid neighbours with the hydrostatic term (Adami, Hu & Adams 2012, "
      "eq. 27), so the pair term is symmetric at the wall and the row there reads its own pressure; on the GL "
      "backend too"},
