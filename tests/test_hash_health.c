@@ -234,7 +234,7 @@ Test(hash_health, hud_rows_and_step_window)
         hash |= strncmp(lines[i], "hash: 400 keys, load 1.00, ", 27) == 0;
         search |= strncmp(lines[i], "search: ", 8) == 0 && strstr(lines[i], "candidates per particle") &&
                   strstr(lines[i], "% within h");
-        timing |= strstr(lines[i], "ms/step (mean of last 60)") && strstr(lines[i], "123 steps/s") &&
+        timing |= strstr(lines[i], "ms/step (mean of 60)") && strstr(lines[i], "123 steps/s") &&
                   strstr(lines[i], "60 frames/s");
     }
     cr_expect(hash && search && timing, "HUD rows missing (%d lines, first hash row wanted)", n);

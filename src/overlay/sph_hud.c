@@ -60,7 +60,8 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
         /* the density pass sums at x + dt v: under a solver that is before its pressure acts, so it reads above
          * the tolerance the solver's own row says was met (solver_reached.c, docs/accuracy.md section 8) */
         if (solver) {
-            HUD_LINE("density before the pressure, at x + dt v: rho_max/rho_rest - 1 = %+.2f %%, rho_rest = %.5g",
+            HUD_LINE("fluid's density before the pressure, at x + dt v: (rho_max - rho_rest)/rho_rest = %+.2f %%, "
+                     "rho_rest = %.5g",
                      100 * e, held); /* the next row names the solver */
         } else {
             HUD_LINE("fluid's density error (rho_max - %s)/%s = %+.2f %%, %s = %.5g (%s)", r0, r0, 100 * e, r0, held,
@@ -129,7 +130,7 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
         char fps[32] = "";
         if (info->frames_per_s > 0) snprintf(fps, sizeof fps, "   %.0f frames/s", info->frames_per_s);
         if (ms == ms) {
-            HUD_LINE("%.3g ms/step (mean of last %d)   %.0f steps/s%s", ms, window, info->steps_per_s, fps);
+            HUD_LINE("%.3g ms/step (mean of %d)   %.0f steps/s%s", ms, window, info->steps_per_s, fps);
         } else {
             HUD_LINE("%.0f steps/s%s", info->steps_per_s, fps);
         }

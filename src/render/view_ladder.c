@@ -132,7 +132,7 @@ int view_ladder_lines(const view_ladder *l, const sph_sim *sim, char lines[][128
     if (ms > 0 && sim->n) {
         /* the cost per particle-step taken as constant: N_60 = (1000/60 ms) / (ms / N) */
         const double per = ms / sim->n, n60 = (1000.0 / 60.0) / per;
-        LADDER_LINE("N at 60 steps/s ~ %.3g (%.3g us per particle-step, linear)", n60, 1e3 * per);
+        LADDER_LINE("N at 60 steps/s ~ %.3g (%.3g us/particle-step)", n60, 1e3 * per); /* one row at 1024 px */
     }
     if (l->validated) {
         const sph_compare_result *r = &l->val;
