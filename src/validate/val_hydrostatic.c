@@ -130,14 +130,15 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
     FILE *f = ok ? val_csv(c, "hydrostatic.csv") : NULL;
     ok = ok && f;
     if (f) {
-        /* kind 0: max speed over time; kind 1: the last frame's centre line */
+        /* kind speed: x = t [s], value = the largest speed [m/s]; kind centre_line: the last frame's centre line,
+         * x = y [m], value and exact = p / (rho0 g H) [1] (a word, so the file says what each row is) */
         fprintf(f, "kind,resolution,x,value,exact\n");
         for (int r = 0; r < done; r++) {
             const hyd_obs *o = &obs[r];
             for (size_t i = 0; i < o->speed.n; i++)
-                fprintf(f, "0,%d,%.6f,%.6g,0\n", c->res[r], o->speed.x[i], o->speed.y[i]);
+                fprintf(f, "speed,%d,%.6f,%.6g,\n", c->res[r], o->speed.x[i], o->speed.y[i]);
             for (size_t i = 0; i < o->prof_y.n; i++)
-                fprintf(f, "1,%d,%.6f,%.6g,%.6g\n", c->res[r], o->prof_y.x[i], o->prof_y.y[i],
+                fprintf(f, "centre_line,%d,%.6f,%.6g,%.6g\n", c->res[r], o->prof_y.x[i], o->prof_y.y[i],
                         val_hydrostatic_p(&o->eos, o->g, o->H, o->prof_y.x[i]) / (o->rho0 * o->g * o->H));
         }
         ok = val_csv_close(c, f, "hydrostatic.csv");
