@@ -4,7 +4,8 @@
 // component of the colour field is its own per-instance attribute, read
 // from the field's buffer at offset d * N * 4 (the backend stores component d
 // of particle i at d * N + i). The colour is mapped here as sph_color_of does
-// on the CPU, through the same 256 viridis levels.
+// on the CPU, through the same 256 viridis levels, and a wall particle's
+// colour is dimmed as sph_color_dimmed does (the FIXED field's buffer).
 layout(location = 0) in vec2 a_corner;   // (-1,-1) .. (1,1)
 layout(location = 1) in float a_x;       // [m] per instance
 layout(location = 2) in float a_y;
@@ -12,6 +13,7 @@ layout(location = 3) in float a_z;       // 3D only
 layout(location = 4) in float a_v0;      // the colour field, per instance
 layout(location = 5) in float a_v1;      // its other components (vectors: the length is the value)
 layout(location = 6) in float a_v2;
+layout(location = 7) in float a_wall;    // 1: a fixed wall particle (read only where u_walls)
 
 // min and max of the field as ordered keys, from the backend's gpu_range.comp
 layout(std140, binding = 0) uniform Range { uvec4 u_keys; };
@@ -26,6 +28,7 @@ uniform int u_dim;
 uniform int u_comps;                     // 1: a scalar field; 2 or 3: a vector's length
 uniform int u_fixed;                     // 1: u_range instead of the keys
 uniform vec2 u_range;
+uniform int u_walls;                     // 1: the scene has wall particles, a_wall is bound
 
 out vec2 v_uv;
 out vec4 v_color;
@@ -65,6 +68,13 @@ void main()
     } else {
         int k = int(floor(clamp(t, 0.0, 1.0) * 255.0 + 0.5));
         v_color = texelFetch(u_cmap, ivec2(k, 0), 0);
+    }
+    if (u_walls != 0 && a_wall != 0.0) {
+        // sph_color_dimmed: 55 % of the way to grey 128, in integers as on the CPU,
+        // so both paths give the same bytes
+        ivec3 b = ivec3(round(v_color.rgb * 255.0));
+        b = (b * (100 - 55) + 128 * 55 + 50) / 100;
+        v_color = vec4(vec3(b) / 255.0, 1.0);
     }
     vec4 c = u_view * vec4(center, 1.0);
     v_center = c.xyz;

@@ -1,8 +1,8 @@
 /* Headless rendering, checked by its pixels: particles are drawn where they
- * are, grid lines lie on cell borders, an overlay switched off leaves no
- * pixel, renders are reproducible to the byte, the two GL backends agree,
- * 3D wall particles leave the water in sight, and with no usable GL the tool
- * says so. Needs no GPU and no display. */
+ * are, wall particles dimmed, grid lines lie on cell borders, an overlay
+ * switched off leaves no pixel, renders are reproducible to the byte, the two
+ * GL backends agree, 3D wall particles leave the water in sight, and with no
+ * usable GL the tool says so. Needs no GPU and no display. */
 #define _GNU_SOURCE /* setenv, mkdtemp */
 #include <criterion/criterion.h>
 #include <math.h>
@@ -128,6 +128,70 @@ Test(render, wall_particles_are_in_the_picture)
     sph_sim_destroy(sim);
 }
 
+/* The colour a wall particle is drawn in: its field colour 55 % of the way
+ * to mid grey (128), channel by channel (written out here, not taken from
+ * the renderer, so that the test says what the picture must show). */
+static uint32_t wall_dimmed(uint32_t c)
+{
+    uint32_t out = SPH_RGBA(0, 0, 0, 255);
+    for (int k = 0; k < 3; k++) {
+        float v = (float)((c >> (8 * k)) & 255);
+        out |= (uint32_t)lroundf(v + 0.55f * (128.0f - v)) << (8 * k);
+    }
+    return out;
+}
+
+static bool near_colour(uint32_t a, uint32_t b, int tol)
+{
+    for (int c = 0; c < 3; c++)
+        if (abs((int)((a >> (8 * c)) & 255) - (int)((b >> (8 * c)) & 255)) > tol) return false;
+    return true;
+}
+
+/* Wall particles take their field's colour dimmed towards grey, so that the
+ * water stands out of the walls while the walls' values stay readable: every
+ * particle given the same speed, the fluid's discs are the colour map's
+ * colour and the walls' the dimmed one. */
+Test(render, wall_particles_are_dimmed_towards_grey)
+{
+    sph_sim *sim = test_sim("[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=0.3 0.6\n"
+                            "wall_model=particles\n[fluid a]\nmin=0 0\nmax=0.3 0.3\nspacing=0.02\n[kernels]\nh=0.04\n",
+                            1);
+    for (uint32_t i = 0; i < sim->n; i++) sim->P.vel[0][i] = 0.5f; /* nothing steps: the render only reads it */
+    sph_renderer *r = renderer(SPH_GL_EGL);
+    sph_view v = sph_view_default(sim);
+    v.overlays = 0;
+    v.field = SPH_COLOR_SPEED;
+    v.fixed_range = true;
+    v.range[0] = 0;
+    v.range[1] = 1;
+    uint8_t *img = draw(r, sim, &v);
+    const uint32_t fluid_c = sph_colormap_viridis(0.5f), wall_c = wall_dimmed(fluid_c);
+    cr_expect(!near_colour(fluid_c, wall_c, 8), "the dimmed colour %06x is the fluid's %06x", wall_c & 0xFFFFFF,
+              fluid_c & 0xFFFFFF);
+    int walls = 0, fluid = 0, bad_walls = 0, bad_fluid = 0;
+    for (uint32_t i = 0; i < sim->n; i++) {
+        float px[2];
+        world_px(r, sim->P.pos[0][i], sim->P.pos[1][i], px);
+        const bool wall = sph_is_wall(&sim->P, i);
+        uint32_t got = pixel(img, (int)px[0], (int)px[1]), want = wall ? wall_c : fluid_c;
+        if (!near_colour(got, want, 1)) {
+            if (!(bad_walls + bad_fluid))
+                cr_log_error("%s particle %u at (%g, %g) px: colour %06x, want %06x", wall ? "wall" : "fluid", i,
+                             px[0], px[1], got & 0xFFFFFF, want & 0xFFFFFF);
+            wall ? bad_walls++ : bad_fluid++;
+        }
+        wall ? walls++ : fluid++;
+    }
+    cr_expect_gt(walls, 100);
+    cr_expect_gt(fluid, 100);
+    cr_expect_eq(bad_walls, 0, "%d of %d wall particles not dimmed", bad_walls, walls);
+    cr_expect_eq(bad_fluid, 0, "%d of %d fluid particles not the colour map's", bad_fluid, fluid);
+    free(img);
+    sph_renderer_destroy(r);
+    sph_sim_destroy(sim);
+}
+
 /* The column a 1-pixel line at x_px covers: [x - 0.5, x + 0.5) holds the
  * centre p + 0.5 of pixel p = ceil(x) - 1. */
 static int line_column(float x)
@@ -237,7 +301,7 @@ static const char *scene_3d_walls =
     "[obstacle b]\nshape=box\nmin=0.26 0 0.06\nmax=0.32 0.08 0.14\n[kernels]\nh=0.04\n"
     "[physics]\ngravity=0 -9.81 0\n";
 
-/* Colours the fluid yellow and every wall particle purple: speed over a fixed
+/* Colours the fluid yellow and every wall particle a dimmed purple: speed over a fixed
  * range [0, 1] m/s, the fluid given 1 m/s (nothing steps, the render only
  * reads it), the walls at rest. Counts the pixels of each colour. */
 static void count_fluid_and_wall_pixels(const sph_sim *sim, sph_renderer *r, const sph_orbit *o, int *fluid,
@@ -255,7 +319,7 @@ static void count_fluid_and_wall_pixels(const sph_sim *sim, sph_renderer *r, con
     for (size_t k = 0; k < (size_t)W * H; k++) {
         int R = img[3 * k], G = img[3 * k + 1], B = img[3 * k + 2];
         *fluid += G > B + 60 && R > B + 60;   /* viridis(1), shaded: yellow */
-        *wall += B > G + 40 && R > G + 20;    /* viridis(0), shaded: purple */
+        *wall += B > G + 15 && R > G + 10;    /* viridis(0) dimmed (wall_dimmed), shaded: greyish purple */
     }
     free(img);
 }

@@ -8,6 +8,7 @@
 #define _GNU_SOURCE /* setenv, dl_iterate_phdr */
 #include <criterion/criterion.h>
 #include <dlfcn.h>
+#include <math.h>
 #include <link.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,6 +17,7 @@
 #include "gl_fields.h"
 #include "gpu.h"
 #include "render.h"
+#include "sph_walls.h"
 #include "test_util.h"
 
 #define W 240
@@ -42,6 +44,13 @@ static const char *scene_3d_walls =
     "[domain]\nmin=0 0 0\nmax=0.3 0.25 0.2\nwall_model=particles\n[physics]\nviscosity=0.005\n"
     "[kernels]\nh=0.05\n[time]\ndt=0.0002\ncfl=0\n"
     "[fluid a]\nmin=0 0 0\nmax=0.15 0.15 0.2\nspacing=0.025\n";
+
+/* a 2D tank of wall particles: the walls' colours dimmed on both paths */
+static const char *scene_2d_walls =
+    "[scene]\nname=direct 2d walls\ndimension=2\neffects=gravity pressure viscosity walls\n"
+    "[domain]\nmin=0 0\nmax=0.3 0.4\nwall_model=particles\n[physics]\nviscosity=0.005\n"
+    "[kernels]\nh=0.04\n[time]\ndt=0.0002\ncfl=0\n"
+    "[fluid a]\nmin=0 0\nmax=0.15 0.2\nspacing=0.02\n";
 
 typedef struct pair {
     sph_renderer *r_gl, *r_cpu;
@@ -176,6 +185,57 @@ Test(render_gl, direct_3d_pressure_acc_downloads_nothing_and_matches_the_cpu)
 Test(render_gl, direct_3d_wall_particles_cut_away_as_on_the_cpu)
 {
     check_scene(scene_3d_walls, SPH_COLOR_DENSITY, 0);
+}
+
+Test(render_gl, direct_2d_wall_particles_dimmed_as_on_the_cpu)
+{
+    check_scene(scene_2d_walls, SPH_COLOR_DENSITY, 0);
+}
+
+/* The direct program dims the wall particles itself, from the backend's
+ * FIXED buffer: at rest, speed over [0, 1] m/s colours every particle
+ * viridis(0); the fluid's disc centres are that colour, the walls' that
+ * colour 55 % of the way to mid grey (128), as the host path draws them
+ * (test_render.c: render/wall_particles_are_dimmed_towards_grey). */
+Test(render_gl, direct_wall_particles_are_dimmed_towards_grey)
+{
+    pair p = make_pair(scene_2d_walls);
+    sph_view v = sph_view_default(p.gl);
+    v.overlays = 0;
+    v.field = SPH_COLOR_SPEED;
+    v.fixed_range = true;
+    v.range[0] = 0;
+    v.range[1] = 1;
+    uint8_t *a = malloc((size_t)W * H * 3);
+    cr_assert_not_null(a);
+    frame(p.r_gl, p.gl, &v, a);
+    cr_expect(sph_renderer_drew_direct(p.r_gl));
+    const uint32_t c0 = sph_colormap_viridis(0.0f);
+    int want[2][3], walls = 0, fluid = 0, bad = 0;
+    for (int k = 0; k < 3; k++) {
+        float c = (float)((c0 >> (8 * k)) & 255);
+        want[0][k] = (int)c;
+        want[1][k] = (int)lroundf(c + 0.55f * (128.0f - c));
+    }
+    /* nothing stepped: the host's positions are the device's, in the same order */
+    for (uint32_t i = 0; i < p.gl->n; i++) {
+        float x[3] = {p.gl->P.pos[0][i], p.gl->P.pos[1][i], 0}, px[2];
+        cr_assert(sph_camera_project(sph_renderer_camera(p.r_gl), x, px, NULL));
+        const int wall = sph_is_wall(&p.gl->P, i);
+        cr_assert(px[0] >= 0 && px[0] < W && px[1] >= 0 && px[1] < H);
+        const uint8_t *got = a + 3 * ((size_t)px[1] * W + (size_t)px[0]);
+        bool ok = true;
+        for (int k = 0; k < 3; k++) ok &= abs((int)got[k] - want[wall][k]) <= 1;
+        if (!ok && !bad++)
+            cr_log_error("%s particle %u: colour %d %d %d, want %d %d %d", wall ? "wall" : "fluid", i, got[0], got[1],
+                         got[2], want[wall][0], want[wall][1], want[wall][2]);
+        wall ? walls++ : fluid++;
+    }
+    cr_expect_gt(walls, 50);
+    cr_expect_gt(fluid, 50);
+    cr_expect_eq(bad, 0, "%d of %u particles not in their colour (walls dimmed)", bad, p.gl->n);
+    free(a);
+    free_pair(&p);
 }
 
 /* The legend's numbers cost the range's 8 bytes; the HUD syncs what it

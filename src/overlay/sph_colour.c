@@ -183,3 +183,18 @@ uint32_t sph_color_of(sph_color_field f, float v, float lo, float hi)
     float t = hi - lo > 1e-6f * fmaxf(fabsf(hi), fabsf(lo)) ? (v - lo) / (hi - lo) : 0.5f;
     return sph_colormap_viridis(t);
 }
+
+/* Walls drawn in their field's full colour look like fluid (in 3D the far
+ * walls coloured by density are the water's yellow): dimmed more than half
+ * way to a mid grey the fluid stands out, and the wall's value (e.g. the
+ * extrapolated wall pressure) still reads on the colour bar's hue. */
+uint32_t sph_color_dimmed(uint32_t c)
+{
+    uint32_t out = c & 0xFF000000u;
+    for (int k = 0; k < 3; k++) {
+        uint32_t v = (c >> (8 * k)) & 255u;
+        v = (v * (100 - SPH_WALL_DIM_PERCENT) + SPH_WALL_GREY * SPH_WALL_DIM_PERCENT + 50) / 100;
+        out |= v << (8 * k);
+    }
+    return out;
+}

@@ -91,6 +91,12 @@ uint32_t sph_colormap_viridis(float t);
 uint32_t sph_colormap_category(uint32_t key);
 /* The colour of a value of field f with the given range. */
 uint32_t sph_color_of(sph_color_field f, float v, float lo, float hi);
+/* A wall particle's colour (fixed walls and obstacles): c's channels
+ * SPH_WALL_DIM_PERCENT % of the way to grey SPH_WALL_GREY, rounded, in
+ * integers so that particles_direct.vert computes the same bytes. */
+#define SPH_WALL_DIM_PERCENT 55
+#define SPH_WALL_GREY 128
+uint32_t sph_color_dimmed(uint32_t c);
 
 /* ---- primitives ---------------------------------------------------------- */
 

@@ -114,6 +114,7 @@ static void locate(sph_renderer *r, GLuint prog, ploc *l)
     l->comps = gl->GetUniformLocation(prog, "u_comps");
     l->fixed = gl->GetUniformLocation(prog, "u_fixed");
     l->range = gl->GetUniformLocation(prog, "u_range");
+    l->walls = gl->GetUniformLocation(prog, "u_walls");
 }
 
 static sph_renderer *create(sph_gl_backend backend, int w, int h, bool gl43, char *err, size_t n)
@@ -236,7 +237,7 @@ static bool make_direct(sph_renderer *r, char *err, size_t n)
     gl->BindBuffer(GL_ARRAY_BUFFER, r->vbo_corner);
     gl->EnableVertexAttribArray(0);
     gl->VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, (const void *)0);
-    for (GLuint a = 1; a <= 6; a++) {
+    for (GLuint a = 1; a <= 7; a++) {
         gl->EnableVertexAttribArray(a);
         gl->VertexAttribDivisor(a, 1);
     }
@@ -419,8 +420,10 @@ static int device_field(sph_color_field f, bool *norm)
     (SPH_OV_BIT(KEYS) | SPH_OV_BIT(COLLISIONS) | SPH_OV_BIT(NEIGHBOURS) | SPH_OV_BIT(FORCES) | SPH_OV_BIT(INDEX))
 
 /* The particles as attributes read from the backend's buffers: a coordinate
- * or component each, at offset d * N floats (unused ones alias the first). */
-static void bind_direct(sph_renderer *r, const sph_sim *sim, unsigned pos, unsigned val, int comps)
+ * or component each, at offset d * N floats (unused ones alias the first),
+ * and the wall flag (FIXED) where the scene has wall particles (else 0: the
+ * positions aliased, not read: u_walls). */
+static void bind_direct(sph_renderer *r, const sph_sim *sim, unsigned pos, unsigned val, int comps, unsigned fixed)
 {
     sph_gl *gl = &r->gl;
     const size_t row = (size_t)sim->n * sizeof(float);
@@ -429,6 +432,8 @@ static void bind_direct(sph_renderer *r, const sph_sim *sim, unsigned pos, unsig
     for (int d = 0; d < 3; d++)
         gl->VertexAttribPointer((GLuint)(1 + d), 1, GL_FLOAT, GL_FALSE, 0,
                                 (const void *)(uintptr_t)(d < sim->dim ? (size_t)d * row : 0));
+    gl->BindBuffer(GL_ARRAY_BUFFER, fixed ? fixed : pos);
+    gl->VertexAttribPointer(7, 1, GL_FLOAT, GL_FALSE, 0, NULL);
     gl->BindBuffer(GL_ARRAY_BUFFER, val);
     for (int c = 0; c < 3; c++)
         gl->VertexAttribPointer((GLuint)(4 + c), 1, GL_FLOAT, GL_FALSE, 0,
@@ -515,7 +520,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
 
     /* particle colours */
     float lo = 0, hi = 0;
-    unsigned range_buf = 0, pos_buf = 0, val_buf = 0;
+    unsigned range_buf = 0, pos_buf = 0, val_buf = 0, fixed_buf = 0;
     if (direct) {
         /* the range is computed on the device for the vertex shader; read
          * back (8 bytes) only for the legend's numbers */
@@ -524,6 +529,11 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         if (!dev->range(sim, df, norm, &range_buf, need ? lo_hi : NULL) || !dev->buffer(sim, SPH_FIELD_POS, &pos_buf) ||
             !dev->buffer(sim, df, &val_buf)) {
             snprintf(err, n, "the GL backend has no buffer for %s", sph_color_field_names[f]);
+            return false;
+        }
+        /* the wall flag: no buffer where the scene has no wall particle */
+        if (sim->P.fixed && !dev->buffer(sim, SPH_FIELD_FIXED, &fixed_buf)) {
+            snprintf(err, n, "the GL backend has no buffer for the wall particles' flag");
             return false;
         }
         make_current(r);
@@ -547,6 +557,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         p->y = sim->P.pos[1][i];
         p->z = sim->dim == 3 ? sim->P.pos[2][i] : 0.0f;
         p->rgba = sph_color_of(f, r->vals[i], lo, hi);
+        if (sph_is_wall(&sim->P, i)) p->rgba = sph_color_dimmed(p->rgba); /* the fluid stands out */
     }
 
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->fbo);
@@ -622,7 +633,8 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
             gl->Uniform1i(pl->comps, norm ? sim->dim : 1);
             gl->Uniform1i(pl->fixed, v->fixed_range);
             gl->Uniform2f(pl->range, lo, hi);
-            bind_direct(r, sim, pos_buf, val_buf, norm ? sim->dim : 1);
+            gl->Uniform1i(pl->walls, fixed_buf != 0);
+            bind_direct(r, sim, pos_buf, val_buf, norm ? sim->dim : 1, fixed_buf);
             r->gc.BindBufferBase(GL_UNIFORM_BUFFER, 0, range_buf);
             gl->ActiveTexture(GL_TEXTURE1);
             gl->BindTexture(GL_TEXTURE_2D, r->tex_cmap);
@@ -637,7 +649,7 @@ bool sph_render(sph_renderer *r, const sph_sim *sim, const sph_view *v, char *er
         gl->DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)sim->n);
         if (direct) { /* the vertex array lets go of the backend's buffers: a reset's deleted ones are freed at once */
             gl->BindBuffer(GL_ARRAY_BUFFER, 0);
-            for (GLuint k = 1; k <= 6; k++) gl->VertexAttribPointer(k, 1, GL_FLOAT, GL_FALSE, 0, NULL);
+            for (GLuint k = 1; k <= 7; k++) gl->VertexAttribPointer(k, 1, GL_FLOAT, GL_FALSE, 0, NULL);
         }
         gl->Disable(GL_DEPTH_TEST);
     }

@@ -20,7 +20,7 @@ typedef struct inst {
 
 /* Uniforms of a particle program. */
 typedef struct ploc {
-    GLint view, proj, radius, sphere, keep_lo, keep_hi, rim, dim, comps, fixed, range;
+    GLint view, proj, radius, sphere, keep_lo, keep_hi, rim, dim, comps, fixed, range, walls;
 } ploc;
 
 struct sph_renderer {
