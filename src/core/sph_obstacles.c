@@ -341,7 +341,7 @@ sph_error_code sph_obstacles_validate(const sph_scene_def *def, sph_error *err)
                     snprintf(where, sizeof where, "%s:%d to %d%s", def->file, e->line, last, set ? " and --set" : "");
                 else if (e->line > 0)
                     snprintf(where, sizeof where, "%s:%d%s", def->file, e->line, set ? " and --set" : "");
-                snprintf(what, sizeof what, "lies inside [obstacle %s] (%s): it makes no wall particle (accepted: an "
+                snprintf(what, sizeof what, "lies inside [obstacle %.47s] (%.200s): it makes no wall particle (accepted: an "
                          "obstacle with some of its surface outside every earlier one)", e->name, where);
             } else {
                 int w = 0;
