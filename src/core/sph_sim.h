@@ -264,6 +264,9 @@ typedef struct sph_solver_state {
     uint64_t stopped;        /* [1] density solves that stopped because their error rose (see least), since the start */
     double least;            /* [1] the current density solve's least error so far, whose pressure p_pci_best (pcisph)
                                 or kappa_best (dfsph) keeps */
+    bool held;               /* dfsph: an iterate of the current density solve held the compression within the
+                                tolerance; kappa_best then keeps the one of those with the least shortfall */
+    double least_over;       /* [1] dfsph: that iterate's largest shortfall of a pushed particle */
     float rho_rest;          /* [kg/m^dim] the density held: the sum a particle of the initial lattice reads */
     float delta;             /* [m^2] pcisph: delta at dt = 1 s (delta(dt) = delta / dt^2, in m^2/s^2) */
     float den_full;          /* [kg^2/m^(2 dim + 2)] dfsph: alpha's least denominator, a full neighbourhood's */

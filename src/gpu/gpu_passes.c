@@ -479,9 +479,9 @@ static void run_dfsph(gpu *g, sph_sim *sim)
     float over;
     memcpy(&over, &bits, sizeof over);
     const double stop = isnan(over) ? over : fmax(error, over);
-    const int least = sph_solver_least(sim, stop, sim->def.solver_tolerance);
-    if (least == SPH_SOLVER_KEEP) solver_stage(g, sim, p, DF_KEEP, 0.0f);
-    if (least == SPH_SOLVER_TAKE_BACK) { /* rising: back to the least kappa, as dfsph.c */
+    const int least = sph_solver_least_held(sim, error, over, sim->def.solver_tolerance);
+    if (least & SPH_SOLVER_KEEP) solver_stage(g, sim, p, DF_KEEP, 0.0f);
+    if (least & SPH_SOLVER_TAKE_BACK) { /* rising: back to the best kappa kept, as dfsph.c */
         solver_stage(g, sim, p, DF_TAKE_BACK, 0.0f);
         dfsph_force(g, sim, true, false);
         sph_solver_stopped(sim, solver_measure(g, sim, p, DF_MEASURE));

@@ -407,10 +407,11 @@ static void run(sph_sim *sim)
     }
     double over = 0;
     const double error = measure(sim, true, &over);
-    /* rising: back to the least kappa, as pcisph.c (solver.h, sph_solver_least) */
-    const int least = sph_solver_least(sim, fmax(error, over), sim->def.solver_tolerance);
-    if (least == SPH_SOLVER_KEEP) memcpy(P->kappa_best, P->kappa, sim->n * sizeof *P->kappa);
-    if (least == SPH_SOLVER_TAKE_BACK) {
+    /* rising: back to the best kappa kept, an iterate that held the compression if one did (solver.h,
+     * sph_solver_least_held) */
+    const int least = sph_solver_least_held(sim, error, over, sim->def.solver_tolerance);
+    if (least & SPH_SOLVER_KEEP) memcpy(P->kappa_best, P->kappa, sim->n * sizeof *P->kappa);
+    if (least & SPH_SOLVER_TAKE_BACK) {
         memcpy(P->kappa, P->kappa_best, sim->n * sizeof *P->kappa);
         force(sim, true);
         sph_solver_stopped(sim, measure(sim, true, &over));
