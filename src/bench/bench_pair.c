@@ -55,12 +55,16 @@ static void print_times(const char *name, double *v, int n)
     printf("%-5s  median %9.2f ms  (least %9.2f, largest %9.2f)  mean %9.2f ms\n", name, med, least, largest, mean);
 }
 
-/* Largest |a - b| over the particles of a field (vector fields: every axis). */
-static double field_gap(uint32_t n, float *const fa[3], float *const fb[3], int dims)
+/* Largest |a - b| over the particles of a field (vector fields: every axis),
+ * particle by particle: b_at[id] is where particle id is held in b (two
+ * levels that rebuild on different steps hold the particles in different
+ * orders). */
+static double field_gap(uint32_t n, const uint32_t *a_id, const uint32_t *b_at, float *const fa[3],
+                        float *const fb[3], int dims)
 {
     double gap = 0;
     for (int d = 0; d < dims; d++)
-        for (uint32_t i = 0; i < n; i++) gap = fmax(gap, fabs((double)fa[d][i] - fb[d][i]));
+        for (uint32_t i = 0; i < n; i++) gap = fmax(gap, fabs((double)fa[d][i] - fb[d][b_at[a_id[i]]]));
     return gap;
 }
 
@@ -137,9 +141,23 @@ int bench_cmd_pair(bench_opts *o)
         const sph_particles *A = &sim[0]->P, *B = &sim[1]->P;
         const int dim = sim[0]->dim;
         float *const ra[3] = {A->rho, NULL, NULL}, *const rb[3] = {B->rho, NULL, NULL};
-        printf("after %d steps: |dx| <= %.3g m, |dv| <= %.3g m/s, |drho| <= %.3g kg/m^3\n", rounds + 1,
-               field_gap(sim[0]->n, A->pos, B->pos, dim), field_gap(sim[0]->n, A->vel, B->vel, dim),
-               field_gap(sim[0]->n, ra, rb, 1));
+        const uint32_t n = sim[0]->n;
+        uint32_t *b_at = malloc((size_t)n * sizeof *b_at);
+        bool ids = b_at && sim[1]->n == n; /* ids are the indices at creation: 0 .. n - 1 */
+        for (uint32_t i = 0; ids && i < n; i++) {
+            ids = A->id[i] < n && B->id[i] < n;
+            if (ids) b_at[B->id[i]] = i;
+        }
+        if (!ids) {
+            fprintf(stderr, "sphlab bench pair: the two states could not be compared (%s)\n",
+                    b_at ? "their particles' ids differ" : "out of memory");
+            rc = 1;
+        } else {
+            printf("after %d steps: |dx| <= %.3g m, |dv| <= %.3g m/s, |drho| <= %.3g kg/m^3 (particles matched by id)\n",
+                   rounds + 1, field_gap(n, A->id, b_at, A->pos, B->pos, dim),
+                   field_gap(n, A->id, b_at, A->vel, B->vel, dim), field_gap(n, A->id, b_at, ra, rb, 1));
+        }
+        free(b_at);
     }
     for (int s = 0; s < 2; s++) sph_sim_destroy(sim[s]);
     free(ms);
