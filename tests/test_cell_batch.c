@@ -7,7 +7,9 @@
  * block of 125 particles, blocks whose edges cut cells, cells of more
  * particles than one batch holds, plain 32-bit lists, wide compact rows, the
  * hash search, a periodic axis (where the key falls back to L14's scan), one
- * thread and two, and a switch from L14 to L15 and back in mid-run. */
+ * thread and two, and a switch from L14 to L15 and back in mid-run.
+ * [search] wide_batch (L17, with AVX-512) tests 16 candidates at a time
+ * instead of 8: the same cases, the same rows, the same state to the bit. */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <string.h>
@@ -20,10 +22,10 @@
 /* L14's keys with method, compact_lists and cell_batch as asked (L15: grid, on, on). */
 #define L14_KEYS                                                                                                 \
     "[search]\nmethod = %s\nsort = counting\nreorder = on\nvector = on\nlists_in_place = on\nskin = 0.05\n"    \
-    "compact_lists = %s\nvector_avx2 = on\ncell_batch = %s\n[compute]\nfuse_forces = on\npacked_records = on\n" \
-    "uniform_mass = on\n"
+    "compact_lists = %s\nvector_avx2 = on\ncell_batch = %s\nwide_batch = %s\n[compute]\nfuse_forces = on\n"       \
+    "packed_records = on\nuniform_mass = on\n"
 
-enum { GRID = 0, HASH = 1, PLAIN = 2 };
+enum { GRID = 0, HASH = 1, PLAIN = 2, WIDE = 4 }; /* WIDE: the batch with wide_batch = on (L17's search) */
 #define DAM_3D TEST_LEVELS_DAM_3D
 #define DAM_2D TEST_LEVELS_DAM_2D
 
@@ -71,7 +73,7 @@ static sph_sim *make(const char *scene, int variant, bool batch, int threads)
 {
     char keys[512], ini[2048];
     snprintf(keys, sizeof keys, L14_KEYS, variant & HASH ? "hash" : "grid", variant & PLAIN ? "off" : "on",
-             batch ? "on" : "off");
+             batch ? "on" : "off", batch && (variant & WIDE) ? "on" : "off");
     snprintf(ini, sizeof ini, "%s%s", scene, keys);
     return test_sim(ini, threads);
 }
@@ -122,6 +124,19 @@ Test(cell_batch, wide_rows_2d) { as_l14(STRIP_2D, GRID, 3, 2, "strip with wide r
 Test(cell_batch, hash_search_3d) { as_l14(DAM_3D, HASH, 10, 2, "3D dam, hash"); }
 Test(cell_batch, periodic_axis_falls_back_2d) { as_l14(PERIODIC_2D, GRID, 20, 2, "2D, periodic x"); }
 
+Test(cell_batch, wide_same_lists_and_state_as_l14_3d) { as_l14(DAM_3D, GRID | WIDE, 40, 2, "3D dam, 16 wide"); }
+Test(cell_batch, wide_same_lists_and_state_as_l14_2d) { as_l14(DAM_2D, GRID | WIDE, 30, 2, "2D dam, 16 wide"); }
+Test(cell_batch, wide_small_block_3d) { as_l14(BLOCK_SMALL, GRID | WIDE, 20, 1, "125 particles, 16 wide"); }
+Test(cell_batch, wide_blocks_with_partial_cells_3d)
+{
+    as_l14(BLOCKS_PARTIAL, GRID | WIDE, 20, 2, "blocks cutting cells, 16 wide");
+}
+Test(cell_batch, wide_cells_fuller_than_a_batch_3d) { as_l14(FULL_CELLS_3D, GRID | WIDE, 10, 2, "h = 4 s, 16 wide"); }
+Test(cell_batch, wide_cells_fuller_than_a_batch_2d) { as_l14(FULL_CELLS_2D, GRID | WIDE, 10, 1, "h = 7 s, 16 wide"); }
+Test(cell_batch, wide_plain_lists_3d) { as_l14(DAM_3D, GRID | PLAIN | WIDE, 20, 2, "32-bit lists, 16 wide"); }
+Test(cell_batch, wide_rows_of_a_strip_2d) { as_l14(STRIP_2D, GRID | WIDE, 3, 2, "strip with wide rows, 16 wide"); }
+Test(cell_batch, wide_periodic_axis_falls_back_2d) { as_l14(PERIODIC_2D, GRID | WIDE, 20, 2, "periodic x, 16 wide"); }
+
 /* The strip has wide rows indeed (else wide_rows_2d tests nothing of them). */
 Test(cell_batch, strip_has_wide_rows)
 {
@@ -149,6 +164,26 @@ Test(cell_batch, switched_live_from_l14)
 {
     sph_sim *a = make(DAM_3D, GRID, false, 2), *b = make(DAM_3D, GRID, false, 2);
     test_levels_switch_live(a, b, "L14", "L15", batch_on);
+    sph_sim_destroy(a);
+    sph_sim_destroy(b);
+}
+
+/* L16 switched to L17 (the search 16 wide) in mid-run and back: to the bit. */
+static bool wide_on(const sph_scene_def *def) { return def->wide_batch == SPH_ON; }
+
+Test(cell_batch, wide_switched_live_from_l16)
+{
+    char ini[2048];
+    snprintf(ini, sizeof ini, "%s", DAM_3D);
+    sph_sim *a = NULL, *b = NULL;
+    sph_error err;
+    for (int k = 0; k < 2; k++) {
+        sph_scene_def def = test_scene(ini);
+        cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L16")], &def, &err), SPH_ERR_OK, "%s", err.msg);
+        sph_sim **s = k ? &b : &a;
+        cr_assert_eq(sph_sim_create(&def, 2, s, &err), SPH_ERR_OK, "%s", err.msg);
+    }
+    test_levels_switch_live(a, b, "L16", "L17", wide_on);
     sph_sim_destroy(a);
     sph_sim_destroy(b);
 }

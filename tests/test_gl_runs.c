@@ -154,7 +154,10 @@ Test(gl_backend, refuses_what_it_does_not_implement)
                               {"physics.accumulate=double", "[physics] accumulate = double"},
                               {"compute.packed_records=on", "[compute] packed_records = on"},
                               {"compute.uniform_mass=on", "[compute] uniform_mass = on"},
-                              {"search.cell_batch=on", "[search] cell_batch = on"}};
+                              {"search.cell_batch=on", "[search] cell_batch = on"},
+                              {"compute.wide_density=on", "[compute] wide_density = on"},
+                              {"search.wide_batch=on", "[search] wide_batch = on"},
+                              {"search.lists_resident=on", "[search] lists_resident = on"}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         sph_scene_def def = test_scene(scene_2d);
         sph_error err;

@@ -2,11 +2,14 @@
  * give L7's neighbour sets and L7's state, within the bench's tolerances
  * (positions 1e-4 m, velocities 1e-3 m/s, densities 1e-3 relative), after
  * some steps of a 2D and a 3D dam break with walls. No speed is asserted. */
+#define _DEFAULT_SOURCE /* mincore */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "test_util.h"
 
@@ -170,6 +173,49 @@ Test(ladder_fused, l9_same_as_l7_3d)
     /* the first thread kept no buffer of its own: its rows were written in place */
     cr_assert_null(b->S.tbuf[0], "thread 0 built its lists in a buffer of its own");
     cr_assert_not_null(a->S.tbuf[0]);
+    sph_sim_destroy(a);
+    sph_sim_destroy(b);
+}
+
+/* L18's key: with lists_in_place and two threads, lists_resident = on keeps
+ * the pages of the second thread's buffer after it is copied into the joined
+ * lists (off hands them back): the same state to the bit, and mincore(2)
+ * finds the buffer's pages resident after a build with the key, not without. */
+#define L18_KEYS L9_KEYS "lists_resident = on\n"
+
+static size_t resident_pages(const void *p, size_t bytes)
+{
+    const size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    const uintptr_t a = ((uintptr_t)p + page - 1) & ~(uintptr_t)(page - 1), b = ((uintptr_t)p + bytes) & ~(uintptr_t)(page - 1);
+    if (b <= a) return 0;
+    const size_t n = (b - a) / page;
+    unsigned char *v = calloc(n, 1);
+    cr_assert_not_null(v);
+    cr_assert_eq(mincore((void *)a, b - a, v), 0, "mincore");
+    size_t in = 0;
+    for (size_t k = 0; k < n; k++) in += v[k] & 1;
+    free(v);
+    return in;
+}
+
+Test(ladder_fused, l18_keeps_the_copied_pages_same_state_3d)
+{
+    sph_sim *a = make(DAM_3D, L9_KEYS), *b = make(DAM_3D, L18_KEYS);
+    cr_assert_gt(a->n, 4096, "one thread only below SPH_PARALLEL_MIN");
+    for (int s = 0; s < 3; s++) {
+        sph_sim_step(a);
+        sph_sim_step(b);
+    }
+    cr_assert_eq(a->S.n_threads, 2);
+    const size_t bytes_a = a->S.tcap[1] * sizeof(uint32_t), bytes_b = b->S.tcap[1] * sizeof(uint32_t);
+    const size_t in_a = resident_pages(a->S.tbuf[1], bytes_a), in_b = resident_pages(b->S.tbuf[1], bytes_b);
+    const size_t page = (size_t)sysconf(_SC_PAGESIZE);
+    cr_expect_gt(bytes_b / page, 8, "a buffer of %zu bytes: too small to tell", bytes_b);
+    cr_expect_lt(in_a, bytes_a / page / 4, "off: %zu of %zu pages of the copied buffer still resident", in_a,
+                 bytes_a / page);
+    cr_expect_gt(in_b, bytes_b / page / 2, "on: %zu of %zu pages of the copied buffer resident", in_b,
+                 bytes_b / page);
+    compare(a, b, 30, "3D dam, L18's pages kept");
     sph_sim_destroy(a);
     sph_sim_destroy(b);
 }

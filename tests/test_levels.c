@@ -58,7 +58,7 @@ static void every_level_matches(const char *ini)
         sph_sim_destroy(sim);
         checked++;
     }
-    cr_expect_eq(checked, 16, "levels L0..L15");
+    cr_expect_eq(checked, 19, "levels L0..L18");
 }
 
 Test(levels, every_cpu_level_finds_brute_forces_sets_2d) { every_level_matches(scene_2d); }
@@ -162,4 +162,28 @@ Test(levels, level_of_the_ingredients)
     cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L14")], &def, &err), SPH_ERR_OK);
     cr_expect_eq(def.cell_batch, SPH_OFF);
     cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L14"));
+    /* L16 is L15 with density's walk 16 lanes wide; down to L15 it is off again */
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L16")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.wide_density, SPH_ON);
+    cr_expect_eq(def.cell_batch, SPH_ON);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L16"));
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L15")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.wide_density, SPH_OFF);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L15"));
+    /* L17 is L16 with the search's batch 16 wide; down to L16 it is off again */
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L17")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.wide_batch, SPH_ON);
+    cr_expect_eq(def.wide_density, SPH_ON);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L17"));
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L16")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.wide_batch, SPH_OFF);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L16"));
+    /* L18 is L17 keeping the lists' pages; down to L17 it is off again */
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L18")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.lists_resident, SPH_ON);
+    cr_expect_eq(def.wide_batch, SPH_ON);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L18"));
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L17")], &def, &err), SPH_ERR_OK);
+    cr_expect_eq(def.lists_resident, SPH_OFF);
+    cr_expect_eq(sph_level_of(&def, 0, 8), sph_level_find("L17"));
 }

@@ -64,6 +64,23 @@ const sph_level sph_levels[] = {
      "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
      "compute.packed_records=on compute.uniform_mass=on search.cell_batch=on",
      0, "L14 + recherche des particules d'une cellule ensemble"},
+    {"L16", "L15 + density's walk 16 lanes wide (AVX-512)",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
+     "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
+     "compute.packed_records=on compute.uniform_mass=on search.cell_batch=on compute.wide_density=on",
+     0, "L15 + parcours de la densité sur 16 voies (AVX-512)"},
+    {"L17", "L16 + the search's cell batch 16 lanes wide",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
+     "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
+     "compute.packed_records=on compute.uniform_mass=on search.cell_batch=on compute.wide_density=on "
+     "search.wide_batch=on",
+     0, "L16 + lot de la recherche sur 16 voies (AVX-512)"},
+    {"L18", "L17 + lists' pages kept resident (no faults)",
+     "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
+     "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
+     "compute.packed_records=on compute.uniform_mass=on search.cell_batch=on compute.wide_density=on "
+     "search.wide_batch=on search.lists_resident=on",
+     0, "L17 + pages des listes gardées (sans défauts de page)"},
     /* The seed's GPU steps: the passes as GLSL compute shaders (src/gpu/), on
      * whatever OpenGL 4.3 device EGL gives (llvmpipe without a GPU). */
     {"G0", "GLSL: brute force", "compute.backend=gl search.method=brute search.reorder=off", 0, "GLSL : force brute"},
@@ -102,6 +119,9 @@ sph_error_code sph_level_apply(const sph_level *L, sph_scene_def *def, sph_error
     def->packed_records = SPH_OFF;
     def->uniform_mass = SPH_OFF;
     def->cell_batch = SPH_OFF;
+    def->wide_density = SPH_OFF;
+    def->wide_batch = SPH_OFF;
+    def->lists_resident = SPH_OFF;
     def->skin = 0.0f;
     char buf[512];
     snprintf(buf, sizeof buf, "%s", L->sets);
@@ -129,7 +149,8 @@ int sph_level_of(const sph_scene_def *def, int threads, int cores)
             at.lists_in_place == def->lists_in_place && at.skin == def->skin &&
             at.compact_lists == def->compact_lists && at.vector_avx2 == def->vector_avx2 &&
             at.packed_records == def->packed_records && at.uniform_mass == def->uniform_mass &&
-            at.cell_batch == def->cell_batch)
+            at.cell_batch == def->cell_batch && at.wide_density == def->wide_density &&
+            at.wide_batch == def->wide_batch && at.lists_resident == def->lists_resident)
             return i;
     }
     return -1;

@@ -269,7 +269,9 @@ typedef struct sph_scene_def {
     sph_onoff vector;    /* use the CPU's vector instructions (AVX-512) in the inner loops where written */
     sph_onoff vector_avx2; /* the pair passes' vector loops in AVX2, 8 lanes, instead of AVX-512's 16 */
     sph_onoff cell_batch;  /* AVX2 search: a cell's particles tested together against each candidate vector */
+    sph_onoff wide_batch;  /* with cell_batch: 16 candidates to a vector (AVX-512) instead of 8 */
     sph_onoff lists_in_place; /* the first thread builds its lists straight into the joined array */
+    sph_onoff lists_resident; /* with lists_in_place: the copied lists' pages kept from build to build */
     sph_onoff compact_lists;  /* neighbour lists as 16-bit offsets j - i (a wide row's 32-bit indices as escape) */
     float skin;          /* [1] Verlet skin in units of h: lists reach h (1 + skin) and are kept while every
                             particle has moved less than skin h / 2 since their build; 0: built every step */
@@ -277,6 +279,7 @@ typedef struct sph_scene_def {
     sph_onoff fuse_forces; /* pressure force and viscosity in one walk of the lists, where the forms allow */
     sph_onoff packed_records; /* AVX2 pair loops read neighbours from one record per particle, not field gathers */
     sph_onoff uniform_mass;   /* with packed_records: one mass for all, a constant of the force walk */
+    sph_onoff wide_density;   /* with packed_records: density's record walk 16 neighbours at a time (AVX-512) */
     float jitter;        /* [1] random offset of each particle, in spacings */
     uint32_t seed;       /* [1] random seed of the jitter */
     float interaction_radius;   /* [m] reach of the push/pull around the point */

@@ -275,10 +275,20 @@ const sph_key sph_scene_keys[] = {
      "particles of one cell together: each 8 candidates of a stencil run are loaded once for all of them instead "
      "of once per particle, and the rows are packed to 16-bit offsets 8 at a time; the same lists, entry for "
      "entry, so the same results to the bit. Elsewhere (periodic, no reorder, no AVX2) the search runs as with off"},
+    {"search", "wide_batch", SPH_KEY_CHOICE, S(wide_batch), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: with cell_batch = on, on a CPU with AVX-512, the search tests a cell's particles against 16 candidates "
+     "at a time instead of 8 (the survivors compressed in a register); the same sums and tests, so the same lists "
+     "entry for entry and the same results to the bit. Elsewhere it runs as with off"},
     {"search", "lists_in_place", SPH_KEY_CHOICE, S(lists_in_place), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
      "on: the first thread writes its particles' neighbour lists straight into the joined array the other passes "
      "read, instead of into a buffer of its own that is then copied there (the same lists, one copy less of the "
      "first thread's share in memory and in time); off: every thread builds in its own buffer"},
+    {"search", "lists_resident", SPH_KEY_CHOICE, S(lists_resident), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: with lists_in_place = on and more than one thread, the pages of the other threads' buffers and of the "
+     "joined lists are kept from one build to the next, instead of handed back to the system as they are copied: "
+     "no page faults at the next build, for the other threads' share of the lists held twice (about half the "
+     "lists more memory with two threads); the same lists, so the same results to the bit. Off: handed back, so "
+     "that a step's peak holds the lists once"},
     {"search", "compact_lists", SPH_KEY_CHOICE, S(compact_lists), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
      "on: the neighbour lists hold each neighbour j of particle i as the 16-bit offset j - i (in cell order the "
      "neighbours lie near i), half the memory of 32-bit indices; a row with a neighbour more than 32,767 places "
@@ -307,6 +317,11 @@ const sph_key sph_scene_keys[] = {
      "each step as the records are written) the force walk takes it as a constant instead of gathering each "
      "neighbour's mass; the same products, so the same results to the bit; unequal masses are gathered as with "
      "off. Off: gathered"},
+    {"compute", "wide_density", SPH_KEY_CHOICE, S(wide_density), 0, 0, 0, 0, CH(sph_onoff_names), "", "off",
+     "on: with packed_records = on, on a CPU with AVX-512, the density pass reads 16 neighbours at a time from its "
+     "records (16 loads and a transpose in 512-bit registers) instead of 8: the same operations per pair, the lanes "
+     "summed in another order, so results within round-off of off. The force walk stays 8 wide (16 wide it was "
+     "slower, docs/performance.md). A wide row (32-bit indices) and CPUs without AVX-512 go 8 at a time as with off"},
 
     {"fluid", "min", SPH_KEY_POINT, B(min), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "lower corner of the block"},
     {"fluid", "max", SPH_KEY_POINT, B(max), -BIG, BIG, 0, 0, NULL, 0, "m", "0 0 0", "upper corner of the block"},

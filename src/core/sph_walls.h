@@ -32,7 +32,7 @@ void sph_wall_particles_bounds(const sph_scene_def *def, float lo[3], float hi[3
  * a kernel that factorises along the axes. If grad is not NULL it receives
  * the gradient of H [1/m] with respect to the particle's position. At a
  * position pos [m] (the pressure solvers ask at predicted positions). */
-static inline float sph_wall_hidden_at(const sph_sim *sim, const sph_kernel *k, const float pos[3], float grad[3])
+static inline float sph_wall_hidden_near(const sph_sim *sim, const sph_kernel *k, const float pos[3], float grad[3])
 {
     const int dim = sim->dim;
     float dist[6], sgn[6], g[3] = {0, 0, 0}; /* per wall within reach: distance [m], d dist / dx */
@@ -77,6 +77,26 @@ static inline float sph_wall_hidden_at(const sph_sim *sim, const sph_kernel *k, 
     if (grad)
         for (int d = 0; d < dim; d++) grad[d] = g[d];
     return hidden;
+}
+
+/* sph_wall_hidden_near, with its answer for a particle beyond the reach of
+ * every wall (most of them) found first, inline: the same test of each wall
+ * as sph_kernel_wall_table's, so the same zeros, without the call. */
+static inline float sph_wall_hidden_at(const sph_sim *sim, const sph_kernel *k, const float pos[3], float grad[3])
+{
+    const int dim = sim->dim;
+    const float scale = k->inv_h * (float)SPH_WALL_TABLE;
+    bool near = false;
+    for (int d = 0; d < dim; d++) {
+        if (sim->period[d] > 0) continue; /* no walls on a periodic axis */
+        const float lo = (pos[d] - (float)sim->def.domain_min[d]) * scale;
+        const float hi = ((float)sim->def.domain_max[d] - pos[d]) * scale;
+        near |= (lo < (float)SPH_WALL_TABLE) | (hi < (float)SPH_WALL_TABLE); /* NaN: far, as in the table */
+    }
+    if (near) return sph_wall_hidden_near(sim, k, pos, grad);
+    if (grad)
+        for (int d = 0; d < dim; d++) grad[d] = 0.0f;
+    return 0.0f;
 }
 
 /* The same at particle i's position of the step (pred: where the lists were made). */

@@ -117,6 +117,22 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
                         "%s: [compute] uniform_mass = on is not implemented by the GL backend (it changes how the "
                         "CPU's AVX2 force walk reads the mass; the shaders read buffers; accepted there: off)",
                         def->file);
+    if (def->lists_resident == SPH_ON)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [search] lists_resident = on is not implemented by the GL backend (its passes walk the "
+                        "cells and build no lists; accepted there: off)",
+                        def->file);
+    if (def->wide_batch == SPH_ON)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [search] wide_batch = on is not implemented by the GL backend (it selects the CPU's "
+                        "AVX-512 search of a cell's particles together; the shaders walk the cells; accepted there: "
+                        "off)",
+                        def->file);
+    if (def->wide_density == SPH_ON)
+        return sph_fail(err, SPH_ERR_SCENE,
+                        "%s: [compute] wide_density = on is not implemented by the GL backend (it changes how the "
+                        "CPU's AVX-512 density walk reads its records; the shaders read buffers; accepted there: off)",
+                        def->file);
     if (def->skin > 0)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] skin = %g (Verlet lists) is not implemented by the GL backend (its passes "

@@ -132,6 +132,41 @@ static inline void density_one_avx2(const sph_sim *sim, const sph_kernel *k, int
 }
 #endif
 
+#if SPH_HAVE_WIDE_RECORDS
+/* density_one_avx2 with records and a compact row, 16 neighbours at a time
+ * ([compute] wide_density = on): the same operations per pair; the 16 lanes
+ * are summed in another order than the 8, so the sum differs by round-off. */
+static inline void density_one_wide(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const float *rec)
+{
+    const sph_particles *P = &sim->P;
+    const __m512 h2 = _mm512_set1_ps(k->h2), zero = _mm512_setzero_ps();
+    __m512 xi[3];
+    sph_simd_centre(P, i, dim, xi);
+    __m512 acc = zero;
+    const sph_nbr_row row = sph_nbr_row_of(&sim->S, (uint32_t)i);
+    const uint32_t end = row.n;
+    const float *const rec_i = rec + 4 * (size_t)i;
+    for (uint32_t e = 0; e < end; e += 16) {
+        int16_t last[16];
+        __m512 f[4];
+        sph_simd16_rec4_off(rec_i, 4, sph_simd16_block_offsets(row.o, e, end, last), 0, f);
+        const __m512 dx = _mm512_sub_ps(xi[0], f[0]), dy = _mm512_sub_ps(xi[1], f[1]);
+        __m512 r2 = _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy));
+        if (dim == 3) {
+            const __m512 dz = _mm512_sub_ps(xi[2], f[2]);
+            r2 = _mm512_add_ps(r2, _mm512_mul_ps(dz, dz));
+        }
+        const __m512 d = _mm512_max_ps(_mm512_sub_ps(h2, r2), zero);
+        const __m512 w = _mm512_maskz_mul_ps(sph_simd_live(e, end), _mm512_mul_ps(d, d), d); /* dead lanes: 0 */
+        acc = _mm512_fmadd_ps(w, f[3], acc);
+    }
+    float sum = P->mass[i] * sph_kernel_w(k, 0.0f) + k->sigma * _mm512_reduce_add_ps(acc);
+    if (sph_sim_wall_volume(sim)) sum += sim->def.rest_density * sph_wall_hidden(sim, k, i, NULL);
+    P->rho[i] = sum;
+    P->vol[i] = P->mass[i] / sum;
+}
+#endif
+
 /* density_method = continuity switched on by a reconfiguration (a new
  * simulation starts from the lattice's density, sph_sim.c): the carried
  * density starts from this sum. The start-up evaluation (dt = 0, sph_sim_create) sums at x,
@@ -178,6 +213,20 @@ static void run(sph_sim *sim)
                 rec[4 * (size_t)i + 3] = P->mass[i];
             }
         }
+#if SPH_HAVE_WIDE_RECORDS
+        if (rec && sph_simd16_density(sim)) { /* 16 at a time; a wide row (32-bit indices) 8 at a time */
+#pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
+            for (int i = 0; i < n; i++) {
+                const bool compact = sph_nbr_row_of(&sim->S, (uint32_t)i).o != NULL;
+                if (dim == 3)
+                    compact ? density_one_wide(sim, &k, i, 3, rec) : density_one_avx2(sim, &k, i, 3, rec);
+                else
+                    compact ? density_one_wide(sim, &k, i, 2, rec) : density_one_avx2(sim, &k, i, 2, rec);
+            }
+            start_carrying(sim);
+            return;
+        }
+#endif
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
         for (int i = 0; i < n; i++) {
             if (rec)

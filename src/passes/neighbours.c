@@ -619,6 +619,91 @@ static void copy_releasing(void *dst, void *src, size_t bytes)
     }
 }
 
+#ifdef __AVX512F__
+/* [search] wide_batch = on: rows_batched with 16 candidates to a vector
+ * (AVX-512): the same sums and tests per candidate, the survivors of each
+ * vector compressed in a register in their order, so the rows are
+ * rows_batched's (and scan_run's) entry for entry. */
+__attribute__((always_inline)) static inline void rows_batched16(const sph_sim *sim, list *l, words *cw, uint32_t lo,
+                                                                uint32_t hi, const int dim)
+{
+    const sph_cells *g = &sim->S.cells;
+    const float *px = sim->P.pred[0], *py = sim->P.pred[1], *pz = dim == 3 ? sim->P.pred[2] : NULL;
+    const uint32_t *chash = sim->S.cell_hash;
+    const float reach = sph_skin_radius(sim), h2 = reach * reach; /* h, or h (1 + skin) */
+    const __m512 vh2 = _mm512_set1_ps(h2);
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    run_range runs[27];
+    uint32_t *rows = NULL, len[SPH_BATCH_MAX];
+    size_t rows_cap = 0;
+    for (uint32_t i0 = lo; i0 < hi;) {
+        int32_t c[3] = {0, 0, 0};
+        for (int d = 0; d < dim; d++) c[d] = sph_cells_coord(g, d, sim->P.pred[d][i0]);
+        uint32_t i1 = i0 + 1; /* the batch: i0 and the particles after it in the same cell */
+        while (i1 < hi && i1 - i0 < SPH_BATCH_MAX) {
+            bool same = true;
+            for (int d = 0; d < dim; d++) same &= sph_cells_coord(g, d, sim->P.pred[d][i1]) == c[d];
+            if (!same) break;
+            i1++;
+        }
+        const uint32_t nb = i1 - i0;
+        const int nruns = stencil_runs(sim, c, runs, true);
+        size_t stride = 16; /* a row's room: every candidate, and a vector's slack */
+        for (int k = 0; k < nruns; k++) stride += runs[k].end - runs[k].start;
+        if (nb * stride > rows_cap) {
+            rows_cap = 2 * nb * stride;
+            free(rows);
+            rows = malloc(rows_cap * sizeof *rows);
+            if (!rows) sph_memory_fail("a thread's rows of one cell could not be held (%s)", SPH_LISTS_WHY);
+        }
+        for (uint32_t b = 0; b < nb; b++) len[b] = 0;
+        for (int k = 0; k < nruns; k++) {
+            const run_range *r = &runs[k];
+            const __m512i vhash = _mm512_set1_epi32((int)r->hash);
+            for (uint32_t j = r->start; j < r->end; j += 16) {
+                const uint32_t left = r->end - j;
+                const __mmask16 live = left >= 16 ? (__mmask16)0xFFFF : (__mmask16)((1u << left) - 1);
+                const __m512 xj = _mm512_maskz_loadu_ps(live, px + j), yj = _mm512_maskz_loadu_ps(live, py + j);
+                const __m512 zj = dim == 3 ? _mm512_maskz_loadu_ps(live, pz + j) : _mm512_setzero_ps();
+                const __m512i idx = _mm512_add_epi32(_mm512_set1_epi32((int)j), lane);
+                __mmask16 base = live;
+                if (!r->exact) base = _mm512_mask_cmpeq_epi32_mask(base, _mm512_maskz_loadu_epi32(live, chash + j), vhash);
+                const bool self = j < i1 && i0 < j + 16; /* the batch's own particles among these 16 */
+                for (uint32_t b = 0; b < nb; b++) { /* scan_run's sums and tests, for i0 + b */
+                    const uint32_t i = i0 + b;
+                    const __m512 dx = _mm512_sub_ps(xj, _mm512_set1_ps(px[i]));
+                    const __m512 dy = _mm512_sub_ps(yj, _mm512_set1_ps(py[i]));
+                    __m512 r2 = _mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy));
+                    if (dim == 3) {
+                        const __m512 dz = _mm512_sub_ps(zj, _mm512_set1_ps(pz[i]));
+                        r2 = _mm512_add_ps(r2, _mm512_mul_ps(dz, dz));
+                    }
+                    __mmask16 m = _mm512_mask_cmp_ps_mask(base, r2, vh2, _CMP_LT_OQ);
+                    if (self) m = _mm512_mask_cmpneq_epi32_mask(m, idx, _mm512_set1_epi32((int)i));
+                    /* compressed in a register, then stored whole (a compress to memory is slow on some CPUs) */
+                    _mm512_storeu_si512((void *)(rows + b * stride + len[b]), _mm512_maskz_compress_epi32(m, idx));
+                    len[b] += (uint32_t)__builtin_popcount((unsigned)m);
+                }
+            }
+        }
+        for (uint32_t b = 0; b < nb; b++) { /* the rows in order i0 .. i1 - 1, as rows_reordered emits them */
+            const uint32_t *row = rows + b * stride;
+            if (cw) {
+                words_row8(cw, row, len[b], i0 + b);
+                sim->S.nbr_start[i0 + b + 1] = (uint32_t)cw->len;
+            } else {
+                list_reserve(l, len[b]);
+                memcpy(l->buf + l->len, row, len[b] * sizeof *row);
+                l->len += len[b];
+                sim->S.nbr_start[i0 + b + 1] = (uint32_t)l->len;
+            }
+        }
+        i0 = i1;
+    }
+    free(rows);
+}
+#endif
+
 /* Each thread builds the lists of a contiguous range of particles in its own
  * buffer; the rows are then laid end to end. */
 static void run(sph_sim *sim)
@@ -634,7 +719,8 @@ static void run(sph_sim *sim)
      * released now and the other threads' buffers as they are copied; a
      * step's peak then holds the lists once (not once and a half with two
      * threads), for some page faults on the copied share at each build. */
-    const bool release = sim->def.lists_in_place == SPH_ON && T > 1 && n > SPH_PARALLEL_MIN;
+    const bool release = sim->def.lists_in_place == SPH_ON && sim->def.lists_resident != SPH_ON && T > 1 &&
+                         n > SPH_PARALLEL_MIN;
     if (release && S->nbr && S->nbr_first < S->nbr_cap * sizeof *S->nbr)
         release_pages((char *)S->nbr + S->nbr_first, S->nbr_cap * sizeof *S->nbr - S->nbr_first);
     if (spos && !S->reordered && !S->next) { /* positions in sorted order, padded to 4 floats (z = 0 in 2D) */
@@ -675,9 +761,14 @@ static void run(sph_sim *sim)
             const bool periodic = sim->period[0] > 0 || sim->period[1] > 0 || sim->period[2] > 0;
 #ifdef __AVX2__
             const sph_scene_def *D = &sim->def;
-            if (!periodic && D->vector == SPH_ON && D->vector_avx2 == SPH_ON && D->cell_batch == SPH_ON)
-                sim->dim == 2 ? rows_batched(sim, &l, cw, lo, hi, 2) : rows_batched(sim, &l, cw, lo, hi, 3);
-            else
+            if (!periodic && D->vector == SPH_ON && D->vector_avx2 == SPH_ON && D->cell_batch == SPH_ON) {
+#ifdef __AVX512F__
+                if (D->wide_batch == SPH_ON)
+                    sim->dim == 2 ? rows_batched16(sim, &l, cw, lo, hi, 2) : rows_batched16(sim, &l, cw, lo, hi, 3);
+                else
+#endif
+                    sim->dim == 2 ? rows_batched(sim, &l, cw, lo, hi, 2) : rows_batched(sim, &l, cw, lo, hi, 3);
+            } else
 #endif
             if (sim->dim == 2)
                 periodic ? rows_reordered(sim, &l, cw, lo, hi, 2, true) : rows_reordered(sim, &l, cw, lo, hi, 2, false);

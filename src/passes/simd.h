@@ -200,8 +200,12 @@ SPH_INLINE const int16_t *sph_simd8_block_offsets(const int16_t *o, uint32_t e, 
 {
     o += e;
     if (end - e >= 8) return o;
+#if defined(__AVX512BW__) && defined(__AVX512VL__) /* a masked load: the same words, no calls */
+    _mm_storeu_si128((__m128i *)(void *)last, _mm_maskz_loadu_epi16((__mmask8)((1u << (end - e)) - 1), o));
+#else
     memset(last, 0, 8 * sizeof *last);
     memcpy(last, o, (size_t)(end - e) * sizeof *last);
+#endif
     return last;
 }
 
@@ -212,6 +216,54 @@ SPH_INLINE void sph_simd8_rec4_off(const float *rec_i, const int16_t *o, size_t 
 }
 #else
 #define SPH_HAVE_AVX2 0
+#endif
+
+#if SPH_HAVE_AVX512 && SPH_HAVE_AVX2
+/* [compute] wide_density = on (with packed_records): density's record walk
+ * takes 16 neighbours at a time. Four floats from `off` of each of 16 records of a
+ * compact row's block (offsets o[0..15] from the row's own record rec_i,
+ * records of `per` floats, 16-byte aligned): 16 16-byte loads gathered into
+ * four registers (records l, l + 4, l + 8, l + 12 in register l) and the
+ * transpose of sph_simd8_rec4_at within each 128-bit lane, so that lane l of
+ * f[k] holds float k of record l. */
+SPH_INLINE void sph_simd16_rec4_off(const float *rec_i, ptrdiff_t per, const int16_t *o, size_t off, __m512 f[4])
+{
+#define SPH_REC16_AT(k) _mm_load_ps(rec_i + per * (ptrdiff_t)o[k] + off)
+#define SPH_REC16_QUAD(a, b, c, d)                                                                              \
+    _mm512_insertf32x4(                                                                                        \
+        _mm512_insertf32x4(_mm512_insertf32x4(_mm512_castps128_ps512(SPH_REC16_AT(a)), SPH_REC16_AT(b), 1),     \
+                           SPH_REC16_AT(c), 2),                                                                \
+        SPH_REC16_AT(d), 3)
+    const __m512 r0 = SPH_REC16_QUAD(0, 4, 8, 12), r1 = SPH_REC16_QUAD(1, 5, 9, 13);
+    const __m512 r2 = SPH_REC16_QUAD(2, 6, 10, 14), r3 = SPH_REC16_QUAD(3, 7, 11, 15);
+#undef SPH_REC16_QUAD
+#undef SPH_REC16_AT
+    const __m512 t0 = _mm512_unpacklo_ps(r0, r1), t1 = _mm512_unpackhi_ps(r0, r1);
+    const __m512 t2 = _mm512_unpacklo_ps(r2, r3), t3 = _mm512_unpackhi_ps(r2, r3);
+    f[0] = _mm512_shuffle_ps(t0, t2, 0x44);
+    f[1] = _mm512_shuffle_ps(t0, t2, 0xEE);
+    f[2] = _mm512_shuffle_ps(t1, t3, 0x44);
+    f[3] = _mm512_shuffle_ps(t1, t3, 0xEE);
+}
+
+/* The offsets of a compact row's block of 16 from entry e: the row's own
+ * words, or for the last block a copy in last[] whose dead lanes hold offset
+ * 0 (the particle's own record, which the loops mask). */
+SPH_INLINE const int16_t *sph_simd16_block_offsets(const int16_t *o, uint32_t e, uint32_t end, int16_t last[16])
+{
+    o += e;
+    if (end - e >= 16) return o;
+#if defined(__AVX512BW__) && defined(__AVX512VL__) /* a masked load: the same words, no calls */
+    _mm256_storeu_si256((__m256i *)(void *)last, _mm256_maskz_loadu_epi16((__mmask16)((1u << (end - e)) - 1), o));
+#else
+    memset(last, 0, 16 * sizeof *last);
+    memcpy(last, o, (size_t)(end - e) * sizeof *last);
+#endif
+    return last;
+}
+#define SPH_HAVE_WIDE_RECORDS 1
+#else
+#define SPH_HAVE_WIDE_RECORDS 0
 #endif
 
 /* Whether a pass may use its 8-lane AVX2 loop ([search] vector_avx2 = on). */
@@ -225,6 +277,13 @@ static inline bool sph_simd8_on(const sph_sim *sim)
 static inline bool sph_simd8_packed(const sph_sim *sim)
 {
     return sph_simd8_on(sim) && sim->def.packed_records == SPH_ON;
+}
+
+/* Whether density's record walk takes 16 neighbours at a time ([compute] wide_density = on, packed records,
+ * AVX-512). */
+static inline bool sph_simd16_density(const sph_sim *sim)
+{
+    return SPH_HAVE_WIDE_RECORDS && sph_simd8_packed(sim) && sim->def.wide_density == SPH_ON;
 }
 
 /* The records' buffer, `per` floats for each particle (grown, never shrunk). */

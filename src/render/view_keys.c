@@ -29,7 +29,7 @@
     X("m", "cycle the search: hash, grid, brute")                             \
     X("s", "cycle the pressure solver: eos, pcisph, dfsph")                   \
     /* the ladder, validate mode, N and the pass list (view_ladder.c) */      \
-    X("l / shift+l", "next / previous level of the ladder (L0..L15, G0..G3)")  \
+    X("l / shift+l", "next / previous level of the ladder (L0..L18, G0..G3)")  \
     X("e", "switch the reorder by cell on / off")                             \
     X("u", "switch the vector loops on / off")                                \
     X("t", "threads: 1 / one per core")                                       \
