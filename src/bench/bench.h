@@ -195,7 +195,7 @@ void bench_compare(const bench_state *ref, const bench_state *s, bench_diff *d);
 typedef struct bench_machine {
     int cores;
     double mhz_cpuinfo;       /* "cpu MHz" of /proc/cpuinfo (0 if unknown) */
-    double clock_ghz;         /* measured: a chain of dependent integer adds, one per cycle */
+    double clock_ghz;         /* measured: a chain of dependent integer multiplications, 3 cycles each */
     int lanes;                /* floats per vector register the build uses (16 with AVX-512) */
     double fma_gflops[2];     /* measured: independent FMA chains, 1 thread and all cores */
     double peak_gflops_core;  /* clock x lanes x 2 (FMA) x FMA pipes (from the measurement, rounded) */

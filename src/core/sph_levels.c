@@ -64,18 +64,18 @@ const sph_level sph_levels[] = {
      "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
      "compute.packed_records=on compute.uniform_mass=on search.cell_batch=on",
      0, "L14 + recherche des particules d'une cellule ensemble"},
-    {"L16", "L15 + density's walk 16 lanes wide (AVX-512)",
+    {"L16", "L15 + density's walk on 16 lanes",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
      "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
      "compute.packed_records=on compute.uniform_mass=on search.cell_batch=on compute.wide_density=on",
      0, "L15 + parcours de la densité sur 16 voies (AVX-512)"},
-    {"L17", "L16 + the search's cell batch 16 lanes wide",
+    {"L17", "L16 + the search's batch on 16 lanes",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
      "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
      "compute.packed_records=on compute.uniform_mass=on search.cell_batch=on compute.wide_density=on "
      "search.wide_batch=on",
      0, "L16 + lot de la recherche sur 16 voies (AVX-512)"},
-    {"L18", "L17 + lists' pages kept resident (no faults)",
+    {"L18", "L17 + list pages kept (no faults)",
      "search.method=grid search.sort=counting search.reorder=on search.vector=on compute.fuse_forces=on "
      "search.lists_in_place=on search.skin=0.05 search.compact_lists=on search.vector_avx2=on "
      "compute.packed_records=on compute.uniform_mass=on search.cell_batch=on compute.wide_density=on "
