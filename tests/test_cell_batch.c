@@ -55,13 +55,7 @@ enum { GRID = 0, HASH = 1, PLAIN = 2, WIDE = 4 }; /* WIDE: the batch with wide_b
     "[fluid column]\nmin = 0 0\nmax = 0.4 0.4\nspacing = 0.01\n[physics]\nstiffness = 1000\n"                 \
     "viscosity = 0.002\n[kernels]\nh = 0.07\n[time]\ndt = 0.0002\ncfl = 0\n"
 
-/* A strip 200 m long: rows of neighbours more than 32,767 places away are stored wide. */
-#define STRIP_2D                                                                                                 \
-    "[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n"                                        \
-    "[domain]\nmin = -100.25 0\nmax = 100.25 0.5\n"                                                            \
-    "[fluid strip]\nmin = -100 0\nmax = 100 0.04\nspacing = 0.01\n"                                              \
-    "[fluid drop]\nmin = -0.5 0.3\nmax = 0.5 0.45\nspacing = 0.01\n[physics]\nstiffness = 1000\n"              \
-    "viscosity = 0.002\n[kernels]\nh = 0.02\n[time]\ndt = 0.0002\ncfl = 0\n"
+#define STRIP_2D TEST_LEVELS_STRIP_2D
 
 /* Periodic along x: the key falls back to L14's scan. */
 #define PERIODIC_2D                                                                                              \

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "test_levels_util.h"
 #include "test_util.h"
 
 /* L10's keys (docs/performance.md): L11 adds compact_lists = on. */
@@ -22,16 +23,7 @@
     "max = 0.8 0.4 0.4\n[fluid column]\nmin = 0 0 0\nmax = 0.3 0.3 0.4\nspacing = 0.02\n[physics]\n"           \
     "stiffness = 1000\nviscosity = 0.002\n[kernels]\nh = 0.04\n[time]\ndt = 0.0005\ncfl = 0\n"
 
-/* A strip 200 m long and 4 spacings high (centred on 0, where floats are finest): a row of cells holds about 40,000
- * particles, so a neighbour in the next row of cells is that many places
- * away, past the 16-bit offsets' reach: those rows are stored wide. The
- * drop above it has rows of cells of about 100 particles: narrow rows. */
-#define STRIP_2D                                                                                                 \
-    "[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n"                                        \
-    "[domain]\nmin = -100.25 0\nmax = 100.25 0.5\n"                                                            \
-    "[fluid strip]\nmin = -100 0\nmax = 100 0.04\nspacing = 0.01\n"                                              \
-    "[fluid drop]\nmin = -0.5 0.3\nmax = 0.5 0.45\nspacing = 0.01\n[physics]\nstiffness = 1000\n"              \
-    "viscosity = 0.002\n[kernels]\nh = 0.02\n[time]\ndt = 0.0002\ncfl = 0\n"
+#define STRIP_2D TEST_LEVELS_STRIP_2D
 
 static sph_sim *make(const char *scene, bool compact, int threads)
 {

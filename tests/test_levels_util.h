@@ -22,6 +22,18 @@
     "[fluid column]\nmin = 0 0\nmax = 0.6 0.6\nspacing = 0.01\n[physics]\nstiffness = 1000\n"                 \
     "viscosity = 0.002\n[kernels]\nh = 0.02\n[time]\ndt = 0.0002\ncfl = 0\n"
 
+/* A strip 200 m long and 4 spacings high (centred on 0, where floats are
+ * finest): a row of cells holds about 40,000 particles, so a neighbour in the
+ * next row of cells is that many places away, past the 16-bit offsets' reach:
+ * those rows are stored wide. The drop above it has rows of cells of about
+ * 100 particles: narrow rows. */
+#define TEST_LEVELS_STRIP_2D                                                                                     \
+    "[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n"                                        \
+    "[domain]\nmin = -100.25 0\nmax = 100.25 0.5\n"                                                            \
+    "[fluid strip]\nmin = -100 0\nmax = 100 0.04\nspacing = 0.01\n"                                              \
+    "[fluid drop]\nmin = -0.5 0.3\nmax = 0.5 0.45\nspacing = 0.01\n[physics]\nstiffness = 1000\n"              \
+    "viscosity = 0.002\n[kernels]\nh = 0.02\n[time]\ndt = 0.0002\ncfl = 0\n"
+
 /* The first field where a and b differ to the bit (count, order, rho, pos, vel, acc_p, acc_v), or NULL. */
 static inline const char *test_levels_first_difference(const sph_sim *a, const sph_sim *b)
 {

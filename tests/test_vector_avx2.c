@@ -35,14 +35,7 @@ enum { FUSED = 0, APART = 1, PLAIN = 2, SHARED = 4, HASH = 8 };
 #define DAM_3D TEST_LEVELS_DAM_3D
 #define DAM_2D TEST_LEVELS_DAM_2D
 
-/* The strip of tests/test_compact_lists.c: rows of cells of about 40,000
- * particles, so many compact rows are stored wide. */
-#define STRIP_2D                                                                                                 \
-    "[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n"                                        \
-    "[domain]\nmin = -100.25 0\nmax = 100.25 0.5\n"                                                            \
-    "[fluid strip]\nmin = -100 0\nmax = 100 0.04\nspacing = 0.01\n"                                              \
-    "[fluid drop]\nmin = -0.5 0.3\nmax = 0.5 0.45\nspacing = 0.01\n[physics]\nstiffness = 1000\n"              \
-    "viscosity = 0.002\n[kernels]\nh = 0.02\n[time]\ndt = 0.0002\ncfl = 0\n"
+#define STRIP_2D TEST_LEVELS_STRIP_2D /* many compact rows stored wide */
 
 /* The scene with L11's keys in the variant asked, vector_avx2 on or off. */
 static sph_sim *make(const char *scene, int variant, bool avx2, int threads)

@@ -28,13 +28,7 @@
     "compact_lists = on\nvector_avx2 = on\ncell_batch = on\n[compute]\nfuse_forces = on\npacked_records = on\n" \
     "uniform_mass = on\nwide_density = %s\n"
 
-/* A strip 200 m long: rows of neighbours more than 32,767 places away are stored wide (test_cell_batch.c). */
-#define STRIP_2D                                                                                                 \
-    "[scene]\ndimension = 2\neffects = gravity pressure viscosity walls\n"                                        \
-    "[domain]\nmin = -100.25 0\nmax = 100.25 0.5\n"                                                            \
-    "[fluid strip]\nmin = -100 0\nmax = 100 0.04\nspacing = 0.01\n"                                              \
-    "[fluid drop]\nmin = -0.5 0.3\nmax = 0.5 0.45\nspacing = 0.01\n[physics]\nstiffness = 1000\n"              \
-    "viscosity = 0.002\n[kernels]\nh = 0.02\n[time]\ndt = 0.0002\ncfl = 0\n"
+#define STRIP_2D TEST_LEVELS_STRIP_2D
 
 static sph_sim *make(const char *scene, bool wide, int threads)
 {

@@ -461,6 +461,58 @@ static inline void rows_reordered(const sph_sim *sim, list *l, words *cw, uint32
  * order), with the same sums, so the rows are scan_run's to the entry. */
 #define SPH_BATCH_MAX 32 /* particles tested together; a fuller cell is taken in several batches */
 
+/* A batch of the cell batch searches: i0 and the particles after it in the
+ * same cell, up to SPH_BATCH_MAX and hi; c[] receives the cell. The end. */
+static inline uint32_t batch_end(const sph_sim *sim, uint32_t i0, uint32_t hi, const int dim, int32_t c[3])
+{
+    const sph_cells *g = &sim->S.cells;
+    for (int d = 0; d < dim; d++) c[d] = sph_cells_coord(g, d, sim->P.pred[d][i0]);
+    uint32_t i1 = i0 + 1;
+    while (i1 < hi && i1 - i0 < SPH_BATCH_MAX) {
+        bool same = true;
+        for (int d = 0; d < dim; d++) same &= sph_cells_coord(g, d, sim->P.pred[d][i1]) == c[d];
+        if (!same) break;
+        i1++;
+    }
+    return i1;
+}
+
+/* The batch's scratch: nb rows of `stride` entries each (every candidate of
+ * the runs and `slack` for a vector's store past the last), grown as needed. */
+static inline size_t batch_rows(uint32_t **rows, size_t *cap, uint32_t nb, const run_range *runs, int nruns,
+                                size_t slack)
+{
+    size_t stride = slack;
+    for (int k = 0; k < nruns; k++) stride += runs[k].end - runs[k].start;
+    if (nb * stride > *cap) {
+        *cap = 2 * nb * stride;
+        free(*rows);
+        *rows = malloc(*cap * sizeof **rows);
+        if (!*rows) sph_memory_fail("a thread's rows of one cell could not be held (%s)", SPH_LISTS_WHY);
+    }
+    return stride;
+}
+
+/* The batch's rows in order i0 .. i0 + nb - 1, as rows_reordered emits them:
+ * packed into cw (words_row8, defined below), or appended to l. */
+static inline void words_row8(words *c, const uint32_t *j, size_t m, uint32_t i);
+static inline void batch_emit(const sph_sim *sim, list *l, words *cw, const uint32_t *rows, size_t stride,
+                              const uint32_t *len, uint32_t i0, uint32_t nb)
+{
+    for (uint32_t b = 0; b < nb; b++) {
+        const uint32_t *row = rows + b * stride;
+        if (cw) {
+            words_row8(cw, row, len[b], i0 + b);
+            sim->S.nbr_start[i0 + b + 1] = (uint32_t)cw->len;
+        } else {
+            list_reserve(l, len[b]);
+            memcpy(l->buf + l->len, row, len[b] * sizeof *row);
+            l->len += len[b];
+            sim->S.nbr_start[i0 + b + 1] = (uint32_t)l->len;
+        }
+    }
+}
+
 /* Row i (m neighbours j[], with 8 entries of slack readable past m) as in
  * words_row, 8 at a time: the offsets j - i packed to 16 bits in registers
  * and stored while checked within +-SPH_NBR_NEAR; a row that is not is
@@ -492,7 +544,6 @@ static inline void words_row8(words *c, const uint32_t *j, size_t m, uint32_t i)
 __attribute__((always_inline)) static inline void rows_batched(const sph_sim *sim, list *l, words *cw, uint32_t lo,
                                                               uint32_t hi, const int dim)
 {
-    const sph_cells *g = &sim->S.cells;
     const float *px = sim->P.pred[0], *py = sim->P.pred[1], *pz = dim == 3 ? sim->P.pred[2] : NULL;
     const uint32_t *chash = sim->S.cell_hash, n = sim->n;
     const float reach = sph_skin_radius(sim), h2 = reach * reach; /* h, or h (1 + skin) */
@@ -508,24 +559,9 @@ __attribute__((always_inline)) static inline void rows_batched(const sph_sim *si
     size_t rows_cap = 0;
     for (uint32_t i0 = lo; i0 < hi;) {
         int32_t c[3] = {0, 0, 0};
-        for (int d = 0; d < dim; d++) c[d] = sph_cells_coord(g, d, sim->P.pred[d][i0]);
-        uint32_t i1 = i0 + 1; /* the batch: i0 and the particles after it in the same cell */
-        while (i1 < hi && i1 - i0 < SPH_BATCH_MAX) {
-            bool same = true;
-            for (int d = 0; d < dim; d++) same &= sph_cells_coord(g, d, sim->P.pred[d][i1]) == c[d];
-            if (!same) break;
-            i1++;
-        }
-        const uint32_t nb = i1 - i0;
+        const uint32_t i1 = batch_end(sim, i0, hi, dim, c), nb = i1 - i0;
         const int nruns = stencil_runs(sim, c, runs, true);
-        size_t stride = 8; /* a row's room: every candidate, and a vector's slack */
-        for (int k = 0; k < nruns; k++) stride += runs[k].end - runs[k].start;
-        if (nb * stride > rows_cap) {
-            rows_cap = 2 * nb * stride;
-            free(rows);
-            rows = malloc(rows_cap * sizeof *rows);
-            if (!rows) sph_memory_fail("a thread's rows of one cell could not be held (%s)", SPH_LISTS_WHY);
-        }
+        const size_t stride = batch_rows(&rows, &rows_cap, nb, runs, nruns, 8); /* every candidate, a vector's slack */
         for (uint32_t b = 0; b < nb; b++) len[b] = 0;
         for (int k = 0; k < nruns; k++) {
             const run_range *r = &runs[k];
@@ -566,18 +602,7 @@ __attribute__((always_inline)) static inline void rows_batched(const sph_sim *si
                 }
             }
         }
-        for (uint32_t b = 0; b < nb; b++) { /* the rows in order i0 .. i1 - 1, as rows_reordered emits them */
-            const uint32_t *row = rows + b * stride;
-            if (cw) {
-                words_row8(cw, row, len[b], i0 + b);
-                sim->S.nbr_start[i0 + b + 1] = (uint32_t)cw->len;
-            } else {
-                list_reserve(l, len[b]);
-                memcpy(l->buf + l->len, row, len[b] * sizeof *row);
-                l->len += len[b];
-                sim->S.nbr_start[i0 + b + 1] = (uint32_t)l->len;
-            }
-        }
+        batch_emit(sim, l, cw, rows, stride, len, i0, nb);
         i0 = i1;
     }
     free(rows);
@@ -627,7 +652,6 @@ static void copy_releasing(void *dst, void *src, size_t bytes)
 __attribute__((always_inline)) static inline void rows_batched16(const sph_sim *sim, list *l, words *cw, uint32_t lo,
                                                                 uint32_t hi, const int dim)
 {
-    const sph_cells *g = &sim->S.cells;
     const float *px = sim->P.pred[0], *py = sim->P.pred[1], *pz = dim == 3 ? sim->P.pred[2] : NULL;
     const uint32_t *chash = sim->S.cell_hash;
     const float reach = sph_skin_radius(sim), h2 = reach * reach; /* h, or h (1 + skin) */
@@ -638,24 +662,9 @@ __attribute__((always_inline)) static inline void rows_batched16(const sph_sim *
     size_t rows_cap = 0;
     for (uint32_t i0 = lo; i0 < hi;) {
         int32_t c[3] = {0, 0, 0};
-        for (int d = 0; d < dim; d++) c[d] = sph_cells_coord(g, d, sim->P.pred[d][i0]);
-        uint32_t i1 = i0 + 1; /* the batch: i0 and the particles after it in the same cell */
-        while (i1 < hi && i1 - i0 < SPH_BATCH_MAX) {
-            bool same = true;
-            for (int d = 0; d < dim; d++) same &= sph_cells_coord(g, d, sim->P.pred[d][i1]) == c[d];
-            if (!same) break;
-            i1++;
-        }
-        const uint32_t nb = i1 - i0;
+        const uint32_t i1 = batch_end(sim, i0, hi, dim, c), nb = i1 - i0;
         const int nruns = stencil_runs(sim, c, runs, true);
-        size_t stride = 16; /* a row's room: every candidate, and a vector's slack */
-        for (int k = 0; k < nruns; k++) stride += runs[k].end - runs[k].start;
-        if (nb * stride > rows_cap) {
-            rows_cap = 2 * nb * stride;
-            free(rows);
-            rows = malloc(rows_cap * sizeof *rows);
-            if (!rows) sph_memory_fail("a thread's rows of one cell could not be held (%s)", SPH_LISTS_WHY);
-        }
+        const size_t stride = batch_rows(&rows, &rows_cap, nb, runs, nruns, 16); /* every candidate, a vector's slack */
         for (uint32_t b = 0; b < nb; b++) len[b] = 0;
         for (int k = 0; k < nruns; k++) {
             const run_range *r = &runs[k];
@@ -686,18 +695,7 @@ __attribute__((always_inline)) static inline void rows_batched16(const sph_sim *
                 }
             }
         }
-        for (uint32_t b = 0; b < nb; b++) { /* the rows in order i0 .. i1 - 1, as rows_reordered emits them */
-            const uint32_t *row = rows + b * stride;
-            if (cw) {
-                words_row8(cw, row, len[b], i0 + b);
-                sim->S.nbr_start[i0 + b + 1] = (uint32_t)cw->len;
-            } else {
-                list_reserve(l, len[b]);
-                memcpy(l->buf + l->len, row, len[b] * sizeof *row);
-                l->len += len[b];
-                sim->S.nbr_start[i0 + b + 1] = (uint32_t)l->len;
-            }
-        }
+        batch_emit(sim, l, cw, rows, stride, len, i0, nb);
         i0 = i1;
     }
     free(rows);
