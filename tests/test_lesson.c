@@ -16,6 +16,7 @@
 #include <sys/stat.h>
 
 #include "stb_image.h"
+#include "sph_levels.h"
 #include "test_util.h"
 
 static char out[65536];
@@ -595,6 +596,19 @@ Test(lesson, export_8_optimisation_ladder)
         check_csv(dir, "levels.csv", "level,threads,particles,ms_per_step,neighbours_ms,speedup,steps_per_s", 7, &c);
         /* every level runs the same scene; its speed is measured, not asserted (a busy machine may reorder
          * the levels), only that the speed-up and steps/s columns follow from the milliseconds */
+        /* a row for every CPU level of the core's table, in its order (the lesson's arrays once held 16:
+         * L16-L18 ran past them, which the sanitizers' build caught) */
+        int cpu_levels = 0;
+        for (int l = 0; l < sph_level_count; l++) cpu_levels += !sph_level_gl(&sph_levels[l]);
+        cr_expect_eq(c.nlines - 1, cpu_levels, "levels.csv: %d rows for %d CPU levels", c.nlines - 1, cpu_levels);
+        int row = 1;
+        for (int l = 0; l < sph_level_count && row < c.nlines; l++) {
+            if (sph_level_gl(&sph_levels[l])) continue;
+            const size_t nlen = strlen(sph_levels[l].name);
+            cr_expect(strncmp(c.line[row], sph_levels[l].name, nlen) == 0 && c.line[row][nlen] == ',',
+                      "levels.csv row %d: %.40s, not %s", row, c.line[row], sph_levels[l].name);
+            row++;
+        }
         double l0 = field(c.line[1], 3);
         for (int i = 1; i < c.nlines; i++) {
             double ms = field(c.line[i], 3);

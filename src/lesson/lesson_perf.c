@@ -185,7 +185,7 @@ int lx_lesson8(lx *x)
         char steps[24];
         snprintf(steps, sizeof steps, "%d", x->quick ? 5 : def.steps);
         const char *spacing = x->quick ? "0.04" : NULL;
-        double ms[16], nbm[16];
+        double ms[BENCH_MAX_LEVELS], nbm[BENCH_MAX_LEVELS]; /* one per CPU level (lv[], at most that many) */
         long N = 0;
         lx_val(x, "steps", "%s", steps);
         lx_val(x, "spacing_sets", "%s", spacing ? " --set fluid.spacing=0.04 --set kernels.h=0.08" : "");
