@@ -388,6 +388,37 @@ Test(bench, machine_limits_are_written, .timeout = 120)
     free(json);
 }
 
+/* The largest N is searched up to a cap (150,000 with --quick): a level that reaches it is marked "+", and the
+ * verdict on the next mark, 250,000, above the cap, is "not evaluated", not "NOT MET" (which it read whatever the
+ * machine could do). Either way the verdict follows the CSV's max_n and capped. */
+Test(bench, quick_ladder_says_when_the_search_stopped_at_its_cap, .timeout = 300)
+{
+    char dir[64], args[256], path[256];
+    make_dir(dir, sizeof dir);
+    /* h = 1.5 spacings: fewer neighbours, so that the level reaches the cap on most machines */
+    snprintf(args, sizeof args, "bench ladder --quick --levels L18 --set kernels.h=0.03 --out %s", dir);
+    int rc = test_sphlab(args, g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
+    csv c;
+    snprintf(path, sizeof path, "%s/ladder-3d.csv", dir);
+    csv_read(&c, path);
+    const int r = csv_row(&c, "L18");
+    cr_assert(r > 0, "no L18 row");
+    const bool capped = atoi(c.cell[r][csv_col(&c, "capped")]) == 1;
+    const double max_n = atof(c.cell[r][csv_col(&c, "max_n")]);
+    free(c.text);
+    const char *mark = strstr(g_out, "the next mark, 250,000 particles at 60 steps/s in 3D: ");
+    cr_assert(mark, "no verdict on the next mark:\n%s", g_out);
+    mark += strlen("the next mark, 250,000 particles at 60 steps/s in 3D: ");
+    if (capped) {
+        cr_expect(strncmp(mark, "not evaluated", 13) == 0, "capped at %.0f, yet: %.80s", max_n, mark);
+        cr_expect(strstr(g_out, "+: the search stopped at its largest size, 150,000 with --quick"), "no legend of +");
+    } else {
+        cr_expect(strncmp(mark, max_n >= 250000 ? "MET" : "NOT MET", max_n >= 250000 ? 3 : 7) == 0,
+                  "max N %.0f, not capped: %.80s", max_n, mark);
+    }
+}
+
 Test(bench, bad_command_lines_exit_2)
 {
     const char *bad[] = {

@@ -9,6 +9,7 @@
 #define _DEFAULT_SOURCE /* mkdtemp, setenv */
 #include <criterion/criterion.h>
 #include <ctype.h>
+#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -601,6 +602,33 @@ Test(lesson, export_8_optimisation_ladder)
         int cpu_levels = 0;
         for (int l = 0; l < sph_level_count; l++) cpu_levels += !sph_level_gl(&sph_levels[l]);
         cr_expect_eq(c.nlines - 1, cpu_levels, "levels.csv: %d rows for %d CPU levels", c.nlines - 1, cpu_levels);
+        /* and each row ran with every key of its level: logs/NN-run-LEVEL.txt starts with the command (a
+         * run of 12 keys at most once ran L13-L18 as L12 under their names) */
+        DIR *logs = NULL;
+        char logdir[1100];
+        snprintf(logdir, sizeof logdir, "%s/logs", dir);
+        for (int l = 0; l < sph_level_count; l++) {
+            if (sph_level_gl(&sph_levels[l])) continue;
+            char tail[32], path[1400];
+            snprintf(tail, sizeof tail, "-run-%s.txt", sph_levels[l].name);
+            path[0] = 0;
+            logs = opendir(logdir);
+            cr_assert_not_null(logs, "no %s", logdir);
+            for (struct dirent *e; (e = readdir(logs));) {
+                const size_t ln = strlen(e->d_name), tn = strlen(tail);
+                if (ln > tn && strcmp(e->d_name + ln - tn, tail) == 0) snprintf(path, sizeof path, "%s/%s", logdir, e->d_name);
+            }
+            closedir(logs);
+            cr_assert(path[0], "no log of %s's run in %s", sph_levels[l].name, logdir);
+            char *log = read_all(path);
+            cr_assert_not_null(log, "%s", path);
+            char keys[600];
+            snprintf(keys, sizeof keys, "%s", sph_levels[l].sets);
+            char *save = NULL;
+            for (char *k = strtok_r(keys, " ", &save); k; k = strtok_r(NULL, " ", &save))
+                cr_expect(strstr(log, k), "%s ran without %s (%s)", sph_levels[l].name, k, path);
+            free(log);
+        }
         int row = 1;
         for (int l = 0; l < sph_level_count && row < c.nlines; l++) {
             if (sph_level_gl(&sph_levels[l])) continue;

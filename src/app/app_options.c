@@ -206,7 +206,7 @@ const app_opt app_options[] = {
      "(default 0.02; --quick 0.01)", BENCH, DOUBLE(time, 1e-4, 10)},
     {"--repeats", NULL, "R", "solvers: interleaved rounds of eos, pcisph, dfsph (default 5; --quick 1); pair: "
      "rounds (default 15; --quick 3)", BENCH, INT(repeats, 1, 50)},
-    {"--quick", NULL, NULL, "small sizes, few repeats (for CI: ladder and scaling in well under a minute)", BENCH,
+    {"--quick", NULL, NULL, "small sizes, few repeats (for CI and the tests: the ladder about a minute, scaling about 30 s on 2 cores)", BENCH,
      FLAG(quick)},
     {"--out", NULL, "DIR", "where the CSV, JSON and charts go (made if missing; default .)", BENCH, PATH(out)},
     {"--levels", NULL, "L0,L3,...", "only these levels (default: all)", BENCH, STRING(levels)},

@@ -33,6 +33,8 @@ typedef sph_level bench_level;
 #define bench_levels sph_levels
 #define bench_level_count sph_level_count
 enum { BENCH_MAX_LEVELS = 32 };
+/* The ladder's search for the largest N stops at this size (marked "+" in the table). */
+enum { BENCH_MAX_N_QUICK = 150000, BENCH_MAX_N = 4000000 };
 
 /* Reference levels of the checks: brute force where it is affordable, the
  * seed's final design (hash + bitonic sort + offsets) at larger N. */

@@ -188,7 +188,7 @@ int bench_ladder_measure(const bench_opts *o, bench_ladder *lad)
     meta.n_at = bench_count(dim, k_at);
     const bench_plan plan_search = o->quick ? (bench_plan){2, 2, 300, fps, false} : (bench_plan){5, 3, 2500, fps, false};
     const bench_plan plan_at = o->quick ? (bench_plan){3, 2, 600, 0, true} : (bench_plan){7, 3, 5000, 0, true};
-    const double cap = o->quick ? 150000 : 4000000;
+    const double cap = o->quick ? BENCH_MAX_N_QUICK : BENCH_MAX_N;
 
     /* an unwritable directory fails now, not after the measurements */
     char dir_err[1200];

@@ -379,10 +379,13 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
             fprintf(out, "%-5s %-42s %3d %12s %8s %10s  %-44s %-5s %.2f\n", L->name, L->about,
                    r->at.threads ? r->at.threads : L->threads, maxn, sp, ms, top, bench_check_word(r), r->others);
         }
+        char capn[32];
+        bench_fmt_count(capn, sizeof capn, o->quick ? BENCH_MAX_N_QUICK : BENCH_MAX_N);
         fprintf(out, "\nmax N: the largest block with %g steps/s or more (bisection over block sizes, median of repeats;\n"
-               "none: not even the smallest block reached it on this machine, which is no failure);\n"
+               "none: not even the smallest block reached it on this machine, which is no failure;\n"
+               "+: the search stopped at its largest size, %s with %s, which the level reached);\n"
                "ms/step and passes: medians at N = %s; others: cores that other processes kept busy meanwhile\n",
-               fps, nat);
+               fps, capn, o->quick ? "--quick" : "the full bench", nat);
         fprintf(out, "\nwhere the time goes at N = %s (pairs: neighbour-list entries per step, i->j and j->i):\n", nat);
         fprintf(out, "%-5s %12s %10s %12s %7s %6s %10s %12s %7s %6s %8s\n", "level", "pairs", "search ms",
                 "pairs/s/core", "GFLOP/s", "%peak", "forces ms", "pairs/s/core", "GFLOP/s", "%peak", "peak B/N");
@@ -442,11 +445,17 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
             char bn[32];
             bench_fmt_count(bn, sizeof bn, res[meta.best].max_n);
             /* the seed's record (a GTX 1060) and the next mark for two CPU cores */
+            const bool capped = res[meta.best].capped;
             fprintf(out, "\nthe seed's record, 60,000 particles at 60 steps/s in 3D, on the fastest CPU level: %s "
-                   "(%s: %s)\n",
-                   meta.target_met ? "MET" : "NOT MET", bench_levels[o->sel[meta.best]].name, bn);
-            fprintf(out, "the next mark, 250,000 particles at 60 steps/s in 3D: %s\n",
-                    res[meta.best].max_n >= 250000 ? "MET" : "NOT MET");
+                   "(%s: %s%s)\n",
+                   meta.target_met ? "MET" : "NOT MET", bench_levels[o->sel[meta.best]].name, bn, capped ? "+" : "");
+            if (capped && res[meta.best].max_n < 250000) /* the search stopped below the mark: nothing said of it */
+                fprintf(out, "the next mark, 250,000 particles at 60 steps/s in 3D: not evaluated (the search stops at "
+                        "%s%s, which %s reached)\n", capn, o->quick ? " with --quick" : "",
+                        bench_levels[o->sel[meta.best]].name);
+            else
+                fprintf(out, "the next mark, 250,000 particles at 60 steps/s in 3D: %s\n",
+                        res[meta.best].max_n >= 250000 ? "MET" : "NOT MET");
         } else {
             fprintf(out, "\nthe seed's record (60,000 particles at 60 steps/s in 3D): not evaluated with these options\n");
         }

@@ -10,7 +10,7 @@
  * level, add a line (any scene key, `sphlab keys` lists them). */
 const sph_level sph_levels[] = {
     {"L0", "brute force O(N^2) on 1 thread", "search.method=brute search.reorder=off search.vector=off", 1,
-     "force brute O(N^2) sur 1 thread"},
+     "force brute O(N^2) sur 1 fil"},
     {"L1", "spatial hash unsorted (linked lists)",
      "search.method=hash search.sort=none search.reorder=off search.vector=off", 1,
      "hachage spatial non trié (listes chaînées)"},

@@ -220,6 +220,12 @@ int lx_lesson8(lx *x)
                 while (*k0 == ' ') k0++;
             }
             lx_run r;
+            if (*k0) { /* keys left over: the run would not be the level it is labelled */
+                x->failed++;
+                lx_md(x, "**%s: more keys than a run takes (%d); not run.**\n\n", L->name, LX_RUN_MAX_SETS - 1);
+                ms[i] = NAN;
+                continue;
+            }
             if (!lx_run_sim(x, lx_fmt("run-%s", L->name), &ro, &r)) {
                 ms[i] = NAN;
                 continue;
