@@ -220,9 +220,11 @@ int lx_lesson8(lx *x)
                 while (*k0 == ' ') k0++;
             }
             lx_run r;
-            if (*k0) { /* keys left over: the run would not be the level it is labelled */
+            if (*k0) { /* keys left over: the run would not be the level it is labelled; a row of the table says so */
                 x->failed++;
-                lx_md(x, "**%s: more keys than a run takes (%d); not run.**\n\n", L->name, LX_RUN_MAX_SETS - 1);
+                lx_md(x, "| %s | {{@%s|%s}} | - | - | - | - | - | - | {{@not run: more keys than a run takes (%d)|non "
+                         "lancé : plus de clés qu'un lancement n'en prend (%d)}} |\n",
+                      L->name, L->about, L->about_fr, LX_RUN_MAX_SETS - 1, LX_RUN_MAX_SETS - 1);
                 ms[i] = NAN;
                 continue;
             }

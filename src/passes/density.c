@@ -136,14 +136,14 @@ static inline void density_one_avx2(const sph_sim *sim, const sph_kernel *k, int
 /* density_one_avx2 with records and a compact row, 16 neighbours at a time
  * ([compute] wide_density = on): the same operations per pair; the 16 lanes
  * are summed in another order than the 8, so the sum differs by round-off. */
-static inline void density_one_wide(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const float *rec)
+static inline void density_one_wide(const sph_sim *sim, const sph_kernel *k, int i, const int dim, const float *rec,
+                                    const sph_nbr_row row)
 {
     const sph_particles *P = &sim->P;
     const __m512 h2 = _mm512_set1_ps(k->h2), zero = _mm512_setzero_ps();
     __m512 xi[3];
     sph_simd_centre(P, i, dim, xi);
     __m512 acc = zero;
-    const sph_nbr_row row = sph_nbr_row_of(&sim->S, (uint32_t)i);
     const uint32_t end = row.n;
     const float *const rec_i = rec + 4 * (size_t)i;
     for (uint32_t e = 0; e < end; e += 16) {
@@ -217,11 +217,11 @@ static void run(sph_sim *sim)
         if (rec && sph_simd16_density(sim)) { /* 16 at a time; a wide row (32-bit indices) 8 at a time */
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
             for (int i = 0; i < n; i++) {
-                const bool compact = sph_nbr_row_of(&sim->S, (uint32_t)i).o != NULL;
+                const sph_nbr_row row = sph_nbr_row_of(&sim->S, (uint32_t)i); /* read once, walked here */
                 if (dim == 3)
-                    compact ? density_one_wide(sim, &k, i, 3, rec) : density_one_avx2(sim, &k, i, 3, rec);
+                    row.o ? density_one_wide(sim, &k, i, 3, rec, row) : density_one_avx2(sim, &k, i, 3, rec);
                 else
-                    compact ? density_one_wide(sim, &k, i, 2, rec) : density_one_avx2(sim, &k, i, 2, rec);
+                    row.o ? density_one_wide(sim, &k, i, 2, rec, row) : density_one_avx2(sim, &k, i, 2, rec);
             }
             start_carrying(sim);
             return;
