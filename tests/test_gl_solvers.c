@@ -198,11 +198,21 @@ static void compare_runs(const char *ini, const char *solver, const char *walls,
                 "%s %dD %s walls%s%s, %d steps: %ld iterations on the CPU, %ld on GL, %d steps with the same count "
                 "(worst difference %d; CPU shifted by one ulp: %d), density errors differ by %.3g at most, %llu bytes "
                 "read back, positions differ by %.3g m (CPU shifted by one ulp: %.3g m), %u wall particles held "
-                "still, obstacle forces differ by %.3g of %.4g N/m\n",
+                "still, obstacle forces differ by %.3g of %.4g N/m%s\n",
                 solver, c->dim, walls, extra ? ", " : "", extra ? extra : "", steps, total, total_gl, same, worst,
-                spread, err_worst, (unsigned long long)bytes, err, err_u, still, ferr, fbig);
-    cr_expect(no == 0 || (fbig > 0 && ferr <= 1e-3 * fbig), "%s: obstacle forces differ by %.3g N/m of %.4g", solver,
-              ferr, fbig);
+                spread, err_worst, (unsigned long long)bytes, err, err_u, still, ferr, fbig,
+                no && same != steps ? " (held to their order only: some steps took another count)" : "");
+    /* The force is the last iteration's pair term, so it depends on where each solve stopped: where a step took
+     * another count than the CPU's (a GPU rounds a*b+c and divisions otherwise, a one-ulp shift can do the same),
+     * that step's force is another quantity (on an NVIDIA H100, 66.3 against 98.8 N/m at a step of 3 iterations
+     * against 4; the one-ulp-shifted CPU run shows 232.7 against 347.3 at a step of 3 against 4), and the runs go on
+     * from slightly different states. Where every step took the CPU's count the runs followed one path and the
+     * forces agree within 1e-3 of their scale; otherwise only the order of magnitude is held here, and the pair term
+     * itself is compared pass by pass from one state (the *_passes_match_cpu tests). */
+    const bool one_path = same == steps;
+    cr_expect(no == 0 || (fbig > 0 && ferr <= (one_path ? 1e-3 : 1.0) * fbig),
+              "%s: obstacle forces differ by %.3g N/m of %.4g (%s)", solver, ferr, fbig,
+              one_path ? "every step took the CPU's count" : "some steps took another count");
     cr_expect(total > (df ? 2 : 1) * steps, "%s: %ld iterations in %d steps: the solver did not iterate", solver,
               total, steps);
     cr_expect(labs(total_gl - total) <= total / 20, "%s: %ld iterations on GL, %ld on the CPU", solver, total_gl,
