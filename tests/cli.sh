@@ -78,7 +78,13 @@ scene=lessons/scenes/dam-break-2d.ini
 sph run "$scene" --backend vulkan --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 2 ] && grep -q "backend 'vulkan': accepted: cpu, gl" "$tmp/gl.txt" && ok || { bad "--backend vulkan: want exit 2 and the accepted values"; cat "$tmp/gl.txt"; }
 sph run "$scene" --backend gl --set search.sort=qsort --steps 1 > "$tmp/gl.txt" 2>&1
-[ $? -eq 1 ] && grep -q "\[search\] sort = qsort is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl with sort = qsort: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
+[ $? -eq 1 ] && grep -q "^sphlab: --set: \[search\] sort = qsort is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl with sort = qsort: want exit 1 naming the key and --set"; cat "$tmp/gl.txt"; }
+# a refusal names the line of the key it refuses (a CPU ladder key given in the scene)
+printf '[scene]\ndimension = 3\n[domain]\nmin = 0 0 0\nmax = 1 1 1\n[fluid a]\nmin = 0 0 0\nmax = 0.5 0.5 0.5\nspacing = 0.05\n[kernels]\nh = 0.1\n[compute]\nbackend = gl\n[search]\nskin = 0.05\ncompact_lists = on\n' > "$tmp/glr.ini"
+sph run "$tmp/glr.ini" --steps 1 > "$tmp/gl.txt" 2>&1
+[ $? -eq 1 ] && grep -q "glr.ini:16: \[search\] compact_lists = on is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl refusal: want exit 1 and the key's line"; cat "$tmp/gl.txt"; }
+sph run "$tmp/glr.ini" --steps 1 --set search.compact_lists=off > "$tmp/gl.txt" 2>&1
+[ $? -eq 1 ] && grep -q "glr.ini:15: \[search\] skin = 0.05 (Verlet lists) is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl refusal of skin: want exit 1 and the key's line"; cat "$tmp/gl.txt"; }
 # The pressure solvers on the CPU: their --stats columns, every step within the tolerance.
 for solver in pcisph dfsph; do
     if sph run "$scene" --steps 20 --quiet --set physics.pressure_solver=$solver --set time.dt=0.0005 --stats "$tmp/solver.csv" 2> "$tmp/err.txt"; then
@@ -112,7 +118,7 @@ sph study lessons/11-incompressible/lesson.ini --steps 1 --repeats 1 --quiet --v
 [ $? -eq 1 ] && grep -q "give --metric .*compression" "$tmp/err.txt" && ok ||
     { bad "study without a guessable metric: want exit 1 and every metric named, compression included"; cat "$tmp/err.txt"; }
 sph run "$scene" --set compute.backend=opencl --steps 1 > "$tmp/gl.txt" 2>&1
-[ $? -eq 1 ] && grep -q "\[compute\] backend = 'opencl'" "$tmp/gl.txt" && ok || { bad "compute.backend=opencl: want exit 1 naming the key"; cat "$tmp/gl.txt"; }
+[ $? -eq 2 ] && grep -q "\[compute\] backend = 'opencl'" "$tmp/gl.txt" && ok || { bad "compute.backend=opencl: want exit 2 (a bad --set is a bad command line, as --backend vulkan) naming the key"; cat "$tmp/gl.txt"; }
 
 # Obstacles: the check names what they take, the stats carry their forces, the volume model refuses them
 # (on GL: below, with the GL backend's checks).
@@ -187,6 +193,13 @@ else
     else
         bad "run --backend gl"; cat "$tmp/gl.txt"
     fi
+    # a --set that a GL level refuses is a bad command line, said before any timing, naming the level and the
+    # LEVEL: form (it read as a failed check of G3, exit 1, after the CPU levels' measurements)
+    sphe "$sw" bench ladder --quick --levels L7,G3 --set search.skin=0.05 --out "$tmp/bl" > "$tmp/bl.txt" 2>&1
+    rc=$?
+    { [ "$rc" -eq 2 ] && grep -q "level G3 does not take the --set keys: --set: \[search\] skin = 0.05" "$tmp/bl.txt" &&
+        grep -q -- "--set LEVEL:SECTION.KEY=VALUE" "$tmp/bl.txt" && [ ! -e "$tmp/bl/ladder-3d.csv" ]; } && ok ||
+        { bad "bench ladder with a key G3 refuses: want exit 2 before any measurement, got $rc"; cat "$tmp/bl.txt"; }
     # validate on GL reads the device's fields: the hydrostatic tank's figures as the CPU's (it read p = 0 and
     # v = 0, and passed)
     mkdir -p "$tmp/vgl/scenes/validate"
@@ -407,6 +420,18 @@ sph check "$tmp/typo2.ini" 2>&1 | grep -q "unknown key 'methd' in \[search\] (di
     bad "a misspelt key: no nearest name"
 sph check --set search.reordr=off lessons/scenes/drop-2d.ini 2>&1 | grep -q "did you mean 'reorder'" && ok ||
     bad "a misspelt --set key: no nearest name"
+# a bad --set is a bad command line: exit 2 from every command that takes one, the message said once
+for cmd in "run lessons/scenes/drop-2d.ini --steps 1" "check lessons/scenes/drop-2d.ini" \
+    "render lessons/scenes/drop-2d.ini --steps 1 --out $tmp/bs" "bench ladder --quick --levels L7" \
+    "view lessons/scenes/drop-2d.ini" "study lessons/scenes/study-density-2d.ini --out $tmp/bs"; do
+    for set in physics.stiffnes=3 physics.stiffness=abc; do
+        # shellcheck disable=SC2086 # the command's words
+        sph $cmd --set $set > "$tmp/bs.txt" 2>&1
+        rc=$?
+        { [ "$rc" -eq 2 ] && [ "$(grep -o -- '--set:' "$tmp/bs.txt" | wc -l)" -eq 1 ]; } && ok ||
+            { bad "$cmd --set $set: want exit 2 and '--set:' once, got exit $rc"; cat "$tmp/bs.txt"; }
+    done
+done
 # a 2D scene ignores z, and says so when a vector has a non-zero one (a 3D scene written without
 # dimension = 3; gravity along -z, which ran with no gravity at all, unsaid)
 printf '[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.5 0.5\n[physics]\ngravity = 0 0 -9.81\n' > "$tmp/gz.ini"

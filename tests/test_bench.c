@@ -553,8 +553,10 @@ Test(bench, pair_matches_particles_by_id, .timeout = 120)
     int rc = test_sphlab(args, g_out, sizeof g_out);
     cr_assert_eq(rc, 0, "%s: exit %d\n%s", args, rc, g_out);
     unsigned b9 = 0, b10 = 0;
-    const char *b = strstr(g_out, "list builds: L9 ");
-    cr_assert(b && sscanf(b, "list builds: L9 %u, L10 %u", &b9, &b10) == 2, "%s", g_out);
+    const char *b = strstr(g_out, "list builds in the 5 timed steps: L9 ");
+    cr_assert(b && sscanf(b, "list builds in the 5 timed steps: L9 %u, L10 %u", &b9, &b10) == 2, "%s", g_out);
+    /* L9 builds every step: the timed steps' builds alone, not the untimed first one (it said 6) */
+    cr_assert_eq(b9, 5, "%s", g_out);
     cr_assert_gt(b9, b10, "the two levels must rebuild on different steps for this test: %s", g_out);
     const char *a = strstr(g_out, "|dx| <= ");
     double dx = -1, dv = -1, drho = -1;
@@ -562,4 +564,8 @@ Test(bench, pair_matches_particles_by_id, .timeout = 120)
     cr_expect(dx >= 0 && dx < 1e-4, "positions apart by %g m: %s", dx, g_out);
     cr_expect(dv >= 0 && dv < 1e-3, "velocities apart by %g m/s: %s", dv, g_out);
     cr_expect(drho >= 0 && drho < 1.0, "densities apart by %g kg/m^3: %s", drho, g_out);
+    rc = test_sphlab("bench pair --levels L9,L10 --at 1000 --repeats 1 --quiet", g_out, sizeof g_out);
+    cr_assert_eq(rc, 0, "%s", g_out);
+    cr_expect(strstr(g_out, ", 1 round after one untimed step") && strstr(g_out, "in the 1 timed step: L9 1,"), "%s",
+              g_out);
 }

@@ -13,7 +13,7 @@ static const app_cmd_spec spec = {
     .name = "run",
     .cmd = APP_CMD(run),
     .synopsis = "usage: sphlab run SCENE.ini [options]\n",
-    .footer = "exit status: 0 done; 1 bad scene or output; 2 bad command line; 4 the watchdog stopped the run\n"
+    .footer = "exit status: 0 done; 1 bad scene or output; 2 bad command line (a bad --set too); 4 the watchdog stopped the run\n"
               "(a non-finite or runaway value: the report names the step, pass and particle; --dump keeps that state)\n",
     .max_pos = 1,
     .extra_pos = "more than one scene file",

@@ -117,13 +117,16 @@ int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def)
     sph_io_add_input(o->path); /* no output of the command may overwrite its scene */
     if (sph_scene_load(o->path, def, &err) == SPH_ERR_OK) {
         for (int i = 0; i < o->n_sets; i++)
-            if (sph_scene_set(def, o->sets[i], &err) != SPH_ERR_OK) goto fail;
+            if (sph_scene_set(def, o->sets[i], &err) != SPH_ERR_OK) {
+                /* an unknown key or a bad value given with --set is a bad command line, as in `bench` */
+                fprintf(stderr, "sphlab: %s\n", err.msg);
+                return err.code == SPH_ERR_MEMORY ? SPH_EXIT_MEMORY : 2;
+            }
         if (sph_scene_validate(def, &err) == SPH_ERR_OK) {
             sph_scene_warnings_print(def, stderr);
             return 0;
         }
     }
-fail:
     fprintf(stderr, "sphlab: %s\n", err.msg);
     return app_error_status(err.code);
 }

@@ -159,6 +159,39 @@ static void run_check(const bench_opts *o, int Li, ref_cache *ref, int k, bench_
     bench_state_free(&s);
 }
 
+/* Whether level Li takes the --set keys: its scene validates and a
+ * simulation of the smallest block is made (a GL level only where a device
+ * is, *gl_state as in bench_ladder_measure). Otherwise says why, naming the
+ * level, and how to give a key to some levels only. */
+static bool level_takes_the_sets(const bench_opts *o, int Li, int *gl_state, char *gl_device, size_t gl_n)
+{
+    const bench_level *L = &bench_levels[Li];
+    char why[sizeof(sph_error){0}.msg] = "";
+    sph_scene_def def;
+    bool ok = bench_scene_def(&o->cfg, L, bench_k_min(o->cfg.dim), false, &def, why, sizeof why);
+    if (ok && bench_level_gl(L)) {
+        if (*gl_state == 0) *gl_state = sph_gpu_probe(gl_device, gl_n) ? 1 : -1;
+        if (*gl_state < 0) return true; /* no device: the level is skipped and said so */
+    }
+    if (ok) {
+        sph_sim *sim;
+        sph_error err;
+        const sph_error_code c = sph_sim_create(&def, 1, &sim, &err);
+        if (c == SPH_ERR_OK)
+            sph_sim_destroy(sim);
+        else if (c == SPH_ERR_SCENE) {
+            ok = false;
+            snprintf(why, sizeof why, "%s", err.msg);
+        }
+    }
+    if (!ok)
+        fprintf(stderr,
+                "sphlab bench: level %s does not take the --set keys: %s\n(a key for some levels only: --set "
+                "LEVEL:SECTION.KEY=VALUE, e.g. --set L10:search.skin=0.1)\n",
+                L->name, why);
+    return ok;
+}
+
 int bench_ladder_measure(const bench_opts *o, bench_ladder *lad)
 {
     memset(lad, 0, sizeof *lad);
@@ -197,13 +230,22 @@ int bench_ladder_measure(const bench_opts *o, bench_ladder *lad)
         return 1;
     }
 
+    int gl_state = 0; /* 0: not probed yet, 1: a GL 4.3 context can be made, -1: none */
+    /* a --set that a selected level or a reference of the checks cannot take (a
+     * CPU ladder key on a GL level) is a bad command line, said before anything is timed */
+    if (o->cfg.n_sets > 0) {
+        for (int s = -2; s < o->nsel; s++)
+            if (!level_takes_the_sets(o, s == -2 ? ref_small : s == -1 ? ref_large : o->sel[s], &gl_state,
+                                      meta.gl_device, sizeof meta.gl_device))
+                return 2;
+    }
+
     level_result *res = calloc((size_t)o->nsel, sizeof *res);
     if (!res) return 1;
     lad->res = res;
     ref_cache ref_s = {.level = ref_small, .k = k_check}, ref_l = {.level = ref_large, .k = k_at};
     ref_cache ref_l_small = {.level = ref_large, .k = k_check};
     bool all_pass = true;
-    int gl_state = 0; /* 0: not probed yet, 1: a GL 4.3 context can be made, -1: none */
     meta.gl_best = -1;
     for (int s = 0; s < o->nsel; s++) {
         const int Li = o->sel[s];
@@ -211,11 +253,9 @@ int bench_ladder_measure(const bench_opts *o, bench_ladder *lad)
         level_result *r = &res[s];
         char err[512] = "";
         if (bench_level_gl(L)) {
-            if (gl_state == 0) {
-                gl_state = sph_gpu_probe(meta.gl_device, sizeof meta.gl_device) ? 1 : -1;
-                meta.gl_is_gpu = gl_state > 0 && !strstr(meta.gl_device, "llvmpipe") &&
-                                 !strstr(meta.gl_device, "softpipe") && !strstr(meta.gl_device, "lavapipe");
-            }
+            if (gl_state == 0) gl_state = sph_gpu_probe(meta.gl_device, sizeof meta.gl_device) ? 1 : -1;
+            meta.gl_is_gpu = gl_state > 0 && !strstr(meta.gl_device, "llvmpipe") &&
+                             !strstr(meta.gl_device, "softpipe") && !strstr(meta.gl_device, "lavapipe");
             if (gl_state < 0) { /* no device: said, not failed */
                 r->skipped = true;
                 snprintf(r->error, sizeof r->error, "no OpenGL 4.3 device: %s", meta.gl_device);

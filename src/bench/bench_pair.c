@@ -112,6 +112,7 @@ int bench_cmd_pair(bench_opts *o)
         bench_now_iso(date, sizeof date);
         bench_loadavg(load0);
         for (int s = 0; s < 2; s++) sph_sim_step(sim[s]); /* untimed: the first build, the first touch of memory */
+        const uint64_t builds0[2] = {sim[0]->S.builds, sim[1]->S.builds}; /* the timed steps' builds are counted */
         for (int r = 0; r < rounds; r++) {
             bench_progress("round %d of %d", r + 1, rounds);
             for (int t = 0; t < 2; t++) {
@@ -121,8 +122,10 @@ int bench_cmd_pair(bench_opts *o)
         }
         bench_progress_done();
         bench_loadavg(load1);
-        printf("sphlab bench pair: %s, N = %u, %dD, %d thread%s, %d rounds after one untimed step, load %.2f -> %.2f\n",
-               date, sim[0]->n, o->cfg.dim, threads, threads > 1 ? "s" : "", rounds, load0[0], load1[0]);
+        printf("sphlab bench pair: %s, N = %u, %dD, %d thread%s, %d round%s after one untimed step, load %.2f -> "
+               "%.2f\n",
+               date, sim[0]->n, o->cfg.dim, threads, threads > 1 ? "s" : "", rounds, rounds > 1 ? "s" : "", load0[0],
+               load1[0]);
         printf("%s per step:\n", wall ? "wall time" : "thread CPU time");
         double med[2];
         for (int s = 0; s < 2; s++) {
@@ -136,8 +139,9 @@ int bench_cmd_pair(bench_opts *o)
             printf("  %-16s %9.2f %9.2f  x%.2f\n", sph_passes[p]->name, pass_ms[0][p], pass_ms[1][p],
                    pass_ms[1][p] > 0 ? pass_ms[0][p] / pass_ms[1][p] : NAN);
         }
-        printf("list builds: %s %llu, %s %llu\n", L[0]->name, (unsigned long long)sim[0]->S.builds, L[1]->name,
-               (unsigned long long)sim[1]->S.builds);
+        printf("list builds in the %d timed step%s: %s %llu, %s %llu (and one each in the untimed first step)\n", rounds,
+               rounds > 1 ? "s" : "", L[0]->name, (unsigned long long)(sim[0]->S.builds - builds0[0]), L[1]->name,
+               (unsigned long long)(sim[1]->S.builds - builds0[1]));
         const sph_particles *A = &sim[0]->P, *B = &sim[1]->P;
         const int dim = sim[0]->dim;
         float *const ra[3] = {A->rho, NULL, NULL}, *const rb[3] = {B->rho, NULL, NULL};

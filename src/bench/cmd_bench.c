@@ -111,7 +111,7 @@ static bool add_set(bench_opts *o, const char *v)
     sph_scene_def def = sph_default_scene_def();
     sph_error err;
     if (sph_scene_set(&def, assign, &err) != SPH_ERR_OK) {
-        fprintf(stderr, "sphlab bench: --set: %s\n", err.msg);
+        fprintf(stderr, "sphlab bench: %s\n", err.msg); /* the message names --set itself */
         return false;
     }
     o->cfg.set_level[o->cfg.n_sets] = level;

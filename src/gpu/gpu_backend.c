@@ -87,62 +87,63 @@ static void destroy(sph_backend *b)
 static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
 {
     const sph_scene_def *def = &sim->def;
+    char at[300]; /* "file:line" or "--set": where the refused key was given */
     if (def->lists_in_place == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] lists_in_place = on is not implemented by the GL backend (its passes walk the "
                         "cells and build no lists; accepted there: off)",
-                        def->file);
+                        sph_scene_key_where(def, "search", "lists_in_place", at, sizeof at));
     if (def->compact_lists == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] compact_lists = on is not implemented by the GL backend (its passes walk the "
                         "cells and build no lists; accepted there: off)",
-                        def->file);
+                        sph_scene_key_where(def, "search", "compact_lists", at, sizeof at));
     if (def->vector_avx2 == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] vector_avx2 = on is not implemented by the GL backend (it selects the CPU's "
                         "AVX2 loops; the shaders' lanes are the device's; accepted there: off)",
-                        def->file);
+                        sph_scene_key_where(def, "search", "vector_avx2", at, sizeof at));
     if (def->cell_batch == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] cell_batch = on is not implemented by the GL backend (it selects the CPU's "
                         "AVX2 search of a cell's particles together; the shaders walk the cells; accepted there: off)",
-                        def->file);
+                        sph_scene_key_where(def, "search", "cell_batch", at, sizeof at));
     if (def->packed_records == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [compute] packed_records = on is not implemented by the GL backend (it changes how the "
                         "CPU's AVX2 loops read neighbours; the shaders read buffers; accepted there: off)",
-                        def->file);
+                        sph_scene_key_where(def, "compute", "packed_records", at, sizeof at));
     if (def->uniform_mass == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [compute] uniform_mass = on is not implemented by the GL backend (it changes how the "
                         "CPU's AVX2 force walk reads the mass; the shaders read buffers; accepted there: off)",
-                        def->file);
+                        sph_scene_key_where(def, "compute", "uniform_mass", at, sizeof at));
     if (def->lists_resident == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] lists_resident = on is not implemented by the GL backend (its passes walk the "
                         "cells and build no lists; accepted there: off)",
-                        def->file);
+                        sph_scene_key_where(def, "search", "lists_resident", at, sizeof at));
     if (def->wide_batch == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] wide_batch = on is not implemented by the GL backend (it selects the CPU's "
                         "AVX-512 search of a cell's particles together; the shaders walk the cells; accepted there: "
                         "off)",
-                        def->file);
+                        sph_scene_key_where(def, "search", "wide_batch", at, sizeof at));
     if (def->wide_density == SPH_ON)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [compute] wide_density = on is not implemented by the GL backend (it changes how the "
                         "CPU's AVX-512 density walk reads its records; the shaders read buffers; accepted there: off)",
-                        def->file);
+                        sph_scene_key_where(def, "compute", "wide_density", at, sizeof at));
     if (def->skin > 0)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] skin = %g (Verlet lists) is not implemented by the GL backend (its passes "
                         "walk the cells every step and keep no lists; accepted there: 0)",
-                        def->file, (double)def->skin);
+                        sph_scene_key_where(def, "search", "skin", at, sizeof at), (double)def->skin);
     if (def->surface_tension == SPH_STENSION_STRESS)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] surface_tension = stress is not implemented by the GL backend (no shader "
                         "for its surface stress yet; accepted there: none, akinci, csf)",
-                        def->file);
+                        sph_scene_key_where(def, "physics", "surface_tension", at, sizeof at));
     /* a pass without a row in gpu_passes.c is refused here rather than
      * skipped on the device */
     for (int p = 0; p < SPH_PASS_COUNT; p++)
@@ -153,17 +154,17 @@ static sph_error_code check_scene(const sph_sim *sim, sph_error *err)
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] sort = %s is not implemented by the GL backend (accepted there: bitonic, "
                         "counting)",
-                        def->file, sph_sort_names[def->sort]);
+                        sph_scene_key_where(def, "search", "sort", at, sizeof at), sph_sort_names[def->sort]);
     if (def->search != SPH_SEARCH_BRUTE && def->sort == SPH_SORT_NONE && sph_scene_needs_neighbours(def))
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [search] sort = none is not implemented by the GL backend (accepted there: bitonic, "
                         "counting)",
-                        def->file);
+                        sph_scene_key_where(def, "search", "sort", at, sizeof at));
     if (def->accumulate == SPH_ACC_DOUBLE && sph_scene_needs_density(def))
         return sph_fail(err, SPH_ERR_SCENE,
                         "%s: [physics] accumulate = double is not implemented by the GL backend (accepted there: "
                         "float)",
-                        def->file);
+                        sph_scene_key_where(def, "physics", "accumulate", at, sizeof at));
     return SPH_ERR_OK;
 }
 

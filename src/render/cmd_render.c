@@ -102,7 +102,8 @@ int cmd_render(int argc, char **argv)
         return 2;
     }
     sph_scene_def def;
-    if (!app_load_scene(&so, &def)) return 1;
+    const int loaded = app_load_scene_status(&so, &def); /* 2: a bad --set */
+    if (loaded) return loaded;
     if (steps < 0 && until < 0) {
         if (def.duration > 0)
             until = def.duration;

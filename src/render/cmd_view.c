@@ -213,7 +213,8 @@ int cmd_view(int argc, char **argv)
     w.last_pass = -1;
     w.pass_cursor = -1;
     w.paused = start_paused;
-    if (!app_load_scene(&so, &w.def)) return 1;
+    const int loaded = app_load_scene_status(&so, &w.def); /* 2: a bad --set */
+    if (loaded) return loaded;
     w.start = w.def;
     char err[1024];
     if (!display_check(err, sizeof err)) {

@@ -23,7 +23,7 @@ static const app_cmd_spec spec = {
                 "Runs every combination of the --vary lists on a reference problem, measures its error and its\n"
                 "wall time, and writes DIR/study.csv, DIR/study.png and DIR/study.pdf (error against time, log-log,\n"
                 "Pareto front marked) and a table. docs/accuracy.md defines each error.\n",
-    .footer = "exit status: 0 done; 1 bad scene, knob value or output directory; 2 bad command line\n",
+    .footer = "exit status: 0 done; 1 bad scene, knob value or output directory; 2 bad command line (a bad --set too)\n",
     .max_pos = 1,
     .extra_pos = "more than one scene file",
 };
@@ -172,7 +172,8 @@ int study_cmd_run(const study_cmd *cmd)
     }
 
     sph_scene_def scene;
-    if (!app_load_scene(&o, &scene)) return 1;
+    const int loaded = app_load_scene_status(&o, &scene); /* 2: a bad --set */
+    if (loaded) return loaded;
     if (metric < 0 && (metric = study_metric_guess(&scene)) < 0) {
         /* the list from the metric table, so that a metric added there (compression) is named here too */
         fprintf(stderr,
