@@ -112,6 +112,16 @@ sph study lessons/scenes/study-hydrostatic-2d.ini --steps 20 --repeats 1 --threa
     awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next } { if (!($col["error"] > 0)) bad = 1; n++ }
              END { exit bad || n != 3 }' "$tmp/ps/study.csv" &&
     ok || { bad "study hydrostatic --vary pressure_solver: want 3 rows with an error"; cat "$tmp/err.txt"; cat "$tmp/ps/study.csv"; }
+# a misspelt --vary key is a bad command line, as a misspelt --set (it exited 1 where --set exited 2)
+sph study lessons/scenes/study-hydrostatic-2d.ini --vary fluid.spacng=0.02,0.04 --out "$tmp/sv" > "$tmp/err.txt" 2>&1
+[ $? -eq 2 ] && grep -q "^sphlab study: --vary fluid.spacng=0.02: unknown key 'spacng'.*did you mean 'spacing'" "$tmp/err.txt" &&
+    ok || { bad "study --vary with a misspelt key: want exit 2 and the nearest name"; cat "$tmp/err.txt"; }
+# a chart that cannot be written is said by study, not by "sphlab plot"
+mkdir -p "$tmp/sd/study.png"
+sph study lessons/scenes/study-hydrostatic-2d.ini --steps 5 --repeats 1 --threads 1 --quiet \
+    --vary physics.stiffness=400,800 --out "$tmp/sd" > "$tmp/err.txt" 2>&1
+[ $? -eq 1 ] && grep -q "^sphlab study: $tmp/sd/study.png: is a directory" "$tmp/err.txt" && ok ||
+    { bad "study with an unwritable chart: want exit 1, said by study"; cat "$tmp/err.txt"; }
 # a scene no metric is guessed for: the refusal lists every metric, compression (the dam break's) included
 sph study lessons/11-incompressible/lesson.ini --steps 1 --repeats 1 --quiet --vary physics.solver_tolerance=0.01,0.001 \
     --out "$tmp/nm" > "$tmp/err.txt" 2>&1
@@ -143,6 +153,16 @@ sph lesson 10 --export --quick > "$tmp/combo.txt" 2>&1
 sph lesson 1 --export "$tmp/afile/l" --quick --quiet > "$tmp/combo.txt" 2>&1
 [ $? -eq 1 ] && grep -q "^sphlab lesson: --export $tmp/afile/l: $tmp/afile/l: cannot create the directory" "$tmp/combo.txt" && ok ||
     { bad "lesson --export under a file: want exit 1 naming --export"; cat "$tmp/combo.txt"; }
+# a run's log that cannot be written fails the export (it exited 0 while the report promised every log)
+mkdir -p "$tmp/l10x/logs/05-tank-reflect.txt"
+sph lesson 10 --export "$tmp/l10x" --quick --quiet > "$tmp/combo.txt" 2>&1
+[ $? -eq 1 ] && grep -q "cannot write the log $tmp/l10x/logs/05-tank-reflect.txt" "$tmp/combo.txt" && ok ||
+    { bad "lesson 10 with a log it cannot write: want exit 1 naming the log"; cat "$tmp/combo.txt"; }
+# the files an export counts are the files it wrote (lesson 9 said 4 for 6: its charts' PDFs were not counted)
+sph lesson 9 --export "$tmp/l9" --quick > "$tmp/l9.txt" 2>&1
+said=$(sed -n 's/^lesson 9 ([^)]*): \([0-9]*\) files and .*/\1/p' "$tmp/l9.txt")
+wrote=$(find "$tmp/l9" -maxdepth 1 -type f ! -name 'report*' | wc -l)
+[ -n "$said" ] && [ "$said" -eq "$wrote" ] && ok || { bad "lesson 9 export: says '$said' files, wrote $wrote"; cat "$tmp/l9.txt"; ls "$tmp/l9"; }
 # a lesson's runs put their scene warnings in their logs, not on the terminal (lesson 3 runs without viscosity)
 sph lesson 3 --export "$tmp/l3" --quick --quiet > "$tmp/l3.txt" 2>&1
 [ $? -eq 0 ] && ! grep -q "warning" "$tmp/l3.txt" && grep -q "warning: no viscosity" "$tmp"/l3/logs/*.txt &&
@@ -353,6 +373,13 @@ sph validate couette --quick --out "$tmp/afile" > "$tmp/val.txt" 2>&1
     { bad "validate --out FILE: want exit 3 and the path once"; cat "$tmp/val.txt"; }
 sph validate nosuch > "$tmp/val.txt" 2>&1
 [ $? -eq 2 ] && grep -q "unknown problem 'nosuch'" "$tmp/val.txt" && ok || { bad "validate nosuch: want exit 2"; cat "$tmp/val.txt"; }
+# each resolution once, coarsest first: 16,16 read "L1 falling with resolution: yes" from two equal runs
+for res in 16,16 20,16; do
+    sph validate taylor-green --resolution $res --quick --out "$tmp/vres" > "$tmp/val.txt" 2>&1
+    rc=$?
+    { [ "$rc" -eq 2 ] && grep -q "from the coarsest to the finest" "$tmp/val.txt" && [ ! -e "$tmp/vres" ]; } && ok ||
+        { bad "validate --resolution $res: want exit 2 before any run, got $rc"; cat "$tmp/val.txt"; }
+done
 sph validate taylor-green --resolution 20,x > "$tmp/val.txt" 2>&1
 [ $? -eq 2 ] && grep -q "resolution '20,x'" "$tmp/val.txt" && ok || { bad "validate --resolution 20,x: want exit 2"; cat "$tmp/val.txt"; }
 

@@ -14,6 +14,7 @@
 
 #include "app.h"
 #include "bench_cmd.h"
+#include "plot.h"
 #include "gpu.h"
 #include "../io/io.h"
 #include "../io/io_json.h"
@@ -237,6 +238,7 @@ static int cmd_levels(const bench_opts *o)
 
 int cmd_bench(int argc, char **argv)
 {
+    plot_out_command("bench"); /* the charts' messages name this command */
     static bench_opts o;
     memset(&o, 0, sizeof o);
     bench_progress_opts(&o);

@@ -230,6 +230,10 @@ FILE *lx_log_open(lx *x, const char *log, const char *const *argv, const char **
         fputs("$ ", f);
         lx_print_args(f, argv);
         fputs("\n", f);
+    } else { /* the report promises every run's log: a log that cannot be written is a failed file */
+        fprintf(stderr, "sphlab lesson %d: cannot write the log %s: %s\n", x->L->num, lp, strerror(errno));
+        lx_md(x, "\n**The log `%s` could not be written.**\n\n", lp);
+        x->failed++;
     }
     return f;
 }

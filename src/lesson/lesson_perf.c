@@ -457,8 +457,8 @@ int lx_lesson9(lx *x)
             free(text);
             study_table(x, lx_out(x, lx_fmt("%s.csv", st[q].name)));
             lx_block_end(x);
-            lx_fig(x, lx_fmt("%s.png", st[q].name),
-                   lx_fmt("{{@%s (PDF and CSV beside it)|%s (PDF et CSV à côté)}}", st[q].what, st[q].what_fr));
+            lx_fig(x, lx_fmt("%s.png", st[q].name), lx_fmt("{{@%s|%s}}", st[q].what, st[q].what_fr));
+            lx_fig(x, lx_fmt("%s.pdf", st[q].name), "{{@the same chart as PDF|le même graphique en PDF}}");
             lx_fig(x, lx_fmt("%s.csv", st[q].name), "{{@one row per combination: knobs, error, ms per step, run "
                                                      "time, on the front or not|une ligne par combinaison : réglages, "
                                                      "erreur, ms par pas, durée du calcul, sur le front ou non}}");

@@ -203,6 +203,12 @@ static void lesson10_rest(lx *x)
                                             "pass",
              cols, rows, s, def.h, sph_kernel_names[def.kernel_density]);
     snprintf(L.xlabel, sizeof L.xlabel, "height y [m]");
+    /* half a spacing beyond the first and last rows: the free top row's markers sat on the frame */
+    L.xlo = INFINITY, L.xhi = -INFINITY;
+    for (int m = 0; m < NMODEL; m++)
+        for (int r = 0; ok[m] && r < nrow; r++) L.xlo = fmin(L.xlo, prof_y[m][r]), L.xhi = fmax(L.xhi, prof_y[m][r]);
+    if (L.xlo < L.xhi) L.xlo -= 0.5 * s, L.xhi += 0.5 * s;
+    else L.xlo = L.xhi = 0; /* from the data */
     L.np = 1;
     snprintf(L.p[0].ylabel, sizeof L.p[0].ylabel, "density [kg/m#u2#d]");
     for (int m = 0; m < NMODEL; m++)

@@ -370,7 +370,7 @@ static void build_neighbours(builder *b, const sph_sim *sim, const sph_overlay_o
     ov->n_nbr = 0;
     ov->nbr = NULL;
     if (!sph_ov_lists_built(sim)) {
-        note(ov, "no neighbour lists yet (or the scene has none)");
+        note(ov, "no neighbour lists yet: enter makes a step, which builds them (or the scene has none)");
     } else {
         const sph_nbr_row row = sph_nbr_row_of(&sim->S, i);
         ov->n_nbr = (int)row.n;

@@ -46,6 +46,8 @@ int plot_table_need(const plot_table *t, const char *name, const char *what);
 bool plot_out_dir(const char *dir);
 /* The command that --out errors name (default "plot"). */
 void plot_out_command(const char *name);
+/* That name ("plot" unless a command set its own), for the messages of the charts and tables. */
+const char *plot_out_command_name(void);
 /* Stages DIR/FILE: creates its temporary (so an unwritable DIR fails here,
  * before anything is drawn) and returns the temporary's path, or NULL with a
  * message. The path stays valid until plot_out_commit/abort. */

@@ -18,7 +18,7 @@ static char *slurp(const char *path)
 {
     FILE *f = fopen(path, "rb");
     if (!f) {
-        fprintf(stderr, "sphlab plot: %s: cannot read: %s\n", path, strerror(errno));
+        fprintf(stderr, "sphlab %s: %s: cannot read: %s\n", plot_out_command_name(), path, strerror(errno));
         return NULL;
     }
     size_t cap = 1 << 16, len = 0;
@@ -26,7 +26,7 @@ static char *slurp(const char *path)
     while (buf) {
         len += fread(buf + len, 1, cap - len - 1, f);
         if (ferror(f)) {
-            fprintf(stderr, "sphlab plot: %s: cannot read: %s\n", path, strerror(errno));
+            fprintf(stderr, "sphlab %s: %s: cannot read: %s\n", plot_out_command_name(), path, strerror(errno));
             free(buf);
             fclose(f);
             return NULL;
@@ -40,12 +40,12 @@ static char *slurp(const char *path)
     }
     fclose(f);
     if (!buf) {
-        fprintf(stderr, "sphlab plot: %s: out of memory\n", path);
+        fprintf(stderr, "sphlab %s: %s: out of memory\n", plot_out_command_name(), path);
         return NULL;
     }
     buf[len] = '\0';
     if (memchr(buf, '\0', len)) {
-        fprintf(stderr, "sphlab plot: %s: not a text file (NUL byte)\n", path);
+        fprintf(stderr, "sphlab %s: %s: not a text file (NUL byte)\n", plot_out_command_name(), path);
         free(buf);
         return NULL;
     }
@@ -82,7 +82,7 @@ bool plot_table_read(plot_table *t, const char *path)
     if (nl) *nl = '\0';
     char *head = trim(line);
     if (!*head) {
-        fprintf(stderr, "sphlab plot: %s: empty: no header line naming the columns\n", path);
+        fprintf(stderr, "sphlab %s: %s: empty: no header line naming the columns\n", plot_out_command_name(), path);
         return fail(t, buf);
     }
     int ncols = 1;
@@ -90,7 +90,7 @@ bool plot_table_read(plot_table *t, const char *path)
     t->names = calloc((size_t)ncols, sizeof *t->names);
     t->col = calloc((size_t)ncols, sizeof *t->col);
     if (!t->names || !t->col) {
-        fprintf(stderr, "sphlab plot: %s: out of memory\n", path);
+        fprintf(stderr, "sphlab %s: %s: out of memory\n", plot_out_command_name(), path);
         return fail(t, buf);
     }
     t->ncols = ncols;
@@ -100,12 +100,12 @@ bool plot_table_read(plot_table *t, const char *path)
         if (comma) *comma = '\0';
         char *name = trim(tok);
         if (!*name) {
-            fprintf(stderr, "sphlab plot: %s:1: column %d has no name\n", path, c + 1);
+            fprintf(stderr, "sphlab %s: %s:1: column %d has no name\n", plot_out_command_name(), path, c + 1);
             return fail(t, buf);
         }
         t->names[c] = strdup(name);
         if (!t->names[c]) {
-            fprintf(stderr, "sphlab plot: %s: out of memory\n", path);
+            fprintf(stderr, "sphlab %s: %s: out of memory\n", plot_out_command_name(), path);
             return fail(t, buf);
         }
         if (!comma) break;
@@ -128,7 +128,7 @@ bool plot_table_read(plot_table *t, const char *path)
             for (c = 0; c < ncols; c++) {
                 double *nc = realloc(t->col[c], cap * sizeof *nc);
                 if (!nc) {
-                    fprintf(stderr, "sphlab plot: %s: out of memory\n", path);
+                    fprintf(stderr, "sphlab %s: %s: out of memory\n", plot_out_command_name(), path);
                     return fail(t, buf);
                 }
                 t->col[c] = nc;
@@ -139,14 +139,14 @@ bool plot_table_read(plot_table *t, const char *path)
             char *comma = strchr(tok, ',');
             if (comma) *comma = '\0';
             if (c >= ncols) {
-                fprintf(stderr, "sphlab plot: %s:%d: more values than the %d columns of the header\n", path, lineno,
+                fprintf(stderr, "sphlab %s: %s:%d: more values than the %d columns of the header\n", plot_out_command_name(), path, lineno,
                         ncols);
                 return fail(t, buf);
             }
             char *v = trim(tok), *end;
             double x = strtod(v, &end);
             if (!*v || *end) {
-                fprintf(stderr, "sphlab plot: %s:%d: column '%s': '%s' is not a number\n", path, lineno,
+                fprintf(stderr, "sphlab %s: %s:%d: column '%s': '%s' is not a number\n", plot_out_command_name(), path, lineno,
                         t->names[c], v);
                 return fail(t, buf);
             }
@@ -155,7 +155,7 @@ bool plot_table_read(plot_table *t, const char *path)
             tok = comma + 1;
         }
         if (c + 1 != ncols) {
-            fprintf(stderr, "sphlab plot: %s:%d: %d values, the header names %d columns\n", path, lineno, c + 1,
+            fprintf(stderr, "sphlab %s: %s:%d: %d values, the header names %d columns\n", plot_out_command_name(), path, lineno, c + 1,
                     ncols);
             return fail(t, buf);
         }
@@ -163,7 +163,7 @@ bool plot_table_read(plot_table *t, const char *path)
     }
     free(buf);
     if (t->nrows == 0) {
-        fprintf(stderr, "sphlab plot: %s: no data rows under the header\n", path);
+        fprintf(stderr, "sphlab %s: %s: no data rows under the header\n", plot_out_command_name(), path);
         plot_table_free(t);
         return false;
     }
@@ -180,6 +180,6 @@ int plot_table_find(const plot_table *t, const char *name)
 int plot_table_need(const plot_table *t, const char *name, const char *what)
 {
     int c = plot_table_find(t, name);
-    if (c < 0) fprintf(stderr, "sphlab plot: %s: no column '%s' (%s)\n", t->path, name, what);
+    if (c < 0) fprintf(stderr, "sphlab %s: %s: no column '%s' (%s)\n", plot_out_command_name(), t->path, name, what);
     return c;
 }

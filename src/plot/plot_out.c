@@ -13,6 +13,7 @@ static int g_n;
 static const char *g_cmd = "plot"; /* the command named in messages */
 
 void plot_out_command(const char *name) { g_cmd = name; }
+const char *plot_out_command_name(void) { return g_cmd; }
 
 bool plot_out_dir(const char *dir)
 {

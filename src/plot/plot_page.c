@@ -12,7 +12,7 @@
 
 static int on_plplot_exit(PLCHAR_VECTOR msg)
 {
-    fprintf(stderr, "sphlab plot: PLplot stopped: %s\n", msg ? msg : "");
+    fprintf(stderr, "sphlab %s: PLplot stopped: %s\n", plot_out_command_name(), msg ? msg : "");
     plot_out_abort();
     return 1;
 }
@@ -78,7 +78,7 @@ bool plot_page(plot_draw_fn *draw, const void *chart, const char *dir, const cha
     for (int i = 0; i < (g_svg ? 3 : 2); i++) {
         const char *dev = i == 2 ? "svgcairo" : i ? "pdfcairo" : "pngcairo";
         if (!have_device(dev)) {
-            fprintf(stderr, "sphlab plot: PLplot has no %s driver (Debian: apt-get install plplot-driver-cairo)\n",
+            fprintf(stderr, "sphlab %s: PLplot has no %s driver (Debian: apt-get install plplot-driver-cairo)\n", plot_out_command_name(),
                     dev);
             return false;
         }
@@ -94,7 +94,7 @@ bool plot_page(plot_draw_fn *draw, const void *chart, const char *dir, const cha
     /* same layout on a page of half the pixel count in points: the PNG is the PDF at 144 dpi */
     render(draw, chart, "pdfcairo", pdf_tmp, (width + 1) / 2, (height + 1) / 2, 0.5);
     if (!fix_pdf_date(pdf_tmp)) {
-        fprintf(stderr, "sphlab plot: %s/%s: cannot finish the PDF\n", dir, pdf);
+        fprintf(stderr, "sphlab %s: %s/%s: cannot finish the PDF\n", plot_out_command_name(), dir, pdf);
         return false;
     }
     if (g_svg) {

@@ -102,6 +102,7 @@ static void print_table(FILE *f, const study_plan *p, const study_row *rows, int
 
 int cmd_study(int argc, char **argv)
 {
+    plot_out_command("study"); /* the charts' and tables' messages name this command */
     study_plan plan;
     memset(&plan, 0, sizeof plan);
     char why[1024];
@@ -187,10 +188,11 @@ int study_cmd_run(const study_cmd *cmd)
     /* every combination must be a valid scene the metric applies to, before anything runs */
     for (long c = 0; c < combos; c++) {
         sph_scene_def def = scene;
-        if (!study_plan_apply(&plan, c, &def, why, sizeof why) ||
+        bool usage = false;
+        if (!study_plan_apply_why(&plan, c, &def, why, sizeof why, &usage) ||
             !study_metric_check((study_metric)metric, &def, why, sizeof why)) {
             fprintf(stderr, "sphlab study: %s\n", why);
-            return 1;
+            return usage ? 2 : 1; /* a misspelt --vary key is a bad command line, as a misspelt --set */
         }
     }
     if (!prepare_dir(out)) return 1;
@@ -254,7 +256,8 @@ int study_cmd_run(const study_cmd *cmd)
         if (study_knob_inert(&plan, rows, combos, k))
             fprintf(stderr,
                     "sphlab study: warning: --vary %s: every value gave the same particles, steps and error: the key "
-                    "does not act on this scene (its effects or pressure_solver leave out the passes that read it, "
+                    "changes nothing on this scene (its effects or pressure_solver leave out the passes that read "
+                    "it; or another key bounds what it sets, as [time] dt caps the step that time.cfl would give; "
                     "or, for a tolerance, every value is already met at the solve's first iteration: try smaller "
                     "ones; --stats shows the error each solve ends with)\n",
                     plan.knob[k].key);

@@ -188,6 +188,8 @@ void study_plan_combo(const study_plan *p, long c, int idx[STUDY_MAX_KNOBS]);
  * unknown, a value does not parse or is out of range, or the scene does not
  * validate. */
 bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why, size_t n);
+/* The same; *usage: a knob's key or value was refused (a bad command line, exit 2), not the scene it makes. */
+bool study_plan_apply_why(const study_plan *p, long c, sph_scene_def *def, char *why, size_t n, bool *usage);
 
 /* Pareto front of the points (time, error), both smaller is better: front[i]
  * is true if point i is valid (both finite, time > 0, error >= 0) and no

@@ -150,8 +150,9 @@ static void core_message(char *why, size_t n, const char *key, const char *value
     snprintf(why, n, "--vary %s=%s: %s", key, value, msg);
 }
 
-bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why, size_t n)
+bool study_plan_apply_why(const study_plan *p, long c, sph_scene_def *def, char *why, size_t n, bool *usage)
 {
+    *usage = false;
     int idx[STUDY_MAX_KNOBS];
     study_plan_combo(p, c, idx);
     sph_error err;
@@ -165,6 +166,7 @@ bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why
             else snprintf(value, sizeof value, "%s", kn->value[idx[k]]);
             snprintf(assign, sizeof assign, "%s=%s", key, value);
             if (sph_scene_set(def, assign, &err) != SPH_ERR_OK) {
+                *usage = true;
                 core_message(why, n, key, value, &err);
                 return false;
             }
@@ -179,6 +181,7 @@ bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why
                 char assign[200];
                 snprintf(assign, sizeof assign, "%s=%s", which[w], v);
                 if (sph_scene_set(def, assign, &err) != SPH_ERR_OK) {
+                    *usage = true;
                     core_message(why, n, kn->key, v, &err);
                     return false;
                 }
@@ -194,6 +197,7 @@ bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why
             if (end == v || *end || !isfinite(r) || r <= 0 || r > 100) {
                 snprintf(why, n, "--vary h_over_spacing=%s: want a number above 0 and up to 100 (h = value x spacing)",
                          v);
+                *usage = true;
                 return false;
             }
             if (def->n_blocks == 0) {
@@ -205,6 +209,7 @@ bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why
             char assign[200];
             snprintf(assign, sizeof assign, "kernels.h=%.9g", r * s);
             if (sph_scene_set(def, assign, &err) != SPH_ERR_OK) {
+                *usage = true;
                 core_message(why, n, kn->key, v, &err);
                 return false;
             }
@@ -220,6 +225,12 @@ bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why
         return false;
     }
     return true;
+}
+
+bool study_plan_apply(const study_plan *p, long c, sph_scene_def *def, char *why, size_t n)
+{
+    bool usage;
+    return study_plan_apply_why(p, c, def, why, n, &usage);
 }
 
 int study_pareto(const double *time, const double *error, int n, bool *front)

@@ -112,6 +112,13 @@ static bool parse_resolutions(const char *s, const val_problem *p, val_ctx *c)
                     p->name, v, p->res_meaning, p->res_min, p->res_max);
             return false;
         }
+        if (c->nres > 0 && v <= c->res[c->nres - 1]) { /* the trends are read in the given order */
+            fprintf(stderr,
+                    "sphlab validate %s: --resolution '%s': %ld after %d: give each resolution once, from the "
+                    "coarsest to the finest (the error's trend is read in that order)\n",
+                    p->name, s, v, c->res[c->nres - 1]);
+            return false;
+        }
         if (c->nres == VAL_MAX_RES) {
             fprintf(stderr, "sphlab validate: --resolution: at most %d values\n", VAL_MAX_RES);
             return false;
@@ -171,12 +178,22 @@ int cmd_validate(int argc, char **argv)
             fprintf(stderr, "sphlab validate all: --resolution differs between problems; give it to one problem\n");
             return VAL_USAGE;
         }
-        int worst = VAL_PASS;
+        int worst = VAL_PASS, n_run = 0, n_pass = 0;
+        char failed[512] = "";
+        size_t len = 0;
         for (int i = 0; i < val_problem_count; i++) {
             if (!val_problems[i].run) continue;
             int r = run_one(&val_problems[i], &o);
             if (r > worst) worst = r;
+            n_run++;
+            n_pass += r == VAL_PASS;
+            if (r != VAL_PASS && len < sizeof failed)
+                len += (size_t)snprintf(failed + len, sizeof failed - len, "%s%s (%s)", len ? ", " : "",
+                                        val_problems[i].name, r == VAL_FAIL ? "FAIL" : "the run failed");
         }
+        /* one line a class's smoke test can read: which problems did not pass, and that the exit says so */
+        printf("\nvalidate all: %d of %d problems PASS%s%s%s\n", n_pass, n_run, n_pass < n_run ? "; not passed: " : "",
+               failed, o.quick ? " (--quick: smaller resolutions, see each problem's line)" : "");
         return worst;
     }
     const val_problem *p = find(name);
