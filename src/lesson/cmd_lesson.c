@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "../io/io.h"
@@ -261,8 +262,32 @@ static void loadavg(char *out, size_t cap)
     fclose(f);
 }
 
+/* The files in dir written since `since` (the export's own, not an earlier
+ * export's left in the same folder), but the reports: what "N files" says. */
+static int files_written(const char *dir, const struct timespec *since)
+{
+    DIR *d = opendir(dir);
+    if (!d) return 0;
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        if (strncmp(e->d_name, "report.", 7) == 0 || e->d_name[0] == '.') continue;
+        char path[2400];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        struct stat st;
+        if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) continue;
+        if (st.st_mtim.tv_sec > since->tv_sec ||
+            (st.st_mtim.tv_sec == since->tv_sec && st.st_mtim.tv_nsec >= since->tv_nsec))
+            n++;
+    }
+    closedir(d);
+    return n;
+}
+
 static int export_lesson(const lesson *L, const char *dir, bool quick, bool quiet, bool html)
 {
+    struct timespec started;
+    clock_gettime(CLOCK_REALTIME, &started);
+    started.tv_nsec = 0; /* some file systems keep whole seconds */
     static lx x; /* large: the figure list */
     memset(&x, 0, sizeof x);
     x.L = L;
@@ -402,7 +427,7 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
                 report, x.dir);
         return 1;
     }
-    printf("lesson %d (%s): %d files and %s%s in %s (%.1f s)\n", L->num, L->title, x.nfig,
+    printf("lesson %d (%s): %d files and %s%s in %s (%.1f s)\n", L->num, L->title, files_written(x.dir, &started),
            made > 1 ? "report.md, report.fr.md" : "report.md",
            !html ? "" : made > 1 ? ", report.html, report.fr.html" : ", report.html", dir, secs);
     for (int i = 0; i < x.nmissing; i++) printf("missing: %s\n", x.missing[i]);

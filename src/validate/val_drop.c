@@ -377,7 +377,9 @@ static int drop_run(const val_ctx *c, const val_problem *p, const char *file, in
     if (ok) {
         plot_lines ch;
         memset(&ch, 0, sizeof ch);
-        snprintf(ch.title, sizeof ch.title, "%s oscillation (n = 2) against Rayleigh's period", p->name);
+        /* Rayleigh's mode number, as `validate list` names it: n for the 2D drop, l for the 3D one */
+        snprintf(ch.title, sizeof ch.title, "%s oscillation (%s = 2) against Rayleigh's period", p->name,
+                 done > 0 && obs[0].dim == 3 ? "l" : "n");
         for (int r = 0; r < done; r++)
             if (isfinite(obs[r].T_ray) && isfinite(obs[r].T))
                 val_append(ch.subtitle, sizeof ch.subtitle, "%sR/%d: %+.1f%%", r ? "; " : "period error: ", c->res[r],
