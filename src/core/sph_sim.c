@@ -229,8 +229,14 @@ static void measure_start(sph_sim *sim)
     const sph_particles *P = &sim->P;
     const int dim = sim->dim;
     sim->dt = 0.0f;
+    sim->fields_fresh = 0; /* the scene's state, then what these passes write */
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        if (sph_field_infos[f].kind == SPH_KIND_STATE) sim->fields_fresh |= SPH_FIELD_BIT(f);
     for (int p = 0; p < SPH_PASS_INTEGRATE; p++)
-        if (sim->in_pipeline[p] && p != SPH_PASS_REORDER) sph_passes[p]->run(sim);
+        if (sim->in_pipeline[p] && p != SPH_PASS_REORDER) {
+            sph_passes[p]->run(sim);
+            sim->fields_fresh |= sph_passes[p]->writes;
+        }
     double v2max = 0, a2max = 0, g2 = 0;
     for (int d = 0; d < dim; d++)
         g2 += (sim->def.effects & SPH_EFFECT(GRAVITY)) ? (double)sim->def.gravity[d] * sim->def.gravity[d] : 0.0;
@@ -655,7 +661,13 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
     const bool again = sim->pass_again; /* an iteration of the pass before: its time adds up */
     double before = p < SPH_PASS_COUNT ? sim->timing[p].last_ms : 0.0;
     sim->pass_again = false;
-    if (p < SPH_PASS_COUNT) run_timed(sim, p);
+    if (p < SPH_PASS_COUNT) {
+        run_timed(sim, p);
+        if (p != SPH_PASS_REORDER)
+            sim->fields_fresh |= sph_passes[p]->writes;
+        else if (!sim->S.lists_kept) /* it moved the particles: the fields it did not move are in the old order */
+            sim->fields_fresh &= sph_passes[p]->writes;
+    }
     const bool device_times = sim->backend && sim->backend->device_times;
     if (again && p < SPH_PASS_COUNT && !device_times) sim->timing[p].last_ms += before;
     int next = sim->pass_again && p < SPH_PASS_COUNT ? p : p + 1; /* an iterative pass asks for another call */

@@ -313,6 +313,11 @@ struct sph_sim {
     double step_ms[SPH_STEP_WINDOW];     /* [ms] step k is at k % SPH_STEP_WINDOW */
     uint64_t step_ms_count;              /* steps recorded since creation or sph_sim_reset_timings */
     int next_pass;        /* next pass of the current step, for stepping pass by pass */
+    /* Fields whose stored values belong to the particles where they are stored
+     * now (the inspector's and the HUD's question between two passes): a
+     * reorder moves the fields it writes and leaves the others in the old
+     * order until the pass that writes them runs again (sph_sim_step_pass). */
+    sph_mask fields_fresh;
     /* Watchdog: after every pass, the fields it wrote are checked. */
     bool watchdog;        /* on by default */
     float speed_bound;    /* [m/s] a speed above this is a runaway: 4 speed_scale + 1 m/s */

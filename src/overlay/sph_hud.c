@@ -16,7 +16,8 @@
 double sph_density_error(const sph_sim *sim)
 {
     const double held = sph_density_held(sim, NULL); /* [kg/m^dim] */
-    if (!sim->P.rho || !sim->n || !(held > 0) || !sim->timing[SPH_PASS_DENSITY].calls) return NAN;
+    /* rho as the start measured it, or as the density pass last wrote it; not between a reorder and that pass */
+    if (!sim->P.rho || !sim->n || !(held > 0) || !(sim->fields_fresh & SPH_BIT(RHO))) return NAN;
     if (sim->backend) { /* reduced on the device where the host copy is stale: no field read back */
         sph_stats s;
         sph_sim_stats(sim, &s);
@@ -67,6 +68,9 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
             HUD_LINE("fluid's density error (rho_max - %s)/%s = %+.2f %%, %s = %.5g (%s)", r0, r0, 100 * e, r0, held,
                      sim->def.eos_rest == SPH_EOSREST_LATTICE ? "eos_rest = lattice" : "rest_density");
         }
+    } else if (sim->P.rho && sim->in_pipeline[SPH_PASS_DENSITY]) {
+        HUD_LINE("density error: rho is in the particles' old order since the reorder; the density pass writes it "
+                 "next");
     } else if (sim->P.rho) {
         HUD_LINE("density error: not computed yet");
     } else {
@@ -219,6 +223,19 @@ int sph_inspect_lines(const sph_sim *sim, uint32_t i, char lines[][128], int max
     for (int f = 0; f < SPH_FIELD_COUNT; f++) {
         const sph_field_info *fi = &sph_field_infos[f];
         if (fi->kind == SPH_KIND_STATE || !*fi->label || !P->field[f][0]) continue;
+        if (!(sim->fields_fresh & SPH_FIELD_BIT(f))) { /* another particle's value since the reorder */
+            int q = sim->next_pass;
+            while (q < SPH_PASS_COUNT &&
+                   !(sim->in_pipeline[q] && sim->enabled[q] && (sph_passes[q]->writes & SPH_FIELD_BIT(f))))
+                q++;
+            if (q < SPH_PASS_COUNT) {
+                INSPECT("%-3s -  (left in the old order by the reorder; the %s pass writes it next)", fi->label,
+                        sph_passes[q]->name);
+            } else {
+                INSPECT("%-3s -  (left in the old order by the reorder; no pass of this step writes it)", fi->label);
+            }
+            continue;
+        }
         if (fi->vector) {
             vec_text(buf, sizeof buf, P->field[f], dim, i);
             INSPECT("%-12s %s %s", fi->label, buf, sph_field_unit(f, dim));
