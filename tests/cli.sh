@@ -557,6 +557,14 @@ sph bench scaling --quick --levels L5 --at 1000 --out "$tmp/scaling" -q > "$tmp/
 last_n=$(tail -1 "$tmp/scaling/scaling-3d.csv" 2>/dev/null | cut -d, -f4)
 [ "$rc" -eq 0 ] && [ "${last_n:-0}" -eq 1000 ] && ok || bad "bench scaling --at 1000: rc $rc, last N '${last_n:-none}'"
 # its command list names every problem of validate and every WHAT of bench
+# docs/scene-format.md's worked example: its scene, and `check` of it as the program prints it (but the memory line)
+mkdir -p "$tmp/col"
+awk '/^Saved as `column.ini`/ { exit } /^```ini$/ { ini = ""; on = 1; next } on && /^```$/ { on = 0; next }
+     on { ini = ini $0 "\n" } END { printf "%s", ini }' docs/scene-format.md > "$tmp/col/column.ini"
+sed -n '/^Saved as `column.ini`/,/^ok$/p' docs/scene-format.md | sed '1,/^```$/d' | grep -v '^memory: ' > "$tmp/col/want.txt"
+(cd "$tmp/col" && sph check column.ini 2>&1) | grep -v '^memory: ' > "$tmp/col/got.txt"
+[ -s "$tmp/col/column.ini" ] && diff "$tmp/col/want.txt" "$tmp/col/got.txt" > "$tmp/col/d.txt" && ok ||
+    { bad "docs/scene-format.md: the worked example's check differs from what check prints"; cat "$tmp/col/d.txt"; }
 for name in $(sph validate list 2>/dev/null | sed -n 's/^\([a-z-][a-z-]*\)  .*/\1/p'); do
     sed -n '/^sphlab validate NAME/,/^sphlab bench/p' README.md | grep -q "$name" && ok ||
         bad "README.md: sphlab validate's list leaves out $name"
@@ -568,6 +576,12 @@ done
 want=$(grep "^sphlab: --set: \[kernels\] h = '-0.1'" docs/scene-format.md)
 got=$(sph check lessons/scenes/dam-break-2d.ini --set kernels.h=-0.1 2>&1)
 [ -n "$want" ] && [ "$want" = "$got" ] && ok || bad "docs/scene-format.md: the --set example says '$want', check prints '$got'"
+# The README's dam break with the scalar loops: the three figures it quotes, as every machine gives them
+sph run lessons/scenes/dam-break-2d.ini --set search.vector=off 2>&1 | tr -s ' ' > "$tmp/rr.txt"
+for line in "steps 4600" "kinetic energy 1694.22 J/m" "max speed 4.95198 m/s"; do
+    { grep -qF "\`$line\`" README.md && grep -qx "$line" "$tmp/rr.txt"; } && ok ||
+        { bad "README.md: the dam break's '$line' (run --set search.vector=off)"; grep -A6 '^particles' "$tmp/rr.txt"; }
+done
 want=$(sed -n '/^\$ printf .*bad.ini/{n;p;}' README.md)
 got=$(cd "$tmp" && printf '[kernels]\nh = -0.04\n' > bad.ini && sph run bad.ini 2>&1)
 [ -n "$want" ] && [ "$want" = "$got" ] && ok || bad "README.md: the refused scene's message is '$want', check prints '$got'"

@@ -2,9 +2,11 @@
  *
  * The X-macro below is the only list of passes. The pass enum, the table of
  * pass descriptors, the timing table, the CSV columns, `sphlab check` and the
- * window's toggles all expand from it. To add a pass: add a line here, write
- * src/passes/NAME.c defining `const sph_pass sph_pass_NAME`, and add it to
- * the Makefile's PASSES (docs/architecture.md walks through it). */
+ * window's toggles all expand from it. To add a pass: add a line here and
+ * write src/passes/NAME.c defining `const sph_pass sph_pass_NAME` (the
+ * Makefile builds every file of src/passes/; docs/architecture.md, "How to
+ * add a pass", lists the other files a pass with a field, an effect and a
+ * key touches). */
 #ifndef SPH_PASS_H
 #define SPH_PASS_H
 

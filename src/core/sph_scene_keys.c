@@ -1,5 +1,5 @@
 /* The scene key table: every key of a scene file, its type, range, unit, default and meaning, as data.
- * The parser (sph_scene.c) and docs/scene-format.md (`sphlab help --scene`) both follow it. */
+ * The parser (sph_scene.c) and docs/scene-format.md (`sphlab keys`) both follow it. */
 #include "sph_scene.h"
 
 #include <stddef.h>
@@ -218,7 +218,7 @@ const sph_key sph_scene_keys[] = {
      "epsilon of XSPH velocity smoothing (Monaghan 1989, J. Comput. Phys. 82:1): a_i = (epsilon / dt) sum_j m_j / "
      "((rho_i + rho_j)/2) (v_j - v_i) W_ij, so a step moves v_i towards its neighbours' average; 0: none"},
     {"physics", "sigma", SPH_KEY_FLOAT, S(sigma), 0, 1e6, 0, 0, NULL, 0, "N/m", "0.0728",
-     "surface tension coefficient of surface_tension = csf or pairwise (in 2D per metre of depth: N); water at "
+     "surface tension coefficient of surface_tension = csf or stress (in 2D per metre of depth: N); water at "
      "20 C: 0.0728"},
 
     {"kernels", "h", SPH_KEY_FLOAT, S(h), 1e-4, BIG, 0, 0, NULL, 0, "m", "0.04",
