@@ -116,6 +116,13 @@ sph study lessons/scenes/study-hydrostatic-2d.ini --steps 20 --repeats 1 --threa
 sph study lessons/scenes/study-hydrostatic-2d.ini --vary fluid.spacng=0.02,0.04 --out "$tmp/sv" > "$tmp/err.txt" 2>&1
 [ $? -eq 2 ] && grep -q "^sphlab study: --vary fluid.spacng=0.02: unknown key 'spacng'.*did you mean 'spacing'" "$tmp/err.txt" &&
     ok || { bad "study --vary with a misspelt key: want exit 2 and the nearest name"; cat "$tmp/err.txt"; }
+# a study whose every run the watchdog stopped measured nothing: exit 4, as run's watchdog stop (it exited 0 and
+# named "the 0 runs" on the front)
+sph study lessons/scenes/study-hydrostatic-2d.ini --vary domain.wall_model=reflect --repeats 1 --threads 1 \
+    --out "$tmp/sall" > "$tmp/err.txt" 2>&1
+[ $? -eq 4 ] && grep -q "every combination was stopped by the watchdog" "$tmp/err.txt" &&
+    grep -q "^front: none (no run has a finite error)" "$tmp/err.txt" && ok ||
+    { bad "study with every run stopped: want exit 4 and no front"; cat "$tmp/err.txt"; }
 # a chart that cannot be written is said by study, not by "sphlab plot"
 mkdir -p "$tmp/sd/study.png"
 sph study lessons/scenes/study-hydrostatic-2d.ini --steps 5 --repeats 1 --threads 1 --quiet \

@@ -23,7 +23,8 @@ static const app_cmd_spec spec = {
                 "Runs every combination of the --vary lists on a reference problem, measures its error and its\n"
                 "wall time, and writes DIR/study.csv, DIR/study.png and DIR/study.pdf (error against time, log-log,\n"
                 "Pareto front marked) and a table. docs/accuracy.md defines each error.\n",
-    .footer = "exit status: 0 done; 1 bad scene, knob value or output directory; 2 bad command line (a bad --set too)\n",
+    .footer = "exit status: 0 done; 1 bad scene, knob value or output directory; 2 bad command line (a bad --set\n"
+              "too); 4 every combination was stopped by the watchdog\n",
     .max_pos = 1,
     .extra_pos = "more than one scene file",
 };
@@ -374,9 +375,19 @@ int study_cmd_run(const study_cmd *cmd)
                 combos == 1 ? "" : "s", repeats, repeats == 1 ? "" : "s", study_metric_names[metric],
                 study_metric_about[metric]);
         print_table(table, &plan, rows, (int)combos);
-        fprintf(table, "front: the %d run%s no other run beats in both error and time (*)\n", nf, nf == 1 ? "" : "s");
+        if (nf > 0)
+            fprintf(table, "front: the %d run%s no other run beats in both error and time (*)\n", nf,
+                    nf == 1 ? "" : "s");
+        else
+            fprintf(table, "front: none (no run has a finite error)\n");
         if (stopped)
             fprintf(table, "%d combination%s stopped by the watchdog (error nan)\n", stopped, stopped == 1 ? "" : "s");
+    }
+    /* nothing measured: said by the exit status too, as `run` says a watchdog stop */
+    if (code == 0 && stopped == combos) {
+        fprintf(stderr, "sphlab study: every combination was stopped by the watchdog: no error to compare (%s "
+                "and the chart say where)\n", csv_name);
+        code = 4;
     }
 out:
     free(tx);
