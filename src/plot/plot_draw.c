@@ -237,7 +237,8 @@ static void page_text(double x, double y, double scale, double just, const char 
 void plot_titles(const char *title, const char *subtitle)
 {
     page_text(0.5, 0.962, 1.3, 0.5, title);
-    if (subtitle && *subtitle) page_text(0.5, 0.922, 0.95, 0.5, subtitle);
+    /* a superscript (PLplot's #u, as in 16^2) rises into the title's line: such a subtitle sits a little lower */
+    if (subtitle && *subtitle) page_text(0.5, strstr(subtitle, "#u") ? 0.914 : 0.922, 0.95, 0.5, subtitle);
 }
 
 /* ---- data ranges ----------------------------------------------------------- */
