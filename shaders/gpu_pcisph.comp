@@ -18,6 +18,8 @@
 //   6 correct with those: p += delta_i / dt^2 (rho* - rho_r), u_value = dt^2, clamped as 3
 //   7 keep:      p_best = p (the solve's least error so far)
 //   8 take back: p = p_best (the error rose above twice that least plus the tolerance)
+//   9 pcisph_local_delta = off: delta_i = u_value, the full lattice's delta, for every particle (the field says
+//     which delta acts, as pcisph.c writes it)
 // Wall particles (wall_model = particles, obstacles; FIXED) are neighbours at their fixed places with p = 0, as
 // in pcisph.c: they count in G_i but not in the sum over the neighbours i's pressure moves (5), have
 // rho* = rho_r and no error of their own (2), and no p (3, 6); with solver_wall_pressure = extrapolated the
@@ -68,7 +70,7 @@ void main()
     uint err = 0u;
     if (i < N && is_wall(i)) { // no pressure, no error (see the top)
         if (u_count == 2u) rho_pci_[i] = RHO_R;
-        if (u_count == 5u) delta_pci_[i] = u_value;
+        if (u_count == 5u || u_count == 9u) delta_pci_[i] = u_value;
         if (u_count == 7u) p_pci_best_[i] = p_pci_[i];
         if (u_count == 8u) p_pci_[i] = p_pci_best_[i];
     } else if (i < N) {
@@ -99,6 +101,8 @@ void main()
 #endif
             precise float den = dots + max(gr.x * gp.x + gr.y * gp.y + gr.z * gp.z, 0.0);
             delta_pci_[i] = den > 0.0 ? RHO_R * RHO_R / (2.0 * den) : u_value;
+        } else if (u_count == 9u) { // pcisph_local_delta = off: the one delta, in the field as on the CPU
+            delta_pci_[i] = u_value;
         } else if (u_count == 7u) {
             p_pci_best_[i] = p_pci_[i];
         } else if (u_count == 8u) {

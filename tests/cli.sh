@@ -564,6 +564,17 @@ sph bench scaling --quick --levels L5 --at 1000 --out "$tmp/scaling" -q > "$tmp/
 last_n=$(tail -1 "$tmp/scaling/scaling-3d.csv" 2>/dev/null | cut -d, -f4)
 [ "$rc" -eq 0 ] && [ "${last_n:-0}" -eq 1000 ] && ok || bad "bench scaling --at 1000: rc $rc, last N '${last_n:-none}'"
 # its command list names every problem of validate and every WHAT of bench
+# the window's "save scene" names a lesson's scene after its folder: every lesson's scene is lesson.ini, and one
+# lesson's save overwrote another's (lesson-saved.ini)
+mkdir -p "$tmp/sv"
+ln -s "$PWD/lessons" "$tmp/sv/lessons"
+ln -s "$PWD/shaders" "$tmp/sv/shaders"
+for n in 7 11; do
+    (cd "$tmp/sv" && sphe "SDL_VIDEODRIVER=offscreen" lesson $n --frames 1 --keys w > "$tmp/sv/out$n.txt" 2>&1)
+done
+{ [ -s "$tmp/sv/07-full-simulation-lesson-saved.ini" ] && [ -s "$tmp/sv/11-incompressible-lesson-saved.ini" ] &&
+    grep -q "saved as 07-full-simulation-lesson-saved.ini" "$tmp/sv/out7.txt"; } && ok ||
+    { bad "lesson windows' saved scenes: want one file per lesson"; ls "$tmp/sv"; cat "$tmp/sv/out7.txt"; }
 # docs/scene-format.md's worked example: its scene, and `check` of it as the program prints it (but the memory line)
 mkdir -p "$tmp/col"
 awk '/^Saved as `column.ini`/ { exit } /^```ini$/ { ini = ""; on = 1; next } on && /^```$/ { on = 0; next }

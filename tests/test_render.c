@@ -546,6 +546,43 @@ Test(render, window_screenshot_is_what_render_draws)
     remove(scene);
 }
 
+/* b to the GL backend and b back (or l through the G levels and back, or r after them): the GL simulation, in
+ * its own context, is destroyed while that context is current, and every later frame drew into nothing (stripes
+ * or black) until the window's context was made current again. Paused, the state is the same: so is the drawing
+ * of the domain (the left part of the window; the HUD on the right says what was switched). Without an OpenGL
+ * 4.3 device b is refused and the frames are trivially alike. */
+Test(render, window_after_the_gl_backend_draws_again, .timeout = 120)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    const char *d = test_temp_dir("render");
+    char args[1024], out[8192];
+    const char *keys[2] = {"", "bb"};
+    for (int k = 0; k < 2; k++) {
+        snprintf(args, sizeof args, "view %s --paused --frames 4 --keys '%s' --size 320x240 --screenshot %s/s%d.png",
+                 scene, keys[k], d, k);
+        int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+        cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    }
+    char p0[128], p1[128];
+    snprintf(p0, sizeof p0, "%s/s0.png", d);
+    snprintf(p1, sizeof p1, "%s/s1.png", d);
+    int w0, h0, w1, h1;
+    unsigned char *a = load_png(p0, &w0, &h0), *b = load_png(p1, &w1, &h1);
+    cr_assert(w0 == w1 && h0 == h1);
+    size_t off = 0, all = 0;
+    for (int y = 0; y < h0; y++)
+        for (int x = 0; x < w0 / 2; x++, all++) {
+            const size_t i = 3 * ((size_t)y * (size_t)w0 + (size_t)x);
+            off += abs((int)a[i] - (int)b[i]) + abs((int)a[i + 1] - (int)b[i + 1]) + abs((int)a[i + 2] - (int)b[i + 2]) >
+                   24;
+        }
+    cr_expect_leq(off, all / 50, "%zu of %zu pixels of the domain differ after b b", off, all);
+    stbi_image_free(a);
+    stbi_image_free(b);
+    test_remove_dir(d);
+    remove(scene);
+}
+
 Test(render, window_keys_step_pass_by_pass_and_switch_overlays)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");

@@ -88,8 +88,10 @@ bool sph_sim_hash_health(const sph_sim *sim, bool count_neighbours, sph_hash_hea
     const uint32_t n = sim->n, T = sim->S.table_size ? sim->S.table_size : 1;
     const int dim = sim->dim;
     const sph_cells *g = &sim->S.cells;
+    /* the lists as the neighbours pass left them: not while the counting sort has borrowed their buffer, nor
+     * after a reorder, until the pass has run again (sph_sim_step_pass keeps fields_fresh) */
     const bool lists = !sim->backend && sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start &&
-                       sim->timing[SPH_PASS_NEIGHBOURS].calls > 0 && sim->timing[SPH_PASS_HASH].calls > 0;
+                       (sim->fields_fresh & SPH_RES_LISTS) && (sim->fields_fresh & SPH_RES_ENTRIES);
     /* a backend counts on the device rather than download the positions;
      * a fresh host copy is counted here */
     sph_backend *b = sim->backend;

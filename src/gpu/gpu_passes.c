@@ -358,7 +358,7 @@ static unsigned wall_extrapolate_helper(const sph_scene_def *def)
 
 /* shaders/gpu_pcisph.comp's stages, and gpu_pcisph_force.comp's (the force and x*: a program of its own, as
  * DFSPH's, for the storage blocks) */
-enum { PCI_PREDICT = 2, PCI_CORRECT, PCI_DELTA = 5, PCI_CORRECT_LOCAL, PCI_KEEP, PCI_TAKE_BACK };
+enum { PCI_PREDICT = 2, PCI_CORRECT, PCI_DELTA = 5, PCI_CORRECT_LOCAL, PCI_KEEP, PCI_TAKE_BACK, PCI_DELTA_ONE };
 enum { PCI_START, PCI_FORCE, PCI_STARTUP };
 
 static void pcisph_force(gpu *g, sph_sim *sim, uint32_t stage)
@@ -380,7 +380,7 @@ static void run_pcisph(gpu *g, sph_sim *sim)
     }
     const bool local = sim->def.pcisph_local_delta == SPH_ON;
     if (s->iteration == 0) { /* the step's first call: from p = 0, or the last step's p (a warm start) */
-        if (local) solver_stage(g, sim, p, PCI_DELTA, s->delta);
+        solver_stage(g, sim, p, local ? PCI_DELTA : PCI_DELTA_ONE, s->delta); /* the one delta written as pcisph.c */
         const bool warm = sim->def.solver_warm_start == SPH_ON && s->dt_last > 0;
         pcisph_force(g, sim, warm ? PCI_FORCE : PCI_START);
     }

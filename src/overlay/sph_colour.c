@@ -12,14 +12,18 @@
 
 /* The hash pass has filled the index at least once since the simulation was
  * made (before that, entries are zeros). */
+/* Built by the start's measurement or by this step's passes, and not since
+ * undone (sph_sim.h, fields_fresh): the index from the hash pass on; the
+ * lists from the neighbours pass until the counting sort borrows their
+ * buffer or a reorder moves the particles under them. */
 bool sph_ov_index_built(const sph_sim *sim)
 {
-    return sim->in_pipeline[SPH_PASS_HASH] && sim->S.entries && sim->timing[SPH_PASS_HASH].calls > 0;
+    return sim->in_pipeline[SPH_PASS_HASH] && sim->S.entries && (sim->fields_fresh & SPH_RES_ENTRIES);
 }
 
 bool sph_ov_lists_built(const sph_sim *sim)
 {
-    return sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start && sim->timing[SPH_PASS_NEIGHBOURS].calls > 0;
+    return sim->in_pipeline[SPH_PASS_NEIGHBOURS] && sim->S.nbr_start && (sim->fields_fresh & SPH_RES_LISTS);
 }
 
 float sph_ov_vec_norm(float *const v[3], int dim, uint32_t i)

@@ -279,7 +279,10 @@ static void run(sph_sim *sim)
     if (s->iteration == 0) { /* the step's first call: from p = 0 or the last step's p (see the top) */
         if (!(sim->def.solver_warm_start == SPH_ON && s->dt_last > 0))
             for (uint32_t i = 0; i < sim->n; i++) P->p_pci[i] = 0.0f;
-        if (sim->def.pcisph_local_delta == SPH_ON) local_deltas(sim);
+        if (sim->def.pcisph_local_delta == SPH_ON)
+            local_deltas(sim);
+        else /* the one delta, so that the field (the inspector's row, a colour) says which delta acts */
+            for (uint32_t i = 0; i < sim->n; i++) P->delta_pci[i] = s->delta;
         force(sim);
     }
     const double error = predict(sim);

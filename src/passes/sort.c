@@ -105,6 +105,7 @@ static void counting_buffers(sph_sim *sim, sph_entry **scratch, uint32_t **count
         }
         memset(S->nbr_start, 0, ((size_t)sim->n + 1) * sizeof *S->nbr_start);
         S->lists_built = false;
+        sim->fields_fresh &= ~SPH_RES_LISTS; /* until the neighbours pass writes them again */
         *count = S->nbr;
         *scratch = (sph_entry *)(void *)(S->nbr + keys);
         return;

@@ -302,7 +302,16 @@ int cmd_view(int argc, char **argv)
         const char *base = strrchr(so.path, '/') ? strrchr(so.path, '/') + 1 : so.path;
         size_t len = strlen(base);
         if (len > 4 && strcmp(base + len - 4, ".ini") == 0) len -= 4;
-        snprintf(w.save_path, sizeof w.save_path, "%.*s-saved.ini", (int)(len < 1000 ? len : 1000), base);
+        /* every lesson's scene is lesson.ini: its folder names it (07-full-simulation-lesson-saved.ini), so that
+         * one lesson's save does not overwrite another's */
+        const char *dir = so.path, *dir_end = base > so.path ? base - 1 : so.path;
+        for (const char *c = so.path; c < dir_end; c++)
+            if (*c == '/') dir = c + 1;
+        if (dir_end > dir && len == 6 && strncmp(base, "lesson", 6) == 0)
+            snprintf(w.save_path, sizeof w.save_path, "%.*s-lesson-saved.ini", (int)(dir_end - dir < 200 ? dir_end - dir : 200),
+                     dir);
+        else
+            snprintf(w.save_path, sizeof w.save_path, "%.*s-saved.ini", (int)(len < 1000 ? len : 1000), base);
     }
     w.params = sph_panel_create(win, ctx, w.save_path, sph_font_path(), err, sizeof err);
     if (!w.params) fprintf(stderr, "sphlab view: no parameter panel: %s\n", err);
@@ -317,6 +326,7 @@ int cmd_view(int argc, char **argv)
     size_t used = 0;
     bool direct_all = true;
     double last = sph_now_ms();
+    bool backend_context_was_current = false; /* the last frame's simulation ran in a GL context of its own */
     for (long frame = 0; !w.quit && (frames < 0 || frame < frames); frame++) {
         /* a reset replaces the simulation and a variant switch its backend,
          * each with a count of its own */
@@ -391,17 +401,23 @@ int cmd_view(int argc, char **argv)
             w.v.ring_radius = w.def.interaction_radius;
             w.v.ring_active = w.sim->interaction_active;
         }
-        if (w.sim->backend && !w.sim->backend_share) {
+        const bool own_context = w.sim->backend && !w.sim->backend_share;
+        if (own_context) {
             /* read the backend's buffers back now, while its context is the
              * current one (sph_render would otherwise switch to it) */
             sph_sim_sync(w.sim, SPH_SYNC_ALL);
-            /* the GL backend's passes made their own context current; SDL
-             * skips a make-current of the context it believes current, so
-             * release it first */
+        }
+        if (own_context || backend_context_was_current) {
+            /* the GL backend's passes made their own context current (and a
+             * simulation switched away from GL, or reset, destroyed it while
+             * current: every later frame drew into nothing); SDL skips a
+             * make-current of the context it believes current, so release it
+             * first */
             SDL_GL_MakeCurrent(win, NULL);
             SDL_GL_MakeCurrent(win, ctx);
             sph_glctx_forget_current();
         }
+        backend_context_was_current = own_context;
         w.v.device = sph_gpu_fields(w.sim);
         if (!sph_render(w.r, w.sim, &w.v, err, sizeof err)) {
             fprintf(stderr, "sphlab view: %s\n", err);
