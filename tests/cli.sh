@@ -320,6 +320,10 @@ else
     sphe "$sw SPHLAB_EGL_DEVICE=any" render "$scene" --backend gl --steps 4 --every 2 --size 160x120 --out "$tmp/devframes" \
         > "$tmp/dev.txt" 2>&1 && cmp -s "$tmp/glframes/frame_00002.png" "$tmp/devframes/frame_00002.png" && ok ||
         { bad "render --backend gl on the EGL device platform"; cat "$tmp/dev.txt"; }
+    # an MP4 of an odd size is cut to even sizes (H.264's 4:2:0): the summary gives the file's (it said 401x301)
+    sphe "$sw" render "$scene" --steps 4 --every 2 --size 161x121 --video "$tmp/odd.mp4" > "$tmp/odd.txt" 2>&1 &&
+        grep -q "odd.mp4: 3 frames (160x120) at" "$tmp/odd.txt" && ok ||
+        { bad "render --video at an odd size: want the file's 160x120 in the summary"; cat "$tmp/odd.txt"; }
 fi
 
 # sphlab validate: every shipped problem scene checks; list names every problem; each problem

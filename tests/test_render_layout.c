@@ -156,6 +156,13 @@ Test(render_layout, legend_labels_tell_a_narrow_range_apart)
     cr_expect_str_eq(s, "2.5");
     sph_legend_label(s, sizeof s, 1234.5678f, 0.0f, 2000.0f);
     cr_expect_str_eq(s, "1235", "a wide range keeps 4 significant digits");
+    /* a pressure's top at 18,040 Pa read "1.804e+04", cut at the frame's edge in 400 px wide renders */
+    sph_legend_label(s, sizeof s, 18040.3f, 0.0f, 18040.3f);
+    cr_expect_str_eq(s, "18040");
+    sph_legend_label(s, sizeof s, -250000.0f, -250000.0f, 0.0f);
+    cr_expect_str_eq(s, "-250000");
+    sph_legend_label(s, sizeof s, 3.2e7f, 0.0f, 3.2e7f);
+    cr_expect_str_eq(s, "3.2e+07", "from 10^7 on, the exponent is the shorter");
 }
 
 /* ---- the HUD in a 1024 x 720 window (a user's review: rows fell off the bottom and the right) ---------------- */

@@ -230,10 +230,10 @@ static void column_axis(const char *name, int dim, char *dst, size_t cap)
     else if (strcmp(name, "n") == 0)
         snprintf(dst, cap, "particles [-]");
     else if (strcmp(name, "ekin") == 0)
-        snprintf(dst, cap, "kinetic energy [%s]", dim == 2 ? "J/m" : dim == 3 ? "J" : "J/m in 2D, J in 3D");
+        snprintf(dst, cap, "kinetic energy [%s]", dim == 2 ? "J/m" : dim == 3 ? "J" : "J/m or J");
     else if (strncmp(name, "rho_", 4) == 0)
         snprintf(dst, cap, "density [%s]",
-                 dim == 2 ? "kg/m#u2#d" : dim == 3 ? "kg/m#u3#d" : "kg/m#u2#d in 2D, kg/m#u3#d in 3D");
+                 dim == 2 ? "kg/m#u2#d" : dim == 3 ? "kg/m#u3#d" : "kg/m#u2#d or kg/m#u3#d");
     else if (strcmp(name, "max_speed") == 0)
         snprintf(dst, cap, "speed [m/s]");
     else if (len > 3 && strcmp(name + len - 3, "_ms") == 0)

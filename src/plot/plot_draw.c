@@ -414,7 +414,8 @@ static void scale_label(char *dst, size_t cap, const char *label, int e)
 static void draw_lines(const void *chart)
 {
     const plot_lines *c = chart;
-    const double vx0 = 0.125, vx1 = 0.75, vy0 = bottom_room(0.10, 3.2), vy1 = 0.885, gap = 0.035;
+    /* 0.135: room left of the y-axis titles for a superscript (10#u7#d/m#u4#d), which stood at the page's edge */
+    const double vx0 = 0.135, vx1 = 0.75, vy0 = bottom_room(0.10, 3.2), vy1 = 0.885, gap = 0.035;
     int np = c->np > 0 ? c->np : 1;
     double ph = (vy1 - vy0 - gap * (np - 1)) / np;
 

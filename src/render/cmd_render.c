@@ -224,6 +224,8 @@ int cmd_render(int argc, char **argv)
     if (video) {
         char codec[128];
         snprintf(codec, sizeof codec, "%s", sph_video_codec(video));
+        int vw, vh; /* the file's, which the summary reports (it gave 401x301 for a 400x300 MP4) */
+        sph_video_size(video, &vw, &vh);
         if (!ok) {
             sph_video_abort(video);
         } else if (!sph_video_close(video, err, sizeof err)) {
@@ -231,7 +233,7 @@ int cmd_render(int argc, char **argv)
             ok = false;
         } else if (!quiet) {
             printf("video %s: %u frame%s (%dx%d) at %d frames/s, %s\n", video_path, frame, frame == 1 ? "" : "s",
-                   vo.w, vo.h, fps, codec);
+                   vw, vh, fps, codec);
         }
     }
     if (!quiet && frame && out)

@@ -13,7 +13,13 @@ void sph_legend_label(char *out, size_t n, float v, float lo, float hi)
     int digits = 4;
     if (half > 0 && big > 0) digits = (int)ceil(log10(big / half)) + 2;
     digits = digits < 4 ? 4 : digits > 9 ? 9 : digits;
-    snprintf(out, n, "%.*g", digits, (double)v);
+    /* from 10^digits to 10^7 %g writes an exponent ("1.804e+04": nine characters, past the legend's column in
+     * 400 px wide frames); the whole number is shorter and says more */
+    const double a = fabs((double)v);
+    if (a >= pow(10.0, digits) && a < 1e7)
+        snprintf(out, n, "%.0f", (double)v);
+    else
+        snprintf(out, n, "%.*g", digits, (double)v);
 }
 
 void sph_layout_font_sizes(int h, float *small, float *normal)

@@ -144,3 +144,11 @@ const char *sph_video_codec(const sph_video *v)
 {
     return v ? v->codec : "";
 }
+
+void sph_video_size(const sph_video *v, int *w, int *h)
+{
+    /* H.264's 4:2:0 chroma halves each axis: the MP4 is cut to even sizes (video_mp4.c); a GIF keeps any */
+    const bool even = v && sph_video_format_of(v->path) == SPH_VIDEO_MP4;
+    *w = v ? (even ? v->w & ~1 : v->w) : 0;
+    *h = v ? (even ? v->h & ~1 : v->h) : 0;
+}

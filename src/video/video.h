@@ -33,5 +33,7 @@ void sph_video_abort(sph_video *v);
 /* Frames added so far, and the codec used ("libx264 (H.264)", "mpeg4 ...", "giflib"). */
 long sph_video_frames(const sph_video *v);
 const char *sph_video_codec(const sph_video *v);
+/* The size of the frames in the file: an MP4's is cut to even numbers (H.264's 4:2:0), a GIF's is the asked one. */
+void sph_video_size(const sph_video *v, int *w, int *h);
 
 #endif
