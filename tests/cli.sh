@@ -320,6 +320,13 @@ else
     sphe "$sw SPHLAB_EGL_DEVICE=any" render "$scene" --backend gl --steps 4 --every 2 --size 160x120 --out "$tmp/devframes" \
         > "$tmp/dev.txt" 2>&1 && cmp -s "$tmp/glframes/frame_00002.png" "$tmp/devframes/frame_00002.png" && ok ||
         { bad "render --backend gl on the EGL device platform"; cat "$tmp/dev.txt"; }
+    # options that would change or show nothing are said (they were silent): --fps without --video, --slice in 2D,
+    # --center outside the domain
+    sphe "$sw" render "$scene" --steps 2 --every 2 --size 160x120 --out "$tmp/notes" --fps 7 --slice 0.5 --center 5:5 \
+        --quiet > "$tmp/notes.txt" 2>&1 && grep -q "note: --fps 7 is the video's frame rate" "$tmp/notes.txt" &&
+        grep -q "note: --slice 0.5: a 2D scene has no slice" "$tmp/notes.txt" &&
+        grep -q "warning: --center: x = 5 m is outside the domain" "$tmp/notes.txt" && ok ||
+        { bad "render with options that do nothing: want a note for each"; cat "$tmp/notes.txt"; }
     # an MP4 of an odd size is cut to even sizes (H.264's 4:2:0): the summary gives the file's (it said 401x301)
     sphe "$sw" render "$scene" --steps 4 --every 2 --size 161x121 --video "$tmp/odd.mp4" > "$tmp/odd.txt" 2>&1 &&
         grep -q "odd.mp4: 3 frames (160x120) at" "$tmp/odd.txt" && ok ||

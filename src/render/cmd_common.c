@@ -155,6 +155,20 @@ bool view_opts_apply(const view_opts *o, const char *cmd, const sph_sim *sim, sp
         }
     }
     if (o->has_slice) v->slice_z = (float)o->slice;
+    /* accepted, but would change nothing or show nothing: said, not refused (a review found them silent) */
+    if (o->has_slice && sim->dim == 2)
+        fprintf(stderr, "sphlab %s: note: --slice %g: a 2D scene has no slice (it cuts 3D scenes at z)\n", cmd,
+                o->slice);
+    else if (o->has_slice && (o->slice < sim->def.domain_min[2] || o->slice > sim->def.domain_max[2]))
+        fprintf(stderr, "sphlab %s: warning: --slice %g m is outside the domain's z, %g to %g m: no particle is cut\n",
+                cmd, o->slice, (double)sim->def.domain_min[2], (double)sim->def.domain_max[2]);
+    for (int d = 0; d < o->n_center && d < sim->dim; d++)
+        if (o->center[d] < sim->def.domain_min[d] || o->center[d] > sim->def.domain_max[d]) {
+            fprintf(stderr, "sphlab %s: warning: --center: %c = %g m is outside the domain's %g to %g m: the view may "
+                    "show no particle\n", cmd, "xyz"[d], (double)o->center[d], (double)sim->def.domain_min[d],
+                    (double)sim->def.domain_max[d]);
+            break;
+        }
     if (o->has_orbit) {
         v->orbit.yaw = o->yaw;
         v->orbit.pitch = o->pitch;

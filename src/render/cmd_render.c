@@ -81,6 +81,9 @@ int cmd_render(int argc, char **argv)
     if (!view_opts_take(&vo, &opt, "render")) return 2;
     const char *out = opt.out, *vtk_dir = opt.vtk, *video_path = opt.video;
     const int fps = opt.fps > 0 ? (int)lround(opt.fps) : 25; /* [frames/s] */
+    if (opt.fps > 0 && !video_path) /* accepted, but nothing plays the PNG frames at a rate */
+        fprintf(stderr, "sphlab render: note: --fps %g is the video's frame rate: without --video it changes nothing\n",
+                opt.fps);
     long every = opt.every, steps = opt.steps, threads = opt.threads;
     double until = opt.time;
     /* --gl: the GL context; --backend: where the passes run */
