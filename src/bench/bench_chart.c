@@ -150,13 +150,15 @@ bool bench_chart_scaling(const bench_scaling_chart *c, const char *dir, const ch
     snprintf(L.xlabel, sizeof L.xlabel, "particles N");
     snprintf(L.ylabel, sizeof L.ylabel, "time per step [ms]");
     for (int s = 0; s < c->ns && s < PLOT_MAX_CURVES; s++, L.nc++) {
-        L.c[s] = (plot_curve){.x = c->s[s].n, .y = c->s[s].ms, .n = (int)c->s[s].count, .style = s, .line = true,
-                              .markers = true};
+        /* 8 styles (colour, dashes, marker): the second 8 levels with filled markers, the third with markers
+         * alone, so that no two of the ladder's 23 curves look alike (L8 was drawn as L0) */
+        L.c[s] = (plot_curve){.x = c->s[s].n, .y = c->s[s].ms, .n = (int)c->s[s].count, .style = s, .line = s < 16,
+                              .markers = true, .filled = (s / 8) % 2 == 1};
         snprintf(L.c[s].label, sizeof L.c[s].label, "%s", c->s[s].label);
     }
-    /* slopes 2 and 1: O(N^2) through the first series' last point (brute
-     * force, where its pairs dominate), O(N) through the fastest series at
-     * the largest N */
+    /* slopes 2 and 1: O(N^2) through brute force's last point (L0 or G0, where the pairs dominate; none
+     * without it: it was drawn through whichever level came first), O(N) through the fastest series at the
+     * largest N */
     for (int r = 0; r < 2; r++) {
         int best = -1;
         double bx = 0, by = 0;
@@ -164,13 +166,18 @@ bool bench_chart_scaling(const bench_scaling_chart *c, const char *dir, const ch
             const bench_scaling_series *S = &c->s[s];
             if (!S->count || !(S->n[S->count - 1] > 0) || !(S->ms[S->count - 1] > 0)) continue;
             double x = S->n[S->count - 1], y = S->ms[S->count - 1];
-            if (r == 0 && best < 0) best = s, bx = x, by = y;
+            const bool brute = strncmp(c->s[s].label, "L0 ", 3) == 0 || strncmp(c->s[s].label, "G0 ", 3) == 0;
+            if (r == 0 && best < 0 && brute) best = s, bx = x, by = y;
             if (r == 1 && (best < 0 || x > bx * 1.01 || (x > bx * 0.99 && y < by))) best = s, bx = x, by = y;
         }
-        if (best < 0 || (r == 1 && best == 0)) continue;
+        if (best < 0 || (r == 1 && L.ng == 1 && L.g[0].x0 == bx && L.g[0].y0 == by)) continue;
         L.g[L.ng++] = (plot_guide){.x0 = bx, .y0 = by, .slope = r == 0 ? 2 : 1, .style = -1};
     }
-    if (L.ng > 0) snprintf(L.g[0].label, sizeof L.g[0].label, "slopes 1 and 2: #[0x221d] N and #[0x221d] N#u2#d");
+    if (L.ng == 2)
+        snprintf(L.g[0].label, sizeof L.g[0].label, "slopes 1 and 2: #[0x221d] N and #[0x221d] N#u2#d");
+    else if (L.ng == 1)
+        snprintf(L.g[0].label, sizeof L.g[0].label, "slope %d: #[0x221d] N%s", L.g[0].slope == 2 ? 2 : 1,
+                 L.g[0].slope == 2 ? "#u2#d" : "");
     if (c->fps > 0) {
         plot_guide *g = &L.g[L.ng++];
         *g = (plot_guide){.x0 = 1, .y0 = 1000 / c->fps, .style = 2, .on_line = true};

@@ -308,7 +308,9 @@ int bench_ladder_measure(const bench_opts *o, bench_ladder *lad)
     meta.all_pass = all_pass;
     for (int s = 0; s < o->nsel; s++) {
         int *best = bench_level_gl(&bench_levels[o->sel[s]]) ? &meta.gl_best : &meta.best;
-        if (res[s].searched && (*best < 0 || res[s].max_n > res[*best].max_n)) *best = s;
+        /* a level that failed its check does not count ("its speed does not count"): it was counted, and its
+         * N decided the record's verdict */
+        if (res[s].searched && res[s].check_ok && (*best < 0 || res[s].max_n > res[*best].max_n)) *best = s;
     }
     meta.target_evaluated = dim == 3 && fabs(fps - 60) < 1e-9 && meta.best >= 0;
     meta.target_met = meta.target_evaluated && res[meta.best].max_n >= 60000;

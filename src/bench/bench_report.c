@@ -384,7 +384,8 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
         fprintf(out, "\nmax N: the largest block with %g steps/s or more (bisection over block sizes, median of repeats;\n"
                "none: not even the smallest block reached it on this machine, which is no failure;\n"
                "+: the search stopped at its largest size, %s with %s, which the level reached);\n"
-               "ms/step and passes: medians at N = %s; others: cores that other processes kept busy meanwhile\n",
+               "ms/step and passes: medians at N = %s (with Verlet lists, L10 on, the median step builds no lists:\n"
+               "max N counts every step, builds included); others: cores that other processes kept busy meanwhile\n",
                fps, capn, o->quick ? "--quick" : "the full bench", nat);
         fprintf(out, "\nwhere the time goes at N = %s (pairs: neighbour-list entries per step, i->j and j->i):\n", nat);
         fprintf(out, "%-5s %12s %10s %12s %7s %6s %10s %12s %7s %6s %8s\n", "level", "pairs", "search ms",
@@ -511,7 +512,7 @@ bool bench_ladder_write(const bench_opts *o, const bench_ladder *lad, int argc, 
         snprintf(c.subtitle, sizeof c.subtitle, "%s   load %.2f   %s", meta.date, meta.load0[0],
                  all_pass ? "every level checked against the reference: PASS" : "a level FAILED its check");
         snprintf(c.bars_title, sizeof c.bars_title, "largest N at %g steps/s (log scale)", fps);
-        snprintf(c.stack_title, sizeof c.stack_title, "ms per step at N = %s, by pass", nat);
+        snprintf(c.stack_title, sizeof c.stack_title, "the passes' medians at N = %s, stacked (ms)", nat);
         if (dim == 3 && fabs(fps - 60) < 1e-9) {
             c.target_n = 60000;
             snprintf(c.target_label, sizeof c.target_label, "60,000: the seed's GPU record");

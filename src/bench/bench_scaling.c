@@ -159,7 +159,7 @@ int bench_cmd_scaling(bench_opts *o)
         memset(&c, 0, sizeof c);
         snprintf(c.title, sizeof c.title, "Time per step against N, %dD, each level of the ladder", dim);
         snprintf(c.subtitle, sizeof c.subtitle, "%s   load %.2f   median of repeats", date, load0[0]);
-        c.fps = 60;
+        c.fps = o->fps > 0 ? o->fps : 60; /* the --fps line (it drew 60 whatever --fps said) */
         c.ns = o->nsel;
         for (int s = 0; s < o->nsel; s++) {
             snprintf(c.s[s].label, sizeof c.s[s].label, "%s %.42s", bench_levels[o->sel[s]].name,

@@ -109,7 +109,7 @@ typedef struct plot_stack {
     int nl;
 } plot_stack;
 
-enum { PLOT_MAX_CURVES = 16, PLOT_MAX_GUIDES = 4, PLOT_MAX_NOTES = 16 };
+enum { PLOT_MAX_CURVES = 32, PLOT_MAX_GUIDES = 4, PLOT_MAX_NOTES = 16 };
 
 /* Points on a log-log chart; non-positive or non-finite ones are left out. */
 typedef struct plot_curve {
