@@ -453,6 +453,15 @@ Test(bench, bad_command_lines_exit_2)
         "bench pair --levels L12",
         "bench pair --levels L12,G0",
         "bench ladder --threads 2",
+        /* an option the benchmark does not read (they were accepted and ignored) */
+        "bench solvers --quick --out /tmp/sphlab-bench-unused",
+        "bench solvers --quick --levels L3",
+        "bench levels --set L3:search.sort=none",
+        "bench machine --quick --levels L3",
+        "bench pair --levels L3,L4 --fps 5",
+        "bench pair --levels L3,L4 --out /tmp/sphlab-bench-unused",
+        "bench ladder --quick --solvers pcisph",
+        "bench ladder --quick --time 0.02",
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         int rc = test_sphlab(bad[i], g_out, sizeof g_out);

@@ -120,14 +120,55 @@ static bool add_set(bench_opts *o, const char *v)
     return true;
 }
 
+/* Which options each benchmark reads: one given to a benchmark that does not read it is a bad command line,
+ * not ignored (a review found --out, --set, --fps, --levels, --solvers, --time and --quiet accepted and
+ * silently unused by some of them). */
+static bool options_read_by(const char *what, const app_opts *opt)
+{
+    static const struct {
+        const char *what, *reads; /* the options it reads, by name, space-separated */
+    } table[] = {
+        {"ladder", "--set --dim --fps --at --out --levels --quick --quiet --trace --watchdog"},
+        {"scaling", "--set --dim --fps --at --out --levels --quick --quiet --trace --watchdog"},
+        {"solvers", "--dim --at --time --repeats --solvers --quick --quiet --trace --watchdog"},
+        {"pair", "--set --dim --at --repeats --threads --levels --quick --quiet --watchdog"},
+        {"machine", "--out --quick --quiet"},
+        {"levels", "--dim --levels"},
+    };
+    const struct {
+        const char *name;
+        bool given;
+    } given[] = {
+        {"--set", opt->sets.n > 0},      {"--dim", opt->dim >= 0},          {"--fps", opt->fps >= 0},
+        {"--at", opt->at >= 0},          {"--out", opt->out != NULL},       {"--levels", opt->levels != NULL},
+        {"--time", opt->time >= 0},      {"--repeats", opt->repeats >= 0},  {"--solvers", opt->solvers != NULL},
+        {"--threads", opt->threads > 0}, {"--quick", opt->quick},           {"--quiet", opt->quiet},
+        {"--trace", opt->trace},         {"--watchdog", opt->watchdog},
+    };
+    for (size_t t = 0; t < sizeof table / sizeof table[0]; t++) {
+        if (strcmp(table[t].what, what) != 0) continue;
+        for (size_t g = 0; g < sizeof given / sizeof given[0]; g++) {
+            if (!given[g].given) continue;
+            const char *at = strstr(table[t].reads, given[g].name);
+            const size_t len = strlen(given[g].name);
+            if (at && (at[len] == ' ' || at[len] == '\0')) continue;
+            fprintf(stderr, "sphlab bench %s: %s is not read by bench %s (it reads %s)\n", what, given[g].name, what,
+                    table[t].reads);
+            return false;
+        }
+    }
+    return true; /* an unknown benchmark is said below */
+}
+
 static int parse_args(int argc, char **argv, bench_opts *o)
 {
     app_opts opt;
-    app_opts_init(&opt);
-    opt.fps = 60;
-    opt.dim = 3;
+    app_opts_init(&opt); /* -1 or NULL: not given (the defaults follow, once what was given is known) */
     int rc = app_opts_parse(&spec, argc, argv, &opt);
     if (rc >= 0) return rc;
+    if (opt.n_pos && !options_read_by(opt.pos[0], &opt)) return 2;
+    if (opt.fps < 0) opt.fps = 60;
+    if (opt.dim < 0) opt.dim = 3;
     o->what = opt.n_pos ? opt.pos[0] : NULL;
     o->fps = opt.fps;
     o->cfg.dim = (int)opt.dim;
