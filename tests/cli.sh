@@ -112,6 +112,11 @@ sph study lessons/scenes/study-hydrostatic-2d.ini --steps 20 --repeats 1 --threa
     awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next } { if (!($col["error"] > 0)) bad = 1; n++ }
              END { exit bad || n != 3 }' "$tmp/ps/study.csv" &&
     ok || { bad "study hydrostatic --vary pressure_solver: want 3 rows with an error"; cat "$tmp/err.txt"; cat "$tmp/ps/study.csv"; }
+# plot series --y naming no column of the CSV is a bad command line (it exited 1), naming the columns there are
+sph run lessons/scenes/drop-2d.ini --steps 2 --quiet --stats "$tmp/ps.csv" > /dev/null 2>&1
+sph plot series "$tmp/ps.csv" --y nosuch --out "$tmp/psout" > "$tmp/err.txt" 2>&1
+[ $? -eq 2 ] && grep -q "no column 'nosuch' (--y); the columns are: step,t," "$tmp/err.txt" && ok ||
+    { bad "plot series --y nosuch: want exit 2 and the columns"; cat "$tmp/err.txt"; }
 # a misspelt --vary key is a bad command line, as a misspelt --set (it exited 1 where --set exited 2)
 sph study lessons/scenes/study-hydrostatic-2d.ini --vary fluid.spacng=0.02,0.04 --out "$tmp/sv" > "$tmp/err.txt" 2>&1
 [ $? -eq 2 ] && grep -q "^sphlab study: --vary fluid.spacng=0.02: unknown key 'spacng'.*did you mean 'spacing'" "$tmp/err.txt" &&

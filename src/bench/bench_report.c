@@ -426,7 +426,12 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
                "densities within %g (relative), particles matched by id; against %s at N = %s",
                BENCH_EDGE, BENCH_CHECK_STEPS, BENCH_TOL_X, BENCH_TOL_V, BENCH_TOL_RHO, BENCH_REF_SMALL, nchk);
         if (k_at > k_check) fprintf(out, " and against %s at N = %s", BENCH_REF_LARGE, nat);
-        fprintf(out, " (%s itself against %s).\n", BENCH_REF_SMALL, BENCH_REF_LARGE);
+        bool ref_small_run = false; /* said only where it ran (it was said of runs without L0) */
+        for (int s = 0; s < o->nsel; s++) ref_small_run |= strcmp(bench_levels[o->sel[s]].name, BENCH_REF_SMALL) == 0;
+        if (ref_small_run)
+            fprintf(out, " (%s itself against %s).\n", BENCH_REF_SMALL, BENCH_REF_LARGE);
+        else
+            fprintf(out, ".\n");
         for (int s = 0; s < o->nsel; s++) {
             const level_result *r = &res[s];
             const bench_diff *d[2] = {&r->small, &r->large};

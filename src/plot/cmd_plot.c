@@ -277,16 +277,19 @@ static int plot_series_cmd(const plot_opts *o, const char *dir)
             fprintf(stderr, "sphlab plot: %s: no column '%s' (--y); the columns are:", t.path, tok);
             for (int k = 0; k < t.ncols; k++) fprintf(stderr, "%s%s", k ? "," : " ", t.names[k]);
             fprintf(stderr, "\n");
+            rc = 2; /* --y names what the command line asks for: a bad command line, as figures.md says */
             goto out;
         }
         if (ny == PLOT_MAX_SERIES) {
             fprintf(stderr, "sphlab plot: --y: at most %d columns\n", PLOT_MAX_SERIES);
+            rc = 2;
             goto out;
         }
         yc[ny++] = c;
     }
     if (!ny) {
         fprintf(stderr, "sphlab plot series: --y '%s': no column named\n", o->ycols);
+        rc = 2;
         goto out;
     }
 
@@ -300,6 +303,7 @@ static int plot_series_cmd(const plot_opts *o, const char *dir)
         if (p == L.np) {
             if (L.np == PLOT_MAX_PANELS) {
                 fprintf(stderr, "sphlab plot: --y: the columns have more than %d different units\n", PLOT_MAX_PANELS);
+                rc = 2;
                 goto out;
             }
             axis_of_panel[L.np] = axis[k];
