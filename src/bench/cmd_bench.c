@@ -42,7 +42,8 @@ static const app_cmd_spec spec = {
                 "  levels      the levels and the scene keys that make each\n"
                 "options:\n",
     .footer = "Files: DIR/ladder-3d.{csv,json,png,pdf}, DIR/scaling-3d.{csv,png,pdf}, DIR/machine.json (2d likewise).\n"
-              "Exit status: 0 done; 1 a level failed its check, or an output could not be written; 2 bad command line.\n",
+              "Exit status: 0 done; 1 a level failed its check, or an output could not be written; 2 bad command line\n"
+              "(an option the benchmark does not read, a --set a level cannot take, too).\n",
     .max_pos = 1,
 };
 
