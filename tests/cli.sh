@@ -591,6 +591,10 @@ done
 { [ -s "$tmp/sv/07-full-simulation-lesson-saved.ini" ] && [ -s "$tmp/sv/11-incompressible-lesson-saved.ini" ] &&
     grep -q "saved as 07-full-simulation-lesson-saved.ini" "$tmp/sv/out7.txt"; } && ok ||
     { bad "lesson windows' saved scenes: want one file per lesson"; ls "$tmp/sv"; cat "$tmp/sv/out7.txt"; }
+# a screenshot of a window that drew no frame (q as the first key) is refused (it saved a black picture, exit 0)
+(cd "$tmp/sv" && sphe "SDL_VIDEODRIVER=offscreen" lesson 7 --frames 3 --keys q --screenshot "$tmp/sv/q.png" > "$tmp/sv/q.txt" 2>&1)
+[ $? -eq 1 ] && [ ! -e "$tmp/sv/q.png" ] && grep -q "no frame was drawn" "$tmp/sv/q.txt" && ok ||
+    { bad "view --keys q --screenshot: want exit 1 and no picture"; cat "$tmp/sv/q.txt"; }
 # docs/scene-format.md's worked example: its scene, and `check` of it as the program prints it (but the memory line)
 mkdir -p "$tmp/col"
 awk '/^Saved as `column.ini`/ { exit } /^```ini$/ { ini = ""; on = 1; next } on && /^```$/ { on = 0; next }

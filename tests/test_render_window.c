@@ -223,6 +223,26 @@ Test(render_window, key_labels_carry_their_cells_size)
 
 /* Speed-ups of levels not visited here come from the last bench ladder CSV,
  * said as such; a level measured live wins over it. */
+/* The ingredients row says what runs: brute force has no reorder pass (it read "reorder on") and L0 runs on one
+ * thread of the CPU. */
+Test(render_window, ingredients_say_what_runs)
+{
+    sph_scene_def def = test_scene(scene_2d);
+    sph_error err;
+    cr_assert_eq(sph_level_apply(&sph_levels[sph_level_find("L0")], &def, &err), SPH_ERR_OK);
+    def.reorder = SPH_ON; /* the key as a scene may leave it: brute force leaves the pass out anyway */
+    sph_sim *sim = NULL;
+    cr_assert_eq(sph_sim_create(&def, 1, &sim, &err), SPH_ERR_OK);
+    cr_assert(!sim->in_pipeline[SPH_PASS_REORDER]);
+    view_ladder l;
+    memset(&l, 0, sizeof l);
+    char lines[8][128];
+    int n = view_ladder_lines(&l, sim, lines, 8);
+    cr_assert_geq(n, 2);
+    cr_expect(strstr(lines[1], "reorder -, ") && strstr(lines[1], "1 thread, cpu"), "%s", lines[1]);
+    sph_sim_destroy(sim);
+}
+
 Test(render_window, speedups_from_the_bench_csv_when_not_visited)
 {
     const char *csv = test_write_temp(

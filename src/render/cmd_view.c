@@ -327,6 +327,7 @@ int cmd_view(int argc, char **argv)
     bool direct_all = true;
     double last = sph_now_ms();
     bool backend_context_was_current = false; /* the last frame's simulation ran in a GL context of its own */
+    long drawn_frames = 0; /* a screenshot of a window that drew nothing is no picture (q as the first key) */
     for (long frame = 0; !w.quit && (frames < 0 || frame < frames); frame++) {
         /* a reset replaces the simulation and a variant switch its backend,
          * each with a count of its own */
@@ -348,6 +349,7 @@ int cmd_view(int argc, char **argv)
             SDL_Delay(20);
             continue;
         }
+        drawn_frames++;
         if (!sph_renderer_resize(w.r, dw, dh, err, sizeof err)) {
             fprintf(stderr, "sphlab view: %s\n", err);
             goto out;
@@ -464,7 +466,11 @@ int cmd_view(int argc, char **argv)
         for (int k = 0; k < w.v.panel_lines; k++) fprintf(stderr, "sphlab view: inspector: %s\n", w.panel[k]);
     rc = 0;
     if (w.rec.video) viewer_record_toggle(&w); /* quitting finishes the video */
-    if (shot) {
+    if (shot && drawn_frames == 0) {
+        fprintf(stderr, "sphlab view: --screenshot %s: no frame was drawn (the keys quit first): nothing saved\n",
+                shot);
+        rc = 1;
+    } else if (shot) {
         w.msg[0] = '\0';
         viewer_screenshot(&w, shot);
         if (strncmp(w.msg, "saved", 5) != 0) rc = 1;

@@ -110,10 +110,17 @@ int view_ladder_lines(const view_ladder *l, const sph_sim *sim, char lines[][128
     const sph_scene_def *d = &sim->def;
     const int lv = view_ladder_level(sim);
     char ingredients[96];
-    snprintf(ingredients, sizeof ingredients, "%s%s%s, reorder %s, vector %s, %d thread%s, %s",
-             sph_search_names[d->search], d->search == SPH_SEARCH_BRUTE ? "" : " + ",
-             d->search == SPH_SEARCH_BRUTE ? "" : sph_sort_names[d->sort], sph_onoff_names[d->reorder],
-             sph_onoff_names[d->vector], sim->threads, sim->threads == 1 ? "" : "s", sph_backend_names[d->backend]);
+    /* what runs, not only what the keys say: brute force has no reorder pass (it read "reorder on"), and the GL
+     * backend's passes run on the device, not on the CPU's threads (it read "2 threads, gl") */
+    char threads[32];
+    if (d->backend == SPH_BACKEND_CPU)
+        snprintf(threads, sizeof threads, "%d thread%s", sim->threads, sim->threads == 1 ? "" : "s");
+    else
+        snprintf(threads, sizeof threads, "on the device");
+    snprintf(ingredients, sizeof ingredients, "%s%s%s, reorder %s, vector %s, %s, %s", sph_search_names[d->search],
+             d->search == SPH_SEARCH_BRUTE ? "" : " + ", d->search == SPH_SEARCH_BRUTE ? "" : sph_sort_names[d->sort],
+             sim->in_pipeline[SPH_PASS_REORDER] ? sph_onoff_names[d->reorder] : "-", sph_onoff_names[d->vector],
+             threads, sph_backend_names[d->backend]);
     if (lv >= 0) {
         LADDER_LINE("level %s: %s", sph_levels[lv].name, sph_levels[lv].about);
     } else {
@@ -160,9 +167,13 @@ bool view_switch(sph_sim **sim, sph_scene_def *def, int *threads, const sph_scen
     *def = d;
     *threads = next_threads;
     const int lv = view_ladder_level(fresh);
-    snprintf(msg, n, "%s: at level %s (%s), %d thread%s, %s", what, lv >= 0 ? sph_levels[lv].name : "none",
-             lv >= 0 ? sph_levels[lv].about : "a mix of ingredients", fresh->threads, fresh->threads == 1 ? "" : "s",
-             sph_backend_names[d.backend]);
+    char on[32]; /* the GL backend's passes run on the device, whatever the CPU's threads */
+    if (d.backend == SPH_BACKEND_CPU)
+        snprintf(on, sizeof on, "%d thread%s", fresh->threads, fresh->threads == 1 ? "" : "s");
+    else
+        snprintf(on, sizeof on, "on the device");
+    snprintf(msg, n, "%s: at level %s (%s), %s, %s", what, lv >= 0 ? sph_levels[lv].name : "none",
+             lv >= 0 ? sph_levels[lv].about : "a mix of ingredients", on, sph_backend_names[d.backend]);
     return true;
 }
 
