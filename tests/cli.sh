@@ -112,6 +112,17 @@ sph study lessons/scenes/study-hydrostatic-2d.ini --steps 20 --repeats 1 --threa
     awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next } { if (!($col["error"] > 0)) bad = 1; n++ }
              END { exit bad || n != 3 }' "$tmp/ps/study.csv" &&
     ok || { bad "study hydrostatic --vary pressure_solver: want 3 rows with an error"; cat "$tmp/err.txt"; cat "$tmp/ps/study.csv"; }
+# a run the watchdog stops: --stats ends with the stopped state's row, as the summary and --dump show it (the row
+# was left out); a scene that computes no density writes empty density cells, not 0
+sph run lessons/scenes/drop-2d.ini --set time.cfl=0 --set time.dt=0.002 --steps 50 --stats "$tmp/wd.csv" > "$tmp/wd.txt" 2>&1
+rc=$?
+steps=$(sed -n 's/^steps *\([0-9]*\)$/\1/p' "$tmp/wd.txt")
+{ [ "$rc" -eq 4 ] && [ -n "$steps" ] && [ "$(tail -1 "$tmp/wd.csv" | cut -d, -f1)" = "$steps" ]; } && ok ||
+    { bad "run stopped by the watchdog: want exit 4 and a last --stats row at step '$steps'"; tail -2 "$tmp/wd.csv"; }
+printf '[scene]\neffects = gravity walls\n[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.2 0.2\nspacing = 0.02\n' > "$tmp/nodens.ini"
+sph run "$tmp/nodens.ini" --steps 2 --quiet --stats "$tmp/nd.csv" --dump "$tmp/ndd.csv" > /dev/null 2>&1 &&
+    [ "$(tail -1 "$tmp/nd.csv" | cut -d, -f6-8)" = ",," ] && [ "$(sed -n 2p "$tmp/ndd.csv" | cut -d, -f8-9)" = "," ] && ok ||
+    { bad "a run without density: want empty rho cells in --stats and --dump"; tail -1 "$tmp/nd.csv"; sed -n 2p "$tmp/ndd.csv"; }
 # plot series --y naming no column of the CSV is a bad command line (it exited 1), naming the columns there are
 sph run lessons/scenes/drop-2d.ini --steps 2 --quiet --stats "$tmp/ps.csv" > /dev/null 2>&1
 sph plot series "$tmp/ps.csv" --y nosuch --out "$tmp/psout" > "$tmp/err.txt" 2>&1

@@ -8,6 +8,7 @@
 #include "../io/vtk.h"
 #include "sph_obstacles.h"
 #include "sph_hash_health.h"
+#include "sph_walls.h"
 
 static const app_cmd_spec spec = {
     .name = "run",
@@ -39,8 +40,12 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
 {
     sph_stats s;
     sph_sim_stats(sim, &s);
-    fprintf(f, "%llu,%.9g,%.9g,%u,%.9g,%.9g,%.9g,%.9g,%.9g", (unsigned long long)sim->step, sim->t, dt, s.n, s.ekin,
-            s.rho_min, s.rho_mean, s.rho_max, s.max_speed);
+    fprintf(f, "%llu,%.9g,%.9g,%u,%.9g", (unsigned long long)sim->step, sim->t, dt, s.n, s.ekin);
+    if (sim->P.rho) /* no density computed (no effect needs it): empty cells, not a density of 0 */
+        fprintf(f, ",%.9g,%.9g,%.9g", s.rho_min, s.rho_mean, s.rho_max);
+    else
+        fprintf(f, ",,,");
+    fprintf(f, ",%.9g", s.max_speed);
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (sim->in_pipeline[p]) fprintf(f, ",%.6f", sim->timing[p].last_ms);
     if (sim->def.n_obstacles) {
@@ -104,8 +109,11 @@ void app_dump_write(FILE *f, const sph_sim *sim)
             v[d] = P->vel[d][i];
         }
         fprintf(f, far ? "%u,%.15g,%.15g,%.15g" : "%u,%.9g,%.9g,%.9g", P->id[i], x[0], x[1], x[2]);
-        fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g", v[0], v[1], v[2], P->rho ? P->rho[i] : 0.0f,
-                sph_sim_pressure(sim, i));
+        fprintf(f, ",%.9g,%.9g,%.9g", v[0], v[1], v[2]);
+        if (P->rho) /* no density (no effect needs it), so no pressure: empty cells, not 0 */
+            fprintf(f, ",%.9g,%.9g", P->rho[i], sph_sim_pressure(sim, i));
+        else
+            fprintf(f, ",,");
         for (int fi = 0; fi < SPH_FIELD_COUNT; fi++) {
             if (fi == SPH_FIELD_POS || fi == SPH_FIELD_VEL || fi == SPH_FIELD_RHO || fi == SPH_FIELD_P ||
                 !P->field[fi][0])
@@ -146,6 +154,11 @@ void app_run_report(FILE *out, const sph_sim *sim, double wall_ms)
                 sim->backend->timing ? sim->backend->timing : "the host clock around each pass");
     else
         fprintf(out, "\nparticles       %u (%dD), %d thread%s\n", s.n, sim->dim, sim->threads, sim->threads == 1 ? "" : "s");
+    uint32_t walls = 0;
+    for (uint32_t i = 0; sim->P.fixed && i < sim->n; i++) walls += sph_is_wall(&sim->P, i);
+    if (walls) /* the lines below are the fluid's (sph_sim_stats leaves the wall particles out) */
+        fprintf(out, "                %u fluid, %u wall particles; energy, density and speed below: the fluid's\n",
+                sim->n - walls, walls);
     fprintf(out, "steps           %llu\n", (unsigned long long)sim->step);
     fprintf(out, "simulated time  %.6g s (last dt %.3g s)\n", sim->t, sim->dt);
     fprintf(out, "kinetic energy  %.6g %s\n", s.ekin, e_unit);
@@ -236,11 +249,11 @@ int cmd_run(int argc, char **argv)
         }
         if (until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps) break;
         sph_sim_step(sim);
-        if (sim->alarm.raised) break;
-        if (stats.f) {
+        if (stats.f) { /* a watchdog stop too: the state the summary and --dump show gets its row */
             sph_sim_collect_times(sim); /* this step's pass times (a GL backend's timer queries come later) */
             app_stats_row(stats.f, sim, sim->dt);
         }
+        if (sim->alarm.raised) break;
         double now = sph_now_ms();
         if ((progress && now - last_shown > 200) || (log_progress && now - last_shown > log_ms)) {
             last_shown = now;
