@@ -986,6 +986,18 @@ Test(scene, eos_keys_unread_under_a_solver)
     cr_expect(!w || !strstr(w, "does not use it"), "pcisph with stiffness: %s", w);
 }
 
+/* h not larger than the spacing: a lattice particle has no neighbour within h (the warning read "about 1.8
+ * neighbours per particle", pi (h/s)^2, while check's hash health counted 0) */
+Test(scene, h_below_the_spacing_is_said_as_no_neighbour)
+{
+    sph_scene_def def = test_scene("[scene]\neffects = gravity pressure walls\n[domain]\nmin = 0 0\nmax = 1 1\n"
+                                   "[fluid a]\nmin = 0 0\nmax = 0.2 0.2\nspacing = 0.02\n[kernels]\nh = 0.015\n");
+    char buf[4096];
+    const char *w = sph_scene_warning(&def, buf, sizeof buf);
+    cr_assert(w, "no warning");
+    cr_expect(strstr(w, "is not larger than the spacing 0.02 m") && !strstr(w, "neighbours per particle"), "%s", w);
+}
+
 /* Every key the scene's choices leave unread is said, each on its own line, not only the first: a user fixing one
  * warning at a time found the next only on the following run (a review: delta, delta_form, solver_tolerance and
  * divergence_tolerance in an equation-of-state scene gave one warning, for delta). */

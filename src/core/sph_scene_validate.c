@@ -195,6 +195,15 @@ static const char *estimate_warning(const sph_scene_def *def, char *buf, size_t 
                  def->h, def->h / def->blocks[0].spacing, fmin(nb, count), count * fmin(nb, count));
         return buf;
     }
+    double finest = INFINITY;
+    for (int b = 0; b < def->n_blocks; b++) finest = fmin(finest, def->blocks[b].spacing);
+    if (def->h <= finest) { /* pi (h/s)^2 is no count there: a lattice particle has none within h */
+        snprintf(buf, n,
+                 "h = %g m is not larger than the spacing %g m: a particle on the lattice has no neighbour within h, "
+                 "only itself (use h of about 2 spacings)",
+                 def->h, finest);
+        return buf;
+    }
     if (nb < 6) {
         snprintf(buf, n,
                  "h = %g m gives about %.1f neighbours per particle: too few for a smooth estimate (use h of about 2 "
