@@ -123,11 +123,12 @@ void sph_watchdog_energy(sph_sim *sim, int pass)
         for (int d = 0; d < sim->dim; d++) v2 += sim->P.vel[d][i] * sim->P.vel[d][i];
         if (v2 > v2max) v2max = v2, fastest = i;
     }
-    char what[200];
+    char what[200]; /* raise_alarm keeps 200 */
+    const char *u = sim->dim == 2 ? "J/m" : "J"; /* a 2D scene's energy is per metre of depth, as run's summary */
     snprintf(what, sizeof what,
-             "total energy %.4g J grew by %.3g J since step 0 (bound %.3g J: half its scale %.3g J); fastest "
+             "total energy %.4g %s grew by %.3g %s since step 0 (bound %.3g %s: half its scale %.3g %s); fastest "
              "particle shown",
-             e, e - sim->energy_start, allowed, sim->energy_scale);
+             e, u, e - sim->energy_start, u, allowed, u, sim->energy_scale, u);
     raise_alarm(sim, pass, fastest, SPH_FIELD_VEL, 0, sqrtf(fmaxf(v2max, 0.0f)), what);
 }
 
