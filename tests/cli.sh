@@ -117,7 +117,8 @@ sph study lessons/scenes/study-hydrostatic-2d.ini --steps 20 --repeats 1 --threa
 sph run lessons/scenes/drop-2d.ini --set time.cfl=0 --set time.dt=0.002 --steps 50 --stats "$tmp/wd.csv" > "$tmp/wd.txt" 2>&1
 rc=$?
 steps=$(sed -n 's/^steps *\([0-9]*\)$/\1/p' "$tmp/wd.txt")
-{ [ "$rc" -eq 4 ] && [ -n "$steps" ] && [ "$(tail -1 "$tmp/wd.csv" | cut -d, -f1)" = "$steps" ]; } && ok ||
+{ [ "$rc" -eq 4 ] && [ -n "$steps" ] && [ "$(tail -1 "$tmp/wd.csv" | cut -d, -f1)" = "$steps" ] &&
+    grep -q "total energy [0-9.e+]* J/m grew by" "$tmp/wd.txt"; } && ok ||
     { bad "run stopped by the watchdog: want exit 4 and a last --stats row at step '$steps'"; tail -2 "$tmp/wd.csv"; }
 printf '[scene]\neffects = gravity walls\n[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.2 0.2\nspacing = 0.02\n' > "$tmp/nodens.ini"
 sph run "$tmp/nodens.ini" --steps 2 --quiet --stats "$tmp/nd.csv" --dump "$tmp/ndd.csv" > /dev/null 2>&1 &&
