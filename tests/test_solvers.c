@@ -55,6 +55,19 @@ static void check_delta(int dim)
     sph_sim_destroy(sim);
 }
 
+/* Without pcisph_local_delta the field delta_pci holds the one delta that acts (the inspector's row and the colour
+ * read 0 while the solve used sim->solver.delta). */
+Test(solvers, pcisph_one_delta_is_in_its_field, .timeout = 60)
+{
+    sph_sim *sim = dam("pcisph");
+    sph_sim_step(sim);
+    cr_assert(sim->P.delta_pci && sim->solver.delta > 0);
+    for (uint32_t i = 0; i < sim->n; i++)
+        cr_assert_eq(sim->P.delta_pci[i], sim->solver.delta, "particle %u: delta_pci %g, the solve's delta %g", i,
+                     (double)sim->P.delta_pci[i], (double)sim->solver.delta);
+    sph_sim_destroy(sim);
+}
+
 Test(solvers, pcisph_delta_2d) { check_delta(2); }
 Test(solvers, pcisph_delta_3d) { check_delta(3); }
 
