@@ -307,7 +307,7 @@ int cmd_view(int argc, char **argv)
         const char *dir = so.path, *dir_end = base > so.path ? base - 1 : so.path;
         for (const char *c = so.path; c < dir_end; c++)
             if (*c == '/') dir = c + 1;
-        if (dir_end > dir && len == 6 && strncmp(base, "lesson", 6) == 0)
+        if (dir_end > dir && *dir != '.' && len == 6 && strncmp(base, "lesson", 6) == 0) /* not ./ or ../ */
             snprintf(w.save_path, sizeof w.save_path, "%.*s-lesson-saved.ini", (int)(dir_end - dir < 200 ? dir_end - dir : 200),
                      dir);
         else
