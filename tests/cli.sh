@@ -607,6 +607,14 @@ done
 (cd "$tmp/sv" && sphe "SDL_VIDEODRIVER=offscreen" lesson 7 --frames 3 --keys q --screenshot "$tmp/sv/q.png" > "$tmp/sv/q.txt" 2>&1)
 [ $? -eq 1 ] && [ ! -e "$tmp/sv/q.png" ] && grep -q "no frame was drawn" "$tmp/sv/q.txt" && ok ||
     { bad "view --keys q --screenshot: want exit 1 and no picture"; cat "$tmp/sv/q.txt"; }
+# run --time T ends on T (it stopped at the first step past it: t = 0.0051 s for 0.005), and --vtk writes the
+# state a run ends on when it falls between two files (25 steps, --every 10: steps 0, 10, 20 and 25)
+sph run lessons/scenes/dam-break-2d.ini --time 0.005 --quiet --stats "$tmp/end.csv" 2> "$tmp/err.txt"
+got=$(tail -1 "$tmp/end.csv" | cut -d, -f2)
+[ "$got" = "0.005" ] && ok || bad "run --time 0.005: the stats' last row is at t = '$got'"
+sph run lessons/scenes/dam-break-2d.ini --steps 25 --quiet --vtk "$tmp/vtkend" 2> "$tmp/err.txt"
+[ "$(ls "$tmp/vtkend" | wc -l)" -eq 4 ] && grep -aq " step 25 t " "$tmp/vtkend/particles_00003.vtk" && ok ||
+    { bad "run --steps 25 --vtk: want 4 files, the last at step 25"; ls "$tmp/vtkend"; }
 # docs/scene-format.md's worked example: its scene, and `check` of it as the program prints it (but the memory line)
 mkdir -p "$tmp/col"
 awk '/^Saved as `column.ini`/ { exit } /^```ini$/ { ini = ""; on = 1; next } on && /^```$/ { on = 0; next }

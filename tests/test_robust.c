@@ -31,6 +31,39 @@ Test(robust, first_step_sees_initial_velocity)
     sph_sim_destroy(sim);
 }
 
+/* A run by time ends on its end: `run --time 0.005` stopped at the first step
+ * past it (t = 0.0051 s in the stats' last row). The step that would pass it is
+ * shortened, with the adaptive step and with a fixed one alike. */
+static void check_run_ends_on(double cfl, double dt, double end, long want_steps)
+{
+    char ini[512];
+    snprintf(ini, sizeof ini,
+             "[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=1 1\n"
+             "[fluid a]\nmin=0 0\nmax=0.4 0.4\nspacing=0.02\n[kernels]\nh=0.04\n[physics]\nstiffness=400\n"
+             "[time]\ncfl=%g\ndt=%g\n",
+             cfl, dt);
+    sph_sim *sim = test_sim(ini, 1);
+    sph_sim_end_at(sim, end);
+    float longest = 0, last = 0;
+    while (!sph_sim_reached(sim, end) && sim->step < 100000) {
+        sph_sim_step(sim);
+        last = sim->dt;
+        if (!sph_sim_reached(sim, end)) longest = fmaxf(longest, last);
+    }
+    cr_assert(sim->t == end, "cfl %g: the run ended at t = %.12g s, not on %g s", cfl, sim->t, end);
+    cr_assert(last <= longest * 1.000001f, "cfl %g: the last step %g s is longer than the others (%g s)", cfl, last,
+              longest);
+    if (want_steps) cr_assert_eq((long)sim->step, want_steps, "fixed dt: %ld steps", (long)sim->step);
+    sph_sim_destroy(sim);
+}
+
+Test(robust, run_by_time_ends_on_its_end)
+{
+    check_run_ends_on(0.4, 0.002, 0.005, 0); /* the adaptive step: about 0.25 ms each here */
+    check_run_ends_on(0, 0.002, 0.005, 3);   /* 2, 2 and 1 ms */
+    check_run_ends_on(0, 0.001, 0.004, 4);   /* a whole number of steps: none shortened */
+}
+
 /* The fixed-dt warning at step 0 must state the limit that the initial speed sets. */
 Test(robust, fixed_dt_warning_states_the_initial_limit)
 {
@@ -224,5 +257,27 @@ Test(robust, watchdog_stops_energy_from_nowhere)
     for (int k = 0; k < 5 && !sim->alarm.raised; k++) sph_sim_step(sim);
     cr_assert(sim->alarm.raised, "energy grew from nothing and the run went on");
     cr_assert(strstr(sim->alarm.what, "energy") != NULL, "the report does not name energy: %s", sim->alarm.what);
+    sph_sim_destroy(sim);
+}
+
+/* The speed alarm names the fastest particle past the bound, not the first in
+ * memory order (a user who looked found others faster than the one named). */
+Test(robust, watchdog_names_the_fastest_particle)
+{
+    sph_sim *sim = test_sim("[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=1 1\n"
+                            "[fluid pool]\nmin=0 0\nmax=1 0.2\nspacing=0.02\n[kernels]\nh=0.04\n"
+                            "[physics]\nstiffness=400\nviscosity=0.01\n",
+                            1);
+    sph_sim_step(sim);
+    cr_assert(!sim->alarm.raised, "%s", sim->alarm.what);
+    const float bound = sim->speed_bound;
+    sim->P.vel[0][3] = 1.5f * bound;  /* past the bound, first in memory */
+    sim->P.vel[0][40] = 3.0f * bound; /* the fastest */
+    sim->P.vel[1][90] = 2.0f * bound;
+    sph_watchdog_check(sim, SPH_PASS_INTEGRATE);
+    cr_assert(sim->alarm.raised, "speeds of 3 times the bound were not seen");
+    cr_assert_eq(sim->alarm.particle, 40u, "named particle %u at %g m/s, not the fastest (40, %g m/s)",
+                 sim->alarm.particle, sim->alarm.value, 3.0f * bound);
+    cr_assert_float_eq(sim->alarm.value, 3.0f * bound, 1e-3f * bound, "value %g", sim->alarm.value);
     sph_sim_destroy(sim);
 }

@@ -81,7 +81,7 @@ const app_opt app_options[] = {
     {"--out", NULL, "DIR", "where the frames go, DIR/frame_NNNNN.png (made if missing)", RENDER, STRING(out)},
     {"--vtk", NULL, "DIR", "particles and all their fields as DIR/particles_NNNNN.vtk (ParaView)", RUN | RENDER,
      STRING(vtk)},
-    {"--every", NULL, "K", "a frame (render) or a --vtk file every K steps, the first at step 0 (default 10)",
+    {"--every", NULL, "K", "a frame (render) or a --vtk file every K steps, the first at step 0 and the last at the run's end (default 10)",
      RUN | RENDER, INT(every, 1, MANY)},
     {"--video", NULL, "FILE", "also write the frames as a video: FILE.mp4 (H.264) or FILE.gif", RENDER, STRING(video)},
     {"--video", NULL, "FILE", "where the record key v writes (.mp4 or .gif; default sphlab-NNNN.mp4)", VIEW,

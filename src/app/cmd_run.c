@@ -225,6 +225,7 @@ int cmd_run(int argc, char **argv)
         app_out_abort(&dump);
         return app_error_status(err.code);
     }
+    if (until >= 0) sph_sim_end_at(sim, until); /* the last step ends on it */
     if (stats.f) app_stats_header(stats.f, sim);
     bool progress = !quiet && isatty(STDERR_FILENO);
     /* off a terminal (a log, a batch job) a line now and then, not a redrawn one */
@@ -247,7 +248,7 @@ int cmd_run(int argc, char **argv)
             fprintf(stderr, "%ssphlab: warning: %s\n", progress ? "\r" : "", warning);
             warned = true; /* once: the condition names the step where it first broke */
         }
-        if (until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps) break;
+        if (until >= 0 ? sph_sim_reached(sim, until) : (long)sim->step >= steps) break;
         sph_sim_step(sim);
         if (stats.f) { /* a watchdog stop too: the state the summary and --dump show gets its row */
             sph_sim_collect_times(sim); /* this step's pass times (a GL backend's timer queries come later) */
@@ -268,6 +269,11 @@ int cmd_run(int argc, char **argv)
         }
     }
     double wall = sph_now_ms() - t0;
+    /* the state the run ended on, when it fell between two frames (the last one is what a reader wants) */
+    if (vtk_dir && vtk_ok && sim->step % (uint64_t)vtk_every != 0 &&
+        !(vtk_ok = sph_vtk_write_frame(sim, vtk_dir, (unsigned)(sim->step / (uint64_t)vtk_every + 1), vtk_err,
+                                       sizeof vtk_err)))
+        fprintf(stderr, "sphlab run: %s\n", vtk_err);
     sph_sim_collect_times(sim); /* the table counts every step */
     if (progress) fprintf(stderr, "\r%78s\r", "");
     if (sim->alarm.raised) {

@@ -573,6 +573,7 @@ sph_error_code sph_sim_clone(const sph_sim *sim, const sph_scene_def *def, int t
     if (next->P.pred[0])
         for (int d = 0; d < sim->dim; d++) memcpy(next->P.pred[d], next->P.pos[d], (size_t)n * sizeof(float));
     next->t = sim->t;
+    next->t_end = sim->t_end;
     next->step = sim->step;
     next->rho_carried = sim->rho_carried && sim->P.rho_c && next->P.rho_c; /* else summed again */
     next->max_speed = sim->max_speed;
@@ -649,6 +650,14 @@ static void run_timed(sph_sim *sim, int p)
         sph_watchdog_check(sim, p);
 }
 
+/* t after a step; a step shortened to a run's end lands on it, not a float
+ * rounding of dt away from it */
+static void advance_time(sph_sim *sim)
+{
+    sim->t += sim->dt;
+    if (sim->t_end > 0 && fabs(sim->t - sim->t_end) <= 1e-6 * sim->dt) sim->t = sim->t_end;
+}
+
 sph_pass_id sph_sim_step_pass(sph_sim *sim)
 {
 #ifdef _OPENMP
@@ -673,7 +682,7 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
     int next = sim->pass_again && p < SPH_PASS_COUNT ? p : p + 1; /* an iterative pass asks for another call */
     while (next < SPH_PASS_COUNT && !(sim->in_pipeline[next] && sim->enabled[next])) next++;
     if (next >= SPH_PASS_COUNT) { /* that was the step's last pass */
-        sim->t += sim->dt;
+        advance_time(sim);
         sim->step++;
         next = 0;
         if (!device_times) sim->step_ms[sim->step_ms_count++ % SPH_STEP_WINDOW] = sim->step_ms_acc;
@@ -698,7 +707,7 @@ void sph_sim_step(sph_sim *sim)
     while (sim->step == step && !sim->alarm.raised) {
         if (sph_sim_step_pass(sim) == SPH_PASS_COUNT) { /* no pass at all: still advance time */
             if (sim->step == step) {
-                sim->t += sim->dt;
+                advance_time(sim);
                 sim->step++;
                 sim->next_pass = 0;
             }

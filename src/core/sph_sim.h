@@ -161,7 +161,7 @@ typedef struct sph_field {
     float *c[3]; /* component arrays */
 } sph_field;
 
-/* What the watchdog found: the first non-finite or runaway value. */
+/* What the watchdog found: a non-finite value, else the worst runaway one (the fastest particle). */
 typedef struct sph_alarm {
     bool raised;
     uint64_t step;     /* the step being computed (steps completed before it) */
@@ -291,6 +291,8 @@ struct sph_sim {
 
     double t;             /* [s] simulated time */
     float dt;             /* [s] time step of the current step */
+    double t_end;         /* [s] where a run by time ends (0: none): the step that would pass it is
+                             shortened to end on it (sph_sim_end_at) */
     uint64_t step;        /* steps completed */
     float max_speed;      /* [m/s] after the latest integration, for the CFL condition */
     float max_acc;        /* [m/s^2] likewise */
@@ -441,6 +443,11 @@ const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n);
  * at the current dt: a warning naming dt and the step count, said before the
  * run starts rather than found out after hours; NULL if not. */
 const char *sph_sim_length_warning(const sph_sim *sim, double until, char *buf, size_t n);
+/* A run by time ends on t_end [s]: the step that would pass it is shortened
+ * to end there, so `--time 0.005` stops at 0.005 s, not at the first step past
+ * it; sph_sim_reached says when it has. t_end <= 0: no end. */
+void sph_sim_end_at(sph_sim *sim, double t_end);
+bool sph_sim_reached(const sph_sim *sim, double t_end);
 void sph_sim_reset_timings(sph_sim *sim);
 /* [ms] mean time per step over the last min(SPH_STEP_WINDOW, steps run)
  * complete steps, NaN before the first; *steps (if not NULL) gets that count. */

@@ -50,10 +50,26 @@ float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which)
 float sph_time_step_choose(const sph_sim *sim)
 {
     const sph_scene_def *def = &sim->def;
-    if (def->cfl <= 0) return def->dt;
-    float dt = fminf(def->dt, sph_time_step_limit(sim, def->cfl, NULL));
-    if (!(dt >= def->dt_min)) dt = def->dt_min; /* also catches NaN from a blown-up state */
+    float dt = def->dt;
+    if (def->cfl > 0) {
+        dt = fminf(def->dt, sph_time_step_limit(sim, def->cfl, NULL));
+        if (!(dt >= def->dt_min)) dt = def->dt_min; /* also catches NaN from a blown-up state */
+    }
+    /* the last step of a run by time ends on its end (below dt_min if it must: it is the last) */
+    double left = sim->t_end - sim->t;
+    if (sim->t_end > 0 && left > 0 && left < (double)dt * (1.0 + 1e-6)) dt = (float)left;
     return dt;
+}
+
+void sph_sim_end_at(sph_sim *sim, double t_end)
+{
+    sim->t_end = t_end > 0 ? t_end : 0.0;
+    if (sim->next_pass == 0) sim->dt = sph_time_step_choose(sim); /* the coming step may be the last */
+}
+
+bool sph_sim_reached(const sph_sim *sim, double t_end)
+{
+    return sim->t >= t_end - 1e-12;
 }
 
 const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n)

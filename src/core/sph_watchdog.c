@@ -60,6 +60,30 @@ static uint32_t first_bad(const sph_sim *sim, const sph_field *f, sph_field_chec
     return (uint32_t)first;
 }
 
+/* Of the particles past the bound, the one to name: the first non-finite one
+ * (where a blow-up shows first), else the fastest, else the density furthest
+ * out of its bounds. The first bad one in memory order is an arbitrary one of
+ * them, and a user who looks finds others faster. Only when the alarm is
+ * raised, so a serial scan. */
+static uint32_t worst_bad(const sph_sim *sim, const sph_field *f, sph_field_check check, uint32_t first)
+{
+    uint32_t worst = first;
+    float worst_score = -INFINITY;
+    for (uint32_t i = first; i < sim->n; i++) {
+        float s2 = 0;
+        for (int c = 0; c < f->ncomp; c++) {
+            if (!isfinite(f->c[c][i])) return i;
+            s2 += f->c[c][i] * f->c[c][i];
+        }
+        /* a density at or below 0 is worse than any too large one */
+        float score = check == SPH_CHECK_SPEED     ? s2
+                      : check == SPH_CHECK_DENSITY ? (f->c[0][i] > 0.0f ? f->c[0][i] : INFINITY)
+                                                   : -INFINITY;
+        if (score > worst_score) worst_score = score, worst = i;
+    }
+    return worst;
+}
+
 void sph_watchdog_check(sph_sim *sim, int pass)
 {
     sph_mask bits = sph_passes[pass]->writes;
@@ -69,6 +93,7 @@ void sph_watchdog_check(sph_sim *sim, int pass)
         const sph_field_check check = sph_field_infos[f].check;
         uint32_t i = first_bad(sim, &fd, check);
         if (i >= sim->n) continue;
+        i = worst_bad(sim, &fd, check, i);
         char what[200];
         int comp = 0;
         for (int c = 0; c < fd.ncomp; c++)

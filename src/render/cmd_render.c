@@ -29,7 +29,7 @@ static const app_cmd_spec spec = {
  * `steps` (or the time `until` when >= 0), or the watchdog stops the run. */
 static bool render_done(const sph_sim *sim, long steps, double until)
 {
-    return until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps;
+    return until >= 0 ? sph_sim_reached(sim, until) : (long)sim->step >= steps;
 }
 
 /* One colour range for the whole run: the scene is simulated once without
@@ -44,6 +44,7 @@ static bool run_range(const sph_scene_def *def, int threads, sph_color_field f, 
         snprintf(err, n, "%s", serr.msg);
         return false;
     }
+    if (until >= 0) sph_sim_end_at(sim, until); /* the same steps as the drawn run */
     float *vals = malloc(((size_t)sim->n + 1) * sizeof *vals);
     if (!vals) {
         sph_sim_destroy(sim);
@@ -145,6 +146,7 @@ int cmd_render(int argc, char **argv)
         sph_video_abort(video);
         return app_error_status(serr.code);
     }
+    if (until >= 0) sph_sim_end_at(sim, until); /* the last step ends on it */
     sph_view view;
     if (!view_opts_apply(&vo, "render", sim, &view)) {
         sph_sim_destroy(sim);

@@ -450,6 +450,7 @@ bool study_run(const sph_scene_def *def, study_metric m, long steps, double unti
         snprintf(why, n, "%s", err.msg);
         return false;
     }
+    if (until >= 0) sph_sim_end_at(sim, until); /* the last step ends on it */
     probe pr;
     if (!probe_begin(&pr, m, sim, why, n)) {
         sph_sim_destroy(sim);
@@ -457,7 +458,7 @@ bool study_run(const sph_scene_def *def, study_metric m, long steps, double unti
     }
     double wall = 0, shown = sph_now_ms();
     for (;;) {
-        if (until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps) break;
+        if (until >= 0 ? sph_sim_reached(sim, until) : (long)sim->step >= steps) break;
         double t0 = sph_now_ms();
         sph_sim_step(sim);
         double t1 = sph_now_ms();
