@@ -654,6 +654,11 @@ if sph hardcases --quick > "$tmp/hard.txt" 2>&1; then ok; else bad "hardcases"; 
 limit=$limit_usual
 hard_n=$(sed -n 's/^hardcases: \([0-9]*\) passed, 0 failed$/\1/p' "$tmp/hard.txt")
 [ "${hard_n:-0}" -ge 40 ] && ok || bad "hardcases summary line: '${hard_n:-none}' passed, want 40 or more"
+# a refused case shows no figures (it printed 0.00 % as if measured), and a case judged on its speed shows it
+grep '^rest-density-tiny ' "$tmp/hard.txt" | grep -q '^rest-density-tiny  *-  *-  *-  *-  *-  pass: refused: ' && ok ||
+    bad "hardcases: rest-density-tiny's row: $(grep '^rest-density-tiny ' "$tmp/hard.txt")"
+sed -n '/^defaults /{n;p;}' "$tmp/hard.txt" | grep -q 'fastest .* m/s over the run (bound 8.9 m/s)' && ok ||
+    bad "hardcases: defaults' fastest speed is not shown beside its bound"
 
 # every run the limit killed is a failure of its own, whatever its check made of it
 if [ -s "$tmp/timeouts" ]; then

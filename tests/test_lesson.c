@@ -427,6 +427,8 @@ Test(lesson, export_2_density_summation)
     check_pdf(dir, "density-profile.pdf");
     check_png(dir, "pool-walls.png", 1000, 600);
     check_pdf(dir, "pool-walls.pdf");
+    /* the chart's data beside it (it had none: a user found it only in the deleted work folder) */
+    check_csv(dir, "pool-walls.csv", "wall_model,t,ekin,max_speed", 400, NULL);
     check_png(dir, "density.png", 1000, 640);
     check_png(dir, "density-reflect.png", 1000, 640);
     test_remove_dir(dir);

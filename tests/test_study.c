@@ -172,6 +172,8 @@ Test(study, hydrostatic_profile_converges)
     cr_assert(isfinite(f.error) && f.error < 0.02, "profile error at spacing 0.02: %g (%s)", f.error, f.note);
     cr_assert(f.error <= 0.5 * c.error, "spacing 0.04 -> 0.02: profile error %g -> %g", c.error, f.error);
     cr_assert(fabs(f.extra[2] - 0.3) < 1e-3, "depth from the mass: %g m", f.extra[2]);
+    /* (0.3 - 2 h) / h = 3 layers; the float masses' depth, 0.299999982 m, once floored to 2 */
+    cr_assert_eq((int)f.extra[3], 3, "layers: %g, want (H - 2 h) / h = 3", f.extra[3]);
 }
 
 #define TG_INI                                                                                                   \

@@ -556,7 +556,14 @@ Test(validate, drop_period_text_says_when_there_is_no_period)
 {
     char buf[256];
     val_period_text(buf, sizeof buf, 2.581, 2.409, 6);
-    cr_expect_str_eq(buf, "period 2.581 s vs Rayleigh 2.409 s (+7.1%)");
+    cr_expect_str_eq(buf, "period 2.581 s (from the first 4 of its 5 half periods: whole periods only) vs Rayleigh "
+                          "2.409 s (+7.1%)");
+    /* a user averaged the three half periods listed beside 2.478 s (1.09, 1.39, 0.975 s: 2.30 s) and found -4.4 %
+     * where the line said +2.9 %: the period was read from the first two alone, unsaid */
+    val_period_text(buf, sizeof buf, 2.478, 2.409, 4);
+    cr_expect(strstr(buf, "the first 2 of its 3 half periods"), "%s", buf);
+    val_period_text(buf, sizeof buf, 2.5, 2.409, 5);
+    cr_expect(strstr(buf, "from its 4 half periods"), "%s", buf);
     val_period_text(buf, sizeof buf, NAN, 2.409, 2);
     cr_expect(strstr(buf, "no period") && strstr(buf, "2 crossings") && strstr(buf, "3 needed") &&
                   strstr(buf, "Rayleigh 2.409 s"),

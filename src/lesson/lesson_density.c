@@ -361,8 +361,21 @@ int lx_lesson2(lx *x)
                      "{{@a pool at rest: kinetic energy over time with volume walls and with the seed's reflecting "
                      "walls|un bassin au repos : énergie cinétique au cours du temps avec les parois volume et avec "
                      "les parois réfléchissantes du TIPE}}");
+            /* the chart's data beside it, as every chart's (the runs' own stats stay in the work folder) */
+            FILE *pw = lx_csv_open(x, "pool-walls.csv");
+            if (pw) {
+                fprintf(pw, "wall_model,t,ekin,max_speed\n");
+                for (size_t i = 0; i < pt[0].nrows; i++) fprintf(pw, "volume,%.6g,%.6g,%.6g\n", t0[i], e0[i], v0[i]);
+                for (size_t i = 0; i < pt[1].nrows; i++) fprintf(pw, "reflect,%.6g,%.6g,%.6g\n", t1[i], e1[i], v1[i]);
+                lx_csv_close(x, pw, "pool-walls.csv",
+                             "{{@the pool's kinetic energy [J/m] and largest speed [m/s] at each step, both wall "
+                             "models|l'énergie cinétique [J/m] et la plus grande vitesse [m/s] du bassin à chaque pas, "
+                             "les deux modèles de paroi}}");
+            }
             size_t a = pt[0].nrows - 1, b = pt[1].nrows - 1;
+            /* each run's own end: a run of --quick's steps ends at another t with each wall model */
             lx_val(x, "pool_t", "%.3g", t0[a]);
+            lx_val(x, "pool_t_reflect", "%.3g", t1[b]);
             lx_val(x, "ekin_volume", "%.4g", e0[a]);
             lx_val(x, "speed_volume", "%.3g", v0[a]);
             lx_val(x, "ekin_reflect", "%.4g", e1[b]);

@@ -362,7 +362,8 @@ static void measure_hydrostatic(const sph_sim *sim, const probe *pr, study_resul
                  depth, 2 * h);
         return;
     }
-    int layers = (int)floor((depth - 2 * h) / h);
+    /* the depth comes from float masses: 0.3 m deep at h = 0.06 read 0.299999982, and 2.9999997 layers floored to 2 */
+    int layers = (int)floor((depth - 2 * h) / h + 1e-6);
     if (layers < 1) layers = 1;
     if (layers > 4096) layers = 4096;
     const double lh = (depth - 2 * h) / layers;

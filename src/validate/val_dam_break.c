@@ -151,7 +151,8 @@ int val_run_dam_break(const val_ctx *c, const val_problem *p)
         done = r + 1;
     }
     /* the CSV: curve 0 is sphlab (one block per resolution), 1.. the
-     * references: 1-3 val_surge, 4 Table 6, 5 Table 2 */
+     * references: 1-3 val_surge (Fig. 3 at a = 1.125 and 2.25 in, Koshizuka & Oka), 4 Table 6, 5 Table 2
+     * (docs/accuracy.md names them for the CSV's reader) */
     FILE *f = ok ? val_csv(c, "dam-break.csv") : NULL;
     ok = ok && f;
     if (f) {

@@ -94,7 +94,7 @@ static void observe(void *vctx, const sph_sim *sim)
         }
         o->worst_inc = fmax(o->worst_inc, fabs(sph_sim_pressure(sim, i) - o->rho0 * o->g * (o->H - y)) / scale);
         o->oom |= !val_series_add(&o->prof_y, y, sph_sim_pressure(sim, i) / scale);
-        (void)val_series_add(&o->prof_p, y, e);
+        o->oom |= !val_series_add(&o->prof_p, y, e);
     }
 }
 
@@ -127,11 +127,25 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
         ok = val_run(c, label, &def, o->t_end, observe, o) && !o->oom;
         done = r + 1;
     }
+    /* the centre line by height (the particles came in cell order): two columns of particles, either side of
+     * x = W/2, so each height has two rows */
+    for (int r = 0; r < done; r++) {
+        hyd_obs *o = &obs[r];
+        for (size_t i = 1; i < o->prof_y.n; i++)
+            for (size_t j = i; j > 0 && o->prof_y.x[j] < o->prof_y.x[j - 1]; j--) {
+                double t;
+                t = o->prof_y.x[j], o->prof_y.x[j] = o->prof_y.x[j - 1], o->prof_y.x[j - 1] = t;
+                t = o->prof_y.y[j], o->prof_y.y[j] = o->prof_y.y[j - 1], o->prof_y.y[j - 1] = t;
+                t = o->prof_p.x[j], o->prof_p.x[j] = o->prof_p.x[j - 1], o->prof_p.x[j - 1] = t;
+                t = o->prof_p.y[j], o->prof_p.y[j] = o->prof_p.y[j - 1], o->prof_p.y[j - 1] = t;
+            }
+    }
     FILE *f = ok ? val_csv(c, "hydrostatic.csv") : NULL;
     ok = ok && f;
     if (f) {
-        /* kind speed: x = t [s], value = the largest speed [m/s]; kind centre_line: the last frame's centre line,
-         * x = y [m], value and exact = p / (rho0 g H) [1] (a word, so the file says what each row is) */
+        /* kind speed: x = t [s], value = the largest speed [m/s]; kind centre_line: the last frame's centre line
+         * by height, x = y [m], value and exact = p / (rho0 g H) [1], a row per particle within a spacing of
+         * x = W/2 (two at each height) (a word, so the file says what each row is) */
         fprintf(f, "kind,resolution,x,value,exact\n");
         for (int r = 0; r < done; r++) {
             const hyd_obs *o = &obs[r];

@@ -168,7 +168,8 @@ double val_half_period_bound(double periods, double decay);
 /* decay for it: the largest |y - mean| between the first two crossings t[0], t[1] over that between the last two
  * (at least 1); NaN below 3 crossings. */
 double val_amplitude_ratio(const double *x, const double *y, size_t n, const double *t, int k);
-/* The drop's period against Rayleigh's as the verdict line gives it: "period T s vs Rayleigh T_ray s (+e%)",
+/* The drop's period against Rayleigh's as the verdict line gives it: "period T s (from the first 4 of its 5
+ * half periods: whole periods only) vs Rayleigh T_ray s (+e%)",
  * or, where the record crossed its mean fewer than 3 times (T NaN), "no period: k crossings of the mean in
  * the run (3 needed), Rayleigh T_ray s" rather than a NaN; the same for T_ray NaN (sigma not measurable). */
 void val_period_text(char *buf, size_t n, double T, double T_ray, int crossings);

@@ -55,13 +55,13 @@ static const double mm2t_Z[] = {1.11, 1.22, 1.44, 1.67, 1.89, 2.11, 2.33, 2.56,
 
 #define N(a) ((int)(sizeof a / sizeof a[0]))
 const val_curve val_surge[VAL_SURGE_CURVES] = {
-    {"Martin & Moyce 1952, a = 1.125 in", "Martin & Moyce 1952, Fig. 3", mm1_T, mm1_Z, N(mm1_T)},
-    {"Martin & Moyce 1952, a = 2.25 in", "Martin & Moyce 1952, Fig. 3", mm2_T, mm2_Z, N(mm2_T)},
+    {"Martin & Moyce 1952, a = 1.125 in (Fig. 3)", "Martin & Moyce 1952, Fig. 3", mm1_T, mm1_Z, N(mm1_T)},
+    {"Martin & Moyce 1952, a = 2.25 in (Fig. 3)", "Martin & Moyce 1952, Fig. 3", mm2_T, mm2_Z, N(mm2_T)},
     {"Koshizuka & Oka 1996, experiment", "Koshizuka & Oka 1996", ko_T, ko_Z, N(ko_T)},
 };
 const val_curve val_surge_table2 = {"Martin & Moyce 1952, a = 2.25 in (Table 2)", "Martin & Moyce 1952, Table 2",
                                     mm2t_T, mm2t_Z, N(mm2t_T)};
-const val_curve val_column = {"Martin & Moyce 1952, a = 2.25 in", "Martin & Moyce 1952, Table 6", mm6_tau, mm6_H,
+const val_curve val_column = {"Martin & Moyce 1952, a = 2.25 in (Table 6)", "Martin & Moyce 1952, Table 6", mm6_tau, mm6_H,
                               N(mm6_tau)};
 
 double val_curve_at(const val_curve *c, double x)
@@ -218,10 +218,18 @@ double val_amplitude_ratio(const double *x, const double *y, size_t n, const dou
 
 void val_period_text(char *buf, size_t n, double T, double T_ray, int crossings)
 {
-    if (isfinite(T) && isfinite(T_ray))
-        snprintf(buf, n, "period %.4g s vs Rayleigh %.4g s (%+.1f%%)", T, T_ray, 100 * (T / T_ray - 1));
+    /* which half periods the period is read from (val_period_crossings: whole periods only), so that a reader
+     * who averages the listed half periods knows why the figure differs */
+    char over[96] = "";
+    const int halves = crossings - 1, used = 2 * (halves / 2);
+    if (isfinite(T) && used == halves)
+        snprintf(over, sizeof over, " (from its %d half periods)", halves);
     else if (isfinite(T))
-        snprintf(buf, n, "period %.4g s; no Rayleigh period (sigma not measurable)", T);
+        snprintf(over, sizeof over, " (from the first %d of its %d half periods: whole periods only)", used, halves);
+    if (isfinite(T) && isfinite(T_ray))
+        snprintf(buf, n, "period %.4g s%s vs Rayleigh %.4g s (%+.1f%%)", T, over, T_ray, 100 * (T / T_ray - 1));
+    else if (isfinite(T))
+        snprintf(buf, n, "period %.4g s%s; no Rayleigh period (sigma not measurable)", T, over);
     else if (isfinite(T_ray)) /* a NaN is no figure: say why there is none */
         snprintf(buf, n, "no period: %d crossing%s of the mean in the run (3 needed), Rayleigh %.4g s", crossings,
                  crossings == 1 ? "" : "s", T_ray);
