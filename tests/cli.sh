@@ -615,6 +615,17 @@ got=$(tail -1 "$tmp/end.csv" | cut -d, -f2)
 sph run lessons/scenes/dam-break-2d.ini --steps 25 --quiet --vtk "$tmp/vtkend" 2> "$tmp/err.txt"
 [ "$(ls "$tmp/vtkend" | wc -l)" -eq 4 ] && grep -aq " step 25 t " "$tmp/vtkend/particles_00003.vtk" && ok ||
     { bad "run --steps 25 --vtk: want 4 files, the last at step 25"; ls "$tmp/vtkend"; }
+# a view centred or turned on a NaN or an infinity drew an empty or nonsense frame with exit 0: refused
+sph render lessons/scenes/dam-break-2d.ini --steps 1 --out "$tmp/nanc" --center nan:1 > "$tmp/nanc.txt" 2>&1
+[ $? -eq 2 ] && grep -q -- "--center 'nan:1': want X:Y or X:Y:Z in metres, finite numbers" "$tmp/nanc.txt" && ok ||
+    { bad "render --center nan:1: want exit 2"; cat "$tmp/nanc.txt"; }
+sph render lessons/scenes/dam-break-3d.ini --steps 1 --out "$tmp/nanc" --camera 0:0:inf > "$tmp/nanc.txt" 2>&1
+[ $? -eq 2 ] && grep -q -- "--camera '0:0:inf'" "$tmp/nanc.txt" && ok || { bad "render --camera 0:0:inf: want exit 2"; cat "$tmp/nanc.txt"; }
+# a chart cut short by a full disk (here a file size limit, its signal ignored so that writes fail) is an error,
+# and nothing is left: plot and study said "wrote" and exited 0 with a 0-byte PDF and a PNG cut at 12 KiB
+(trap '' XFSZ; ulimit -f 40; sph plot kernel poly6 --out "$tmp/full" > "$tmp/full.txt" 2>&1)
+[ $? -eq 1 ] && grep -q "kernel-poly6-2d.png: the chart was not written whole" "$tmp/full.txt" &&
+    [ ! -e "$tmp/full/kernel-poly6-2d.png" ] && ok || { bad "plot kernel under a file size limit"; cat "$tmp/full.txt"; }
 # docs/scene-format.md's worked example: its scene, and `check` of it as the program prints it (but the memory line)
 mkdir -p "$tmp/col"
 awk '/^Saved as `column.ini`/ { exit } /^```ini$/ { ini = ""; on = 1; next } on && /^```$/ { on = 0; next }

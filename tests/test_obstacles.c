@@ -411,3 +411,23 @@ Test(obstacles, set_value_named_in_the_refusal)
     cr_assert_neq(sph_scene_validate(&def, &err), SPH_ERR_OK, "a circle of radius 5 m around a 1 m box");
     cr_assert(strstr(err.msg, ":10 and --set: [obstacle rock]"), "%s", err.msg);
 }
+
+/* A box or circle reaching far outside the domain is cut there (docs/scene-format.md): a floor box from -100 to
+ * 100 m, 150 wall particles once cut, was refused as "more than 2e8 wall particles" (the whole inside counted). */
+Test(obstacles, a_box_cut_by_the_domain_is_counted_as_cut)
+{
+    const char *head = "[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=1 1\n"
+                       "wall_model=particles\n[fluid w]\nmin=0.2 0.2\nmax=0.4 0.4\nspacing=0.005\n[kernels]\nh=0.01\n";
+    const char *shapes[] = {"[obstacle floor]\nmin=-100 -100\nmax=100 0.02\n",
+                            "[obstacle ball]\nshape=circle\ncentre=0.5 -39.95\nradius=40\n"};
+    for (int k = 0; k < 2; k++) {
+        char ini[1024];
+        snprintf(ini, sizeof ini, "%s%s", head, shapes[k]);
+        sph_scene_def def = sph_default_scene_def();
+        sph_error err;
+        cr_assert_eq(sph_scene_load_string(ini, "test.ini", &def, &err), SPH_ERR_OK, "%s", err.msg);
+        cr_assert_eq(sph_scene_validate(&def, &err), SPH_ERR_OK, "%s", err.msg);
+        double n = sph_obstacle_wall_count(&def, 0);
+        cr_expect(n > 100 && n < 2000, "%s: %g wall particles inside the domain", shapes[k], n);
+    }
+}

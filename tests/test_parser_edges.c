@@ -262,3 +262,46 @@ Test(parser_edges, documented_ranges_match_the_key_table)
         cr_expect(strstr(line, want), "[%s] %s: the row should state '%s':%s", k->section, k->name, want, line);
     }
 }
+
+/* ---- forms a user's review found read silently (each used to load) ------ */
+
+/* A header with text after its ']', a "key: value" line, an unnamed or empty
+ * block, "none" with other effects, an empty list, dt_min above dt: each was
+ * read as something else without a word; each is now refused, naming the line
+ * and what it read. */
+Test(parser_edges, silently_read_forms_are_refused)
+{
+    static const struct {
+        const char *text, *want;
+    } cases[] = {
+        {BASE2 "[physics] [kernels]\n", "x.ini:10: text after the section header's ']': '[kernels]'"},
+        {BASE2 "[physics]x\n", "x.ini:10: text after the section header's ']': 'x'"},
+        {BASE2 "[physics]\nstiffness:100\n", "x.ini:11: syntax error: expected '[section]' or 'key = value', got "
+                                             "'stiffness:100'"},
+        {BASE2 "[physics]\nno equals sign\n", "got 'no equals sign'"},
+        {BASE2 "[fluid]\nmin = 0.5 0.5\nmax = 0.7 0.7\n", "x.ini:10: [fluid]: the fluid block has no name"},
+        {BASE2 "[fluid e]\n", "x.ini:10: [fluid e] has no keys"},
+        {BASE2 "[obstacle rock]\n", "x.ini:10: [obstacle rock] has no keys"},
+        {BASE2 "[time]\ndt = 0.001\ndt_min = 1\n", "x.ini:12: [time] dt_min = 1 s is above dt = 0.001 s"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        sph_scene_def def;
+        sph_error err;
+        cr_expect_neq(load(cases[i].text, &def, &err), SPH_ERR_OK, "accepted:\n%s", cases[i].text);
+        expect_has(err.msg, cases[i].want, cases[i].text);
+    }
+    sph_error err;
+    sph_error_code c = load_set(BASE2, "scene.effects=none pressure", &err);
+    cr_expect_neq(c, SPH_ERR_OK, "effects = none pressure: accepted");
+    expect_has(err.msg, "none with others", "effects = none pressure");
+    c = load_set(BASE2, "scene.effects=", &err);
+    cr_expect_neq(c, SPH_ERR_OK, "effects = (empty): accepted");
+    expect_has(err.msg, "empty: write none", "effects = (empty)");
+    c = load_set(BASE2, "domain.periodic=abc", &err);
+    expect_has(err.msg, "unknown axis 'abc'", "periodic = abc");
+    /* what is still read: a comment after a header, none alone, dt_min below dt */
+    sph_scene_def def;
+    cr_expect_eq(load(BASE2 "[physics] ; the fluid\nstiffness = 100\n", &def, &err), SPH_ERR_OK, "%s", err.msg);
+    cr_expect_eq(load_set(BASE2, "scene.effects=none", &err), SPH_ERR_OK, "%s", err.msg);
+    cr_expect_eq(load(BASE2 "[time]\ndt = 0.001\ndt_min = 0.001\n", &def, &err), SPH_ERR_OK, "%s", err.msg);
+}

@@ -538,6 +538,15 @@ Test(plot, unwritable_out_directory)
     remove(file);
 }
 
+/* --h below what a scene takes: poly6's 1/h^9 overflowed a float in 3D, and the CSV held inf and the chart
+ * nothing, exit 0. Refused as a scene refuses it. */
+Test(plot, kernel_h_below_a_scenes_bound_is_refused)
+{
+    int rc = plot("plot kernel poly6 --dim 3 --h 1e-9 --out %s%s", "/tmp/sphlab-plot-h-tiny", "");
+    cr_assert_eq(rc, 2, "exit %d: %s", rc, out);
+    cr_assert(strstr(out, "--h 1e-9") && strstr(out, "0.0001"), "message does not name --h, its value and the bound: %s", out);
+}
+
 /* A directory that exists but cannot be written (not even by root: /proc). */
 Test(plot, read_only_directory_leaves_nothing)
 {

@@ -133,7 +133,7 @@ const app_opt app_options[] = {
      PLOT, BASENAME(name)},
     {"--size", NULL, "WxH", "PNG size in pixels (the PDF is WxH/2 points, same layout)", PLOT, SIZE(size, 200, 8000)},
     {"--dim", NULL, "2|3", "kernels: dimension (default 2); series: units of ekin, rho, obstacle forces", PLOT, INT(dim, 2, 3)},
-    {"--h", NULL, "H", "kernels: support radius in m (default: the scene default)", PLOT, DOUBLE(h, 1e-9, 1e6)},
+    {"--h", NULL, "H", "kernels: support radius in m, as a scene takes it (default: the scene default)", PLOT, DOUBLE(h, 1e-4, 1e6)},
     {"--y", NULL, "C[,C...]", "series: the columns to draw", PLOT, STRING(ycols)},
     {"--x", NULL, "t|step", "series: the x axis (default t)", PLOT, STRING(xcol)},
     {"--bins", NULL, "N", "passes: time bins of the stacked chart (default 100)", PLOT, INT(bins, 1, 120)},

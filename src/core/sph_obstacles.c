@@ -241,17 +241,24 @@ static sph_error_code fail_at(sph_error *err, const sph_scene_def *def, const sp
                     o->name, what);
 }
 
-/* Wall particles an obstacle could make at most, before cutting: refuses an
- * absurd size before any loop over its nodes. */
+/* Wall particles an obstacle could make at most, before cutting, and the rows
+ * its walk visits: refuses an absurd size before any loop over its nodes. */
 static double estimate(const sph_obstacle_def *o, int dim, double s, int layers)
 {
+    /* the nodes the walk visits: its layers under the surface, not the whole inside (a wide floor box reaching
+     * far outside the domain, 150 wall particles once cut, was refused as 8e8) */
     if (o->shape == SPH_SHAPE_CIRCLE) {
         double R = o->radius;
-        return dim == 3 ? 4.0 / 3.0 * PI * R * R * R / (s * s * s) * 1.2 + layers : PI * R * R / (s * s) * 1.2 + layers;
+        return (dim == 3 ? 4.0 * PI * R * R / (s * s) : 2.0 * PI * R / s) * 1.2 * layers + layers;
     }
-    double all = 1;
-    for (int a = 0; a < dim; a++) all *= fmax(1.0, floor(((double)o->max[a] - o->min[a]) / s + 0.5));
-    return all;
+    double all = 1, inside = 1, rows = 1;
+    for (int a = 0; a < dim; a++) {
+        double n = fmax(1.0, floor(((double)o->max[a] - o->min[a]) / s + 0.5));
+        all *= n;
+        inside *= fmax(0.0, n - 2.0 * layers);
+        if (a > 0) rows *= n; /* the walk visits every row along y and z, if only to jump its inside */
+    }
+    return all - inside + rows;
 }
 
 sph_error_code sph_obstacles_validate(const sph_scene_def *def, sph_error *err)

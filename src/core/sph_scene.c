@@ -292,6 +292,11 @@ static bool fluid_header(parse_ctx *ctx, const char *header, char *str, int num)
                                                                   : "the obstacle has no name");
             return false;
         }
+    if (fluid && !*bname) { /* a block is named in messages, --set fluid.NAME.key and the window */
+        ctx->code = sph_fail(ctx->err, SPH_ERR_PARSE, "%s:%d: [%.120s]: the fluid block has no name; give it one, "
+                             "e.g. [fluid column]", ctx->file, ctx->line, header);
+        return false;
+    }
     for (int k = 0; k < ctx->n_sections; k++) {
         const char *seen = ctx->sections[k];
         if (sph_scene_section_group(seen) != g || strcmp(fluid_block_name(seen), bname) != 0) continue;
@@ -348,6 +353,17 @@ static char *ini_reader_fn(char *str, int num, void *stream)
                                  ctx->file, ctx->line);
             return NULL;
         }
+        /* what follows the ']' is a comment or nothing: "[physics] [kernels]" was read as [physics] alone */
+        const char *after = close + 1;
+        while (*after == ' ' || *after == '\t') after++;
+        if (*after && *after != '\n' && *after != '\r' && *after != ';' && *after != '#') {
+            size_t tl = strcspn(after, "\r\n");
+            ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX,
+                                 "%s:%d: text after the section header's ']': '%.*s' (a header stands alone on its "
+                                 "line; a comment starts with ';' or '#')",
+                                 ctx->file, ctx->line, (int)(tl > 60 ? 60 : tl), after);
+            return NULL;
+        }
         char name[200];
         const char *a = p + 1, *b = close;
         while (a < b && isspace((unsigned char)*a)) a++;
@@ -371,9 +387,13 @@ static char *ini_reader_fn(char *str, int num, void *stream)
         ctx->header_line = ctx->line;
         return str;
     }
-    if (!strchr(p, '=') && !strchr(p, ':')) {
-        ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX, "%s:%d: syntax error: expected '[section]' or 'key = value'",
-                             ctx->file, ctx->line);
+    /* key = value, '=' first: inih would also split "key: value" at the ':', a form the format does not have */
+    const char *eq = strchr(p, '='), *colon = strchr(p, ':');
+    if (!eq || (colon && colon < eq)) {
+        size_t tl = strcspn(p, "\r\n");
+        ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX,
+                             "%s:%d: syntax error: expected '[section]' or 'key = value', got '%.*s'%s", ctx->file,
+                             ctx->line, (int)(tl > 60 ? 60 : tl), p, tl > 60 ? "..." : "");
         return NULL;
     }
     return str;
@@ -394,6 +414,14 @@ sph_error_code sph_scene_load_string(const char *text, const char *name, sph_sce
     if (rc > 0)
         return sph_fail(err, SPH_ERR_SYNTAX, "%s:%d: syntax error: expected '[section]' or 'key = value'", name, rc);
     if (rc < 0) return sph_fail(err, SPH_ERR_MEMORY, "%s: out of memory while parsing", name);
+    /* a block or obstacle is made by its first key: a header with none under it was dropped without a word */
+    for (int k = 0; k < ctx.n_sections; k++) {
+        const sph_scene_group *g = sph_scene_section_group(ctx.sections[k]);
+        if (g && !find_block(g, def, fluid_block_name(ctx.sections[k])))
+            return sph_fail(err, SPH_ERR_SCENE, "%s:%d: [%.60s] has no keys: a %s needs at least its %s", name,
+                            ctx.section_lines[k], ctx.sections[k], g->noun,
+                            g == &sph_scene_groups[0] ? "min and max" : "shape and place");
+    }
     if (ctx.line == 0 || def->n_blocks == 0) {
         /* validate() reports missing blocks; an empty file is worth its own words */
         bool blank = true;

@@ -321,6 +321,18 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
             return sph_fail(err, SPH_ERR_RANGE, "%s: [domain] wall_velocity: y is periodic, there is no top wall",
                             loc);
     }
+    /* the adaptive step lies within [dt_min, dt]: a floor above the ceiling held every step at dt_min, longer
+     * than the scene's own dt allows (check said "dt <= 0.001 s", then run stepped at 1 s) */
+    if (def->cfl > 0 && def->dt_min > def->dt) {
+        int lm = key_index("time", "dt_min"), ld = key_index("time", "dt");
+        int line = def->origin[lm].line ? def->origin[lm].line : def->origin[ld].line;
+        char loc[300];
+        return sph_fail(err, SPH_ERR_RANGE,
+                        "%s: [time] dt_min = %g s is above dt = %g s%s: the adaptive step lies between them "
+                        "(accepted: dt_min <= dt)",
+                        origin_text(def, line, loc, sizeof loc), def->dt_min, def->dt,
+                        def->origin[ld].line ? "" : " (the default)");
+    }
     /* Morris's form divides x_ij . grad W = r W'(r) by r^2: it needs W'(r) / r
      * bounded, that is W'(0) = 0, which the viscosity and spiky kernels lack */
     if ((def->viscosity_form == SPH_VFORM_MORRIS || def->viscosity_form == SPH_VFORM_MORRIS_ARTIFICIAL) &&

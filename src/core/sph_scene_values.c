@@ -202,21 +202,32 @@ sph_error_code sph_scene_value_set(const sph_key *k, void *base, const char *val
     case SPH_KEY_FLAGS: {
         unsigned bits = 0;
         const char *p = value;
+        int words = 0;
+        bool none = false;
         while (*p) {
             while (isspace((unsigned char)*p) || *p == ',') p++;
             if (!*p) break;
             const char *q = p;
             while (*q && !isspace((unsigned char)*q) && *q != ',') q++;
-            if (!(q - p == 4 && strncmp(p, "none", 4) == 0)) {
+            words++;
+            if (q - p == 4 && strncmp(p, "none", 4) == 0) {
+                none = true;
+            } else {
                 int c = find_choice(k, p, (size_t)(q - p));
                 char why[160];
                 if (c < 0)
                     return bad_value(err, SPH_ERR_PARSE, w, k, value,
-                                     unknown_choice(k, "effect", p, (size_t)(q - p), why, sizeof why));
+                                     unknown_choice(k, strcmp(k->name, "periodic") == 0 ? "axis" : "effect", p,
+                                                    (size_t)(q - p), why, sizeof why));
                 bits |= 1u << c;
             }
             p = q;
         }
+        /* "none pressure" ran as pressure, and an empty value as none: say which was meant */
+        if (words == 0)
+            return bad_value(err, SPH_ERR_PARSE, w, k, value, "empty: write none for none of them");
+        if (none && words > 1)
+            return bad_value(err, SPH_ERR_PARSE, w, k, value, "none with others: write none alone, or the others");
         *(unsigned *)field = bits;
         return SPH_ERR_OK;
     }

@@ -59,6 +59,9 @@ bool plot_out_close_csv(FILE *f, const char *dir, const char *file);
 /* Renames every staged temporary to its final name, printing "wrote PATH"
  * unless quiet. Returns false (and removes what is left) on failure. */
 bool plot_out_commit(bool quiet);
+/* Whether the chart the library wrote to TMP (for FINAL, whose extension says
+ * the format) ends as a whole file does; if not, false and why in err. */
+bool plot_out_chart_whole(const char *tmp, const char *final, char *err, size_t n);
 /* Removes every staged temporary. Also run if PLplot exits on an error. */
 void plot_out_abort(void);
 

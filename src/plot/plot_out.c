@@ -9,6 +9,7 @@
 enum { MAX_STAGED = 64 };
 
 static sph_out g_staged[MAX_STAGED];
+static bool g_chart[MAX_STAGED]; /* written by the chart library, by name: its write errors are not ours to see */
 static int g_n;
 static const char *g_cmd = "plot"; /* the command named in messages */
 
@@ -46,6 +47,7 @@ static sph_out *stage(const char *dir, const char *file)
         fprintf(stderr, "sphlab %s: %s\n", g_cmd, err);
         return NULL;
     }
+    g_chart[g_n] = false;
     return &g_staged[g_n++];
 }
 
@@ -59,6 +61,7 @@ const char *plot_out_stage(const char *dir, const char *file)
         g_n--;
         return NULL;
     }
+    g_chart[g_n - 1] = true;
     return o->tmp;
 }
 
@@ -84,9 +87,49 @@ bool plot_out_close_csv(FILE *f, const char *dir, const char *file)
     return false;
 }
 
+static bool ends_with(const char *path, const char *ext)
+{
+    size_t n = strlen(path), m = strlen(ext);
+    return n >= m && strcmp(path + n - m, ext) == 0;
+}
+
+/* A chart the library wrote is whole: the chart library does not report a
+ * failed write (a full disk left a 0-byte PDF and a PNG cut at 12 KiB, and the
+ * command said "wrote" and exited 0), so its file's own end is checked: a
+ * PNG's IEND chunk, a PDF's %%EOF, an SVG's </svg>. */
+bool plot_out_chart_whole(const char *tmp, const char *final, char *err, size_t n)
+{
+    FILE *f = fopen(tmp, "rb");
+    unsigned char tail[64];
+    long size = -1;
+    size_t got = 0;
+    if (f && fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) >= 0) {
+        long from = size > (long)sizeof tail ? size - (long)sizeof tail : 0;
+        if (fseek(f, from, SEEK_SET) == 0) got = fread(tail, 1, sizeof tail, f);
+    }
+    if (f) fclose(f);
+    static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+    bool whole = size > 0;
+    if (ends_with(final, ".png")) whole = got >= 12 && memcmp(tail + got - 12, iend, 12) == 0;
+    const char *mark = ends_with(final, ".pdf") ? "%%EOF" : ends_with(final, ".svg") ? "</svg>" : NULL;
+    if (mark) {
+        whole = false;
+        for (size_t i = 0; i + strlen(mark) <= got && !whole; i++) whole = memcmp(tail + i, mark, strlen(mark)) == 0;
+    }
+    if (!whole)
+        snprintf(err, n, "%s: the chart was not written whole (%ld bytes; is the disk full?)", final, size < 0 ? 0 : size);
+    return whole;
+}
+
 bool plot_out_commit(bool quiet)
 {
     char err[SPH_IO_PATH + 200];
+    for (int i = 0; i < g_n; i++) /* every chart whole before any file is renamed: all or nothing */
+        if (g_chart[i] && !plot_out_chart_whole(g_staged[i].tmp, g_staged[i].path, err, sizeof err)) {
+            fprintf(stderr, "sphlab %s: %s\n", g_cmd, err);
+            plot_out_abort();
+            return false;
+        }
     for (int i = 0; i < g_n; i++) {
         if (!sph_out_commit(&g_staged[i], err, sizeof err)) {
             fprintf(stderr, "sphlab %s: %s\n", g_cmd, err);

@@ -40,19 +40,21 @@ bool overlay_list(const char *cmd, const char *list, unsigned *bits, bool *none)
     return true;
 }
 
+/* A:B or A:B:C (c may be NULL: two only), each a finite number: a NaN or an
+ * infinite centre or angle drew an empty or nonsense frame with exit 0. */
 static bool parse_pair(const char *s, float *a, float *b, float *c, char sep)
 {
     char *end;
     *a = strtof(s, &end);
-    if (end == s || *end != sep) return false;
+    if (end == s || *end != sep || !isfinite(*a)) return false;
     const char *t = end + 1;
     *b = strtof(t, &end);
-    if (end == t) return false;
+    if (end == t || !isfinite(*b)) return false;
     if (*end == '\0') return true;
     if (!c || *end != sep) return false;
     t = end + 1;
     *c = strtof(t, &end);
-    return end != t && *end == '\0';
+    return end != t && *end == '\0' && isfinite(*c);
 }
 
 bool view_opts_take(view_opts *vo, const app_opts *o, const char *cmd)
@@ -101,7 +103,7 @@ bool view_opts_take(view_opts *vo, const app_opts *o, const char *cmd)
     if (o->center) {
         vo->center[2] = 0;
         if (!parse_pair(o->center, &vo->center[0], &vo->center[1], &vo->center[2], ':')) {
-            fprintf(stderr, "sphlab %s: --center '%s': want X:Y or X:Y:Z in metres\n", cmd, o->center);
+            fprintf(stderr, "sphlab %s: --center '%s': want X:Y or X:Y:Z in metres, finite numbers\n", cmd, o->center);
             return false;
         }
         vo->n_center = 3;
@@ -110,7 +112,7 @@ bool view_opts_take(view_opts *vo, const app_opts *o, const char *cmd)
         vo->zoom = 1;
         if (!parse_pair(o->camera, &vo->yaw, &vo->pitch, &vo->zoom, ':') || !(vo->zoom > 0) || vo->pitch < -89 ||
             vo->pitch > 89) {
-            fprintf(stderr, "sphlab %s: --camera '%s': want YAW:PITCH[:ZOOM] in degrees, pitch within +-89, zoom > 0\n",
+            fprintf(stderr, "sphlab %s: --camera '%s': want YAW:PITCH[:ZOOM] in degrees, finite, pitch within +-89, zoom > 0\n",
                     cmd, o->camera);
             return false;
         }
