@@ -236,7 +236,7 @@ const sph_key sph_scene_keys[] = {
     {"time", "cfl", SPH_KEY_FLOAT, S(cfl), 0, 1, 0, 0, NULL, 0, "", "0.4",
      "Courant factor; > 0 chooses dt each step from h, the speed of sound, speeds, forces and viscosity"},
     {"time", "dt_min", SPH_KEY_FLOAT, S(dt_min), 0, 1, 1, 0, NULL, 0, "s", "1e-7",
-     "the adaptive step never goes below this"},
+     "the adaptive step never goes below this; at most `dt` with `cfl` > 0"},
     {"time", "position_sum", SPH_KEY_CHOICE, S(position_sum), 0, 0, 0, 0, CH(sph_position_sum_names), "", "float",
      "how x += dt v is summed: float: rounded to the position's float each step, so a move under half a float "
      "spacing of x (1.5e-8 m near 0.15 m) is lost; compensated: Kahan's compensated summation (Kahan 1965, Comm. "

@@ -133,8 +133,11 @@ static int plot_passes(const plot_opts *o, const char *dir)
     snprintf(base, sizeof base, "%s", o->name ? o->name : "passes");
     plot_escape(src, sizeof src, base_of(t.path));
     snprintf(bars.title, sizeof bars.title, "Time per pass");
-    snprintf(bars.subtitle, sizeof bars.subtitle, "median over %zu steps of %s; all passes: median %.4g ms per step", n,
-             src, med_total);
+    /* the shares are of the medians' sum, not of the median step (a step's passes are not each at their median;
+     * the run's table shares the means): both totals named, so the percentages can be checked */
+    snprintf(bars.subtitle, sizeof bars.subtitle,
+             "median over %zu steps of %s; shares of the medians' sum, %.4g ms; the median step %.4g ms", n, src,
+             sum_med, med_total);
     snprintf(bars.xlabel, sizeof bars.xlabel, "median time per step [ms]");
     bars.n = np;
     for (int k = 0; k < np; k++) {
@@ -146,6 +149,7 @@ static int plot_passes(const plot_opts *o, const char *dir)
     snprintf(file, sizeof file, "%s.csv", base);
     FILE *f = plot_out_stage_csv(dir, file);
     if (!f) goto out;
+    /* share_percent: of the sum of the passes' medians (the run's table gives shares of the means) */
     fprintf(f, "pass,median_ms,mean_ms,min_ms,max_ms,share_percent\n");
     for (int k = 0; k < np; k++) {
         const double *v = t.col[pc[k]];

@@ -39,7 +39,7 @@ const val_problem val_problems[] = {
     {"couette", "start-up Couette flow: the top wall moves at U from t = 0",
      "series solution of the same diffusion problem", "velocity profile error <= 2 % of U at every sampled time",
      "particles across", {10, 20, 40}, 10, 4, 400, val_run_couette},
-    {"drop", "a 2D drop (a liquid cylinder) without gravity, held by surface_tension = stress (sigma = 1 N per metre), "
+    {"drop", "a 2D drop (a liquid cylinder) without gravity, held by surface_tension = stress (sigma = 1 N/m, written 1 N in the 2D units of a slice one metre deep), "
              "oscillating in its n = 2 mode",
      "Rayleigh 1879: omega^2 = (n^3 - n) sigma / (rho R^3) at the stated sigma (akinci: sigma measured from the "
      "Laplace pressure of two drops)",
