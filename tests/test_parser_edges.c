@@ -299,6 +299,20 @@ Test(parser_edges, silently_read_forms_are_refused)
     expect_has(err.msg, "empty: write none", "effects = (empty)");
     c = load_set(BASE2, "domain.periodic=abc", &err);
     expect_has(err.msg, "unknown axis 'abc'", "periodic = abc");
+    /* old Mac line endings: the whole file one line, read as "[scene]" and nothing else */
+    {
+        sph_scene_def d;
+        cr_expect_neq(load("[scene]\rdimension = 2\r[fluid a]\rmin = 0 0\rmax = 0.2 0.2\r", &d, &err), SPH_ERR_OK);
+        expect_has(err.msg, "x.ini:1: a carriage return (CR) inside the line", "CR line endings");
+        cr_expect_eq(load("[scene]\r\ndimension = 2\r\n[fluid a]\r\nmin = 0 0\r\nmax = 0.2 0.2\r\n", &d, &err),
+                     SPH_ERR_OK, "CRLF: %s", err.msg);
+        /* a control character in a name reached the terminal raw (an escape sequence coloured it) */
+        cr_expect_neq(load(BASE2 "[scene]\nname = a\x1b[31mred\n", &d, &err), SPH_ERR_OK);
+        expect_has(err.msg, "name = 'a\\x1b[31mred': holds a control character", "a control character");
+        /* keys are lower case: the hint names the key however its case was typed */
+        cr_expect_neq(load(BASE2 "[physics]\nSTIFFNESS = 100\n", &d, &err), SPH_ERR_OK);
+        expect_has(err.msg, "(did you mean 'stiffness'?)", "STIFFNESS");
+    }
     /* what is still read: a comment after a header, none alone, dt_min below dt */
     sph_scene_def def;
     cr_expect_eq(load(BASE2 "[physics] ; the fluid\nstiffness = 100\n", &def, &err), SPH_ERR_OK, "%s", err.msg);

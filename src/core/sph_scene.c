@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -166,8 +167,11 @@ static sph_error_code apply_key(sph_scene_def *def, const char *file, int line, 
         int near_d = 1 << 30;
         for (int i = 0; i < sph_scene_key_count; i++) {
             const sph_key *c = &sph_scene_keys[i];
-            int d = sph_edit_distance(name, c->name);
-            if (strcmp(c->section, g ? g->kind : section) == 0 && sph_name_near(name, c->name) && d < near_d) {
+            /* keys are lower case: STIFFNESS is stiffness, however far apart the letters' codes */
+            const bool caseless = strcasecmp(name, c->name) == 0;
+            int d = caseless ? 0 : sph_edit_distance(name, c->name);
+            if (strcmp(c->section, g ? g->kind : section) == 0 && (caseless || sph_name_near(name, c->name)) &&
+                d < near_d) {
                 near = c->name;
                 near_d = d;
             }
@@ -329,6 +333,16 @@ static char *ini_reader_fn(char *str, int num, void *stream)
     ctx->pos += n;
     if (memchr(start, '\0', n)) {
         ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX, "%s:%d: binary data (a NUL byte): not a scene file",
+                             ctx->file, ctx->line);
+        return NULL;
+    }
+    /* a CR that does not end the line: old Mac line endings, the whole file one line (its first header's rest
+     * was read as nothing, or "line longer than 198 characters") */
+    const char *cr = memchr(start, '\r', n);
+    if (cr && cr + 1 < start + n && cr[1] != '\n') {
+        ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX,
+                             "%s:%d: a carriage return (CR) inside the line: the file has old Mac line endings; "
+                             "save it with LF (or CRLF) line endings",
                              ctx->file, ctx->line);
         return NULL;
     }

@@ -457,7 +457,7 @@ static int plot_kernel_cmd(const plot_opts *o, const char *dir)
         fprintf(stderr, "sphlab plot kernel: unknown kernel '%s' (known:", o->input);
         for (int k = 0; k < SPH_KERNEL_COUNT; k++) fprintf(stderr, " %s", sph_kernel_names[k]);
         fprintf(stderr, ")\n");
-        return 1;
+        return 2; /* a bad command line, as `plot bogus` */
     }
     int dim = o->dim ? o->dim : 2;
     char base[256];
