@@ -278,7 +278,9 @@ Test(lesson, bad_arguments)
     cr_expect(strstr(out, "1 to 11"), "lesson 0 does not say the range: %s", out);
     cr_expect(test_sphlab("lesson 12", out, sizeof out) == 2, "lesson 12: %s", out);
     cr_expect(test_sphlab("lesson abc", out, sizeof out) == 2, "lesson abc: %s", out);
-    cr_expect(test_sphlab("lesson", out, sizeof out) == 2, "lesson alone: %s", out);
+    /* alone it lists the course, as `sphlab help` says ("list the lessons, open one ..."; it exited 2) */
+    cr_expect(test_sphlab("lesson", out, sizeof out) == 0, "lesson alone: %s", out);
+    cr_expect(strstr(out, "Kernel estimation") != NULL, "lesson alone does not list the lessons: %s", out);
     cr_expect(test_sphlab("lesson 3 --export", out, sizeof out) == 2, "--export without a directory: %s", out);
     cr_expect(test_sphlab("lesson 3 --quick", out, sizeof out) == 2, "--quick without --export: %s", out);
 }

@@ -54,8 +54,10 @@ const app_opt app_options[] = {
      INT(steps, 0, MANY)},
     {"--steps", NULL, "N", "run length in steps (default: the scene's duration or steps)", STUDY, INT(steps, 1, MANY)},
     {"--time", NULL, "T", "simulate until T seconds (instead of --steps)", RUN | RENDER | STUDY, DOUBLE(time, 0, 1e6)},
-    {"--threads", NULL, "N", "worker threads (default: one per core; bench pair: 1, each step's CPU time)",
-     RUN | RENDER | VIEW | STUDY | VALIDATE | BENCH, INT(threads, 1, SPH_MAX_THREADS)},
+    {"--threads", NULL, "N", "worker threads (default: one per core)", RUN | RENDER | VIEW | STUDY | VALIDATE,
+     INT(threads, 1, SPH_MAX_THREADS)},
+    {"--threads", NULL, "N", "worker threads (default: one per core; bench pair: 1, each step's CPU time)", BENCH,
+     INT(threads, 1, SPH_MAX_THREADS)},
     {"--backend", NULL, "cpu|gl",
      "where the passes run (overrides [compute] backend): gl runs them as\n"
      "OpenGL 4.3 compute shaders (the GPU, or Mesa's llvmpipe without one)",

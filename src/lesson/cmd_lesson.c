@@ -454,6 +454,7 @@ int cmd_lesson(int argc, char **argv)
                 opt.rest[0], sph_lesson_count);
         return 2;
     }
+    if (argc <= 1) return list(); /* `sphlab lesson` alone: the course's list, as the commands' help says */
     if (!opt.n_pos) {
         app_opts_usage_error(&spec, "name a lesson (sphlab lesson --list names them)");
         return 2;
