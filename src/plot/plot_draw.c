@@ -40,21 +40,72 @@ static const struct {
     {2, {9000, 2500}, {2000, 2000}},              /* long-short */
 };
 
-/* Markers, as glyphs for plstring (unicode, DejaVu Sans has them). */
-static const char *const marker[8] = {
-    "#[0x25cb]", /* circle */
-    "#[0x25a1]", /* square */
-    "#[0x25b3]", /* triangle */
-    "#[0x25c7]", /* diamond */
-    "#[0x00d7]", /* cross */
-    "+",         /* plus */
-    "#[0x25cf]", /* filled circle */
-    "#[0x25bd]", /* down triangle */
-};
-/* The same shapes filled, for emphasis (the study's Pareto front). */
-static const char *const marker_filled[8] = {
-    "#[0x25cf]", "#[0x25a0]", "#[0x25b2]", "#[0x25c6]", "#[0x00d7]", "+", "#[0x25cf]", "#[0x25bc]",
-};
+/* Markers: circle, square, triangle, diamond, cross, plus, filled circle, down
+ * triangle (style % 8), drawn as shapes centred on their point. They were the
+ * font's glyphs (plstring), whose em box, not the shape, is centred: a circle
+ * at u = 0 sat 2 to 3 pixels below the line it marks. */
+static void draw_marker_at(PLFLT x, PLFLT y, int style, bool filled, double kx, double ky)
+{
+    enum { RING = 24 };
+    const double two_pi = 6.283185307179586;
+    PLFLT px[RING + 1], py[RING + 1];
+    int n = 0, shape = ((style % 8) + 8) % 8;
+    filled |= shape == 6;
+    switch (shape) {
+    case 0:
+    case 6:
+        for (int i = 0; i <= RING; i++) px[n] = x + kx * cos(two_pi * i / RING), py[n++] = y + ky * sin(two_pi * i / RING);
+        break;
+    case 1: { /* the square's area near the circle's */
+        const PLFLT sx[5] = {-0.85, 0.85, 0.85, -0.85, -0.85}, sy[5] = {-0.85, -0.85, 0.85, 0.85, -0.85};
+        for (int i = 0; i < 5; i++) px[n] = x + kx * sx[i], py[n++] = y + ky * sy[i];
+        break;
+    }
+    case 2:
+    case 7: { /* the triangle's centroid on the point; 7 points down */
+        const double up = shape == 2 ? 1.0 : -1.0;
+        const PLFLT sx[4] = {0, 0.95, -0.95, 0}, sy[4] = {1.1, -0.55, -0.55, 1.1};
+        for (int i = 0; i < 4; i++) px[n] = x + kx * sx[i], py[n++] = y + up * ky * sy[i];
+        break;
+    }
+    case 3: {
+        const PLFLT sx[5] = {0, 1.1, 0, -1.1, 0}, sy[5] = {1.1, 0, -1.1, 0, 1.1};
+        for (int i = 0; i < 5; i++) px[n] = x + kx * sx[i], py[n++] = y + ky * sy[i];
+        break;
+    }
+    default: { /* 4: a cross, 5: a plus: two strokes, never filled */
+        const double d = shape == 4 ? 0.75 : 1.05, c = shape == 4 ? 1.0 : 0.0;
+        PLFLT ax[2] = {x - kx * d, x + kx * d}, ay[2] = {y - c * ky * d, y + c * ky * d};
+        PLFLT bx[2] = {x - c * kx * d, x + c * kx * d}, by[2] = {y + ky * d, y - ky * d};
+        plline(2, ax, ay);
+        plline(2, bx, by);
+        return;
+    }
+    }
+    if (filled) {
+        plpsty(0); /* solid, whatever hatch a bar left set */
+        plfill(n - 1, px, py);
+    }
+    plline(n, px, py);
+}
+
+/* n markers at (x, y) in the current viewport's world units (log10 values on
+ * a log axis), as large as a glyph at the character height times size. */
+static void draw_markers_at(int n, const PLFLT *x, const PLFLT *y, int style, bool filled, double size)
+{
+    PLFLT vx0, vx1, vy0, vy1, wx0, wx1, wy0, wy1, sx0, sx1, sy0, sy1, ch_def, ch;
+    plgvpd(&vx0, &vx1, &vy0, &vy1); /* the viewport on the page, 0 to 1 */
+    plgvpw(&wx0, &wx1, &wy0, &wy1); /* its world window */
+    plgspa(&sx0, &sx1, &sy0, &sy1); /* the page in mm */
+    plgchr(&ch_def, &ch);
+    const double mmx = (vx1 - vx0) * (sx1 - sx0), mmy = (vy1 - vy0) * (sy1 - sy0);
+    if (!(mmx > 0) || !(mmy > 0)) return;
+    const double r = 0.36 * ch_def * size; /* mm */
+    const double kx = r * (wx1 - wx0) / mmx, ky = r * (wy1 - wy0) / mmy;
+    plot_width(1.3);
+    for (int i = 0; i < n; i++)
+        if (isfinite(x[i]) && isfinite(y[i])) draw_marker_at(x[i], y[i], style, filled, kx, ky);
+}
 
 /* Fills: a grey level (0-255) and a PLplot hatch pattern (0: none), all
  * combinations distinct; hatching is drawn in black over the grey. */
@@ -325,16 +376,14 @@ static void draw_markers(const plot_series *s, int k, int count, range xr, range
 {
     const int per_curve = 8;
     if (s->n == 0) return;
-    plschr(0, 0.85);
     for (int j = 0; j < per_curve; j++) {
         double f = (j + (k + 1.0) / (count + 1.0)) / per_curve;
         size_t i = (size_t)(f * (double)(s->n - 1) + 0.5);
         if (i >= s->n) i = s->n - 1;
         PLFLT x = s->x[i], y = scale * s->y[i];
         if (!isfinite(x) || !isfinite(y) || x < xr.lo || x > xr.hi || y < yr.lo || y > yr.hi) continue;
-        plstring(1, &x, &y, marker[s->style % 8]);
+        draw_markers_at(1, &x, &y, s->style, false, 0.85);
     }
-    plschr(0, 1.0);
 }
 
 /* ---- legends --------------------------------------------------------------- */
@@ -376,10 +425,7 @@ void plot_legend(const plot_key *k, int n, const char *const *notes, int nn, dou
                 plline(2, lx, ly);
             }
             pllsty(1);
-            if (k[i].marker) {
-                plschr(0, 0.85);
-                plstring(1, &mx, &my, (k[i].filled ? marker_filled : marker)[k[i].style % 8]);
-            }
+            if (k[i].marker) draw_markers_at(1, &mx, &my, k[i].style, k[i].filled, 0.85);
         }
         plcol0(PLOT_FG);
         plschr(0, text);
@@ -723,10 +769,7 @@ static void draw_loglog(const void *chart)
             plline(m, px, py);
         }
         pllsty(1);
-        if (s->markers) {
-            plschr(0, s->filled ? 1.0 : 0.9);
-            plstring(m, px, py, (s->filled ? marker_filled : marker)[s->style % 8]);
-        }
+        if (s->markers) draw_markers_at(m, px, py, s->style, s->filled, s->filled ? 1.0 : 0.9);
         if (s->numbers) { /* beside each point: up and to the right, else where no other number is */
             plschr(0, 0.62);
             plcol0(PLOT_FG);
