@@ -137,6 +137,23 @@ static void unread_keys(const sph_scene_def *def, char *buf, size_t n)
         {"domain", "wall_slip_ymax", !particles, by_particles},
         {"domain", "wall_slip_zmin", !particles || def->dim == 2, "a 2D scene has no z sides"},
         {"domain", "wall_slip_zmax", !particles || def->dim == 2, "a 2D scene has no z sides"},
+        /* the effects' own keys, and the choices' (a user's review: each ran unsaid) */
+        {"physics", "gravity", !(def->effects & SPH_EFFECT(GRAVITY)), "only the effect gravity reads it"},
+        {"physics", "gravity_ramp", !(def->effects & SPH_EFFECT(GRAVITY)), "only the effect gravity reads it"},
+        {"physics", "cohesion", !(def->effects & SPH_EFFECT(COHESION)) || def->surface_tension == SPH_STENSION_AKINCI,
+         def->surface_tension == SPH_STENSION_AKINCI
+             ? "surface_tension = akinci reads surface_tension_coefficient instead"
+             : "only the effect cohesion reads it"},
+        {"physics", "alpha",
+         !(def->effects & SPH_EFFECT(VISCOSITY)) ||
+             (def->viscosity_form != SPH_VFORM_ARTIFICIAL && def->viscosity_form != SPH_VFORM_MORRIS_ARTIFICIAL),
+         "only viscosity_form = artificial or morris-artificial reads it, with the effect viscosity"},
+        {"physics", "shifting_coefficient", def->shifting == SPH_SHIFT_NONE, "only shifting = lind or tvf reads it"},
+        {"domain", "wall_damping", !walls, "only the effect walls reads it"},
+        {"interaction", "radius", !(def->effects & SPH_EFFECT(INTERACTION)), "only the effect interaction reads it"},
+        {"interaction", "strength", !(def->effects & SPH_EFFECT(INTERACTION)), "only the effect interaction reads it"},
+        {"search", "table_size", def->search != SPH_SEARCH_HASH, "only method = hash reads it"},
+        {"time", "dt_min", def->cfl <= 0, "only the adaptive step (cfl > 0) reads it"},
         /* last: a scene written for the equation of state and run with --set pressure_solver says the
          * solver's keys first */
         {"physics", "tait_gamma", def->eos != SPH_EOS_TAIT || !eos_read,
