@@ -299,6 +299,15 @@ Test(parser_edges, silently_read_forms_are_refused)
     expect_has(err.msg, "empty: write none", "effects = (empty)");
     c = load_set(BASE2, "domain.periodic=abc", &err);
     expect_has(err.msg, "unknown axis 'abc'", "periodic = abc");
+    /* an error a --set causes names --set: min = 1 1 from the command line blamed the file's max line, and an h
+     * too small for the domain's floats the file's [domain] line alone */
+    c = load_set(BASE2, "domain.min=1,1", &err);
+    cr_expect(c != SPH_ERR_OK && strncmp(err.msg, "--set: [domain] max.x = 1 is not above min.x = 1", 48) == 0, "%s",
+              err.msg);
+    c = load_set("[scene]\ndimension = 2\n[domain]\nmin = 0 0\nmax = 3 1\n[fluid a]\nmin = 0 0\nmax = 0.2 0.2\n",
+                 "kernels.h=0.0001", &err);
+    cr_expect(c != SPH_ERR_OK, "h = 1e-4 over a 3 m domain: accepted");
+    expect_has(err.msg, "x.ini:5 and --set: [domain] x from 0 to 3 m: positions are floats", "h by --set");
     /* old Mac line endings: the whole file one line, read as "[scene]" and nothing else */
     {
         sph_scene_def d;
@@ -306,6 +315,20 @@ Test(parser_edges, silently_read_forms_are_refused)
         expect_has(err.msg, "x.ini:1: a carriage return (CR) inside the line", "CR line endings");
         cr_expect_eq(load("[scene]\r\ndimension = 2\r\n[fluid a]\r\nmin = 0 0\r\nmax = 0.2 0.2\r\n", &d, &err),
                      SPH_ERR_OK, "CRLF: %s", err.msg);
+        /* CR CR LF (a file converted twice) was read before the CR check and still is */
+        cr_expect_eq(load("[scene]\r\r\ndimension = 2\r\r\n[fluid a]\r\r\nmin = 0 0\r\r\nmax = 0.2 0.2\r\r\n", &d, &err),
+                     SPH_ERR_OK, "CRCRLF: %s", err.msg);
+        /* a name at the 43-character limit behind many blanks: the list of headers cut it, and the block was
+         * called empty */
+        cr_expect_eq(load(BASE2 "[fluid                aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa]\nmin = 0.5 0.5\n"
+                                "max = 0.7 0.7\n",
+                          &d, &err),
+                     SPH_ERR_OK, "a long name behind blanks: %s", err.msg);
+        /* a tab is text */
+        cr_expect_eq(load(BASE2 "[scene]\nname = lesson\t7\n", &d, &err), SPH_ERR_OK, "a tab in a name: %s", err.msg);
+        /* dt_min's default named as such: a scene that sets dt = 5e-8 alone never wrote dt_min */
+        cr_expect_neq(load(BASE2 "[time]\ndt = 5e-8\n", &d, &err), SPH_ERR_OK);
+        expect_has(err.msg, "dt_min = 1e-07 s (the default) is above dt = 5e-08 s", "dt below the default dt_min");
         /* a control character in a name reached the terminal raw (an escape sequence coloured it) */
         cr_expect_neq(load(BASE2 "[scene]\nname = a\x1b[31mred\n", &d, &err), SPH_ERR_OK);
         expect_has(err.msg, "name = 'a\\x1b[31mred': holds a control character", "a control character");

@@ -238,11 +238,15 @@ int cmd_run(int argc, char **argv)
         fprintf(stderr, "sphlab run: warning: %s\n", warning);
     double t0 = sph_now_ms(), last_shown = t0;
     bool vtk_ok = true;
+    uint64_t vtk_last = UINT64_MAX; /* the step of the last VTK file */
     for (;;) {
-        if (vtk_dir && sim->step % (uint64_t)vtk_every == 0 &&
-            !(vtk_ok = sph_vtk_write_frame(sim, vtk_dir, (unsigned)(sim->step / (uint64_t)vtk_every), vtk_err, sizeof vtk_err))) {
-            fprintf(stderr, "sphlab run: %s\n", vtk_err);
-            break;
+        if (vtk_dir && sim->step % (uint64_t)vtk_every == 0) {
+            vtk_last = sim->step;
+            if (!(vtk_ok = sph_vtk_write_frame(sim, vtk_dir, (unsigned)(sim->step / (uint64_t)vtk_every), vtk_err,
+                                               sizeof vtk_err))) {
+                fprintf(stderr, "sphlab run: %s\n", vtk_err);
+                break;
+            }
         }
         if (!warned && sph_sim_dt_warning(sim, warning, sizeof warning)) {
             fprintf(stderr, "%ssphlab: warning: %s\n", progress ? "\r" : "", warning);
@@ -269,10 +273,13 @@ int cmd_run(int argc, char **argv)
         }
     }
     double wall = sph_now_ms() - t0;
-    /* the state the run ended on, when it fell between two frames (the last one is what a reader wants) */
-    if (vtk_dir && vtk_ok && sim->step % (uint64_t)vtk_every != 0 &&
-        !(vtk_ok = sph_vtk_write_frame(sim, vtk_dir, (unsigned)(sim->step / (uint64_t)vtk_every + 1), vtk_err,
-                                       sizeof vtk_err)))
+    /* the state the run ended on, when no file holds it (it fell between two, or the watchdog stopped the run
+     * after the step of one): the last state is what a reader wants */
+    if (vtk_dir && vtk_ok && vtk_last != sim->step &&
+        !(vtk_ok = sph_vtk_write_frame(sim, vtk_dir,
+                                       (unsigned)(sim->step / (uint64_t)vtk_every +
+                                                  (sim->step % (uint64_t)vtk_every ? 1 : 0)),
+                                       vtk_err, sizeof vtk_err)))
         fprintf(stderr, "sphlab run: %s\n", vtk_err);
     sph_sim_collect_times(sim); /* the table counts every step */
     if (progress) fprintf(stderr, "\r%78s\r", "");

@@ -338,8 +338,9 @@ static char *ini_reader_fn(char *str, int num, void *stream)
     }
     /* a CR that does not end the line: old Mac line endings, the whole file one line (its first header's rest
      * was read as nothing, or "line longer than 198 characters") */
-    const char *cr = memchr(start, '\r', n);
-    if (cr && cr + 1 < start + n && cr[1] != '\n') {
+    const char *cr = memchr(start, '\r', n), *after_cr = cr;
+    while (after_cr && after_cr < start + n && *after_cr == '\r') after_cr++; /* CR CR LF: a doubled conversion */
+    if (cr && after_cr < start + n && *after_cr != '\n') {
         ctx->code = sph_fail(ctx->err, SPH_ERR_SYNTAX,
                              "%s:%d: a carriage return (CR) inside the line: the file has old Mac line endings; "
                              "save it with LF (or CRLF) line endings",
@@ -395,7 +396,14 @@ static char *ini_reader_fn(char *str, int num, void *stream)
         bool listed = false;
         for (int k = 0; k < ctx->n_sections; k++) listed |= strcmp(ctx->sections[k], name) == 0;
         if (!listed && ctx->n_sections < MAX_SECTIONS) {
-            snprintf(ctx->sections[ctx->n_sections], sizeof ctx->sections[0], "%.63s", name);
+            /* a block's header as "fluid NAME", its one spelling: a raw one with many blanks was cut at 63
+             * characters and its name lost */
+            const sph_scene_group *g = sph_scene_section_group(name);
+            if (g)
+                snprintf(ctx->sections[ctx->n_sections], sizeof ctx->sections[0], "%s %.48s", g->kind,
+                         fluid_block_name(name));
+            else
+                snprintf(ctx->sections[ctx->n_sections], sizeof ctx->sections[0], "%.63s", name);
             ctx->section_lines[ctx->n_sections++] = ctx->line;
         }
         ctx->header_line = ctx->line;

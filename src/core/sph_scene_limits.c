@@ -12,16 +12,34 @@
 #include <string.h>
 
 /* "file:line" of a key's value ("file" for a default, "--set" for an override). */
-static const char *key_place(const sph_scene_def *def, const char *section, const char *name, char *buf, size_t n)
+static int key_line(const sph_scene_def *def, const char *section, const char *name)
 {
-    int line = 0;
     for (int i = 0; i < sph_scene_key_count; i++)
         if (strcmp(sph_scene_keys[i].section, section) == 0 && strcmp(sph_scene_keys[i].name, name) == 0)
-            line = def->origin[i].line;
+            return def->origin[i].line;
+    return 0;
+}
+
+static const char *key_place(const sph_scene_def *def, const char *section, const char *name, char *buf, size_t n)
+{
+    int line = key_line(def, section, name);
     if (line > 0)
         snprintf(buf, n, "%s:%d", def->file, line);
     else
         snprintf(buf, n, "%s", line < 0 ? "--set" : def->file);
+    return buf;
+}
+
+/* key_place, and " and --set" when the limit's other key (h) came from --set: `--set kernels.h=0.0001` was
+ * refused naming the file's [domain] line alone */
+static const char *key_place_with(const sph_scene_def *def, const char *section, const char *name,
+                                  const char *other_section, const char *other, char *buf, size_t n)
+{
+    key_place(def, section, name, buf, n);
+    if (key_line(def, other_section, other) < 0 && key_line(def, section, name) >= 0) {
+        size_t len = strlen(buf);
+        snprintf(buf + len, n - len, " and --set");
+    }
     return buf;
 }
 
@@ -68,7 +86,7 @@ static sph_error_code check_precision(const sph_scene_def *def, sph_error *err)
                         "point nearest 0), and %g m from it a float's step is %.3g m, more than h / 2048 = %.3g m "
                         "that the neighbour search needs with h = %g m (accepted: a domain reaching at most %g m "
                         "from that point along %c at this h, or h of at least %.3g m)",
-                        key_place(def, "domain", "max", loc, sizeof loc), axis, def->domain_min[d],
+                        key_place_with(def, "domain", "max", "kernels", "h", loc, sizeof loc), axis, def->domain_min[d],
                         def->domain_max[d], o, far, step, bound, (double)def->h, reach, axis,
                         step / SPH_POSITION_STEP);
     }
@@ -86,7 +104,7 @@ static sph_error_code check_cells(const sph_scene_def *def, sph_error *err)
         if ((def->periodic & (1u << d) || def->search == SPH_SEARCH_GRID) && count > SPH_CELL_LIMIT)
             return sph_fail(err, SPH_ERR_RANGE,
                             "%s: [domain] along %c the search needs %.3g cells of h, more than %d", 
-                            key_place(def, "domain", "max", loc, sizeof loc), sph_axis_names[d][0], count,
+                            key_place_with(def, "domain", "max", "kernels", "h", loc, sizeof loc), sph_axis_names[d][0], count,
                             SPH_CELL_LIMIT);
     }
     if (def->search == SPH_SEARCH_GRID) {

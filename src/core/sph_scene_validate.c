@@ -289,6 +289,7 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
             /* name the key the user wrote: max if given, else min (max is then its default) */
             int li = key_index("domain", "max"), lo = key_index("domain", "min");
             int line = def->origin[li].line ? def->origin[li].line : def->origin[lo].line;
+            if (def->origin[lo].line < 0) line = -1; /* a min given by --set is what the command changed */
             char loc[300];
             return sph_fail(err, SPH_ERR_RANGE,
                             "%s: [domain] max.%c = %g%s is not above min.%c = %g (accepted: max above min on each axis)",
@@ -345,9 +346,10 @@ sph_error_code sph_scene_validate(const sph_scene_def *def, sph_error *err)
         int line = def->origin[lm].line ? def->origin[lm].line : def->origin[ld].line;
         char loc[300];
         return sph_fail(err, SPH_ERR_RANGE,
-                        "%s: [time] dt_min = %g s is above dt = %g s%s: the adaptive step lies between them "
+                        "%s: [time] dt_min = %g s%s is above dt = %g s%s: the adaptive step lies between them "
                         "(accepted: dt_min <= dt)",
-                        origin_text(def, line, loc, sizeof loc), def->dt_min, def->dt,
+                        origin_text(def, line, loc, sizeof loc), def->dt_min,
+                        def->origin[lm].line ? "" : " (the default)", def->dt,
                         def->origin[ld].line ? "" : " (the default)");
     }
     /* Morris's form divides x_ij . grad W = r W'(r) by r^2: it needs W'(r) / r

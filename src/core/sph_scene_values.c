@@ -142,11 +142,11 @@ sph_error_code sph_scene_value_set(const sph_key *k, void *base, const char *val
         if (strlen(value) > 63) return bad_value(err, SPH_ERR_RANGE, w, k, value, "too long");
         /* a name is printed on terminals, charts and files: a control character (an escape sequence) is no text */
         for (const char *c = value; *c; c++)
-            if ((unsigned char)*c < 0x20 || *c == 0x7f) {
+            if (((unsigned char)*c < 0x20 && *c != '\t') || *c == 0x7f) {
                 char shown[64 * 4 + 1]; /* the value with each control character written \xNN */
                 size_t m = 0;
                 for (const char *q = value; *q && m + 5 < sizeof shown; q++)
-                    if ((unsigned char)*q < 0x20 || *q == 0x7f)
+                    if (((unsigned char)*q < 0x20 && *q != '\t') || *q == 0x7f)
                         m += (size_t)snprintf(shown + m, sizeof shown - m, "\\x%02x", (unsigned char)*q);
                     else
                         shown[m++] = *q;

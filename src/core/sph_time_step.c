@@ -55,9 +55,16 @@ float sph_time_step_choose(const sph_sim *sim)
         dt = fminf(def->dt, sph_time_step_limit(sim, def->cfl, NULL));
         if (!(dt >= def->dt_min)) dt = def->dt_min; /* also catches NaN from a blown-up state */
     }
-    /* the last step of a run by time ends on its end (below dt_min if it must: it is the last) */
+    /* A run by time ends on its end: the last step is stretched by at most 0.1 % to reach it (a float dt
+     * such as 0.0002 is a little short, so N steps of it end 2.5e-9 s before N dt and left a sliver of a step),
+     * and a remainder between one and two steps is split into two equal ones, so no step is a sliver. */
     double left = sim->t_end - sim->t;
-    if (sim->t_end > 0 && left > 0 && left < (double)dt * (1.0 + 1e-6)) dt = (float)left;
+    if (sim->t_end > 0 && left > 0) {
+        if (left <= (double)dt * (1.0 + 1e-3))
+            dt = (float)left;
+        else if (left < 2.0 * (double)dt)
+            dt = (float)(0.5 * left);
+    }
     return dt;
 }
 

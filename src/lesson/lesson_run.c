@@ -140,8 +140,9 @@ bool lx_run_sim_stoppable(lx *x, const char *log, const lx_run_opts *o, lx_run *
     app_out stats = {0}, dump = {0};
     bool ok = (!o->stats || app_out_open(&stats, o->stats)) && (!o->dump || app_out_open(&dump, o->dump));
     if (stats.f) app_stats_header(stats.f, sim);
+    if (until >= 0) sph_sim_end_at(sim, until); /* as the `sphlab run` it logs: the last step ends on it */
     double t0 = sph_now_ms();
-    while (ok && !(until >= 0 ? sim->t >= until - 1e-12 : (long)sim->step >= steps)) {
+    while (ok && !(until >= 0 ? sph_sim_reached(sim, until) : (long)sim->step >= steps)) {
         sph_sim_step(sim);
         if (sim->alarm.raised) break;
         if (stats.f) {

@@ -58,8 +58,9 @@ static bool run_to(lx *x, const char *log, const char *scene, const char *const 
         lx_md(x, "\n**The scene cannot run:** %s\n\n", err.msg);
         x->failed++;
     }
+    if (ok) sph_sim_end_at(sim, t_end); /* as the `sphlab run --time` it logs: the last step ends on it */
     double t0 = sph_now_ms();
-    while (ok && sim->t < t_end - 1e-9) {
+    while (ok && !sph_sim_reached(sim, t_end)) {
         sph_sim_step(sim);
         if (sim->alarm.raised) {
             *stopped = true;
@@ -115,7 +116,8 @@ typedef struct front_ctx {
 static void front_step(void *vctx, const sph_sim *sim)
 {
     front_ctx *c = vctx;
-    if (sim->t < c->next || c->n >= 4096) return;
+    /* the tolerance: a run now ends on t_end, which the summed `every`s may pass by a rounding */
+    if (sim->t < c->next - 1e-9 * c->every || c->n >= 4096) return;
     double xmax = -INFINITY;
     for (uint32_t i = 0; i < sim->n; i++)
         if (!sph_is_wall(&sim->P, i)) xmax = fmax(xmax, sim->P.pos[0][i]);

@@ -131,6 +131,7 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
      * x = W/2, so each height has two rows */
     for (int r = 0; r < done; r++) {
         hyd_obs *o = &obs[r];
+        if (o->oom || o->prof_p.n != o->prof_y.n) continue; /* not written: the run failed */
         for (size_t i = 1; i < o->prof_y.n; i++)
             for (size_t j = i; j > 0 && o->prof_y.x[j] < o->prof_y.x[j - 1]; j--) {
                 double t;
