@@ -153,6 +153,10 @@ static void lockstep_steps(const char *ini, const char *const *sets, int n_sets,
     sph_sim *c = test_gl_make(ini, sets, n_sets, false), *g = test_gl_make(ini, sets, n_sets, true);
     for (int k = 0; k < 2; k++) { /* the mouse, for scenes with the interaction effect */
         sph_sim *s = k ? g : c;
+        /* the passes' equality is checked here, not the watchdog's: a solver's first step from the jittered
+         * lattice puts in energy (144 to 266 J/m in 2D) that the energy check stops. It was kept from looking
+         * by the mouse's button, held down in every scene, until only a pass in the pipeline could do work. */
+        s->watchdog = false;
         s->interaction_active = true;
         s->interaction_point[0] = -0.15f;
         s->interaction_point[1] = 0.0f;

@@ -245,11 +245,11 @@ Test(options, color_help_names_every_colour)
         if (!name || !*name) continue;
         char word[64];
         snprintf(word, sizeof word, " %s ", name);
-        char help[1024];
-        snprintf(help, sizeof help, " %s ", color->help);
+        char help[2048], expanded[2048];
+        snprintf(help, sizeof help, " %s ", app_opt_help(color, expanded, sizeof expanded));
         for (char *p = help; *p; p++)
             if (*p == ',' || *p == ':' || *p == '(' || *p == ')') *p = ' ';
-        cr_expect(strstr(help, word), "--color's help does not name '%s': %s", name, color->help);
+        cr_expect(strstr(help, word), "--color's help does not name '%s': %s", name, help);
     }
 }
 

@@ -286,3 +286,29 @@ Test(robust, watchdog_names_the_fastest_particle)
     cr_assert_float_eq(sim->alarm.value, 3.0f * bound, 1e-3f * bound, "value %g", sim->alarm.value);
     sph_sim_destroy(sim);
 }
+
+/* A force from outside the fluid tells the watchdog what it needs through its pass (sph_pass.speed_scale,
+ * .does_work), so that such a force is one file: the mouse's push raises the speed bound by its own scale,
+ * sqrt(2 |strength| radius), and while its button is down it is the pass that does work. */
+Test(robust, a_force_from_outside_is_declared_by_its_pass)
+{
+    const char *base = "[scene]\neffects=gravity pressure viscosity walls%s\n[domain]\nmin=0 0\nmax=1 1\n"
+                       "[fluid pool]\nmin=0 0\nmax=1 0.2\nspacing=0.02\n[kernels]\nh=0.04\n"
+                       "[physics]\nstiffness=400\nviscosity=0.01\n[interaction]\nstrength=40\nradius=0.2\n";
+    char ini[1024];
+    snprintf(ini, sizeof ini, base, "");
+    sph_sim *plain = test_sim(ini, 1);
+    snprintf(ini, sizeof ini, base, " interaction");
+    sph_sim *mouse = test_sim(ini, 1);
+    const double scale = sqrt(2.0 * 40.0 * 0.2); /* 4 m/s */
+    cr_assert_float_eq(mouse->speed_scale - plain->speed_scale, scale, 1e-4, "the mouse adds %g m/s, want %g",
+                       mouse->speed_scale - plain->speed_scale, scale);
+    cr_assert_null(sph_sim_work_done_by(plain));
+    cr_assert_null(sph_sim_work_done_by(mouse), "the button is up: no work");
+    mouse->interaction_active = true;
+    cr_assert(sph_sim_work_done_by(mouse) && strcmp(sph_sim_work_done_by(mouse), "interaction") == 0);
+    mouse->enabled[SPH_PASS_INTERACTION] = false; /* switched off in the window: its force is gone */
+    cr_assert_null(sph_sim_work_done_by(mouse));
+    sph_sim_destroy(plain);
+    sph_sim_destroy(mouse);
+}

@@ -96,10 +96,8 @@ const app_opt app_options[] = {
     {"--size", NULL, "WxH", "image size in pixels (default: render 800x600, view 1024x720)", RENDER | VIEW,
      SIZE(size, 64, 8192)},
     {"--color", "--colour", "FIELD",
-     "colour by: density pressure speed key neighbours, or a field of a pass the scene runs: pressure-acc "
-     "viscosity-acc cohesion-acc normal curvature-acc curvature csf-acc stress-acc xsph-acc density-rate "
-     "pcisph-pressure pcisph-density pcisph-acc dfsph-pressure dfsph-density dfsph-acc (with pressure_solver = "
-     "pcisph or dfsph, pcisph-pressure or dfsph-pressure is the pressure)",
+     "colour by: density pressure speed key neighbours, or a field of a pass the scene runs: " APP_HELP_PASS_COLOURS
+     " (with pressure_solver = pcisph or dfsph, pcisph-pressure or dfsph-pressure is the pressure)",
      RENDER | VIEW, STRING(color)},
     {"--range", NULL, "LO,HI",
      "fixed colour range (LO:HI also); render: 'run' (default): one range for the whole\n"
@@ -488,6 +486,36 @@ void app_opts_usage_error(const app_cmd_spec *spec, const char *what)
             spec->synopsis, spec->name);
 }
 
+/* The pass fields' colour names, from the field registry (sph_fields.h): a new
+ * field's colour is named in --color's help without an edit here. */
+static size_t pass_colours(char *buf, size_t n)
+{
+    static const char *const own[] = {"density", "pressure", "speed"}; /* named first, in the help's own words */
+    const char *names[] = {
+#define APP_FIELD_COLOUR(ID, name, comps, unit, unit2, kind, made_by, check, colour, label, about) colour,
+        SPH_FIELDS(APP_FIELD_COLOUR)
+#undef APP_FIELD_COLOUR
+        "dfsph-pressure", /* a colour made from two fields (overlay: SPH_COLOR_DFSPH_PRESSURE) */
+    };
+    size_t used = 0;
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+        bool skip = !*names[i];
+        for (size_t k = 0; k < sizeof own / sizeof *own && !skip; k++) skip = strcmp(names[i], own[k]) == 0;
+        if (!skip && used < n) used += (size_t)snprintf(buf + used, n - used, "%s%s", used ? " " : "", names[i]);
+    }
+    return used;
+}
+
+const char *app_opt_help(const app_opt *r, char *buf, size_t n)
+{
+    const char *at = strstr(r->help, APP_HELP_PASS_COLOURS);
+    if (!at || n == 0) return r->help;
+    char list[1024];
+    pass_colours(list, sizeof list);
+    snprintf(buf, n, "%.*s%s%s", (int)(at - r->help), r->help, list, at + strlen(APP_HELP_PASS_COLOURS));
+    return buf;
+}
+
 void app_opts_usage(const app_cmd_spec *spec, FILE *f)
 {
     fputs(spec->synopsis, f);
@@ -499,7 +527,8 @@ void app_opts_usage(const app_cmd_spec *spec, FILE *f)
         /* a long label gets its own line; continuation lines line up under the help */
         if (strlen(label) > 20) fprintf(f, "  %s\n  %-20s ", label, "");
         else fprintf(f, "  %-20s ", label);
-        for (const char *h = r->help; *h; h++) {
+        char expanded[2048];
+        for (const char *h = app_opt_help(r, expanded, sizeof expanded); *h; h++) {
             fputc(*h, f);
             if (*h == '\n') fprintf(f, "  %-20s ", "");
         }
@@ -562,7 +591,8 @@ void app_opts_markdown(FILE *f)
             fputs("| `", f);
             md_cell(f, label);
             fputs("` | ", f);
-            md_cell(f, r->help);
+            char expanded[2048];
+            md_cell(f, app_opt_help(r, expanded, sizeof expanded));
             fputs(" |\n", f);
         }
         if (!any) fprintf(f, "\n## sphlab %s\n\n%s. No options.\n", command_names[c], command_about[c]);

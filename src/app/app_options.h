@@ -88,6 +88,12 @@ typedef struct app_opt {
 } app_opt;
 
 extern const app_opt app_options[];
+/* In an option's help, the place of the pass fields' colour names, which the
+ * printers fill from the field registry (app_opt_help). */
+#define APP_HELP_PASS_COLOURS "{pass colours}"
+/* An option's help as printed: r->help, or a copy in buf with its
+ * APP_HELP_PASS_COLOURS filled in. */
+const char *app_opt_help(const app_opt *r, char *buf, size_t n);
 extern const int app_option_count;
 
 /* How a command takes its arguments, and the prose of its help around the

@@ -85,6 +85,13 @@ typedef struct sph_pass {
     /* The variant the scene selects, e.g. "bitonic" or "poly6 kernel". */
     void (*describe)(const sph_scene_def *def, char *out, int n);
     void (*run)(sph_sim *sim);
+    /* What the watchdog needs of a force from outside the fluid (the mouse; a wind), so that such a pass is
+     * one file: */
+    /* [m/s] the speed its force can give the fluid, added to the speed bound; NULL: none of its own */
+    double (*speed_scale)(const sph_scene_def *def);
+    /* whether it does work on the fluid now (the mouse while the button is down): the energy check takes its
+     * reference again, and the HUD shows no energy drift; NULL: never */
+    bool (*does_work)(const sph_sim *sim);
 } sph_pass;
 
 #define SPH_PASS_EXTERN(id, name) extern const sph_pass sph_pass_##name;

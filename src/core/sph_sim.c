@@ -263,8 +263,8 @@ static void measure_start(sph_sim *sim)
 /* Bounds beyond which the watchdog calls the state a runaway, from the
  * scene's own speed scales, not from its stiffness: a weakly compressible
  * fluid flows at a small fraction of its sound speed, so a speed far above
- * what gravity (a fall along g across the domain), the blocks, the mouse,
- * cohesion and any compression the blocks start with can make is an artefact, however
+ * what gravity (a fall along g across the domain), the blocks, the passes'
+ * own forces (sph_pass.speed_scale: the mouse), cohesion and any compression the blocks start with can make is an artefact, however
  * stiff the fluid. The lattice's own summation error (up to 3% above rho0)
  * does not count as compression: at k = 1e6 it launched a column at rest at
  * 28 m/s. Also 100 rho0 for density, and, for total energy, its scale at
@@ -286,9 +286,9 @@ static void set_bounds(sph_sim *sim)
         v0 = fmax(v0, sqrt(s2));
     }
     double fall = sqrt(2.0 * sqrt(g2) * fall_height);
-    double mouse = (def->effects & SPH_EFFECT(INTERACTION))
-                       ? sqrt(2.0 * fabs(def->interaction_strength) * def->interaction_radius)
-                       : 0.0;
+    double forces = 0; /* the passes' own: the mouse's push (sph_pass.speed_scale) */
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (sim->in_pipeline[p] && sph_passes[p]->speed_scale) forces += sph_passes[p]->speed_scale(def);
     /* compression the blocks start with (overlapping blocks): the speed its
      * internal energy, e = k (ln r + 1/r - 1) at r = rho / rho0, could give */
     double rho_max = 0;
@@ -307,7 +307,7 @@ static void set_bounds(sph_sim *sim)
     /* a moving top wall drags the fluid up to its own speed */
     double lid = 0;
     for (int d = 0; d < def->dim; d++) lid += (double)def->wall_velocity[d] * def->wall_velocity[d];
-    sim->speed_scale = (float)(fall + v0 + mouse + squeeze + pull + sqrt(lid));
+    sim->speed_scale = (float)(fall + v0 + forces + squeeze + pull + sqrt(lid));
     sim->speed_fall = (float)fall;
     sim->speed_bound = (float)(SPH_SPEED_FACTOR * sim->speed_scale + 1.0);
     sim->density_bound = 100.0f * def->rest_density;
@@ -648,6 +648,14 @@ static void run_timed(sph_sim *sim, int p)
         watchdog_backend(sim, p);
     else
         sph_watchdog_check(sim, p);
+}
+
+const char *sph_sim_work_done_by(const sph_sim *sim)
+{
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (sim->in_pipeline[p] && sim->enabled[p] && sph_passes[p]->does_work && sph_passes[p]->does_work(sim))
+            return sph_passes[p]->name;
+    return NULL;
 }
 
 /* t after a step; a step shortened to a run's end lands on it, not a float

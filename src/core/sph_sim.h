@@ -443,6 +443,9 @@ const char *sph_sim_dt_warning(const sph_sim *sim, char *buf, size_t n);
  * at the current dt: a warning naming dt and the step count, said before the
  * run starts rather than found out after hours; NULL if not. */
 const char *sph_sim_length_warning(const sph_sim *sim, double until, char *buf, size_t n);
+/* The pass whose force does work on the fluid from outside now (sph_pass.does_work: the mouse while its
+ * button is down), NULL if none: the energy is not conserved then, by design. */
+const char *sph_sim_work_done_by(const sph_sim *sim);
 /* A run by time ends on t_end [s]: the step that would pass it is shortened
  * to end there, so `--time 0.005` stops at 0.005 s, not at the first step past
  * it; sph_sim_reached says when it has. t_end <= 0: no end. */

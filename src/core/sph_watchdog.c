@@ -107,7 +107,7 @@ void sph_watchdog_check(sph_sim *sim, int pass)
             value = sqrtf(s2);
             snprintf(what, sizeof what,
                      "speed %.4g m/s is above the bound %.4g m/s, 4 times what the scene can make: %.3g m/s "
-                     "(a fall %.3g m/s, the blocks, the mouse, cohesion, compression)",
+                     "(a fall %.3g m/s, the blocks, the passes' forces, cohesion, compression)",
                      value, sim->speed_bound, sim->speed_scale, sim->speed_fall);
         } else {
             snprintf(what, sizeof what, "%s %.4g is outside (0, %.4g], the bound the scene implies", fd.about,
@@ -121,8 +121,9 @@ void sph_watchdog_check(sph_sim *sim, int pass)
  * wall damping remove it) except for the scheme's own error. A gain of half
  * its step-0 scale (plus that of 0.5 m/s over the whole mass, for a scene
  * that starts with almost none) is a runaway even when every speed is below
- * its bound. The mouse does work and a live change of parameters changes the
- * internal energy, so both move the reference. With a backend the state is
+ * its bound. A pass whose force does work from outside (sph_pass.does_work:
+ * the mouse) and a live change of parameters, which changes the internal
+ * energy, move the reference. With a backend the state is
  * downloaded for this, so it is checked every 64 steps only. On the CPU it
  * runs every step, a serial pass over the particles: about 0.5 ms a step at
  * 55,000 particles (5 %), not counted in any pass and off in `sphlab bench`. */
@@ -134,7 +135,7 @@ void sph_watchdog_energy(sph_sim *sim, int pass)
     const double e = sph_stats_energy(&s);
     double mass = 0;
     for (uint32_t i = 0; i < sim->n; i++) mass += sim->P.mass[i];
-    if (!isfinite(sim->energy_start) || sim->interaction_active) {
+    if (!isfinite(sim->energy_start) || sph_sim_work_done_by(sim)) {
         sim->energy_start = e;
         sim->energy_scale = fmax(sim->energy_scale, fabs(s.ekin) + fabs(s.epot) + fabs(s.eint));
         return;

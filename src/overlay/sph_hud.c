@@ -100,7 +100,10 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
         }
     }
     double drift = sph_sim_energy_drift(sim);
-    if (sim->def.effects & SPH_EFFECT(COHESION) || sim->def.surface_tension != SPH_STENSION_NONE) {
+    const char *worker = sph_sim_work_done_by(sim); /* a force from outside: the energy is not conserved */
+    if (worker) {
+        if (drift == drift) HUD_LINE("energy drift: not shown while %s does work on the fluid", worker);
+    } else if (sim->def.effects & SPH_EFFECT(COHESION) || sim->def.surface_tension != SPH_STENSION_NONE) {
         /* the energy summed (kinetic, gravity, compression) leaves out the
          * surface's: a drop rounding itself turns surface energy into motion,
          * which a drift would show as an error */

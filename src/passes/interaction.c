@@ -50,6 +50,14 @@ static void run(sph_sim *sim)
     }
 }
 
+/* the speed a particle pulled from the edge of the radius reaches at the point */
+static double speed_scale(const sph_scene_def *def)
+{
+    return sqrt(2.0 * fabs(def->interaction_strength) * def->interaction_radius);
+}
+
+static bool does_work(const sph_sim *sim) { return sim->interaction_active; }
+
 const sph_pass sph_pass_interaction = {
     .name = "interaction",
     .summary = "push or pull around the mouse",
@@ -60,4 +68,6 @@ const sph_pass sph_pass_interaction = {
     .skip_reason = skip_reason,
     .describe = describe,
     .run = run,
+    .speed_scale = speed_scale,
+    .does_work = does_work,
 };
