@@ -226,6 +226,14 @@ if [ "$probe" -ne 0 ] && grep -Eq 'EGL: no device|no EGL_MESA_platform_surfacele
     skip=$((skip + 1))
     echo "SKIP: the GL backend checks: no EGL display on this machine: $(tail -1 "$tmp/probe.txt")"
 else
+    # --threads on the device is said to do nothing (it was taken without a word), and a misspelt
+    # SPHLAB_EGL_DEVICE is refused with the accepted values (it ran on llvmpipe, unsaid)
+    sphe "$sw" run "$scene" --backend gl --steps 2 --threads 2 --quiet > "$tmp/glt.txt" 2>&1 &&
+        grep -q "note: --threads 2 has no effect on the gl backend" "$tmp/glt.txt" && ok ||
+        { bad "run --backend gl --threads 2: want the note"; cat "$tmp/glt.txt"; }
+    sphe "$sw SPHLAB_EGL_DEVICE=bogus" run "$scene" --backend gl --steps 2 --quiet > "$tmp/glt.txt" 2>&1
+    [ $? -eq 1 ] && grep -q "SPHLAB_EGL_DEVICE=bogus: unknown value (accepted: software, any, none" "$tmp/glt.txt" && ok ||
+        { bad "SPHLAB_EGL_DEVICE=bogus: want exit 1 and the accepted values"; cat "$tmp/glt.txt"; }
     if sphe "$sw" run "$scene" --backend gl --steps 20 --dump "$tmp/gl.csv" > "$tmp/gl.txt" 2>&1; then
         grep -q 'backend gl: .*OpenGL' "$tmp/gl.txt" && ok || { bad "run --backend gl: no device line"; cat "$tmp/gl.txt"; }
         # the pass times' method is named (llvmpipe has timer queries) and the table counts every step

@@ -15,7 +15,8 @@ static const app_cmd_spec spec = {
     .cmd = APP_CMD(run),
     .synopsis = "usage: sphlab run SCENE.ini [options]\n",
     .footer = "exit status: 0 done; 1 bad scene or output; 2 bad command line (a bad --set too); 4 the watchdog stopped the run\n"
-              "(a non-finite or runaway value: the report names the step, pass and particle; --dump keeps that state)\n",
+              "(a non-finite or runaway value: the report names the step, pass and particle; --dump keeps that state);\n"
+              "5 the scene does not fit in memory\n",
     .max_pos = 1,
     .extra_pos = "more than one scene file",
 };
@@ -226,6 +227,9 @@ int cmd_run(int argc, char **argv)
         return app_error_status(err.code);
     }
     if (until >= 0) sph_sim_end_at(sim, until); /* the last step ends on it */
+    if (threads > 0 && sim->backend) /* it was taken without a word */
+        fprintf(stderr, "sphlab run: note: --threads %ld has no effect on the %s backend: the device runs the passes\n",
+                threads, sim->backend->name);
     if (stats.f) app_stats_header(stats.f, sim);
     bool progress = !quiet && isatty(STDERR_FILENO);
     /* off a terminal (a log, a batch job) a line now and then, not a redrawn one */

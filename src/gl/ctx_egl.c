@@ -97,6 +97,11 @@ sph_glctx *sph_glctx_create_egl_version(sph_gl *gl, int major_want, int minor_wa
         snprintf(err, n, "EGL: no device (SPHLAB_EGL_DEVICE=none)");
         return NULL;
     }
+    if (want && *want && strcmp(want, "software") != 0 && strcmp(want, "any") != 0) { /* a typo ran unsaid */
+        snprintf(err, n, "EGL: SPHLAB_EGL_DEVICE=%.60s: unknown value (accepted: software, any, none; unset: a GPU "
+                         "if EGL lists one, else software)", want);
+        return NULL;
+    }
     const char *ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     EGLDisplay dpy = ext && !software_only ? device_display(ext, any) : EGL_NO_DISPLAY;
     if (dpy == EGL_NO_DISPLAY && (!ext || !has_word(ext, "EGL_MESA_platform_surfaceless"))) {

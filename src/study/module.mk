@@ -36,3 +36,5 @@ $(BUILD)/tests/test_study%.o: CORE_CFLAGS += -Isrc/study
 check-clang: check-clang-study
 check-clang-study:
 	$(MAKE) CC=clang BUILD=build-clang $(STUDY_LIB_SRC:%=build-clang/study/%.o) $(STUDY_CMD_SRC:%=build-clang/study/%.o)
+# test_gl_study.c: a study on the GL backend (the study API and the GL tests' helpers)
+$(BUILD)/tests/test_gl_study.o: CORE_CFLAGS += -Isrc/study -Isrc/gpu

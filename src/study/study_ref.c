@@ -191,6 +191,8 @@ static void probe_free(probe *pr)
  * velocities on the unit vortex at the particles' positions. */
 static void tg_sample(probe *pr, const sph_sim *sim)
 {
+    /* on a backend sim->P is a host copy, refreshed on demand: read stale, the GL study saw no decay */
+    sph_sim_sync(sim, SPH_SYNC_FIELD(SPH_FIELD_POS) | SPH_SYNC_FIELD(SPH_FIELD_VEL) | SPH_SYNC_FIELD(SPH_FIELD_MASS));
     const sph_particles *P = &sim->P;
     double ekin = 0, num = 0, den = 0, k = pr->k;
     double x0 = sim->def.domain_min[0], y0 = sim->def.domain_min[1];
@@ -258,7 +260,8 @@ static void probe_step(probe *pr, const sph_sim *sim, double done)
     } else if (pr->m == STUDY_METRIC_TAYLOR_GREEN) {
         tg_sample(pr, sim);
     } else if (pr->m == STUDY_METRIC_HYDROSTATIC && done > 0.5) {
-        /* the measurement window: the second half of the run */
+        /* the measurement window: the second half of the run (every field the pressure may come from) */
+        sph_sim_sync(sim, SPH_SYNC_ALL);
         const sph_particles *P = &sim->P;
         for (uint32_t i = 0; i < sim->n; i++) {
             uint32_t id = P->id[i];
@@ -484,11 +487,13 @@ bool study_run(const sph_scene_def *def, study_metric m, long steps, double unti
         if (nl) *nl = '\0';
         snprintf(out->note, sizeof out->note, "stopped by the watchdog: %.400s", report);
     } else if (m == STUDY_METRIC_DENSITY || m == STUDY_METRIC_DENSITY_SURFACE) {
+        sph_sim_sync(sim, SPH_SYNC_ALL); /* a backend's host copy, fresh for the measurement */
         if (sim->step == 0)
             snprintf(out->note, sizeof out->note, "no step ran: density is computed by the first step");
         else
             measure_density(sim, m, out);
     } else if (m == STUDY_METRIC_HYDROSTATIC) {
+        sph_sim_sync(sim, SPH_SYNC_ALL);
         measure_hydrostatic(sim, &pr, out);
     } else if (m == STUDY_METRIC_COMPRESSION) {
         if (pr.comp_t > 0 && sim->step > 0) {
