@@ -633,6 +633,16 @@ got=$(tail -1 "$tmp/end.csv" | cut -d, -f2)
 sph run lessons/scenes/dam-break-2d.ini --steps 25 --quiet --vtk "$tmp/vtkend" 2> "$tmp/err.txt"
 [ "$(ls "$tmp/vtkend" | wc -l)" -eq 4 ] && grep -aq " step 25 t " "$tmp/vtkend/particles_00003.vtk" && ok ||
     { bad "run --steps 25 --vtk: want 4 files, the last at step 25"; ls "$tmp/vtkend"; }
+# the same --set key twice: the last is used, and said (it ran unsaid; in a file it is an error)
+sph check lessons/scenes/dam-break-2d.ini --set physics.stiffness=100 --set physics.stiffness=400 2>&1 |
+    grep -q "warning: --set physics.stiffness is given twice ('100', then '400'): the last is used" && ok ||
+    bad "check with physics.stiffness set twice: want the warning"
+# standard output that cannot be written is a failure (keys > /dev/full exited 0 with nothing written)
+if [ -w /dev/full ]; then
+    sph keys > /dev/full 2> "$tmp/full2.txt"
+    [ $? -eq 1 ] && grep -q "writing to standard output" "$tmp/full2.txt" && ok ||
+        { bad "keys > /dev/full: want exit 1"; cat "$tmp/full2.txt"; }
+fi
 # a view centred or turned on a NaN or an infinity drew an empty or nonsense frame with exit 0: refused
 sph render lessons/scenes/dam-break-2d.ini --steps 1 --out "$tmp/nanc" --center nan:1 > "$tmp/nanc.txt" 2>&1
 [ $? -eq 2 ] && grep -q -- "--center 'nan:1': want X:Y or X:Y:Z in metres, finite numbers" "$tmp/nanc.txt" && ok ||

@@ -116,6 +116,17 @@ int app_load_scene_status(const app_scene_opts *o, sph_scene_def *def)
     *def = sph_default_scene_def();
     sph_io_add_input(o->path); /* no output of the command may overwrite its scene */
     if (sph_scene_load(o->path, def, &err) == SPH_ERR_OK) {
+        /* the same key twice: the last is used, and said (a key given twice in a file is an error; on the command
+         * line an override of an override is fair, but it ran unsaid) */
+        for (int i = 1; i < o->n_sets; i++)
+            for (int k = 0; k < i; k++) {
+                const char *a = o->sets[k], *b = o->sets[i], *ea = strchr(a, '='), *eb = strchr(b, '=');
+                if (ea && eb && ea - a == eb - b && strncmp(a, b, (size_t)(ea - a)) == 0) {
+                    fprintf(stderr, "sphlab: warning: --set %.*s is given twice ('%s', then '%s'): the last is used\n",
+                            (int)(ea - a), a, ea + 1, eb + 1);
+                    break;
+                }
+            }
         for (int i = 0; i < o->n_sets; i++)
             if (sph_scene_set(def, o->sets[i], &err) != SPH_ERR_OK) {
                 /* an unknown key or a bad value given with --set is a bad command line, as in `bench` */
@@ -187,7 +198,7 @@ void app_out_abort(app_out *o)
     sph_out_abort(o);
 }
 
-int main(int argc, char **argv)
+static int run_command(int argc, char **argv)
 {
     /* Worker threads that sleep between parallel regions instead of spinning:
      * sets OMP_WAIT_POLICY=passive and runs sphlab again unless the user set a
@@ -251,4 +262,16 @@ int main(int argc, char **argv)
     if (near) fprintf(stderr, " (did you mean %s?)", near);
     fprintf(stderr, "\nsee `sphlab help` for the commands\n");
     return 2;
+}
+
+/* A table or summary that could not be written (stdout on a full disk, a closed pipe's reader aside) is a
+ * failure: `sphlab keys > /dev/full` exited 0 with nothing written. */
+int main(int argc, char **argv)
+{
+    int rc = run_command(argc, argv);
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "sphlab: writing to standard output: %s\n", strerror(errno ? errno : EIO));
+        return rc ? rc : 1;
+    }
+    return rc;
 }
