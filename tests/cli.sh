@@ -633,6 +633,14 @@ got=$(tail -1 "$tmp/end.csv" | cut -d, -f2)
 sph run lessons/scenes/dam-break-2d.ini --steps 25 --quiet --vtk "$tmp/vtkend" 2> "$tmp/err.txt"
 [ "$(ls "$tmp/vtkend" | wc -l)" -eq 4 ] && grep -aq " step 25 t " "$tmp/vtkend/particles_00003.vtk" && ok ||
     { bad "run --steps 25 --vtk: want 4 files, the last at step 25"; ls "$tmp/vtkend"; }
+# check of a GL scene says the neighbours pass builds no lists there, and counts no memory for them (it
+# described the CPU's lists and counted 245 KiB of them beside the GL buffers)
+# (check makes the GL context: only where the GL checks above ran)
+if [ "$probe" -eq 0 ]; then
+    sphe "$sw" check lessons/scenes/dam-break-2d.ini --set compute.backend=gl > "$tmp/glc.txt" 2>&1
+    grep -q "neighbours *no lists on the GL backend" "$tmp/glc.txt" && ! grep -q "neighbour lists" "$tmp/glc.txt" && ok ||
+        { bad "check with backend gl: want no lists described or counted"; cat "$tmp/glc.txt"; }
+fi
 # the same --set key twice: the last is used, and said (it ran unsaid; in a file it is an error)
 sph check lessons/scenes/dam-break-2d.ini --set physics.stiffness=100 --set physics.stiffness=400 2>&1 |
     grep -q "warning: --set physics.stiffness is given twice ('100', then '400'): the last is used" && ok ||

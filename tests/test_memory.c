@@ -47,6 +47,20 @@ Test(memory, estimate_matches_the_simulation_allocations)
     }
 }
 
+/* The GL backend builds no neighbour lists (its pair passes walk the cells): the estimate counted the CPU's
+ * beside the GL buffers (865 MiB of them at 9 million particles). No GL context is needed for the estimate. */
+Test(memory, gl_backend_counts_no_neighbour_lists)
+{
+    sph_scene_def def = test_scene(BOX BLOCK);
+    sph_mem_estimate cpu, gl;
+    sph_memory_estimate(&def, &cpu);
+    def.backend = SPH_BACKEND_GL;
+    sph_memory_estimate(&def, &gl);
+    cr_expect(item(&cpu, "neighbour lists") > 0, "the CPU's lists are counted");
+    cr_expect_eq(item(&gl, "neighbour lists"), 0, "GL: %g bytes of lists counted", item(&gl, "neighbour lists"));
+    cr_expect(item(&gl, "GL buffers") > 0, "GL: its buffers are counted");
+}
+
 /* The hash table is counted: 2^20 keys on 100 particles is 8 MiB of it. */
 Test(memory, hash_table_is_counted)
 {

@@ -90,7 +90,7 @@ void sph_memory_estimate(const sph_scene_def *def, sph_mem_estimate *out)
                 keys, 0);
         }
     }
-    if (in[SPH_PASS_NEIGHBOURS]) {
+    if (in[SPH_PASS_NEIGHBOURS] && def->backend != SPH_BACKEND_GL) { /* the GL backend builds no lists */
         /* each row once in its thread's buffer and once in the merged lists */
         double nb = sph_scene_neighbour_estimate(def);
         if (def->skin > 0) nb *= pow(1.0 + def->skin, def->dim); /* Verlet lists reach h (1 + skin) */

@@ -38,7 +38,11 @@ static void describe(const sph_scene_def *def, char *out, int n)
 {
     static const char *const about[SPH_SEARCH_COUNT] = {
         "hash: 3^d cells through keys and offsets", "grid: 3^d cells of a dense grid", "brute force, all pairs O(N^2)"};
-    snprintf(out, (size_t)n, "%s", about[def->search]);
+    if (def->backend == SPH_BACKEND_GL) /* `check` said the lists were built there */
+        snprintf(out, (size_t)n, "no lists on the GL backend: its pair passes walk the cells (%s) themselves",
+                 def->search == SPH_SEARCH_BRUTE ? "all pairs" : def->search == SPH_SEARCH_GRID ? "a dense grid" : "hash");
+    else
+        snprintf(out, (size_t)n, "%s", about[def->search]);
 }
 
 /* Why lists can outgrow the estimate that validation checked. */
