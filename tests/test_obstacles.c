@@ -427,7 +427,9 @@ Test(obstacles, a_box_cut_by_the_domain_is_counted_as_cut)
         sph_error err;
         cr_assert_eq(sph_scene_load_string(ini, "test.ini", &def, &err), SPH_ERR_OK, "%s", err.msg);
         cr_assert_eq(sph_scene_validate(&def, &err), SPH_ERR_OK, "%s", err.msg);
-        double n = sph_obstacle_wall_count(&def, 0);
-        cr_expect(n > 100 && n < 2000, "%s: %g wall particles inside the domain", shapes[k], n);
+        /* a particle count, not a time: what is left inside the 1 m domain at spacing 0.005 m is a strip 1 m
+         * long and a few layers deep, hundreds of wall particles, where the uncut shapes would make 8e8 */
+        double walls = sph_obstacle_wall_count(&def, 0);
+        cr_expect(walls > 100 && walls < 2000, "%s: %g wall particles inside the domain", shapes[k], walls);
     }
 }

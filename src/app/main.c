@@ -269,8 +269,11 @@ static int run_command(int argc, char **argv)
 int main(int argc, char **argv)
 {
     int rc = run_command(argc, argv);
-    if (fflush(stdout) != 0 || ferror(stdout)) {
-        fprintf(stderr, "sphlab: writing to standard output: %s\n", strerror(errno ? errno : EIO));
+    errno = 0;
+    const bool flushed = fflush(stdout) == 0;
+    if (!flushed || ferror(stdout)) { /* an earlier write's error is kept by the stream, not by errno */
+        fprintf(stderr, "sphlab: writing to standard output: %s\n",
+                !flushed && errno ? strerror(errno) : "a write failed");
         return rc ? rc : 1;
     }
     return rc;

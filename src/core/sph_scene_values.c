@@ -49,7 +49,7 @@ static void range_text(const sph_key *k, char *out, size_t n)
         return;
     }
     if (k->type == SPH_KEY_STRING) {
-        snprintf(out, n, "any text up to 63 characters");
+        snprintf(out, n, "text up to 63 characters, no control characters");
         return;
     }
     const char *unit = k->unit && *k->unit ? k->unit : "";

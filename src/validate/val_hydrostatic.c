@@ -209,16 +209,9 @@ int val_run_hydrostatic(const val_ctx *c, const val_problem *p)
         ch.p[0].zero_line = true;
         for (int r = 0; r < done && r < PLOT_MAX_SERIES; r++) {
             hyd_obs *o = &obs[r];
-            /* sorted by height, scaled to y/H; the speed scaled to t/t_end and sqrt(gH) */
-            for (size_t i = 0; i < o->prof_p.n; i++) {
-                size_t best = i;
-                for (size_t j = i + 1; j < o->prof_p.n; j++)
-                    if (o->prof_p.x[j] < o->prof_p.x[best]) best = j;
-                double tx = o->prof_p.x[i], ty = o->prof_p.y[i];
-                o->prof_p.x[i] = o->prof_p.x[best], o->prof_p.y[i] = o->prof_p.y[best];
-                o->prof_p.x[best] = tx, o->prof_p.y[best] = ty;
+            /* by height (sorted above, for the CSV), scaled to y/H; the speed scaled to t/t_end and sqrt(gH) */
+            for (size_t i = 0; i < o->prof_p.n; i++)
                 ok &= val_series_add(&err_y[r], o->prof_p.x[i] / o->H, o->prof_p.y[i]);
-            }
             for (size_t i = 0; i < o->speed.n; i++)
                 ok &= val_series_add(&err_t[r], o->speed.x[i] / o->t_end, o->speed.y[i] / sqrt(o->g * o->H));
             plot_series *s = &ch.p[0].s[ch.p[0].n++], *t = &ch.p[1].s[ch.p[1].n++];
