@@ -65,6 +65,47 @@ static void combo_text(const study_plan *p, const int *idx, char *out, size_t n,
     if (p->n_knobs == 0) snprintf(out, n, "(the scene as it is)");
 }
 
+/* Whether knob k sets kernels.h (alone, linked by '+', or as h_over_spacing): then h / spacing is the user's. */
+static bool knob_sets_h(const study_knob *kn)
+{
+    if (strcmp(kn->key, "h_over_spacing") == 0) return true;
+    const char *part = kn->key;
+    for (;;) {
+        const size_t len = strcspn(part, "+");
+        if (len == strlen("kernels.h") && strncmp(part, "kernels.h", len) == 0) return true;
+        if (!part[len]) return false;
+        part += len + 1;
+    }
+}
+
+/* A study over the spacing at a fixed kernels.h changes h / spacing too, so its errors mix a finer lattice
+ * with a kernel that spans more spacings (2 to 4 for spacing 0.02 to 0.01 at h = 0.04 m): a student read the
+ * falling error as convergence with resolution. Said, with the two ways to keep the ratio. */
+static void note_ratio(const study_plan *plan, const sph_scene_def *scene, double lo, double hi)
+{
+    if (!(hi > lo * (1 + 1e-6))) return;
+    for (int k = 0; k < plan->n_knobs; k++)
+        if (knob_sets_h(&plan->knob[k])) return;
+    const study_knob *sk = NULL; /* the knob that moves the spacing, for the example */
+    for (int k = 0; k < plan->n_knobs && !sk; k++) {
+        const char *dot = strrchr(plan->knob[k].key, '.');
+        if (dot && strcmp(dot, ".spacing") == 0 && !strchr(plan->knob[k].key, '+')) sk = &plan->knob[k];
+    }
+    const double s0 = sph_scene_finest_spacing(scene), ratio = s0 > 0 ? scene->h / s0 : NAN;
+    fprintf(stderr,
+            "sphlab study: warning: h / spacing runs from %.3g to %.3g over the combinations: kernels.h stays %g m "
+            "while the spacing changes, so each error mixes a finer lattice with a kernel spanning more spacings; to "
+            "refine at one ratio, add --vary h_over_spacing=%.3g",
+            lo, hi, (double)scene->h, ratio);
+    if (sk && isfinite(ratio)) {
+        fprintf(stderr, " or link the keys: --vary '%s+kernels.h=", sk->key);
+        for (int v = 0; v < sk->n && v < 3; v++)
+            fprintf(stderr, "%s%s+%.6g", v ? "," : "", sk->value[v], ratio * atof(sk->value[v]));
+        fprintf(stderr, "%s'", sk->n > 3 ? ",..." : "");
+    }
+    fprintf(stderr, "\n");
+}
+
 static const char *error_label(study_metric m)
 {
     switch (m) {
@@ -187,6 +228,7 @@ int study_cmd_run(const study_cmd *cmd)
         return 1;
     }
     /* every combination must be a valid scene the metric applies to, before anything runs */
+    double ratio_lo = INFINITY, ratio_hi = 0; /* h / spacing over the combinations */
     for (long c = 0; c < combos; c++) {
         sph_scene_def def = scene;
         bool usage = false;
@@ -195,7 +237,13 @@ int study_cmd_run(const study_cmd *cmd)
             fprintf(stderr, "sphlab study: %s\n", why);
             return usage ? 2 : 1; /* a misspelt --vary key is a bad command line, as a misspelt --set */
         }
+        const double s = sph_scene_finest_spacing(&def);
+        if (s > 0) {
+            ratio_lo = fmin(ratio_lo, def.h / s);
+            ratio_hi = fmax(ratio_hi, def.h / s);
+        }
     }
+    note_ratio(&plan, &scene, ratio_lo, ratio_hi);
     if (!prepare_dir(out)) return 1;
 
     study_row *rows = calloc((size_t)combos, sizeof *rows);
