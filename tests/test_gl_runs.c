@@ -242,3 +242,30 @@ Test(gl_backend, slow_drift_compensated_positions)
         sph_sim_destroy(g);
     }
 }
+
+/* A run the watchdog stops on the GL backend: it looks once a step, after integrate (sph_sim.c), so the report
+ * names that pass; it named the step's first pass to write the field ('external' on an H200, for a particle that
+ * integrate had sent out of the box). The CPU names the pass that wrote the value. A DFSPH dam break held to
+ * 2 iterations a 10 ms step runs away within a few steps. */
+Test(gl_backend, watchdog_names_where_it_looked)
+{
+    need_gl();
+    const char *ini = "[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=3 1.5\n"
+                      "[fluid column]\nmin=0 0\nmax=1 1\nspacing=0.02\n[kernels]\nh=0.04\n"
+                      "[physics]\npressure_solver=dfsph\nsolver_max_iterations=2\nviscosity=0.002\n"
+                      "[time]\ndt=0.01\ncfl=1\n";
+    for (int gl = 0; gl < 2; gl++) {
+        sph_sim *sim = test_gl_make(ini, NULL, 0, gl);
+        for (int k = 0; k < 200 && !sim->alarm.raised; k++) sph_sim_step(sim);
+        cr_assert(sim->alarm.raised, "%s: 2 iterations a 10 ms step ran %g s", gl ? "gl" : "cpu", sim->t);
+        char buf[8192];
+        sph_sim_alarm_report(sim, buf, sizeof buf);
+        if (gl)
+            cr_expect(strstr(buf, "found after pass 'integrate' (the gl backend is checked once a step"),
+                      "gl: the report does not name integrate: %.300s", buf);
+        else
+            cr_expect(strstr(buf, "), after pass '") && !strstr(buf, "found after"),
+                      "cpu: the report does not name the pass that wrote the value: %.300s", buf);
+        sph_sim_destroy(sim);
+    }
+}

@@ -610,8 +610,9 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
  * download them all each pass. The integrate pass's reduction already reads
  * back the largest speed and acceleration; a non-finite or runaway value
  * there triggers the download and the full scan, which names the field and
- * particle (the pass it names is the first of the step that wrote a field
- * with a bad value). A density runaway that leaves speeds finite and bounded
+ * particle; the report names integrate, where it was found (the scan's pass, the
+ * first of the step that writes the field, is no more than that: on an H200 it
+ * named 'external' for a particle that integrate had sent out of the box). A density runaway that leaves speeds finite and bounded
  * is caught only on the CPU backend. */
 static void watchdog_backend(sph_sim *sim, int p)
 {
@@ -620,6 +621,7 @@ static void watchdog_backend(sph_sim *sim, int p)
     sph_sim_sync(sim, SPH_SYNC_ALL);
     for (int q = 0; q < SPH_PASS_COUNT && !sim->alarm.raised; q++)
         if (sim->in_pipeline[q] && sim->enabled[q]) sph_watchdog_check(sim, q);
+    if (sim->alarm.raised) sim->alarm.checked_after = p; /* found here, whichever pass wrote the field */
 }
 
 static void run_timed(sph_sim *sim, int p)

@@ -166,6 +166,8 @@ typedef struct sph_alarm {
     bool raised;
     uint64_t step;     /* the step being computed (steps completed before it) */
     int pass;          /* the pass that wrote the value */
+    int checked_after; /* the pass after which it was found: pass on the CPU; on a backend, integrate (one scan a
+                        * step, sph_sim.c), where pass is only the step's first to write the field */
     uint32_t particle; /* index in the arrays (id: P.id[particle]) */
     int field, comp;
     float value;

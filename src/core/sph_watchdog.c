@@ -30,7 +30,7 @@ static void raise_alarm(sph_sim *sim, int pass, uint32_t i, int field, int comp,
     sph_alarm *a = &sim->alarm;
     a->raised = true;
     a->step = sim->step;
-    a->pass = pass;
+    a->pass = a->checked_after = pass;
     a->particle = i;
     a->field = field;
     a->comp = comp;
@@ -190,8 +190,15 @@ void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n)
     if (!a->raised) return;
     sph_sim_sync(sim, SPH_SYNC_ALL); /* values and neighbours come from the host copy */
     uint32_t i = a->particle;
-    append(out, n, &used, "watchdog: step %llu (t = %.6g s, dt = %.3g s), after pass '%s': particle %u (id %u): %s\n",
-           (unsigned long long)a->step, sim->t, sim->dt, sph_passes[a->pass]->name, i, sim->P.id[i], a->what);
+    if (a->checked_after != a->pass) /* a backend's one scan a step: the pass that wrote the field is not known */
+        append(out, n, &used,
+               "watchdog: step %llu (t = %.6g s, dt = %.3g s), found after pass '%s' (the %s backend is checked once "
+               "a step, there): particle %u (id %u): %s\n",
+               (unsigned long long)a->step, sim->t, sim->dt, sph_passes[a->checked_after]->name,
+               sim->backend ? sim->backend->name : "device", i, sim->P.id[i], a->what);
+    else
+        append(out, n, &used, "watchdog: step %llu (t = %.6g s, dt = %.3g s), after pass '%s': particle %u (id %u): %s\n",
+               (unsigned long long)a->step, sim->t, sim->dt, sph_passes[a->pass]->name, i, sim->P.id[i], a->what);
     append(out, n, &used, "  values:");
     particle_values(sim, i, out, n, &used);
     append(out, n, &used, "\n");
