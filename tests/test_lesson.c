@@ -157,6 +157,9 @@ static char *check_report(const char *dir, int num, const char *title, const cha
     cr_expect(!strstr(fr, "| wall model |") && !strstr(fr, "| particle |") && !strstr(fr, "| level |") &&
                   !strstr(fr, "| pass |") && !strstr(fr, "Pareto front"),
               "report.fr.md has an English table header");
+    /* nor an English row name (lesson 2's places in the block: "interior", "floor (wall)", ...) */
+    cr_expect(!strstr(fr, "| interior |") && !strstr(fr, "| floor (wall) |") && !strstr(fr, "(free surface) |"),
+              "report.fr.md has an English row name");
     /* the list of figures and the busy-machine note are French too: no caption with an English article */
     cr_expect(!strstr(fr, "The machine was busy"), "report.fr.md has the busy-machine note in English");
     for (const char *l = strstr(fr, "\n- `"); l; l = strstr(l + 1, "\n- `")) {

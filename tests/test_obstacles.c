@@ -300,7 +300,7 @@ Test(obstacles, parse_errors)
         {"[obstacle b]\ncolour=red\n", "test.ini:15: unknown key 'colour' in [obstacle b] (accepted: shape, min, max, centre, radius, slip)"},
         {"[obstacle b]\nmin=0.4 0.4\nmax=0.6 0.6\n[obstacle b]\n", "test.ini:17: [obstacle b] opens the obstacle 'b' again"},
         {"[obstacle]\nmin=0.4 0.4\n", "test.ini:14: [obstacle]: the obstacle has no name"},
-        {"[obstacle a,b]\nmin=0.4 0.4\n", "the name has a character outside that set"},
+        {"[obstacle a,b]\nmin=0.4 0.4\n", "the name holds another character"},
         {"[obstacle b]\nmin=0.4 0.4\nmin=0.5 0.5\n", "duplicate key 'min' in [obstacle b]"},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {

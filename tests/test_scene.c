@@ -693,7 +693,7 @@ static void remove_dir(const char *dir)
 
 Test(scene, cli_unwritable_output_fails_before_simulating)
 {
-    char dir[] = "/tmp/sphlab-test-out-XXXXXX", scene[300], stats[300], out[4096], found[256];
+    char dir[] = "/tmp/sphlab-test-out-XXXXXX", scene[300], stats[300], out[4096], found[256], bad[320];
     cr_assert(mkdtemp(dir) != NULL);
     snprintf(scene, sizeof scene, "%s/s.ini", dir);
     FILE *f = fopen(scene, "w");
@@ -701,17 +701,29 @@ Test(scene, cli_unwritable_output_fails_before_simulating)
     fputs(BASE2, f);
     fclose(f);
     snprintf(stats, sizeof stats, "%s/stats.csv", dir);
+    /* a folder that cannot be made, even as root (a missing one is made: the output folders' rule): below a file */
+    snprintf(bad, sizeof bad, "%s/afile/x.csv", dir);
+    char afile[310];
+    snprintf(afile, sizeof afile, "%s/afile", dir);
+    f = fopen(afile, "w");
+    cr_assert(f);
+    fclose(f);
     /* 2e9 steps: only a refusal before the run ends in time */
-    int rc = sphlab_timed(20, out, sizeof out, "run %s --steps 2000000000 --quiet --stats /nonexistent-dir/x.csv",
-                          scene);
-    cr_expect_eq(rc, 1, "--stats /nonexistent-dir/x.csv: exit %d:\n%s", rc, out);
-    cr_expect(strstr(out, "/nonexistent-dir/x.csv") != NULL, "message: %s", out);
-    cr_expect(!exists("/nonexistent-dir/x.csv"));
-    rc = sphlab_timed(20, out, sizeof out, "run %s --steps 2000000000 --quiet --stats %s --dump /nonexistent-dir/x.csv",
-                      scene, stats);
-    cr_expect_eq(rc, 1, "--dump /nonexistent-dir/x.csv: exit %d:\n%s", rc, out);
+    int rc = sphlab_timed(20, out, sizeof out, "run %s --steps 2000000000 --quiet --stats %s", scene, bad);
+    cr_expect_eq(rc, 1, "--stats %s: exit %d:\n%s", bad, rc, out);
+    cr_expect(strstr(out, "afile") != NULL, "message: %s", out);
+    cr_expect(!exists(bad));
+    rc = sphlab_timed(20, out, sizeof out, "run %s --steps 2000000000 --quiet --stats %s --dump %s", scene, stats, bad);
+    cr_expect_eq(rc, 1, "--dump %s: exit %d:\n%s", bad, rc, out);
     cr_expect(!exists(stats), "the --stats file of a refused run was left behind");
     cr_expect(!dir_has_tmp(dir, found, sizeof found), "left %s", found);
+    /* a folder made for an output of a refused run is taken back */
+    char made[330];
+    snprintf(made, sizeof made, "%s/new/stats.csv", dir);
+    rc = sphlab_timed(20, out, sizeof out, "run %s --steps 2000000000 --quiet --stats %s --dump %s", scene, made, bad);
+    snprintf(made, sizeof made, "%s/new", dir);
+    cr_expect(rc == 1 && !exists(made), "exit %d; the folder made for --stats of a refused run was left: %s", rc, out);
+    remove(afile);
     remove_dir(dir);
 }
 

@@ -189,7 +189,7 @@ const app_opt app_options[] = {
      "the commands' outputs go to DIR/logs/",
      LESSON, PATH(export_dir)},
     {"--format", NULL, "md|html",
-     "with --export: html also writes DIR/report.html (and report.fr.html), the figures\nshown in the page (default md: report.md only)",
+     "with --export: html also writes DIR/report.html (and report.fr.html), the figures\nshown in the page (default md: report.md and report.fr.md only)",
      LESSON, CHOICE(format, "md|html")},
     {"--quick", NULL, NULL, "with --export: fewer steps and variants (for tests: a few seconds a lesson)", LESSON,
      FLAG(quick)},

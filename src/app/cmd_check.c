@@ -8,7 +8,7 @@
 
 void app_print_pipeline(FILE *f, const sph_sim *sim)
 {
-    char about[160];
+    char about[512]; /* the longest description (a Laplacian with negative weights, the solvers with walls) fits */
     int k = 0;
     fprintf(f, "pipeline (in order):\n");
     for (int p = 0; p < SPH_PASS_COUNT; p++) {
@@ -51,6 +51,10 @@ void app_check_report(FILE *f, const char *path, const sph_sim *sim)
     const sph_scene_def *def = &sim->def;
     fprintf(f, "scene %s: %s, %dD, %u particles in %d block%s, h = %g m\n", path, *def->name ? def->name : "(unnamed)",
             def->dim, sim->n, def->n_blocks, def->n_blocks == 1 ? "" : "s", def->h);
+    if (!def->n_obstacles && sim->n > (uint32_t)sph_scene_particle_count(def)) { /* the domain's wall particles */
+        double fluid = sph_scene_particle_count(def);
+        fprintf(f, "particles: %.0f fluid, %.0f wall (domain box)\n", fluid, (double)sim->n - fluid);
+    }
     if (def->n_obstacles) {
         double fluid = sph_scene_particle_count(def);
         fprintf(f, "particles: %.0f fluid, %.0f wall (domain box and obstacles); %.0f fluid nodes of the blocks fall "

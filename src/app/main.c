@@ -180,7 +180,7 @@ bool app_load_scene(const app_scene_opts *o, sph_scene_def *def)
 bool app_out_open(app_out *o, const char *path)
 {
     char err[SPH_IO_PATH + 200];
-    if (sph_out_open(o, path, err, sizeof err)) return true;
+    if (sph_parent_dir(path, err, sizeof err) && sph_out_open(o, path, err, sizeof err)) return true;
     fprintf(stderr, "sphlab: %s\n", err);
     return false;
 }

@@ -291,8 +291,8 @@ static bool fluid_header(parse_ctx *ctx, const char *header, char *str, int num)
         if (!*c || !(isalnum((unsigned char)*c) || *c == '-' || *c == '_')) {
             ctx->code = sph_fail(ctx->err, SPH_ERR_PARSE,
                                  "%s:%d: [%.120s]: %s; an obstacle's name, e.g. [obstacle rock], may hold letters, "
-                                 "digits, '-' and '_' (it names --stats columns)",
-                                 ctx->file, ctx->line, header, *c ? "the name has a character outside that set"
+                                 "digits, '-' and '_' only (it names --stats columns)",
+                                 ctx->file, ctx->line, header, *c ? "the name holds another character"
                                                                   : "the obstacle has no name");
             return false;
         }

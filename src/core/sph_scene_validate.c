@@ -148,6 +148,14 @@ static void unread_keys(const sph_scene_def *def, char *buf, size_t n)
          !(def->effects & SPH_EFFECT(VISCOSITY)) ||
              (def->viscosity_form != SPH_VFORM_ARTIFICIAL && def->viscosity_form != SPH_VFORM_MORRIS_ARTIFICIAL),
          "only viscosity_form = artificial or morris-artificial reads it, with the effect viscosity"},
+        /* Monaghan's term reads alpha and the pressure kernel; a nu left there changed nothing, unsaid (a user's
+         * review of the scene format) */
+        {"physics", "viscosity",
+         (def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity_form == SPH_VFORM_ARTIFICIAL,
+         "viscosity_form = artificial reads alpha instead (morris-artificial reads both)"},
+        {"kernels", "viscosity",
+         (def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity_form == SPH_VFORM_ARTIFICIAL,
+         "viscosity_form = artificial takes the pressure kernel's gradient"},
         {"physics", "shifting_coefficient", def->shifting == SPH_SHIFT_NONE, "only shifting = lind or tvf reads it"},
         {"domain", "wall_damping", !walls, "only the effect walls reads it"},
         {"interaction", "radius", !(def->effects & SPH_EFFECT(INTERACTION)), "only the effect interaction reads it"},
@@ -174,6 +182,7 @@ static void unread_keys(const sph_scene_def *def, char *buf, size_t n)
 }
 
 static const char *estimate_warning(const sph_scene_def *def, char *buf, size_t n);
+static const char *origin_text(const sph_scene_def *def, int line, char *buf, size_t n);
 
 const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n)
 {
@@ -215,10 +224,11 @@ static const char *estimate_warning(const sph_scene_def *def, char *buf, size_t 
     double finest = INFINITY;
     for (int b = 0; b < def->n_blocks; b++) finest = fmin(finest, def->blocks[b].spacing);
     if (def->h <= finest) { /* pi (h/s)^2 is no count there: a lattice particle has none within h */
+        char loc[300];
         snprintf(buf, n,
-                 "h = %g m is not larger than the spacing %g m: a particle on the lattice has no neighbour within h, "
-                 "only itself (use h of about 2 spacings)",
-                 def->h, finest);
+                 "%s: [kernels] h = %g m is not larger than the spacing %g m: a particle on the lattice has no "
+                 "neighbour within h, only itself (use h of about 2 spacings)",
+                 origin_text(def, def->origin[key_index("kernels", "h")].line, loc, sizeof loc), def->h, finest);
         return buf;
     }
     if (nb < 6) {

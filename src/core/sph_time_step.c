@@ -10,7 +10,7 @@
  *   sound and flow:  dt <= cfl h_s / (c + |v|max)   (c = sqrt(k) with pressure and
  *                    pressure_solver = eos; c = 0 with pcisph or dfsph)
  *   forces:          dt <= cfl sqrt(h_s / |a|max)
- *   viscosity:       dt <= cfl h_s^2 / nu
+ *   viscosity:       dt <= cfl h_s^2 / nu   (a form that reads nu: not artificial)
  *   capillary:       dt <= cfl sqrt(rho0 h_s^3 / (2 pi sigma))   (surface_tension = csf)
  * An explicit step longer than these lets a signal cross more than a particle
  * spacing in one step, and the scheme blows up. */
@@ -32,7 +32,10 @@ float sph_time_step_limit(const sph_sim *sim, float cfl, const char **which)
         dt = cfl * sqrt(hs / sim->max_acc);
         w = "forces: dt <= cfl sqrt((h/2) / |a|max)";
     }
-    if ((def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity > 0 && cfl * hs * hs / def->viscosity < dt) {
+    /* not under viscosity_form = artificial, which reads alpha, not nu (a nu left in such a scene shortened the
+     * step of a run it did not otherwise touch) */
+    if ((def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity_form != SPH_VFORM_ARTIFICIAL && def->viscosity > 0 &&
+        cfl * hs * hs / def->viscosity < dt) {
         dt = cfl * hs * hs / def->viscosity;
         w = "viscosity: dt <= cfl (h/2)^2 / nu";
     }

@@ -73,6 +73,9 @@ bool sph_mkdir_p(const char *dir, char *err, size_t n);
  * the deepest first: called when a command fails, so that it leaves no empty
  * output folder behind. A folder that was there before is never touched. */
 void sph_dirs_made_remove_empty(void);
+/* mkdir -p of the folder PATH names a file in (none: nothing to make): an output file's folder is made as an
+ * output folder is (`run --stats new/s.csv` failed where `render --out new` made it). */
+bool sph_parent_dir(const char *path, char *err, size_t n);
 /* mkdir -p DIR, then checks that a file can be made in it (one is made and removed). */
 bool sph_output_dir(const char *dir, char *err, size_t n);
 

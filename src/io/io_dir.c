@@ -66,3 +66,20 @@ bool sph_output_dir(const char *dir, char *err, size_t n)
     unlink(probe);
     return true;
 }
+
+bool sph_parent_dir(const char *path, char *err, size_t n)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash || slash == path) return true; /* the current folder, or the root */
+    char dir[SPH_IO_PATH];
+    if ((size_t)(slash - path) >= sizeof dir) {
+        if (err && n) snprintf(err, n, "%s: path too long", path);
+        return false;
+    }
+    memcpy(dir, path, (size_t)(slash - path));
+    dir[slash - path] = '\0';
+    char why[SPH_IO_PATH + 100] = "";
+    if (sph_mkdir_p(dir, why, sizeof why)) return true;
+    if (err && n) snprintf(err, n, "%s: its folder: %s", path, why); /* the file asked for, then what failed */
+    return false;
+}

@@ -222,12 +222,16 @@ int lx_lesson2(lx *x)
     lx_pipeline(x, "lesson.ini", NULL, 0);
 
     static const struct {
-        const char *name;
-        int col, row; /* -1: last */
+        const char *name, *name_fr; /* the CSV's and the English report's; the French report's */
+        int col, row;               /* -1: last */
     } spot[] = {
-        {"interior", -2, -3}, {"top (free surface)", -2, -1}, {"right side (free surface)", -1, -3},
-        {"floor (wall)", -2, 0}, {"left side (wall)", 0, -3}, {"corner floor / left wall", 0, 0},
-        {"corner top / right (free)", -1, -1},
+        {"interior", "intérieur", -2, -3},
+        {"top (free surface)", "haut (surface libre)", -2, -1},
+        {"right side (free surface)", "côté droit (surface libre)", -1, -3},
+        {"floor (wall)", "fond (paroi)", -2, 0},
+        {"left side (wall)", "côté gauche (paroi)", 0, -3},
+        {"corner floor / left wall", "coin fond / paroi gauche", 0, 0},
+        {"corner top / right (free)", "coin haut / droite (libre)", -1, -1},
     };
     enum { NSPOT = 7 };
     static const double hq[] = {2}, hf[] = {1.5, 2, 3};
@@ -283,7 +287,7 @@ int lx_lesson2(lx *x)
     FILE *f = lx_csv_open(x, "density-points.csv");
     if (f) fprintf(f, "wall_model,h_over_spacing,particle,rho,error_percent\n");
     for (int q = 0; q < NSPOT + 2; q++) {
-        lx_md(x, "| %s |", q < NSPOT    ? spot[q].name
+        lx_md(x, "| %s |", q < NSPOT    ? lx_fmt("{{@%s|%s}}", spot[q].name, spot[q].name_fr)
                            : q == NSPOT ? "{{@lowest|la plus basse}}"
                                         : "{{@highest|la plus haute}}");
         for (int m = 0; m < 2; m++)

@@ -20,9 +20,15 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "summation with the %s kernel%s%s", sph_kernel_names[def->kernel_density],
-             sph_scene_wall_volume(def) ? ", walls count as the lattice continued at rest" : "",
-             def->density_method == SPH_DMETHOD_CONTINUITY ? "; at the start only, then the carried rho_c" : "");
+    if (def->density_method == SPH_DMETHOD_CONTINUITY) /* a new run starts from the lattice's, not a sum (sph_sim.c) */
+        snprintf(out, (size_t)n,
+                 "carried (continuity): rho_c + dt drho each step, from m / spacing^dim at the start; the %s "
+                 "kernel's sum%s only where continuity is switched on during a run",
+                 sph_kernel_names[def->kernel_density],
+                 sph_scene_wall_volume(def) ? " (walls as the lattice continued)" : "");
+    else
+        snprintf(out, (size_t)n, "summation with the %s kernel%s", sph_kernel_names[def->kernel_density],
+                 sph_scene_wall_volume(def) ? ", walls count as the lattice continued at rest" : "");
 }
 
 /* The sum for one particle; dim and dbl are constants (SPH_SPECIALISE). */

@@ -121,7 +121,8 @@ int cmd_render(int argc, char **argv)
     }
     /* the video file first: a path it cannot write is refused before the run */
     sph_video *video = NULL;
-    if (video_path && !(video = sph_video_open(video_path, vo.w, vo.h, fps, err, sizeof err))) {
+    if (video_path && !(sph_parent_dir(video_path, err, sizeof err) &&
+                        (video = sph_video_open(video_path, vo.w, vo.h, fps, err, sizeof err)))) {
         fprintf(stderr, "sphlab render: %s\n", err);
         return 1;
     }
