@@ -334,3 +334,21 @@ Test(robust, watchdog_says_the_solves_ended_short)
               "the report does not say the solves were capped (want \"%s\"): %s", want, buf);
     sph_sim_destroy(sim);
 }
+
+/* The watchdog's speed scale counts the surface tension's pull as it counts cohesion's: a still square under csf,
+ * with no gravity and no velocity, had a scale of 0 and a bound of 1 m/s ("4 times what the scene can make: 0
+ * m/s"), which its corners' first rounding can pass. */
+Test(robust, speed_scale_counts_surface_tension)
+{
+    const char *ini = "[scene]\neffects=pressure viscosity\n[domain]\nmin=-0.1 -0.1\nmax=0.1 0.1\n"
+                      "[fluid drop]\nmin=-0.04 -0.04\nmax=0.04 0.04\nspacing=0.005\n[kernels]\nh=0.015\ndensity=cubic\n"
+                      "pressure=cubic\nviscosity=cubic\n[physics]\nstiffness=100\nviscosity=0.001\n";
+    char with[1024];
+    snprintf(with, sizeof with, "%ssurface_tension=csf\nsigma=0.0728\n", ini);
+    sph_sim *still = test_sim(ini, 1), *tense = test_sim(with, 1);
+    cr_expect(still->speed_scale == 0.0f, "no force, no velocity: scale %g m/s", still->speed_scale);
+    cr_expect(tense->speed_scale > 0.0f, "csf's pull not counted: scale %g m/s, bound %g m/s", tense->speed_scale,
+              tense->speed_bound);
+    sph_sim_destroy(still);
+    sph_sim_destroy(tense);
+}

@@ -296,14 +296,17 @@ static void set_bounds(sph_sim *sim)
         for (uint32_t i = 0; i < sim->n; i++) rho_max = fmax(rho_max, sim->P.rho[i]);
     double r = rho_max / (SPH_LATTICE_EXCESS * def->rest_density), squeeze = 0;
     if (r > 1) squeeze = c * sqrt(2.0 * (log(r) + 1.0 / r - 1.0));
-    /* cohesion pulls a surface in: its initial acceleration acting over h */
+    /* cohesion and surface tension pull a surface in: their initial acceleration acting over h (the surface
+     * tension's were left out: a still cube under csf had a bound of 1 m/s, "4 times 0 m/s") */
     double pull = 0;
-    if (sim->P.acc_c[0])
-        for (uint32_t i = 0; i < sim->n; i++) {
-            double a2 = 0;
-            for (int d = 0; d < sim->dim; d++) a2 += (double)sim->P.acc_c[d][i] * sim->P.acc_c[d][i];
-            pull = fmax(pull, sqrt(2.0 * sqrt(a2) * def->h));
-        }
+    float *const *surface[] = {sim->P.acc_c, sim->P.acc_k, sim->P.acc_s, sim->P.acc_t};
+    for (size_t f = 0; f < sizeof surface / sizeof surface[0]; f++)
+        if (surface[f][0])
+            for (uint32_t i = 0; i < sim->n; i++) {
+                double a2 = 0;
+                for (int d = 0; d < sim->dim; d++) a2 += (double)surface[f][d][i] * surface[f][d][i];
+                pull = fmax(pull, sqrt(2.0 * sqrt(a2) * def->h));
+            }
     /* a moving top wall drags the fluid up to its own speed */
     double lid = 0;
     for (int d = 0; d < def->dim; d++) lid += (double)def->wall_velocity[d] * def->wall_velocity[d];

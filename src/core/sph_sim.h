@@ -171,7 +171,7 @@ typedef struct sph_alarm {
     uint32_t particle; /* index in the arrays (id: P.id[particle]) */
     int field, comp;
     float value;
-    char what[200];    /* e.g. "not finite", "speed 812 m/s above the bound 300 m/s" */
+    char what[256];    /* e.g. "not finite", "speed 812 m/s above the bound 300 m/s" */
 } sph_alarm;
 
 #define SPH_STEP_WINDOW 60 /* steps in the ms-per-step window */

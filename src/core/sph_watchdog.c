@@ -94,7 +94,7 @@ void sph_watchdog_check(sph_sim *sim, int pass)
         uint32_t i = first_bad(sim, &fd, check);
         if (i >= sim->n) continue;
         i = worst_bad(sim, &fd, check, i);
-        char what[200];
+        char what[256];
         int comp = 0;
         for (int c = 0; c < fd.ncomp; c++)
             if (!isfinite(fd.c[c][i])) comp = c;
@@ -106,8 +106,9 @@ void sph_watchdog_check(sph_sim *sim, int pass)
             for (int c = 0; c < fd.ncomp; c++) s2 += fd.c[c][i] * fd.c[c][i];
             value = sqrtf(s2);
             snprintf(what, sizeof what,
-                     "speed %.4g m/s is above the bound %.4g m/s, 4 times what the scene can make: %.3g m/s "
-                     "(a fall %.3g m/s, the blocks, the passes' forces, cohesion, compression)",
+                     "speed %.4g m/s is above the bound %.4g m/s, 4 times what the scene can make plus 1 m/s: "
+                     "%.3g m/s (a fall %.3g m/s, the blocks, the passes' forces, cohesion and surface tension, "
+                     "compression)",
                      value, sim->speed_bound, sim->speed_scale, sim->speed_fall);
         } else {
             snprintf(what, sizeof what, "%s %.4g is outside (0, %.4g], the bound the scene implies", fd.about,
@@ -149,7 +150,7 @@ void sph_watchdog_energy(sph_sim *sim, int pass)
         for (int d = 0; d < sim->dim; d++) v2 += sim->P.vel[d][i] * sim->P.vel[d][i];
         if (v2 > v2max) v2max = v2, fastest = i;
     }
-    char what[200]; /* raise_alarm keeps 200 */
+    char what[256]; /* raise_alarm keeps 256 */
     const char *u = sim->dim == 2 ? "J/m" : "J"; /* a 2D scene's energy is per metre of depth, as run's summary */
     snprintf(what, sizeof what,
              "total energy %.4g %s grew by %.3g %s since step 0 (bound %.3g %s: half its scale %.3g %s); fastest "
