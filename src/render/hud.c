@@ -159,7 +159,13 @@ void hud_legend(sph_renderer *r, const sph_sim *sim, sph_color_field f, float lo
     const uint32_t white = SPH_RGBA(235, 235, 240, 255), grey = SPH_RGBA(170, 170, 180, 255);
     char unit[48];
     snprintf(unit, sizeof unit, "[%s]", sph_color_field_unit(f, sim->dim));
-    canvas_text_at(r, SPH_TEXT_NORMAL, x0 + 0.5f * w, y0 + 0.6f * fn, SPH_ALIGN_CENTER, white, sph_color_field_names[f], false);
+    /* the field's name centred over the bar; one wider than the column (pcisph-pressure at 800 x 600 ran past the
+     * frame's right edge) in the small size, its right end kept inside the column */
+    const char *name = sph_color_field_names[f];
+    const int size = sph_font_width(&r->font, SPH_TEXT_NORMAL, name) > w - 4 ? SPH_TEXT_SMALL : SPH_TEXT_NORMAL;
+    const float tw = sph_font_width(&r->font, size, name);
+    const float cx = fminf(x0 + 0.5f * w, x0 + w - 2 - 0.5f * tw);
+    canvas_text_at(r, size, cx, y0 + 0.6f * fn, SPH_ALIGN_CENTER, white, name, false);
     canvas_text_at(r, SPH_TEXT_SMALL, x0 + 0.5f * w, y0 + 0.6f * fn + 1.2f * fs, SPH_ALIGN_CENTER, grey, unit, false);
     float top = y0 + 1.4f * fn + 1.6f * fs, bot = y0 + hgt - fs;
     float bx0 = x0 + 4, bx1 = bx0 + fn;
