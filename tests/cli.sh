@@ -201,6 +201,11 @@ for n in 4 9; do
     wrote=$(find "$tmp/lf$n" -maxdepth 1 -type f ! -name 'report*' | wc -l)
     [ -n "$said" ] && [ "$said" -eq "$wrote" ] && ok || { bad "lesson $n export: says '$said' files, wrote $wrote"; cat "$tmp/lf.txt"; ls "$tmp/lf$n"; }
 done
+# an export into a folder an earlier export used takes its logs back (they read as this export's); other files stay
+mkdir -p "$tmp/lre/logs" && : > "$tmp/lre/logs/99-old-run.txt" && : > "$tmp/lre/logs/notes.txt"
+sph lesson 2 --export "$tmp/lre" --quick --quiet > "$tmp/lre.txt" 2>&1 &&
+    [ ! -e "$tmp/lre/logs/99-old-run.txt" ] && [ -e "$tmp/lre/logs/notes.txt" ] && [ -s "$tmp/lre/logs/01-check.txt" ] && ok ||
+    { bad "lesson export into an earlier export's folder: want its old logs gone, other files kept"; ls "$tmp/lre/logs"; cat "$tmp/lre.txt"; }
 # a lesson's runs put their scene warnings in their logs, not on the terminal (lesson 3 runs without viscosity)
 sph lesson 3 --export "$tmp/l3" --quick --quiet > "$tmp/l3.txt" 2>&1
 [ $? -eq 0 ] && ! grep -q "warning" "$tmp/l3.txt" && grep -q "warning: no viscosity" "$tmp"/l3/logs/*.txt &&

@@ -315,6 +315,20 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
     snprintf(x.scratch, sizeof x.scratch, "%s/.work", x.dir);
     remove_tree(x.scratch, 0);
     if (!plot_out_dir(logs) || !plot_out_dir(x.scratch)) return 1;
+    /* an earlier export's logs go (NN-name.txt, the names this command gives them): a --quick export into a full
+     * one's folder left the full runs' logs beside its own, where the report says logs/ holds what ran */
+    DIR *old_logs = opendir(logs);
+    for (struct dirent *e; old_logs && (e = readdir(old_logs));) {
+        const char *nm = e->d_name;
+        const size_t len = strlen(nm);
+        if (len > 7 && isdigit((unsigned char)nm[0]) && isdigit((unsigned char)nm[1]) && nm[2] == '-' &&
+            strcmp(nm + len - 4, ".txt") == 0) {
+            char path[1400];
+            snprintf(path, sizeof path, "%s/%s", logs, nm);
+            unlink(path);
+        }
+    }
+    if (old_logs) closedir(old_logs);
     /* a report from an earlier export must not survive a failed one */
     char report[1200];
     snprintf(report, sizeof report, "%s/report.fr.md", x.dir);
