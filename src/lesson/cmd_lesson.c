@@ -370,15 +370,16 @@ static int export_lesson(const lesson *L, const char *dir, bool quick, bool quie
     x.md = NULL;
     lx_block(&x, "figures");
     /* timings measured while others loaded the machine: the report says so
-     * beside the figures, not only the log (the 1-minute load average
+     * beside the figures, not only the log; "in this report", since the
+     * tables it speaks of stand above the figures (the 1-minute load average
      * before the export: the export's own threads are not in it) */
     double others = strtod(load0, NULL);
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     if (strcmp(load0, "unknown") != 0 && cores > 0 && others > 0.25 * (double)cores)
         lx_md(&x, "> {{@**The machine was busy**: load average %.2f on %ld cores before this export. Every timing "
-                  "below (milliseconds per pass, steps per second, speed-ups) ran beside that load and is slower and "
+                  "in this report (milliseconds per pass, steps per second, speed-ups) ran beside that load and is slower and "
                   "noisier than on an idle machine; export again when it is idle to compare.|**La machine était "
-                  "occupée** : charge moyenne %.2f sur %ld cœurs avant cet export. Chaque temps ci-dessous "
+                  "occupée** : charge moyenne %.2f sur %ld cœurs avant cet export. Chaque temps de ce rapport "
                   "(millisecondes par passe, pas par seconde, accélérations) a tourné à côté de cette charge et est "
                   "plus lent et plus bruité que sur une machine au repos ; exportez de nouveau quand elle est au "
                   "repos pour comparer.}}\n\n",

@@ -106,6 +106,49 @@ static void note_ratio(const study_plan *plan, const sph_scene_def *scene, doubl
     fprintf(stderr, "\n");
 }
 
+/* The knobs' keys for the chart's legend, each part without its section where no other part has its name
+ * ("pressure_solver+stiffness+solver_tolerance"): the full keys of lesson 11's study made a line the legend
+ * shrank to 6 pixels. A name two sections of the scene format share ([physics] and [kernels] viscosity) keeps
+ * its section. */
+static void knob_names_short(const study_plan *plan, char *out, size_t n)
+{
+    const char *part[STUDY_MAX_KNOBS * 8];
+    size_t plen[STUDY_MAX_KNOBS * 8];
+    int np = 0, first[STUDY_MAX_KNOBS + 1];
+    for (int k = 0; k < plan->n_knobs; k++) {
+        first[k] = np;
+        for (const char *p = plan->knob[k].key; np < STUDY_MAX_KNOBS * 8;) {
+            const size_t len = strcspn(p, "+");
+            part[np] = p;
+            plen[np++] = len;
+            if (!p[len]) break;
+            p += len + 1;
+        }
+    }
+    first[plan->n_knobs] = np;
+    size_t used = 0;
+    out[0] = '\0';
+    for (int k = 0; k < plan->n_knobs && used < n; k++)
+        for (int i = first[k]; i < first[k + 1] && used < n; i++) {
+            const char *dot = memchr(part[i], '.', plen[i]);
+            const char *name = dot ? dot + 1 : part[i];
+            size_t nlen = plen[i] - (size_t)(name - part[i]);
+            bool unique = true;
+            for (int j = 0; j < np && unique; j++) {
+                const char *dj = memchr(part[j], '.', plen[j]);
+                const char *nj = dj ? dj + 1 : part[j];
+                const size_t lj = plen[j] - (size_t)(nj - part[j]);
+                unique = j == i || lj != nlen || strncmp(nj, name, nlen) != 0;
+            }
+            for (int q = 0, sections = 0; q < sph_scene_key_count && unique; q++) /* [physics] / [kernels] viscosity */
+                if (strlen(sph_scene_keys[q].name) == nlen && strncmp(sph_scene_keys[q].name, name, nlen) == 0)
+                    unique = ++sections < 2;
+            if (!unique) name = part[i], nlen = plen[i];
+            used += (size_t)snprintf(out + used, n - used, "%s%.*s",
+                                     i == first[k] ? (k ? ", " : "") : "+", (int)nlen, name);
+        }
+}
+
 static const char *error_label(study_metric m)
 {
     switch (m) {
@@ -393,11 +436,24 @@ int study_cmd_run(const study_cmd *cmd)
     snprintf(ch.note[ch.nn++], sizeof ch.note[0], "faster and more accurate):");
     if (plan.n_knobs > 0) {
         char keys[400], esc[400];
-        size_t len = 0;
-        for (int k = 0; k < plan.n_knobs && len < sizeof keys; k++)
-            len += (size_t)snprintf(keys + len, sizeof keys - len, "%s%s", k ? ", " : "", plan.knob[k].key);
-        plot_escape(esc, sizeof esc, keys);
-        snprintf(ch.note[ch.nn++], sizeof ch.note[0], "#: %.110s", esc);
+        knob_names_short(&plan, keys, sizeof keys);
+        /* lines of at most about 30 characters, broken after a '+' or ", ", as the notes below fit the legend at
+         * its own size (a longer line is drawn smaller) */
+        const char *k = keys;
+        for (bool lead = true; *k && ch.nn < STUDY_MAX_NOTES - 2; lead = false) {
+            size_t take = strlen(k);
+            if (take > 30) {
+                size_t cut = 0;
+                for (size_t i = 1; i <= 30 && k[i]; i++)
+                    if (k[i - 1] == '+' || (k[i - 1] == ' ' && i >= 2 && k[i - 2] == ',')) cut = i;
+                take = cut ? cut : 30;
+            }
+            char line[64];
+            snprintf(line, sizeof line, "%.*s", (int)take, k);
+            plot_escape(esc, sizeof esc, line);
+            snprintf(ch.note[ch.nn++], sizeof ch.note[0], "%s%.110s", lead ? "#: " : "    ", esc);
+            k += take;
+        }
     }
     for (int j = 0; j < m && ch.nn < STUDY_MAX_NOTES; j++) {
         int idx[STUDY_MAX_KNOBS];
