@@ -92,9 +92,10 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
     } else if (u_count == 0u) {
         float fr = mass_[j] * grad_factor(KD, SIG_D, r2), fp = mass_[j] * grad_factor(KP, SIG_P, r2);
         bool still = is_wall(j); // a wall particle counts, but i's push cannot move it
+        float twice = still ? WALL_PUSH : 1.0; // twice with extrapolated wall pressure (dfsph.c, factors)
         for (int d = 0; d < DIM; d++) {
             gr[d] += fr * dx[d];
-            gp[d] += fp * dx[d];
+            gp[d] += twice * fp * dx[d];
             if (still) continue;
             dots += fr * fp * dx[d] * dx[d];
             dots_p += fp * fp * dx[d] * dx[d];

@@ -180,6 +180,10 @@ char *gpu_prelude(const gpu *g, const sph_sim *sim)
     put_float(&t, "ALPHA_MIN", 1e-6f * rho_r * rho_r / (def->h * def->h));
     put_float(&t, "DEN_FULL", sim->solver.den_full);
     put_float(&t, "DEN_FULL_V", sim->solver.den_full_v);
+    /* DFSPH's factor counts the walls' part of G^p twice where the wall particles take the fluid's kappa
+     * (dfsph.c, factors) */
+    put(&t, "#define WALL_PUSH %s\n",
+        sph_scene_wall_particles(def) && def->solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED ? "2.0" : "1.0");
     put(&t, "#define SOLVER_WALL_AT %d\n#define SOLVER_WALL_SAMPLES %d\n", GPU_WALL_FLOATS, SPH_SOLVER_WALL_SAMPLES);
     /* the particles DFSPH's divergence error is the mean over: the fluid's, not the wall particles' (dfsph.c);
      * at least 1, as the mean of none is 0 there */
