@@ -511,6 +511,15 @@ sph run lessons/scenes/dam-break-2d.ini --steps 2 --quiet --stats "$tmp/mk1/a/s.
 sph run lessons/scenes/dam-break-2d.ini --steps 2 --quiet --stats "$tmp/mkfile/s.csv" > "$tmp/mk.txt" 2>&1
 [ $? -eq 1 ] && grep -q "mkfile" "$tmp/mk.txt" && ok || { bad "run --stats under a file: want exit 1 naming it"; cat "$tmp/mk.txt"; }
 
+# a decimal comma in a vector beside spaces is refused (gravity "0 -9,81" was read as 0, -9, 81); "1,2" stays a list
+sph check lessons/scenes/dam-break-2d.ini --set "physics.gravity=0 -9,81" > "$tmp/dc.txt" 2>&1
+[ $? -eq 2 ] && grep -q "gravity = '0 -9,81': a comma between digits .*decimal comma" "$tmp/dc.txt" &&
+    sph check lessons/scenes/dam-break-2d.ini --set "physics.gravity=0,-9.81" > /dev/null 2>&1 && ok ||
+    { bad "a decimal comma in a vector: want it refused (and 0,-9.81 read as a list)"; cat "$tmp/dc.txt"; }
+# whole numbers written as 2e0 or 2.0 are whole numbers on the command line too, as in a scene file
+sph run lessons/scenes/dam-break-2d.ini --steps 2e0 --threads 1 --stats "$tmp/se.csv" --quiet > "$tmp/se.txt" 2>&1 &&
+    [ "$(tail -1 "$tmp/se.csv" | cut -d, -f1)" = 2 ] && ok || { bad "--steps 2e0: want 2 steps"; cat "$tmp/se.txt"; }
+
 # keys: each section once (a section whose keys sit in two runs of the table was printed twice)
 dup=$(sph keys | grep '^\[' | sort | uniq -d)
 [ -z "$dup" ] && ok || bad "sphlab keys prints a section more than once: $dup"

@@ -252,6 +252,15 @@ bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out)
     char *end;
     errno = 0;
     long v = s ? strtol(s, &end, 10) : 0;
+    if (s && end != s && (*end == '.' || *end == 'e' || *end == 'E') && !errno) {
+        /* 1e3 or 1000.0: whole numbers, as a scene file's integer keys take them (steps = 1e9) */
+        char *dend;
+        const double d = strtod(s, &dend);
+        if (!*dend && isfinite(d) && d == floor(d) && fabs(d) < 9e18) {
+            v = (long)d;
+            end = dend;
+        }
+    }
     if (!s || end == s || *end || (errno && errno != ERANGE)) {
         fprintf(stderr, "sphlab: %s '%s': not a whole number\n", opt, s ? s : "");
         return false;

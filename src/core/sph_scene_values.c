@@ -181,6 +181,22 @@ sph_error_code sph_scene_value_set(const sph_key *k, void *base, const char *val
         double v[3] = {0, 0, 0};
         int n = 0;
         const char *p = value;
+        /* Spaces and commas both separate components, so "0,5 0" read as 0, 5, 0: a French decimal comma gave a
+         * vortex no speed and gravity (0, -9, 81) with no error. A comma between two digits in a value whose
+         * components are also separated by spaces is refused; "1,2" and "1, 2" stay lists. */
+        bool spaced = false, digit_comma = false;
+        for (const char *q = value; *q; q++) {
+            if (isspace((unsigned char)*q) && q > value && q[1] && !isspace((unsigned char)q[1]) && q[1] != ',' &&
+                q[-1] != ',' && !isspace((unsigned char)q[-1]))
+                spaced = true;
+            if (*q == ',' && q > value && isdigit((unsigned char)q[-1]) && isdigit((unsigned char)q[1]))
+                digit_comma = true;
+        }
+        if (spaced && digit_comma)
+            return bad_value(err, SPH_ERR_PARSE, w, k, value,
+                             "a comma between digits beside components separated by spaces: a decimal comma? "
+                             "write the number with a point (0.5), and separate the components with spaces or "
+                             "with commas, not both");
         while (*p) {
             while (isspace((unsigned char)*p) || *p == ',') p++;
             if (!*p) break;
