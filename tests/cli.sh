@@ -520,6 +520,10 @@ sph check lessons/scenes/dam-break-2d.ini --set "physics.gravity=0 -9,81" > "$tm
 sph run lessons/scenes/dam-break-2d.ini --steps 2e0 --threads 1 --stats "$tmp/se.csv" --quiet > "$tmp/se.txt" 2>&1 &&
     [ "$(tail -1 "$tmp/se.csv" | cut -d, -f1)" = 2 ] && ok || { bad "--steps 2e0: want 2 steps"; cat "$tmp/se.txt"; }
 
+# check takes --backend as run does (it had only --set compute.backend=gl): the GL scene's notes
+sph check lessons/scenes/dam-break-2d.ini --backend gl > "$tmp/cb.txt" 2>&1 && grep -q "no lists on the GL backend" "$tmp/cb.txt" &&
+    grep -q "GL buffers" "$tmp/cb.txt" && ok || { bad "check --backend gl: want the GL backend's notes"; cat "$tmp/cb.txt"; }
+
 # keys: each section once (a section whose keys sit in two runs of the table was printed twice)
 dup=$(sph keys | grep '^\[' | sort | uniq -d)
 [ -z "$dup" ] && ok || bad "sphlab keys prints a section more than once: $dup"

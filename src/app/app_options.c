@@ -62,7 +62,7 @@ const app_opt app_options[] = {
     {"--backend", NULL, "cpu|gl",
      "where the passes run (overrides [compute] backend): gl runs them as\n"
      "OpenGL 4.3 compute shaders (the GPU, or Mesa's llvmpipe without one)",
-     RUN | RENDER | VIEW, CHOICE(backend, "cpu|gl")},
+     RUN | CHECK | RENDER | VIEW, CHOICE(backend, "cpu|gl")},
     /* run's outputs */
     {"--stats", NULL, "FILE.csv",
      "one row per step: step,t,dt,n,ekin,rho_min,rho_mean,rho_max,max_speed\n"
