@@ -37,7 +37,7 @@ uniform float u_dt;
 uniform float u_value;
 shared uint s_err[WG];
 shared float s_sum[WG];
-vec3 gr, gp, vi, xs;
+vec3 gr, gp, g1, vi, xs; // g1: G^p with the walls once (dfsph.c, factors)
 float dots, dots_p, sum;
 const float OMEGA = 0.5; // SPH_DFSPH_OMEGA in src/passes/dfsph.c
 
@@ -96,6 +96,7 @@ void sph_pair(uint i, uint j, vec3 dx, float r2)
         for (int d = 0; d < DIM; d++) {
             gr[d] += fr * dx[d];
             gp[d] += twice * fp * dx[d];
+            g1[d] += fp * dx[d];
             if (still) continue;
             dots += fr * fp * dx[d] * dx[d];
             dots_p += fp * fp * dx[d] * dx[d];
@@ -138,6 +139,7 @@ void main()
         if (u == 0u) {
             gr = vec3(0.0);
             gp = vec3(0.0);
+            g1 = vec3(0.0);
             dots = 0.0;
             dots_p = 0.0;
             sph_walk(i, xi);
@@ -145,11 +147,12 @@ void main()
             for (int d = 0; d < DIM; d++) {
                 gr[d] += RHO_R * g[d];
                 gp[d] += RHO_R * g[d];
+                g1[d] += RHO_R * g[d];
             }
 #endif
             precise float raw = dots + gr.x * gp.x + gr.y * gp.y + gr.z * gp.z;
             alpha_[i] = (raw > ALPHA_MIN ? 1.0 : -1.0) * RHO_R / max(raw, DEN_FULL);
-            precise float raw_v = dots_p + gp.x * gp.x + gp.y * gp.y + gp.z * gp.z;
+            precise float raw_v = dots_p + g1.x * gp.x + g1.y * gp.y + g1.z * gp.z; // the walls once in g1 (dfsph.c)
             alpha_v_[i] = RHO_R / max(raw_v, DEN_FULL_V);
         } else if (u == 1u) {
             kappa_v_[i] *= u_value;

@@ -352,3 +352,25 @@ Test(robust, speed_scale_counts_surface_tension)
     sph_sim_destroy(still);
     sph_sim_destroy(tense);
 }
+
+/* A solver's run the watchdog stops with no solve short of its tolerance gets the solvers' usual causes once: the
+ * equation of state's ("a stiffness too high for dt") was printed after them, as the else of the new paragraph on
+ * capped solves (a review of the change). */
+Test(robust, watchdog_gives_one_set_of_usual_causes)
+{
+    sph_sim *sim = test_sim("[scene]\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=3 1.5\n"
+                            "[fluid column]\nmin=0 0\nmax=1 1\nspacing=0.02\n[kernels]\nh=0.04\n"
+                            "[physics]\npressure_solver=pcisph\nsolver_tolerance=1\nviscosity=0.002\n"
+                            "[time]\ndt=0.02\ncfl=0.4\n",
+                            1);
+    for (int k = 0; k < 300 && !sim->alarm.raised; k++) sph_sim_step(sim);
+    cr_assert(sim->alarm.raised, "a 100 %% tolerance at dt = 0.02 s ran %g s", sim->t);
+    char buf[8192];
+    sph_sim_alarm_report(sim, buf, sizeof buf);
+    int n = 0;
+    for (const char *p = buf; (p = strstr(p, "Usual causes")); p++) n++;
+    cr_expect_eq(n, 1, "%d sets of usual causes (capped %llu, stopped %llu): %s", n,
+                 (unsigned long long)sim->solver.capped, (unsigned long long)sim->solver.stopped, buf);
+    cr_expect(strstr(buf, "Usual causes with pressure_solver = pcisph"), "not the solver's causes: %s", buf);
+    sph_sim_destroy(sim);
+}

@@ -225,10 +225,11 @@ static const char *estimate_warning(const sph_scene_def *def, char *buf, size_t 
     for (int b = 0; b < def->n_blocks; b++) finest = fmin(finest, def->blocks[b].spacing);
     if (def->h <= finest) { /* pi (h/s)^2 is no count there: a lattice particle has none within h */
         char loc[300];
+        const int line = def->origin[key_index("kernels", "h")].line;
         snprintf(buf, n,
-                 "%s: [kernels] h = %g m is not larger than the spacing %g m: a particle on the lattice has no "
+                 "%s: [kernels] h = %g m%s is not larger than the spacing %g m: a particle on the lattice has no "
                  "neighbour within h, only itself (use h of about 2 spacings)",
-                 origin_text(def, def->origin[key_index("kernels", "h")].line, loc, sizeof loc), def->h, finest);
+                 origin_text(def, line, loc, sizeof loc), def->h, line ? "" : " (the default)", finest);
         return buf;
     }
     if (nb < 6) {

@@ -106,9 +106,9 @@ void sph_watchdog_check(sph_sim *sim, int pass)
             for (int c = 0; c < fd.ncomp; c++) s2 += fd.c[c][i] * fd.c[c][i];
             value = sqrtf(s2);
             snprintf(what, sizeof what,
-                     "speed %.4g m/s is above the bound %.4g m/s, 4 times what the scene can make plus 1 m/s: "
-                     "%.3g m/s (a fall %.3g m/s, the blocks, the passes' forces, cohesion and surface tension, "
-                     "compression)",
+                     "speed %.4g m/s is above the bound %.4g m/s, 4 times the speed the scene can make plus 1 m/s "
+                     "(that speed %.3g m/s: a fall %.3g m/s, the blocks, the passes' forces, cohesion and surface "
+                     "tension, compression)",
                      value, sim->speed_bound, sim->speed_scale, sim->speed_fall);
         } else {
             snprintf(what, sizeof what, "%s %.4g is outside (0, %.4g], the bound the scene implies", fd.about,
@@ -220,7 +220,7 @@ void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n)
             append(out, n, &used, "\n");
         }
     }
-    if (sim->def.pressure_solver != SPH_PSOLVER_EOS && (sim->def.effects & SPH_EFFECT(PRESSURE)))
+    if (sim->def.pressure_solver != SPH_PSOLVER_EOS && (sim->def.effects & SPH_EFFECT(PRESSURE))) {
         /* the solvers' dt follows the flow speed, which is 0 at the start: [time] dt is then the only cap */
         append(out, n, &used,
                "  the state is kept as it was when this was found (--dump writes it). Usual causes with "
@@ -229,20 +229,21 @@ void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n)
                "or particles forced together.\n",
                sph_pressure_solver_names[sim->def.pressure_solver], (double)sim->def.dt, (double)sim->def.cfl,
                (double)sim->def.solver_tolerance);
-    if (sim->def.pressure_solver != SPH_PSOLVER_EOS && (sim->def.effects & SPH_EFFECT(PRESSURE)) &&
-        (sim->solver.capped || sim->solver.stopped))
-        /* a solve that ends short of its tolerance leaves its error to the next step: the runaway often starts
-         * there (a 240,000-particle 3D dam break: capped from step 3, its error rising after 300 iterations) */
-        append(out, n, &used,
-               "  the solves ended short of their tolerance before this: %llu at solver_max_iterations = %d, %llu "
-               "where their error rose (over %llu steps; the last step's density error %.3g %%, the tolerance "
-               "%g %%). More iterations help only while the error still falls; a smaller dt helps both.\n",
-               (unsigned long long)sim->solver.capped, sim->def.solver_max_iterations,
-               (unsigned long long)sim->solver.stopped, (unsigned long long)a->step,
-               100.0 * sim->solver.density_error, 100.0 * sim->def.solver_tolerance);
-    else
+        if (sim->solver.capped || sim->solver.stopped)
+            /* a solve that ends short of its tolerance leaves its error to the next step: the runaway often
+             * starts there (a 240,000-particle 3D dam break: capped from step 3, its error rising after 300
+             * iterations) */
+            append(out, n, &used,
+                   "  the solves ended short of their tolerance before this: %llu at solver_max_iterations = %d, %llu "
+                   "where their error rose (over %llu steps; the last step's density error %.3g %%, the tolerance "
+                   "%g %%). More iterations help only while the error still falls; a smaller dt helps both.\n",
+                   (unsigned long long)sim->solver.capped, sim->def.solver_max_iterations,
+                   (unsigned long long)sim->solver.stopped, (unsigned long long)a->step,
+                   100.0 * sim->solver.density_error, 100.0 * sim->def.solver_tolerance);
+    } else {
         append(out, n, &used,
                "  the state is kept as it was when this was found (--dump writes it). Usual causes: a time step "
                "above the CFL limit (try [time] cfl = 0.4), a stiffness too high for dt, or particles forced "
                "together.\n");
+    }
 }

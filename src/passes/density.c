@@ -3,8 +3,9 @@
  * neighbour counts). With walls of the volume model, rho0 times the share of
  * the kernel hidden behind the walls is added (sph_wall_hidden: the fluid's
  * lattice continued behind them): a particle at a wall is not missing half
- * its neighbours. With density_method = continuity
- * the sum is made only at the start, where rho_c takes it; afterwards
+ * its neighbours. With density_method = continuity a new run starts rho_c
+ * from the lattice's m / spacing^dim (sph_sim.c), and the sum is made only
+ * where continuity is switched on during a run (start_carrying); each step
  * rho_c += dt drho (drho from the density_rate pass just before) and rho = rho_c. */
 #include "simd.h"
 #include "sph_search.h"
