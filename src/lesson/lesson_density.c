@@ -42,14 +42,20 @@ int lx_lesson1(lx *x)
     }
     lx_val(x, "h", "%g", h0);
     lx_block(x, "kernels_table");
-    lx_md(x, "| {{@kernel|noyau}} | sigma 2D [1/m^2] | sigma 3D [1/m^3] | W(0) 2D [1/m^2] | {{@W(0) in "
+    /* sigma's unit is the kernel's: W = sigma f is 1/m^d, and f is (h^2 - r^2)^3 for poly6 (m^6), (h - r)^3 for
+     * spiky, a function of r/h for the others: m^-8 for poly6 in 2D, not the m^-2 the column said. The power is
+     * read off sigma itself (sigma ~ h^-p) */
+    lx_md(x, "| {{@kernel|noyau}} | sigma 2D | sigma 3D | W(0) 2D [1/m^2] | {{@W(0) in "
              "kernels-2d.csv|W(0) dans kernels-2d.csv}} | M2 / h^2 (2D) |\n"
              "|---|---|---|---|---|---|\n");
     for (int k = 0; k < SPH_KERNEL_COUNT; k++) {
         sph_kernel k2 = sph_kernel_make((sph_kernel_kind)k, 2, (float)h0);
         sph_kernel k3 = sph_kernel_make((sph_kernel_kind)k, 3, (float)h0);
-        lx_md(x, "| %s | %.6g | %.6g | %.6g | %.6g | %.4f |\n", sph_kernel_names[k], k2.sigma, k3.sigma,
-              sph_kernel_w(&k2, 0.0f), w0_csv[k], k2.m2 / (h0 * h0));
+        sph_kernel d2 = sph_kernel_make((sph_kernel_kind)k, 2, (float)(2 * h0));
+        sph_kernel d3 = sph_kernel_make((sph_kernel_kind)k, 3, (float)(2 * h0));
+        const int p2 = (int)lround(log2(k2.sigma / d2.sigma)), p3 = (int)lround(log2(k3.sigma / d3.sigma));
+        lx_md(x, "| %s | %.6g m^-%d | %.6g m^-%d | %.6g | %.6g | %.4f |\n", sph_kernel_names[k], k2.sigma, p2, k3.sigma,
+              p3, sph_kernel_w(&k2, 0.0f), w0_csv[k], k2.m2 / (h0 * h0));
     }
     lx_block_end(x);
     lx_val(x, "spacing", "%g", s);

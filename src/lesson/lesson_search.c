@@ -176,9 +176,9 @@ static void offsets_table(lx *x, const uint32_t *keys, uint32_t n, uint32_t T, c
     for (uint32_t i = 0; i < n; i++) e[i] = (sph_entry){keys[i], keys[i], i};
     sph_sort_counting(e, scratch, count, n, T);
     sph_offsets_build(e, n, start, T);
-    lx_md(x, "Sorted (key<sub>particle</sub>):");
+    lx_md(x, "{{@Sorted (key<sub>particle</sub>)|Triées (clé<sub>particule</sub>)}}:");
     for (uint32_t i = 0; i < n; i++) lx_md(x, " %u<sub>%u</sub>", e[i].key, e[i].index);
-    lx_md(x, "\n\nStart table (`sph_offsets_build`, src/passes/offsets.c), key: start:");
+    lx_md(x, "\n\n{{@Start table|Table des départs}} (`sph_offsets_build`, src/passes/offsets.c), {{@key: start|clé : départ}}:");
     for (uint32_t k = 0; k < T; k++)
         lx_md(x, " %u: %s%s", k, start[k] == SPH_EMPTY ? "inf" : lx_fmt("%u", start[k]), k + 1 < T ? "," : "\n\n");
     FILE *f = csv_name ? lx_csv_open(x, csv_name) : NULL;
@@ -206,8 +206,8 @@ int lx_lesson6(lx *x)
     /* 1. the slide's keys through the bitonic network */
     static const uint32_t slide[10] = {9, 0, 6, 7, 1, 1, 4, 2, 2, 2};
     lx_block(x, "bitonic_table");
-    lx_md(x, "| {{@stage|étage}} | {{@step|étape}} | w | {{@kind|sens}} | {{@swaps|échanges}} | {{@entries after the "
-             "step|entrées après l'étape}} |\n|---|---|---|---|---|---|\n");
+    lx_md(x, "| {{@stage|étape}} | {{@step|sous-étape}} | w | {{@kind|sens}} | {{@swaps|échanges}} | {{@entries after the "
+             "step|entrées après la sous-étape}} |\n|---|---|---|---|---|---|\n");
     bitonic_ctx b = {x, lx_csv_open(x, "bitonic-steps.csv")};
     if (b.csv) fprintf(b.csv, "stage,step,w,kind,swaps,k0,k1,k2,k3,k4,k5,k6,k7,k8,k9\n");
     int steps = lx_bitonic_steps(slide, 10, bitonic_row, &b);
