@@ -206,6 +206,10 @@ mkdir -p "$tmp/lre/logs" && : > "$tmp/lre/logs/99-old-run.txt" && : > "$tmp/lre/
 sph lesson 2 --export "$tmp/lre" --quick --quiet > "$tmp/lre.txt" 2>&1 &&
     [ ! -e "$tmp/lre/logs/99-old-run.txt" ] && [ -e "$tmp/lre/logs/notes.txt" ] && [ -s "$tmp/lre/logs/01-check.txt" ] && ok ||
     { bad "lesson export into an earlier export's folder: want its old logs gone, other files kept"; ls "$tmp/lre/logs"; cat "$tmp/lre.txt"; }
+# a misspelt option of the lesson is said as one, before the display is looked for (--exprot was answered "no display")
+sphe "-u DISPLAY -u WAYLAND_DISPLAY" lesson 1 --exprot "$tmp/x" > "$tmp/lx.txt" 2>&1
+[ $? -eq 2 ] && grep -q "unknown option '--exprot' (did you mean --export?)" "$tmp/lx.txt" && ok ||
+    { bad "lesson 1 --exprot: want exit 2 and --export suggested"; cat "$tmp/lx.txt"; }
 # a lesson's runs put their scene warnings in their logs, not on the terminal (lesson 3 runs without viscosity)
 sph lesson 3 --export "$tmp/l3" --quick --quiet > "$tmp/l3.txt" 2>&1
 [ $? -eq 0 ] && ! grep -q "warning" "$tmp/l3.txt" && grep -q "warning: no viscosity" "$tmp"/l3/logs/*.txt &&

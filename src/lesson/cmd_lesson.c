@@ -495,5 +495,22 @@ int cmd_lesson(int argc, char **argv)
         fprintf(stderr, "sphlab lesson: --quick and --quiet go with --export DIR\n");
         return 2;
     }
+    /* the options passed on to the window are checked here, before the display is: `--exprot DIR` was answered
+     * "no display" where it meant --export */
+    for (int i = 0; i < opt.n_rest; i++) {
+        const char *a = opt.rest[i];
+        if (a[0] != '-' || a[1] != '-') continue;
+        char name[64];
+        snprintf(name, sizeof name, "%s", a);
+        char *eq = strchr(name, '=');
+        if (eq) *eq = '\0';
+        const char *as_view = app_opts_closest(APP_CMD(view), name);
+        if (as_view && strcmp(as_view, name) == 0) continue; /* the window's own */
+        const char *own = app_opts_closest(APP_CMD(lesson), name);
+        fprintf(stderr, "sphlab lesson: unknown option '%s'", a);
+        if (own || as_view) fprintf(stderr, " (did you mean %s?)", own ? own : as_view);
+        fprintf(stderr, "\n  (the lesson's options: sphlab lesson --help; the window's: sphlab view --help)\n");
+        return 2;
+    }
     return open_window(L, opt.n_rest, opt.rest, dry);
 }
