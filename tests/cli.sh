@@ -206,6 +206,9 @@ mkdir -p "$tmp/lre/logs" && : > "$tmp/lre/logs/99-old-run.txt" && : > "$tmp/lre/
 sph lesson 2 --export "$tmp/lre" --quick --quiet > "$tmp/lre.txt" 2>&1 &&
     [ ! -e "$tmp/lre/logs/99-old-run.txt" ] && [ -e "$tmp/lre/logs/notes.txt" ] && [ -s "$tmp/lre/logs/01-check.txt" ] && ok ||
     { bad "lesson export into an earlier export's folder: want its old logs gone, other files kept"; ls "$tmp/lre/logs"; cat "$tmp/lre.txt"; }
+# every log starts with its command (a quiet render's log was empty)
+nolog=$(for f in "$tmp"/lre/logs/[0-9][0-9]-*.txt; do head -c 9 "$f" | grep -q '^\$ sphlab' || echo "$f"; done)
+[ -z "$nolog" ] && ok || bad "lesson logs without their command line: $nolog"
 # a misspelt option of the lesson is said as one, before the display is looked for (--exprot was answered "no display")
 sphe "-u DISPLAY -u WAYLAND_DISPLAY" lesson 1 --exprot "$tmp/x" > "$tmp/lx.txt" 2>&1
 [ $? -eq 2 ] && grep -q "unknown option '--exprot' (did you mean --export?)" "$tmp/lx.txt" && ok ||

@@ -182,6 +182,17 @@ static int spawn(lx *x, const char *log, const char *cwd, const char *env, const
             dup2(devnull, 0);
             close(devnull);
         }
+        /* the command first, as lx_log_open's logs have it: a quiet render's log was empty. A FILE of its own,
+         * since stdout's buffer may hold what the parent had not written yet */
+        int cfd = dup(1);
+        FILE *cmd = cfd >= 0 ? fdopen(cfd, "w") : NULL;
+        if (cmd) {
+            fputs("$ ", cmd);
+            if (env) fprintf(cmd, "%s ", env);
+            lx_print_args(cmd, argv);
+            fputc('\n', cmd);
+            fclose(cmd);
+        }
         if (cwd && chdir(cwd) != 0) {
             fprintf(stderr, "sphlab lesson: cannot enter %s: %s\n", cwd, strerror(errno));
             _exit(125);
