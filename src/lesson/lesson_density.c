@@ -208,9 +208,12 @@ int lx_lesson1(lx *x)
                       "900x650", LX_END) == 0 &&
             lx_take(x, sub, "frame_00001.png", lx_fmt("density-h%g.png", pics[k])))
             lx_fig(x, lx_fmt("density-h%g.png", pics[k]),
+                   /* the whole slab, where the surfaces' dark bands show: too small for the weights' labels,
+                    * which the window shows zoomed in (the caption promised them) */
                    lx_fmt("{{@the slab coloured by density (600 to 1400 kg/m^2) with h = %g spacings, particle 625's "
-                          "neighbours and weights|la tranche colorée par la densité (600 à 1400 kg/m^2) avec h = %g "
-                          "pas, les voisins de la particule 625 et leurs poids}}",
+                          "neighbours (their weights show when zoomed in, in the window)|la tranche colorée par la "
+                          "densité (600 à 1400 kg/m^2) avec h = %g pas, les voisins de la particule 625 (leurs poids "
+                          "s'affichent en zoomant, dans la fenêtre)}}",
                           pics[k], pics[k]));
     }
     return 0;
