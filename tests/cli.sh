@@ -498,6 +498,10 @@ sph run "$tmp/art.ini" --steps 1 --stats "$tmp/art.csv" > "$tmp/art.txt" 2>&1 &&
     grep -q "warning: .*art.ini:11: \[kernels\] viscosity is set but this scene does not use it" "$tmp/art.txt" &&
     awk -F, 'NR == 2 { exit !($3 > 1e-4) }' "$tmp/art.csv" && ok ||
     { bad "artificial viscosity with nu and a viscosity kernel: want both warnings and dt not bound by nu"; cat "$tmp/art.txt"; cat "$tmp/art.csv"; }
+# a viscosity set where the scene has no viscosity (a student's --set on lesson 1, exit 0 unsaid)
+sph run lessons/01-kernel-estimation/lesson.ini --steps 1 --quiet --set physics.viscosity=0.1 2>&1 |
+    grep -q "warning: --set: \[physics\] viscosity is set but this scene does not use it: only the effect viscosity reads it" &&
+    ok || bad "--set physics.viscosity without the effect: want the unread key's warning"
 # h not above the spacing: the warning names the line of h
 printf '[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.2 0.2\nspacing = 0.02\n[kernels]\nh = 0.01\n' > "$tmp/smallh.ini"
 sph check "$tmp/smallh.ini" 2>&1 | grep -q "warning: .*smallh.ini:9: \[kernels\] h = 0.01 m is not larger than the spacing 0.02 m" && ok ||

@@ -151,8 +151,11 @@ static void unread_keys(const sph_scene_def *def, char *buf, size_t n)
         /* Monaghan's term reads alpha and the pressure kernel; a nu left there changed nothing, unsaid (a user's
          * review of the scene format) */
         {"physics", "viscosity",
-         (def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity_form == SPH_VFORM_ARTIFICIAL,
-         "viscosity_form = artificial reads alpha instead (morris-artificial reads both)"},
+         !(def->effects & SPH_EFFECT(VISCOSITY)) || def->viscosity_form == SPH_VFORM_ARTIFICIAL,
+         !(def->effects & SPH_EFFECT(VISCOSITY))
+             ? "only the effect viscosity reads it"
+             : "viscosity_form = artificial reads alpha instead (morris-artificial reads both)"},
+        {"physics", "viscosity_form", !(def->effects & SPH_EFFECT(VISCOSITY)), "only the effect viscosity reads it"},
         {"kernels", "viscosity",
          (def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity_form == SPH_VFORM_ARTIFICIAL,
          "viscosity_form = artificial takes the pressure kernel's gradient"},
