@@ -213,6 +213,9 @@ nolog=$(for f in "$tmp"/lre/logs/[0-9][0-9]-*.txt; do head -c 9 "$f" | grep -q '
 sphe "-u DISPLAY -u WAYLAND_DISPLAY" lesson 1 --exprot "$tmp/x" > "$tmp/lx.txt" 2>&1
 [ $? -eq 2 ] && grep -q "unknown option '--exprot' (did you mean --export?)" "$tmp/lx.txt" && ok ||
     { bad "lesson 1 --exprot: want exit 2 and --export suggested"; cat "$tmp/lx.txt"; }
+# the window's options and their aliases pass (--colour is --color's), a value that starts with '-' too
+sph lesson 1 --colour pressure --center -0.5:0 --dry-run > "$tmp/lx.txt" 2>&1 && grep -q -- "--colour pressure --center -0.5:0" "$tmp/lx.txt" &&
+    ok || { bad "lesson 1 --colour ... --center -0.5:0: want them passed to the window"; cat "$tmp/lx.txt"; }
 # a lesson's runs put their scene warnings in their logs, not on the terminal (lesson 3 runs without viscosity)
 sph lesson 3 --export "$tmp/l3" --quick --quiet > "$tmp/l3.txt" 2>&1
 [ $? -eq 0 ] && ! grep -q "warning" "$tmp/l3.txt" && grep -q "warning: no viscosity" "$tmp"/l3/logs/*.txt &&
@@ -523,8 +526,8 @@ sph run lessons/scenes/dam-break-2d.ini --steps 2 --quiet --stats "$tmp/mkfile/s
 [ $? -eq 1 ] && grep -q "mkfile" "$tmp/mk.txt" && ok || { bad "run --stats under a file: want exit 1 naming it"; cat "$tmp/mk.txt"; }
 
 # a decimal comma in a vector beside spaces is refused (gravity "0 -9,81" was read as 0, -9, 81); "1,2" stays a list
-sph check lessons/scenes/dam-break-2d.ini --set "physics.gravity=0 -9,81" > "$tmp/dc.txt" 2>&1
-[ $? -eq 2 ] && grep -q "gravity = '0 -9,81': a comma between digits .*decimal comma" "$tmp/dc.txt" &&
+sph check lessons/scenes/dam-break-2d.ini --set "physics.gravity=0  -9,81" > "$tmp/dc.txt" 2>&1
+[ $? -eq 2 ] && grep -q "gravity = '0  -9,81': a comma between digits .*decimal comma" "$tmp/dc.txt" &&
     sph check lessons/scenes/dam-break-2d.ini --set "physics.gravity=0,-9.81" > /dev/null 2>&1 && ok ||
     { bad "a decimal comma in a vector: want it refused (and 0,-9.81 read as a list)"; cat "$tmp/dc.txt"; }
 # whole numbers written as 2e0 or 2.0 are whole numbers on the command line too, as in a scene file

@@ -2,6 +2,7 @@
 #include "app_options.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -255,11 +256,17 @@ bool app_parse_int(const char *opt, const char *s, long lo, long hi, long *out)
     if (s && end != s && (*end == '.' || *end == 'e' || *end == 'E') && !errno) {
         /* 1e3 or 1000.0: whole numbers, as a scene file's integer keys take them (steps = 1e9) */
         char *dend;
+        errno = 0;
         const double d = strtod(s, &dend);
-        if (!*dend && isfinite(d) && d == floor(d) && fabs(d) < 9e18) {
+        if (!*dend && !errno && isfinite(d) && d == floor(d)) {
+            if (fabs(d) >= (double)LONG_MAX) {
+                fprintf(stderr, "sphlab: %s %s: out of range (accepted: %ld to %ld)\n", opt, s, lo, hi);
+                return false;
+            }
             v = (long)d;
             end = dend;
         }
+        errno = 0;
     }
     if (!s || end == s || *end || (errno && errno != ERANGE)) {
         fprintf(stderr, "sphlab: %s '%s': not a whole number\n", opt, s ? s : "");
@@ -392,6 +399,12 @@ static const app_opt *opt_find(unsigned cmd, const char *a, const char **value)
         }
     }
     return NULL;
+}
+
+const app_opt *app_opts_find(unsigned cmd, const char *arg)
+{
+    const char *value;
+    return opt_find(cmd, arg, &value);
 }
 
 const char *app_opts_closest(unsigned cmd, const char *arg)

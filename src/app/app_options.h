@@ -127,6 +127,8 @@ void app_opts_usage(const app_cmd_spec *spec, FILE *f);
 void app_opts_usage_error(const app_cmd_spec *spec, const char *what);
 /* The known option of the command closest to `arg` (a typo's likely meaning), or NULL. */
 const char *app_opts_closest(unsigned cmd, const char *arg);
+/* The option of command cmd that arg names (its name or alias, "=VALUE" allowed), or NULL. */
+const app_opt *app_opts_find(unsigned cmd, const char *arg);
 /* Every command's options as a Markdown reference (docs/commands.md). */
 void app_opts_markdown(FILE *f);
 /* One line per command and option it takes: "run --steps". */

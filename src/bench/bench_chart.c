@@ -198,6 +198,6 @@ bool bench_chart_ladder(const bench_ladder_chart *c, const char *dir, const char
     /* a row of each panel at least as tall as its label: with the 23 levels of the full ladder at 1000 pixels
      * the labels and the bars' numbers overlapped (a student's review); 12 rows fit in 1000 */
     const int height = c->nl > 12 ? (int)(1000.0 * c->nl / 12.0) : 1000;
-    ladder_text_scale = 1000.0 / height;
+    ladder_text_scale = (1400.0 + 1000.0) / (1400.0 + height); /* PLplot's text follows (width + height) / 2 */
     return plot_page(draw_ladder, c, dir, base, 1400, height);
 }

@@ -121,7 +121,7 @@ static double fma_rounds(long iters, float *sink)
     float acc[12];
     for (int k = 0; k < 12; k++) acc[k] = 1.0f + (float)k * 1e-3f;
     for (long i = 0; i < iters; i++)
-#if defined(__FMA__)
+#if defined(__FMA__) || defined(__ARM_FEATURE_FMA) || defined(FP_FAST_FMAF)
         for (int k = 0; k < 12; k++) acc[k] = fmaf(acc[k], 0.9999999f, 1e-7f);
 #else /* fmaf is a library routine without the instruction (0.8 GFLOP/s on a Xeon, where the passes multiply and
        * add at some 10 a core): the passes' own operations, a multiply and an add */

@@ -184,15 +184,18 @@ sph_error_code sph_scene_value_set(const sph_key *k, void *base, const char *val
         /* Spaces and commas both separate components, so "0,5 0" read as 0, 5, 0: a French decimal comma gave a
          * vortex no speed and gravity (0, -9, 81) with no error. A comma between two digits in a value whose
          * components are also separated by spaces is refused; "1,2" and "1, 2" stay lists. */
-        bool spaced = false, digit_comma = false;
-        for (const char *q = value; *q; q++) {
-            if (isspace((unsigned char)*q) && q > value && q[1] && !isspace((unsigned char)q[1]) && q[1] != ',' &&
-                q[-1] != ',' && !isspace((unsigned char)q[-1]))
-                spaced = true;
-            if (*q == ',' && q > value && isdigit((unsigned char)q[-1]) && isdigit((unsigned char)q[1]))
-                digit_comma = true;
+        int tokens = 0; /* words between runs of white space, other than a lone comma */
+        bool digit_comma = false;
+        for (const char *q = value; *q;) {
+            while (isspace((unsigned char)*q)) q++;
+            if (!*q) break;
+            const char *t = q;
+            while (*q && !isspace((unsigned char)*q)) q++;
+            if (!(q - t == 1 && *t == ',')) tokens++;
+            for (const char *c = t + 1; c + 1 < q; c++)
+                if (*c == ',' && isdigit((unsigned char)c[-1]) && isdigit((unsigned char)c[1])) digit_comma = true;
         }
-        if (spaced && digit_comma)
+        if (tokens > 1 && digit_comma)
             return bad_value(err, SPH_ERR_PARSE, w, k, value,
                              "a comma between digits beside components separated by spaces: a decimal comma? "
                              "write the number with a point (0.5), and separate the components with spaces or "

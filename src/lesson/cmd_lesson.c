@@ -15,6 +15,7 @@
 #include "app.h"
 #include "commands.h"
 #include "lesson_steps.h"
+#include "sph_names.h"
 
 
 /* The window's options: the starting state (paused at step 0: space runs,
@@ -499,14 +500,15 @@ int cmd_lesson(int argc, char **argv)
      * "no display" where it meant --export */
     for (int i = 0; i < opt.n_rest; i++) {
         const char *a = opt.rest[i];
-        if (a[0] != '-' || a[1] != '-') continue;
-        char name[64];
-        snprintf(name, sizeof name, "%s", a);
-        char *eq = strchr(name, '=');
-        if (eq) *eq = '\0';
-        const char *as_view = app_opts_closest(APP_CMD(view), name);
-        if (as_view && strcmp(as_view, name) == 0) continue; /* the window's own */
-        const char *own = app_opts_closest(APP_CMD(lesson), name);
+        if (a[0] != '-' || !a[1] || isdigit((unsigned char)a[1]) || a[1] == '.') continue; /* a value: -0.5:0 */
+        const app_opt *known = app_opts_find(APP_CMD(view), a); /* names and aliases (--colour) */
+        if (known) {
+            if (known->arg && !strchr(a, '=')) i++; /* its value follows */
+            continue;
+        }
+        const char *own = app_opts_closest(APP_CMD(lesson), a), *as_view = app_opts_closest(APP_CMD(view), a);
+        if (own && as_view) /* the closer of the two */
+            own = sph_edit_distance(a, own) <= sph_edit_distance(a, as_view) ? own : NULL;
         fprintf(stderr, "sphlab lesson: unknown option '%s'", a);
         if (own || as_view) fprintf(stderr, " (did you mean %s?)", own ? own : as_view);
         fprintf(stderr, "\n  (the lesson's options: sphlab lesson --help; the window's: sphlab view --help)\n");

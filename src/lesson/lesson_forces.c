@@ -166,7 +166,7 @@ int lx_lesson3(lx *x)
         lx_val(x, "p_floor", "%.0f", m ? bp[0] : NAN);
         lx_val(x, "p_floor_hydrostatic", "%.0f", m ? hyd[0] : NAN);
     }
-    if (have[0] && have[1]) {
+    if (have[0] && have[1] && pool[0].n > 0 && pool[1].n > 0) {
         /* the equation of state as the code computed it: p against rho of every particle */
         size_t n = pool[0].n < pool[1].n ? pool[0].n : pool[1].n;
         double *pr = malloc(4 * n * sizeof *pr);
@@ -194,8 +194,8 @@ int lx_lesson3(lx *x)
             }
             plot_lines L = {0};
             snprintf(L.title, sizeof L.title, "The equation of state as the pressure pass computed it");
-            snprintf(L.subtitle, sizeof L.subtitle, "every particle of the pool; k = %g m#u2#d/s#u2#d, negative "
-                                                    "pressure clamped",
+            snprintf(L.subtitle, sizeof L.subtitle, "the pool's particles from 0.995 #gr#d0#u (all in eos.csv); k = %g "
+                                                    "m#u2#d/s#u2#d, negative pressure clamped",
                      def.stiffness);
             snprintf(L.xlabel, sizeof L.xlabel, "density [kg/m#u2#d]");
             /* from just below rho0, where the pressure starts: the surface's light particles (p clamped to 0,
@@ -209,8 +209,9 @@ int lx_lesson3(lx *x)
             L.p[0].s[0] = (plot_series){"linear: k (#gr - #gr#d0#u)", xl, yl, n, 0, false};
             L.p[0].s[1] = (plot_series){"Tait, #gg = 7", xt, yt, n, 1, false};
             lx_chart(x, PLOT_LINES, &L, "eos", 1000, 650,
-                     "{{@pressure against density of every particle: linear and Tait|la pression en fonction de la "
-                     "densité de chaque particule : linéaire et Tait}}");
+                     "{{@pressure against density of the particles from 0.995 rho0 up (every particle in eos.csv): "
+                     "linear and Tait|la pression en fonction de la densité des particules à partir de 0,995 rho0 "
+                     "(toutes dans eos.csv) : linéaire et Tait}}");
             lx_val(x, "rho_densest_linear", "%.1f", xl[n - 1]);
             lx_val(x, "p_densest_linear", "%.0f", yl[n - 1]);
             lx_val(x, "rho_densest_tait", "%.1f", xt[n - 1]);
