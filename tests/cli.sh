@@ -505,6 +505,10 @@ sph run "$tmp/art.ini" --steps 1 --stats "$tmp/art.csv" > "$tmp/art.txt" 2>&1 &&
 sph run lessons/01-kernel-estimation/lesson.ini --steps 1 --quiet --set physics.viscosity=0.1 2>&1 |
     grep -q "warning: --set: \[physics\] viscosity is set but this scene does not use it: only the effect viscosity reads it" &&
     ok || bad "--set physics.viscosity without the effect: want the unread key's warning"
+# a --quick lesson 8 export takes a full export's ladder files out of the folder (they read as measured by it)
+mkdir -p "$tmp/l8" && : > "$tmp/l8/ladder-3d.png" && : > "$tmp/l8/ladder-3d.csv"
+sph lesson 8 --export "$tmp/l8" --quick --quiet > "$tmp/l8.txt" 2>&1 && [ ! -e "$tmp/l8/ladder-3d.png" ] && [ ! -e "$tmp/l8/ladder-3d.csv" ] &&
+    ok || { bad "lesson 8 --quick into a full export's folder: want the old ladder files gone"; ls "$tmp/l8"; cat "$tmp/l8.txt"; }
 # h not above the spacing: the warning names the line of h
 printf '[domain]\nmin = 0 0\nmax = 1 1\n[fluid a]\nmin = 0 0\nmax = 0.2 0.2\nspacing = 0.02\n[kernels]\nh = 0.01\n' > "$tmp/smallh.ini"
 sph check "$tmp/smallh.ini" 2>&1 | grep -q "warning: .*smallh.ini:9: \[kernels\] h = 0.01 m is not larger than the spacing 0.02 m" && ok ||

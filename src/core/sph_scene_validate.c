@@ -157,8 +157,9 @@ static void unread_keys(const sph_scene_def *def, char *buf, size_t n)
              : "viscosity_form = artificial reads alpha instead (morris-artificial reads both)"},
         {"physics", "viscosity_form", !(def->effects & SPH_EFFECT(VISCOSITY)), "only the effect viscosity reads it"},
         {"kernels", "viscosity",
-         (def->effects & SPH_EFFECT(VISCOSITY)) && def->viscosity_form == SPH_VFORM_ARTIFICIAL,
-         "viscosity_form = artificial takes the pressure kernel's gradient"},
+         !(def->effects & SPH_EFFECT(VISCOSITY)) || def->viscosity_form == SPH_VFORM_ARTIFICIAL,
+         !(def->effects & SPH_EFFECT(VISCOSITY)) ? "only the effect viscosity reads it"
+                                                   : "viscosity_form = artificial takes the pressure kernel's gradient"},
         {"physics", "shifting_coefficient", def->shifting == SPH_SHIFT_NONE, "only shifting = lind or tvf reads it"},
         {"domain", "wall_damping", !walls, "only the effect walls reads it"},
         {"interaction", "radius", !(def->effects & SPH_EFFECT(INTERACTION)), "only the effect interaction reads it"},

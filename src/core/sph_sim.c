@@ -613,10 +613,11 @@ sph_error_code sph_sim_reconfigure(sph_sim *sim, const sph_scene_def *def, sph_e
  * download them all each pass. The integrate pass's reduction already reads
  * back the largest speed and acceleration; a non-finite or runaway value
  * there triggers the download and the full scan, which names the field and
- * particle; the report names integrate, where it was found (the scan's pass, the
- * first of the step that writes the field, is no more than that: on an H200 it
- * named 'external' for a particle that integrate had sent out of the box). A density runaway that leaves speeds finite and bounded
- * is caught only on the CPU backend. */
+ * particle; the report names integrate, where it was found (the scan's pass,
+ * the first of the step that writes the field, is no more than that: on an
+ * H200 it named 'external' for a particle that integrate had sent out of the
+ * box). A density runaway that leaves speeds finite and bounded is caught
+ * only on the CPU backend. */
 static void watchdog_backend(sph_sim *sim, int p)
 {
     if (p != SPH_PASS_INTEGRATE) return;
