@@ -85,6 +85,17 @@ sph run "$tmp/glr.ini" --steps 1 > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "glr.ini:16: \[search\] compact_lists = on is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl refusal: want exit 1 and the key's line"; cat "$tmp/gl.txt"; }
 sph run "$tmp/glr.ini" --steps 1 --set search.compact_lists=off > "$tmp/gl.txt" 2>&1
 [ $? -eq 1 ] && grep -q "glr.ini:15: \[search\] skin = 0.05 (Verlet lists) is not implemented by the GL backend" "$tmp/gl.txt" && ok || { bad "gl refusal of skin: want exit 1 and the key's line"; cat "$tmp/gl.txt"; }
+# Verlet lists: --stats says how often they were built and how far the particles had moved (a count, not a
+# time): with skin 0.1 (h = 0.1 m) they are rebuilt before any particle has moved half the skin, 0.005 m
+if sph run lessons/scenes/dam-break-3d.ini --set search.skin=0.1 --steps 60 --quiet --stats "$tmp/sk.csv" 2> "$tmp/err.txt"; then
+    head -1 "$tmp/sk.csv" | grep -q ',walls_ms,list_builds,skin_moved,hash_keys' && ok || bad "--stats with a skin: no list_builds,skin_moved columns"
+    awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) { if ($c == "list_builds") b = c; if ($c == "skin_moved") m = c } next }
+             { if ($m >= 0.005 || $b < last) bad = 1; last = $b }
+             END { exit !(b && m && !bad && last > 2 && last < 30) }' "$tmp/sk.csv" && ok ||
+        { bad "--stats with a skin: builds not in (2, 30) or a move past half the skin"; cut -d, -f1,22,23 "$tmp/sk.csv" | tail -5; }
+else
+    bad "run with a skin --stats"; cat "$tmp/err.txt"
+fi
 # The pressure solvers on the CPU: their --stats columns, every step within the tolerance.
 for solver in pcisph dfsph; do
     if sph run "$scene" --steps 20 --quiet --set physics.pressure_solver=$solver --set time.dt=0.0005 --stats "$tmp/solver.csv" 2> "$tmp/err.txt"; then

@@ -30,6 +30,8 @@ void app_stats_header(FILE *f, const sph_sim *sim)
         for (int d = 0; d < sim->dim; d++) fprintf(f, ",obstacle_%s_f%c", sim->def.obstacles[k].name, "xyz"[d]);
     if (sim->def.pressure_solver != SPH_PSOLVER_EOS) /* the pressure solver's step: iterations, error reached */
         fprintf(f, ",iterations,density_error,div_iterations,divergence_error,capped,stopped");
+    if (sim->def.skin > 0) /* Verlet lists: how often they were built, and what kept them (sph_skin.c) */
+        fprintf(f, ",list_builds,skin_moved");
     sph_hash_health hh;
     sph_sim_hash_health(sim, false, &hh);
     if (hh.has_table) /* the figures of docs/performance.md's "Hash health" */
@@ -59,6 +61,8 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
         fprintf(f, ",%d,%.6g,%d,%.6g,%llu,%llu", sim->solver.iterations, sim->solver.density_error,
                 sim->solver.div_iterations, sim->solver.divergence_error, (unsigned long long)sim->solver.capped,
                 (unsigned long long)sim->solver.stopped);
+    if (sim->def.skin > 0)
+        fprintf(f, ",%llu,%.6g", (unsigned long long)sim->S.builds, (double)sim->S.skin_moved);
     sph_hash_health hh;
     sph_sim_hash_health(sim, false, &hh);
     if (hh.has_table) {
