@@ -145,15 +145,18 @@ sph study lessons/scenes/study-hydrostatic-2d.ini --vary fluid.spacng=0.02,0.04 
 [ $? -eq 2 ] && grep -q "^sphlab study: --vary fluid.spacng=0.02: unknown key 'spacng'.*did you mean 'spacing'" "$tmp/err.txt" &&
     ok || { bad "study --vary with a misspelt key: want exit 2 and the nearest name"; cat "$tmp/err.txt"; }
 # a study over the spacing at a fixed kernels.h changes h / spacing too: said, with the linked --vary that keeps it
-# (a student read the falling error as convergence with resolution); not said when h follows the spacing
-sph study lessons/scenes/study-density-2d.ini --vary "fluid block.spacing=0.02,0.01" --repeats 1 --threads 1 --quiet \
+# (a student read the falling error as convergence with resolution), and its table gives each row's h / spacing;
+# neither when h follows the spacing
+sph study lessons/scenes/study-density-2d.ini --vary "fluid block.spacing=0.02,0.01" --repeats 1 --threads 1 \
     --out "$tmp/ratio" > "$tmp/err.txt" 2>&1
 [ $? -eq 0 ] && grep -q "warning: h / spacing runs from 2 to 4 over the combinations" "$tmp/err.txt" &&
-    grep -q -- "--vary 'fluid block.spacing+kernels.h=0.02+0.04,0.01+0.02'" "$tmp/err.txt" && ok ||
+    grep -q -- "--vary 'fluid block.spacing+kernels.h=0.02+0.04,0.01+0.02'" "$tmp/err.txt" &&
+    grep -qE '^ +# +fluid block.spacing +h/s +particles' "$tmp/err.txt" && grep -qE '^ +1 +0.02 +2 ' "$tmp/err.txt" &&
+    grep -qE '^ +2 +0.01 +4 ' "$tmp/err.txt" && ok ||
     { bad "study --vary spacing at a fixed h: want the h / spacing warning"; cat "$tmp/err.txt"; }
 sph study lessons/scenes/study-density-2d.ini --vary "fluid block.spacing+kernels.h=0.02+0.04,0.01+0.02" --repeats 1 \
-    --threads 1 --quiet --out "$tmp/ratio" > "$tmp/err.txt" 2>&1
-[ $? -eq 0 ] && ! grep -q "h / spacing" "$tmp/err.txt" && ok ||
+    --threads 1 --out "$tmp/ratio" > "$tmp/err.txt" 2>&1
+[ $? -eq 0 ] && ! grep -q "h / spacing" "$tmp/err.txt" && grep -q "particles" "$tmp/err.txt" && ! grep -q "h/s" "$tmp/err.txt" && ok ||
     { bad "study --vary spacing with h linked: want no h / spacing warning"; cat "$tmp/err.txt"; }
 # a study whose every run the watchdog stopped measured nothing: exit 4, as run's watchdog stop (it exited 0 and
 # named "the 0 runs" on the front)

@@ -81,11 +81,17 @@ static bool knob_sets_h(const study_knob *kn)
 /* A study over the spacing at a fixed kernels.h changes h / spacing too, so its errors mix a finer lattice
  * with a kernel that spans more spacings (2 to 4 for spacing 0.02 to 0.01 at h = 0.04 m): a student read the
  * falling error as convergence with resolution. Said, with the two ways to keep the ratio. */
+static bool ratio_varies(const study_plan *plan, double lo, double hi)
+{
+    if (!(hi > lo * (1 + 1e-6))) return false;
+    for (int k = 0; k < plan->n_knobs; k++)
+        if (knob_sets_h(&plan->knob[k])) return false;
+    return true;
+}
+
 static void note_ratio(const study_plan *plan, const sph_scene_def *scene, double lo, double hi)
 {
-    if (!(hi > lo * (1 + 1e-6))) return;
-    for (int k = 0; k < plan->n_knobs; k++)
-        if (knob_sets_h(&plan->knob[k])) return;
+    if (!ratio_varies(plan, lo, hi)) return;
     const study_knob *sk = NULL; /* the knob that moves the spacing, for the example */
     for (int k = 0; k < plan->n_knobs && !sk; k++) {
         const char *dot = strrchr(plan->knob[k].key, '.');
@@ -160,7 +166,9 @@ static const char *error_label(study_metric m)
     }
 }
 
-static void print_table(FILE *f, const study_plan *p, const study_row *rows, int n)
+/* ratio: the table has an h/s column, where h / spacing differs between the rows and no knob sets h (then
+ * the knobs' own columns do not show what each error was measured at; see note_ratio). */
+static void print_table(FILE *f, const study_plan *p, const study_row *rows, int n, bool ratio)
 {
     int w[STUDY_MAX_KNOBS];
     fprintf(f, "%4s", "#");
@@ -170,11 +178,13 @@ static void print_table(FILE *f, const study_plan *p, const study_row *rows, int
             if ((int)strlen(p->knob[k].value[v]) > w[k]) w[k] = (int)strlen(p->knob[k].value[v]);
         fprintf(f, "  %-*s", w[k], p->knob[k].key);
     }
+    if (ratio) fprintf(f, "  %5s", "h/s");
     fprintf(f, "  %9s %8s %11s %10s %9s  %s\n", "particles", "steps", "error", "ms/step", "run s", "front");
     for (int i = 0; i < n; i++) {
         const study_row *r = &rows[i];
         fprintf(f, "%4d", i + 1);
         for (int k = 0; k < p->n_knobs; k++) fprintf(f, "  %-*s", w[k], p->knob[k].value[r->idx[k]]);
+        if (ratio) fprintf(f, "  %5.3g", r->h_over_s);
         char err[32];
         if (r->r.stopped)
             snprintf(err, sizeof err, "stopped");
@@ -304,6 +314,7 @@ int study_cmd_run(const study_cmd *cmd)
         study_plan_apply(&plan, c, &def, why, sizeof why); /* checked above */
         study_row *row = &rows[c];
         study_plan_combo(&plan, c, row->idx);
+        row->h_over_s = sph_scene_finest_spacing(&def) > 0 ? def.h / sph_scene_finest_spacing(&def) : NAN;
         combo_text(&plan, row->idx, pc.what, sizeof pc.what, " ");
         long n_steps = steps;
         double t_end = until;
@@ -478,7 +489,7 @@ int study_cmd_run(const study_cmd *cmd)
         fprintf(table, "study of %s: %ld combination%s x %ld run%s, metric %s:\n  %s\n", o.path, combos,
                 combos == 1 ? "" : "s", repeats, repeats == 1 ? "" : "s", study_metric_names[metric],
                 study_metric_about[metric]);
-        print_table(table, &plan, rows, (int)combos);
+        print_table(table, &plan, rows, (int)combos, ratio_varies(&plan, ratio_lo, ratio_hi));
         if (nf > 0)
             fprintf(table, "front: the %d run%s no other run beats in both error and time (*)\n", nf,
                     nf == 1 ? "" : "s");

@@ -206,6 +206,7 @@ typedef struct study_row {
     study_result r;        /* of the first repeat; wall_ms replaced by the median */
     double ms_per_step;    /* median wall time / steps */
     double total_s;        /* median wall time of a run [s] */
+    double h_over_s;       /* [1] kernels.h over the finest spacing, NAN without a block */
     bool front;
 } study_row;
 
