@@ -106,6 +106,23 @@ for solver in pcisph dfsph; do
         bad "run $scene with pressure_solver = $solver"; cat "$tmp/err.txt"
     fi
 done
+# solves that end short are said on stderr (-q too) and in the summary: only --stats said it, and a student took the
+# run for converged (a count of solves, not a time)
+sph run lessons/11-incompressible/lesson.ini --steps 5 --quiet --set physics.pressure_solver=pcisph \
+    --set physics.solver_tolerance=1e-12 > "$tmp/short.txt" 2>&1
+[ $? -eq 0 ] && grep -q "warning: 5 pressure solves ended short of the tolerance (5 capped at solver_max_iterations = 100, 0 stopped" "$tmp/short.txt" &&
+    ok || { bad "run with solves capped: want the warning"; cat "$tmp/short.txt"; }
+sph run lessons/11-incompressible/lesson.ini --steps 5 --set physics.pressure_solver=dfsph --set physics.solver_tolerance=1e-12 \
+    > "$tmp/short.txt" 2>/dev/null && grep -q "^pressure solves 5 capped at solver_max_iterations = 100" "$tmp/short.txt" &&
+    ok || { bad "run's summary: want the pressure solves line"; cat "$tmp/short.txt"; }
+# a solver chosen without the effect pressure is said (no pressure acts), check gives that reason, and --stats has
+# no solver columns of zeros
+sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pressure_solver=pcisph \
+    --set "scene.effects=gravity viscosity walls" --stats "$tmp/nop.csv" > "$tmp/nop.txt" 2>&1
+[ $? -eq 0 ] && grep -q "pressure_solver is set but this scene does not use it: only the effect pressure reads it" "$tmp/nop.txt" &&
+    ! head -1 "$tmp/nop.csv" | grep -q iterations && ok || { bad "pressure_solver without pressure: want the warning, no solver columns"; cat "$tmp/nop.txt"; head -1 "$tmp/nop.csv"; }
+sph check lessons/11-incompressible/lesson.ini --set "scene.effects=gravity viscosity walls" > "$tmp/nop.txt" 2>&1
+grep -qE "^ +pressure +effects do not list pressure" "$tmp/nop.txt" && ok || { bad "check: the pressure pass's reason"; cat "$tmp/nop.txt"; }
 # The dump's p column is the pressure the solver applied, not 0: PCISPH's p_pci; DFSPH's rho (kappa + kappa_v)
 sph run "$scene" --steps 20 --quiet --set physics.pressure_solver=pcisph --dump "$tmp/pd.csv" > "$tmp/err.txt" 2>&1
 awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next }

@@ -563,7 +563,7 @@ int cmd_hardcases(int argc, char **argv)
         bool ok = ran && judge(c, &o, steps, why, sizeof why);
         if (!ran) snprintf(why, sizeof why, "%.200s", o.report);
         if (o.refused) /* nothing ran: no figure to show, only the refusal */
-            printf("%-22s %7s %9s %9s %5s %8s  %s: refused: %.200s (%.1f s)\n", c->name, "-", "-", "-", "-", "-",
+            printf("%-22s %7s %9s %9s %5s %8s  %s: refused: %s (%.1f s)\n", c->name, "-", "-", "-", "-", "-",
                    ok ? "pass" : "FAIL", ok ? o.report : why, (sph_now_ms() - t0) / 1e3);
         else
             printf("%-22s %7llu %8.2f%% %8.2f%% %5u %8s  %s%s%s (%.1f s)\n", c->name, (unsigned long long)o.steps,

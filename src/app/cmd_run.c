@@ -28,7 +28,7 @@ void app_stats_header(FILE *f, const sph_sim *sim)
         if (sim->in_pipeline[p]) fprintf(f, ",%s_ms", sph_passes[p]->name);
     for (int k = 0; k < sim->def.n_obstacles; k++) /* the fluid's force on each obstacle [N or N/m] */
         for (int d = 0; d < sim->dim; d++) fprintf(f, ",obstacle_%s_f%c", sim->def.obstacles[k].name, "xyz"[d]);
-    if (sim->def.pressure_solver != SPH_PSOLVER_EOS) /* the pressure solver's step: iterations, error reached */
+    if (sph_scene_pressure_solver(&sim->def)) /* the pressure solver's step: iterations, error reached */
         fprintf(f, ",iterations,density_error,div_iterations,divergence_error,capped,stopped");
     if (sim->def.skin > 0) /* Verlet lists: how often they were built, and what kept them (sph_skin.c) */
         fprintf(f, ",list_builds,skin_moved");
@@ -57,7 +57,7 @@ void app_stats_row(FILE *f, const sph_sim *sim, double dt)
         for (int k = 0; k < sim->def.n_obstacles; k++)
             for (int d = 0; d < sim->dim; d++) fprintf(f, ",%.9g", force[k][d]);
     }
-    if (sim->def.pressure_solver != SPH_PSOLVER_EOS)
+    if (sph_scene_pressure_solver(&sim->def))
         fprintf(f, ",%d,%.6g,%d,%.6g,%llu,%llu", sim->solver.iterations, sim->solver.density_error,
                 sim->solver.div_iterations, sim->solver.divergence_error, (unsigned long long)sim->solver.capped,
                 (unsigned long long)sim->solver.stopped);
@@ -172,6 +172,13 @@ void app_run_report(FILE *out, const sph_sim *sim, double wall_ms)
     else
         fprintf(out, "density         not computed (no effect needs it)\n");
     fprintf(out, "max speed       %.6g m/s\n", s.max_speed);
+    if (sph_scene_pressure_solver(&sim->def)) /* the solves that ended short, said where a reader looks */
+        fprintf(out,
+                "pressure solves %llu capped at solver_max_iterations = %d, %llu stopped where their error rose; the "
+                "last step's density error %.3g %% (tolerance %.3g %%)\n",
+                (unsigned long long)sim->solver.capped, sim->def.solver_max_iterations,
+                (unsigned long long)sim->solver.stopped, 100.0 * sim->solver.density_error,
+                100.0 * sim->def.solver_tolerance);
     fprintf(out, "wall time       %.3f s: %.1f steps/s, %.3g particle-steps/s\n", wall_ms / 1e3,
            sim->step / (wall_ms / 1e3), (double)s.n * sim->step / (wall_ms / 1e3));
 }
@@ -296,6 +303,18 @@ int cmd_run(int argc, char **argv)
         sph_sim_alarm_report(sim, report, sizeof report);
         fprintf(stderr, "sphlab: %s", report);
     }
+    if (sph_scene_pressure_solver(&sim->def) && !sim->alarm.raised && sim->solver.capped + sim->solver.stopped > 0)
+        /* on stderr, -q too: only --stats said it (capped, stopped), and a student took the run for converged */
+        fprintf(stderr,
+                "sphlab run: warning: %llu pressure solve%s ended short of the tolerance (%llu capped at "
+                "solver_max_iterations = %d, %llu stopped where their error rose): those steps end above "
+                "solver_tolerance = %g%s; --stats gives each step's density_error\n",
+                (unsigned long long)(sim->solver.capped + sim->solver.stopped),
+                sim->solver.capped + sim->solver.stopped == 1 ? "" : "s", (unsigned long long)sim->solver.capped,
+                sim->def.solver_max_iterations, (unsigned long long)sim->solver.stopped,
+                (double)sim->def.solver_tolerance,
+                sim->def.pressure_solver == SPH_PSOLVER_DFSPH ? " (or divergence_tolerance: dfsph's two solves count)"
+                                                              : "");
     if (dump.f) app_dump_write(dump.f, sim);
     bool stats_ok = app_out_commit(&stats), dump_ok = app_out_commit(&dump); /* both, even if one fails */
     bool ok = stats_ok && dump_ok && vtk_ok;

@@ -106,6 +106,8 @@ bool sph_scene_needs_density(const sph_scene_def *def);
 /* Walls listed, with wall_model = volume: they count in density and pressure. */
 bool sph_scene_wall_volume(const sph_scene_def *def);
 #define sph_sim_wall_volume(sim) sph_scene_wall_volume(&(sim)->def)
+/* A pressure solver (pcisph, dfsph) makes the pressure: chosen, with the effect pressure. */
+bool sph_scene_pressure_solver(const sph_scene_def *def);
 /* Walls listed, with wall_model = particles and pressure computed: layers of
  * fixed wall particles (src/core/sph_wall_particles.c). */
 bool sph_scene_wall_particles(const sph_scene_def *def);

@@ -116,7 +116,9 @@ static void unread_keys(const sph_scene_def *def, char *buf, size_t n)
         {"physics", "delta", def->density_method != SPH_DMETHOD_CONTINUITY, "only density_method = continuity reads it"},
         {"physics", "delta_form", def->density_method != SPH_DMETHOD_CONTINUITY,
          "only density_method = continuity reads it"},
-        /* the solvers' keys: a tolerance given to the equation of state changed nothing, unsaid */
+        /* the solvers' keys: a tolerance given to the equation of state changed nothing, unsaid; and the
+         * choice itself without the effect (a fluid without pressure ran, its --stats error 0) */
+        {"physics", "pressure_solver", !pressure, "only the effect pressure reads it: no pressure acts"},
         {"physics", "solver_tolerance", !solver, by_solver},
         {"physics", "solver_max_iterations", !solver, by_solver},
         {"physics", "solver_warm_start", !solver, by_solver},

@@ -25,6 +25,11 @@ bool sph_scene_needs_density(const sph_scene_def *def)
            def->xsph > 0;
 }
 
+bool sph_scene_pressure_solver(const sph_scene_def *def)
+{
+    return def->pressure_solver != SPH_PSOLVER_EOS && (def->effects & SPH_EFFECT(PRESSURE));
+}
+
 bool sph_scene_wall_volume(const sph_scene_def *def)
 {
     return (def->effects & SPH_EFFECT(WALLS)) && def->wall_model == SPH_WALL_VOLUME;

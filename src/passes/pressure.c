@@ -13,8 +13,8 @@
 
 static const char *skip_reason(const sph_scene_def *def)
 {
-    if (def->pressure_solver != SPH_PSOLVER_EOS) return "pressure_solver is not eos: its own pass makes the pressure";
-    return (def->effects & SPH_EFFECT(PRESSURE)) ? NULL : "effects do not list pressure";
+    if (!(def->effects & SPH_EFFECT(PRESSURE))) return "effects do not list pressure";
+    return def->pressure_solver != SPH_PSOLVER_EOS ? "pressure_solver is not eos: its own pass makes the pressure" : NULL;
 }
 
 static void describe(const sph_scene_def *def, char *out, int n)
