@@ -115,6 +115,11 @@ sph run lessons/11-incompressible/lesson.ini --steps 5 --quiet --set physics.pre
 sph run lessons/11-incompressible/lesson.ini --steps 5 --set physics.pressure_solver=dfsph --set physics.solver_tolerance=1e-12 \
     > "$tmp/short.txt" 2>/dev/null && grep -q "^pressure solves 5 capped at solver_max_iterations = 100" "$tmp/short.txt" &&
     ok || { bad "run's summary: want the pressure solves line"; cat "$tmp/short.txt"; }
+# solver_max_iterations = 1 measured once and corrected never: a fluid without pressure that exited 0; refused
+sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pressure_solver=pcisph \
+    --set physics.solver_max_iterations=1 > "$tmp/mi.txt" 2>&1
+[ $? -eq 2 ] && grep -q "solver_max_iterations = '1': out of range (accepted: from 2" "$tmp/mi.txt" && ok ||
+    { bad "solver_max_iterations = 1: want it refused"; cat "$tmp/mi.txt"; }
 # a solver chosen without the effect pressure is said (no pressure acts), check gives that reason, and --stats has
 # no solver columns of zeros
 sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pressure_solver=pcisph \

@@ -174,8 +174,10 @@ const sph_key sph_scene_keys[] = {
      "pressure alone, or with their own under solver_wall_pressure = extrapolated)"},
     {"physics", "solver_tolerance", SPH_KEY_FLOAT, S(solver_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
      "pcisph, dfsph: the largest relative density error (rho - rho_rest) / rho_rest a step may end with"},
-    {"physics", "solver_max_iterations", SPH_KEY_INT, S(solver_max_iterations), 1, 10000, 0, 0, NULL, 0, "", "100",
-     "pcisph, dfsph: iterations a solve takes at most; a step that reaches it is counted (HUD, --stats)"},
+    {"physics", "solver_max_iterations", SPH_KEY_INT, S(solver_max_iterations), 2, 10000, 0, 0, NULL, 0, "", "100",
+     "pcisph, dfsph: iterations a solve takes at most; a step that reaches it is counted (HUD, --stats, run's "
+     "summary). An iteration measures the error and, unless it is within the tolerance or the last, corrects the "
+     "pressure: N allows N - 1 corrections (so at least 2: 1 would apply no pressure)"},
     {"physics", "divergence_tolerance", SPH_KEY_FLOAT, S(divergence_tolerance), 0, 1, 1, 0, NULL, 0, "", "0.001",
      "dfsph: the mean over the particles of max(dt D rho/Dt, 0) / rho_rest (the density change the flow makes "
      "in one step, counted where rho >= rho_rest; Bender & Koschier's average) the divergence-free solve may "
