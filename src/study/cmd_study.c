@@ -23,8 +23,9 @@ static const app_cmd_spec spec = {
                 "Runs every combination of the --vary lists on a reference problem, measures its error and its\n"
                 "wall time, and writes DIR/study.csv, DIR/study.png and DIR/study.pdf (error against time, log-log,\n"
                 "Pareto front marked) and a table. docs/accuracy.md defines each error.\n",
-    .footer = "exit status: 0 done; 1 bad scene, knob value or output directory; 2 bad command line (a bad --set\n"
-              "too); 4 every combination was stopped by the watchdog\n",
+    .footer = "exit status: 0 done; 1 bad scene (a combination the scene refuses too) or output directory; 2 bad\n"
+              "command line (a bad --set, or a --vary key or value, too); 4 every combination was stopped by the\n"
+              "watchdog\n",
     .max_pos = 1,
     .extra_pos = "more than one scene file",
 };
@@ -425,6 +426,20 @@ int study_cmd_run(const study_cmd *cmd)
     for (long c = 1; c < combos; c++) {
         same_steps &= rows[c].r.steps == rows[0].r.steps;
         same_time &= fabs(rows[c].r.t_end - rows[0].r.t_end) <= 0.01 * rows[0].r.t_end;
+    }
+    if (until < 0 && !same_time) { /* --steps at time steps that differ: unequal work on one time axis */
+        double lo = rows[0].r.t_end, hi = rows[0].r.t_end;
+        for (long c = 1; c < combos; c++) {
+            if (rows[c].r.stopped) continue; /* a watchdog stop ends early, and is said as such */
+            lo = fmin(lo, rows[c].r.t_end);
+            hi = fmax(hi, rows[c].r.t_end);
+        }
+        if (hi > lo * 1.01)
+            fprintf(stderr,
+                    "sphlab study: warning: the runs simulated from %.3g to %.3g s (%s at their own time steps), so "
+                    "their wall times are for unequal work and the front compares them as equal; give --time T "
+                    "to compare the same simulated time\n",
+                    lo, hi, steps >= 0 ? "--steps" : "the scene's steps");
     }
     if (until >= 0 || (steps < 0 && !same_steps && same_time))
         snprintf(len_text, sizeof len_text, "%.3g s simulated", rows[0].r.t_end);
