@@ -96,11 +96,18 @@ int val_run_taylor_green(const val_ctx *c, const val_problem *p)
         }
         ok = val_csv_close(c, f, "taylor-green.csv");
     }
-    char trend[600] = "";
+    char trend[1000] = "";
     for (int r = 0; r < done; r++) val_cost_error(r, obs[r].worst_l1); /* the L1 of the speed, beside its cost */
     for (int r = 0; r < done; r++) {
-        val_append(trend, sizeof trend, "%s%d^2: max-speed %.2f%% L1 %.2f%%", r ? ", " : "", c->res[r],
-                   100 * obs[r].worst_linf, 100 * obs[r].worst_l1);
+        /* the part of the max-speed error there at t = 0, where the lattice misses the field's peak (16^2: 3.73
+         * of 3.87 %): said, or a student reads the sampling as the scheme's error growing with resolution */
+        const val_series *e0 = &obs[r].linf;
+        const double at0 = e0->n > 0 && e0->x[0] == 0.0 ? e0->y[0] : 0.0;
+        char start[96] = "";
+        if (at0 >= 0.001)
+            snprintf(start, sizeof start, " (%.2f%% of it at t = 0: no particle sits on the speed's peak)", 100 * at0);
+        val_append(trend, sizeof trend, "%s%d^2: max-speed %.2f%%%s L1 %.2f%%", r ? ", " : "", c->res[r],
+                   100 * obs[r].worst_linf, start, 100 * obs[r].worst_l1);
         if (r > 0)
             val_append(trend, sizeof trend, " (order %.2f)",
                        val_order(c->res[r - 1], obs[r - 1].worst_l1, c->res[r], obs[r].worst_l1));
