@@ -14,6 +14,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "plot.h"
 #include "stb_image.h"
 #include "test_util.h"
 
@@ -422,6 +423,21 @@ Test(plot, series_of_stats_columns)
  * titles name both units and are longer than a panel is tall. Each must stay
  * beside its own panel: along the strip left of the tick labels, the titles'
  * ink makes three separate runs, not one title running into the next. */
+/* A y-axis up to 0.0103 (the hydrostatic chart's pressure error) is scaled, as one below 0.01 was: its ticks
+ * -0.002 and 0.010 took six characters and the axis title stood on them. */
+Test(plot, small_axes_are_scaled_by_a_power_of_ten)
+{
+    cr_assert_eq(plot_axis_exponent(0.0103), -2);
+    cr_assert_eq(plot_axis_exponent(0.05), -2);
+    cr_assert_eq(plot_axis_exponent(0.002), -3);
+    cr_assert_eq(plot_axis_exponent(0.1), 0);
+    cr_assert_eq(plot_axis_exponent(6.0), 0);
+    cr_assert_eq(plot_axis_exponent(9999.0), 0);
+    cr_assert_eq(plot_axis_exponent(25000.0), 4);
+    cr_assert_eq(plot_axis_exponent(0.0), 0);
+    cr_assert_eq(plot_axis_exponent(NAN), 0);
+}
+
 Test(plot, series_axis_titles_stay_beside_their_panels)
 {
     const char *dir = test_temp_dir("plot"), *stats = synthetic_stats();

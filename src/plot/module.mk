@@ -22,6 +22,9 @@ $(BUILD)/plot:
 # The plot tests (tests/test_plot*.c) decode PNGs with stb_image. A pattern's
 # % matches at least one character, hence test_plot.o named on its own.
 $(BUILD)/tests/test_plot.o $(BUILD)/tests/test_plot%.o: CFLAGS += $(STB_CFLAGS)
+# tests/test_plot.c calls plot.h's axis rule (inline) in-process.
+$(BUILD)/tests/test_plot.o: CORE_CFLAGS += -Isrc/plot
+$(BUILD)/tests/test_plot.o: src/plot/plot.h
 
 # `make test` compiles the library, app and tests with clang as well; the
 # module's objects too.

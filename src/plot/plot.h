@@ -15,6 +15,7 @@
 #ifndef SPH_PLOT_H
 #define SPH_PLOT_H
 
+#include <math.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -162,6 +163,16 @@ void plot_set_svg(bool on);
 
 /* Escapes PLplot's text escape character '#' in s (for file names in titles). */
 void plot_escape(char *dst, size_t cap, const char *s);
+/* The power of ten a y-axis of values up to mag (the largest |y|) is divided by, named in its title's unit
+ * ("[10^e ...]"); 0: none. Values at or above 1e4 or below 0.1 are scaled, so a tick label takes at most
+ * five characters beside the axis title. */
+static inline int plot_axis_exponent(double mag)
+{
+    /* below 0.1 too: ticks such as -0.002 and 0.010 took six characters, and the y-axis title stood on them
+     * (the hydrostatic chart's top panel) */
+    if (!(isfinite(mag) && mag > 0 && (mag >= 1e4 || mag < 1e-1))) return 0;
+    return (int)floor(log10(mag));
+}
 
 /* ---- drawing kit: for a chart that none of the kinds above draws ---------- */
 

@@ -496,12 +496,12 @@ static void draw_lines(const void *chart)
         double mag = fmax(fabs(yr.lo), fabs(yr.hi)), scale = 1;
         char ylabel[192];
         snprintf(ylabel, sizeof ylabel, "%s", P->ylabel);
-        if (isfinite(mag) && mag > 0 && (mag >= 1e4 || mag < 1e-2)) {
-            int e = (int)floor(log10(mag));
-            scale = pow(10, -e);
+        const int exponent = plot_axis_exponent(mag);
+        if (exponent != 0) {
+            scale = pow(10, -exponent);
             yr.lo *= scale;
             yr.hi *= scale;
-            scale_label(ylabel, sizeof ylabel, P->ylabel, e);
+            scale_label(ylabel, sizeof ylabel, P->ylabel, exponent);
         }
         yr = range_pad(yr, 0.07);
 
@@ -528,7 +528,7 @@ static void draw_lines(const void *chart)
         plot_width(1.6);
         pllsty(1);
         /* "f": fixed-point tick labels. The values are scaled above to
-         * [1e-2, 1e4), which fixed point writes in at most 6 characters;
+         * [1e-1, 1e4), which fixed point writes in at most 6 characters;
          * PLplot's own exponent (e.g. a range from just below 0 to 0.09)
          * would go in the corner above the axis, over the panel above's
          * lowest tick label or the y-axis title. */
