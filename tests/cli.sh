@@ -277,6 +277,11 @@ sph keys physcs > "$tmp/keys.txt" 2>&1
 # keys SECTION...: those sections alone, in the table's order, each once ([time] written as a scene writes it)
 got=$(sph keys '[time]' physics time | grep '^\[' | tr '\n' ' ')
 [ "$got" = "[physics] [time] " ] && ok || bad "keys '[time]' physics time: headings '$got', want '[physics] [time] '"
+# a single-valued option given twice keeps the last and says so, as --set does (a teacher's --resolution 10
+# --resolution 12 ran 12 unsaid)
+sph run lessons/scenes/rest-2d.ini --steps 2 --steps 3 --quiet --stats "$tmp/twice.csv" > "$tmp/twice.txt" 2>&1
+[ $? -eq 0 ] && grep -q "sphlab run: warning: --steps is given twice ('2', then '3'): the last is used" "$tmp/twice.txt" &&
+    [ "$(wc -l < "$tmp/twice.csv")" -eq 4 ] && ok || { bad "run --steps twice: want the warning and 3 steps"; cat "$tmp/twice.txt"; }
 # a refused hard case's message is printed whole (it was cut at 200 characters, mid-word: '(accep')
 sph hardcases --only huge-table > "$tmp/hc.txt" 2>&1
 [ $? -eq 0 ] && grep -q "(accepted: 0, the particle count, up to 1048576) (" "$tmp/hc.txt" && ok ||

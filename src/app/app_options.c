@@ -436,6 +436,10 @@ const char *app_opts_closest(unsigned cmd, const char *arg)
 int app_opts_parse(const app_cmd_spec *spec, int argc, char **argv, app_opts *o)
 {
     const char *cmd = spec->name;
+    /* each single-valued option's last value: one given twice keeps the last, and says so, as --set does (a
+     * teacher's `--resolution 10 --resolution 12` ran 12 unsaid) */
+    enum { SEEN_MAX = 256 };
+    const char *seen[SEEN_MAX] = {NULL};
     for (int i = 1; i < argc; i++) {
         char *a = argv[i];
         const char *v = NULL;
@@ -467,6 +471,13 @@ int app_opts_parse(const app_cmd_spec *spec, int argc, char **argv, app_opts *o)
                 v = argv[++i];
             }
             if (!opt_store(r, cmd, v, o)) return 2;
+            const long k = r - app_options;
+            if (r->kind != APP_OPT_LIST && k >= 0 && k < SEEN_MAX) {
+                if (seen[k] && strcmp(seen[k], v) != 0)
+                    fprintf(stderr, "sphlab %s: warning: %s is given twice ('%s', then '%s'): the last is used\n", cmd,
+                            r->name, seen[k], v);
+                seen[k] = v;
+            }
         } else if ((a[0] == '-' && a[1]) || o->n_pos == spec->max_pos) {
             if (spec->flags & APP_SPEC_PASS_ON) {
                 if (o->n_rest == APP_REST_MAX) {
