@@ -277,6 +277,9 @@ sph keys physcs > "$tmp/keys.txt" 2>&1
 # keys SECTION...: those sections alone, in the table's order, each once ([time] written as a scene writes it)
 got=$(sph keys '[time]' physics time | grep '^\[' | tr '\n' ' ')
 [ "$got" = "[physics] [time] " ] && ok || bad "keys '[time]' physics time: headings '$got', want '[physics] [time] '"
+# check's headline counts the blocks' particles and the walls' apart (it said 192 particles in 1 block for 120)
+sph check scenes/validate/couette.ini > "$tmp/cc.txt" 2>&1
+grep -q "2D, 120 particles in 1 block and 72 wall particles, h = " "$tmp/cc.txt" && ok || { bad "check couette: headline counts"; head -2 "$tmp/cc.txt"; }
 # a single-valued option given twice keeps the last and says so, as --set does (a teacher's --resolution 10
 # --resolution 12 ran 12 unsaid)
 sph run lessons/scenes/rest-2d.ini --steps 2 --steps 3 --quiet --stats "$tmp/twice.csv" > "$tmp/twice.txt" 2>&1

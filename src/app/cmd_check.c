@@ -49,8 +49,13 @@ void app_print_hash_health(FILE *f, const sph_sim *sim)
 void app_check_report(FILE *f, const char *path, const sph_sim *sim)
 {
     const sph_scene_def *def = &sim->def;
-    fprintf(f, "scene %s: %s, %dD, %u particles in %d block%s, h = %g m\n", path, *def->name ? def->name : "(unnamed)",
-            def->dim, sim->n, def->n_blocks, def->n_blocks == 1 ? "" : "s", def->h);
+    /* the blocks' particles, and the walls' apart: "192 particles in 1 block" counted couette's 72 wall
+     * particles in its block */
+    const double in_blocks = sph_scene_particle_count(def);
+    fprintf(f, "scene %s: %s, %dD, %.0f particles in %d block%s", path, *def->name ? def->name : "(unnamed)", def->dim,
+            fmin(in_blocks, (double)sim->n), def->n_blocks, def->n_blocks == 1 ? "" : "s");
+    if (sim->n > in_blocks) fprintf(f, " and %.0f wall particles", (double)sim->n - in_blocks);
+    fprintf(f, ", h = %g m\n", def->h);
     if (!def->n_obstacles && sim->n > (uint32_t)sph_scene_particle_count(def)) { /* the domain's wall particles */
         double fluid = sph_scene_particle_count(def);
         fprintf(f, "particles: %.0f fluid, %.0f wall (domain box)\n", fluid, (double)sim->n - fluid);
