@@ -277,6 +277,14 @@ sph keys physcs > "$tmp/keys.txt" 2>&1
 # keys SECTION...: those sections alone, in the table's order, each once ([time] written as a scene writes it)
 got=$(sph keys '[time]' physics time | grep '^\[' | tr '\n' ' ')
 [ "$got" = "[physics] [time] " ] && ok || bad "keys '[time]' physics time: headings '$got', want '[physics] [time] '"
+# estimate says a long run before it starts (n = 1000, h = 0.125 in 2D: minutes, nothing printed off a terminal);
+# stopped after 2 s on purpose, so run without sph's time limit
+timeout 2 "$BIN" estimate --dim 2 --n 1000 --h 0.125 > "$tmp/est.txt" 2>&1
+grep -q "note: about 2.8e+10 kernel terms over the 1 combination .*expect minutes" "$tmp/est.txt" &&
+    grep -q "sphlab estimate: n = 1000, h = 0.125 (1 of 1)" "$tmp/est.txt" && ok || { bad "estimate: want the long-run note"; cat "$tmp/est.txt"; }
+sph estimate --jitter 0.4 --h 0.04 --n 100 -q > "$tmp/est.txt" 2>&1
+[ $? -eq 0 ] && grep -q "warning: --jitter 0.4 is read only with --samples jitter (now random)" "$tmp/est.txt" && ok ||
+    { bad "estimate --jitter with random samples: want the warning"; cat "$tmp/est.txt"; }
 # check's headline counts the blocks' particles and the walls' apart (it said 192 particles in 1 block for 120)
 sph check scenes/validate/couette.ini > "$tmp/cc.txt" 2>&1
 grep -q "2D, 120 particles in 1 block and 72 wall particles, h = " "$tmp/cc.txt" && ok || { bad "check couette: headline counts"; head -2 "$tmp/cc.txt"; }
