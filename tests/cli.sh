@@ -120,6 +120,14 @@ sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pre
     --set physics.solver_max_iterations=1 > "$tmp/mi.txt" 2>&1
 [ $? -eq 2 ] && grep -q "solver_max_iterations = '1': out of range (accepted: from 2" "$tmp/mi.txt" && ok ||
     { bad "solver_max_iterations = 1: want it refused"; cat "$tmp/mi.txt"; }
+# check describes each solver's stopping rule as it is (DFSPH's divergence: the mean of the compression) and says
+# whether the warm start and PCISPH's per-particle delta are on
+sph check lessons/11-incompressible/lesson.ini --set physics.pressure_solver=dfsph --set physics.solver_warm_start=on > "$tmp/cd.txt" 2>&1
+grep -q "dfsph *divergence-free solve until the mean max(dt D rho/Dt, 0) / rho_rest <= 0.001, .*(at most 100 iterations each, warm start)" "$tmp/cd.txt" &&
+    ok || { bad "check dfsph: its stopping rule and warm start"; grep dfsph "$tmp/cd.txt"; }
+sph check lessons/11-incompressible/lesson.ini --set physics.pressure_solver=pcisph --set physics.pcisph_local_delta=on > "$tmp/cd.txt" 2>&1
+grep -q "pcisph *predict-correct until the largest (rho - rho_rest) / rho_rest <= 0.001 (at most 100 iterations, delta per particle)" "$tmp/cd.txt" &&
+    ok || { bad "check pcisph: its local delta"; grep pcisph "$tmp/cd.txt"; }
 # a solver chosen without the effect pressure is said (no pressure acts), check gives that reason, and --stats has
 # no solver columns of zeros
 sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pressure_solver=pcisph \

@@ -122,9 +122,10 @@ static const char *skip_reason(const sph_scene_def *def)
 static void describe(const sph_scene_def *def, char *out, int n)
 {
     snprintf(out, (size_t)n,
-             "divergence-free solve to dt |D rho/Dt| / rho <= %g, then constant density to %g (at most %d "
-             "iterations each)%s",
+             "divergence-free solve until the mean max(dt D rho/Dt, 0) / rho_rest <= %g, then constant density "
+             "until the largest (rho - rho_rest) / rho_rest <= %g (at most %d iterations each%s)%s",
              def->divergence_tolerance, def->solver_tolerance, def->solver_max_iterations,
+             def->solver_warm_start == SPH_ON ? ", warm start" : "",
              sph_scene_wall_volume(def)     ? ", walls count and push back"
              : !sph_scene_wall_particles(def) ? ""
              : def->solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED
