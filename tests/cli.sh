@@ -275,6 +275,10 @@ sph lesson 10 --export "$tmp/l10" --quick --quiet > "$tmp/l10.txt" 2>&1
 want=$(awk -F, '$1 == "particles" && !done { if ($2 + 0 == 0.1) { done = 1; printf "%.3f", $3 } else if ($2 + 0 < 0.1) { t0 = $2; x0 = $3 } else { done = 1; printf "%.3f", x0 + (0.1 - t0) / ($2 - t0) * ($3 - x0) } }' "$tmp/l10/dam-front.csv")
 got=$(grep '^| particles |' "$tmp/l10/report.md" | tail -1 | sed 's/^| particles | \([0-9.]*\) m.*/\1/')
 [ -n "$want" ] && [ -n "$got" ] && awk -v a="$want" -v b="$got" 'BEGIN { d = a - b; exit !(d < 0.002 && d > -0.002) }' && ok || { bad "lesson 10: front at 0.1 s: table $got, CSV $want"; cat "$tmp/l10.txt"; }
+# lesson 11's table gives the equation of state no iterations ("-", as docs/accuracy.md's), not 0.0
+sph lesson 11 --export "$tmp/l11" --quick --quiet > "$tmp/l11.txt" 2>&1
+[ $? -eq 0 ] && grep -qE '^\| eos\+[0-9]+\+[0-9.]+ \| [^|]+ \| [^|]+ \| [^|]+ \| [0-9]+ \| - \|' "$tmp/l11/report.md" &&
+    ! grep -qE '^\| eos.* \| 0\.0 \|' "$tmp/l11/report.md" && ok || { bad "lesson 11: the eos rows' iterations"; grep "^| eos" "$tmp/l11/report.md"; cat "$tmp/l11.txt"; }
 # the HTML report keeps an escaped bar inside its cell (lesson 10's wall-row header)
 sph lesson 10 --export "$tmp/l10h" --quick --quiet --format html > "$tmp/l10h.txt" 2>&1
 grep -q '<th>wall row: |p - rho0 g (H - y)| / rho0 g H</th><th>mean over the column</th>' "$tmp/l10h/report.html" && ! grep -q '\\|' "$tmp/l10h/report.html" && ok || { bad "lesson 10 html: an escaped bar split its cell"; cat "$tmp/l10h.txt"; }

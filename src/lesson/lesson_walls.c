@@ -474,8 +474,10 @@ static void solvers_table(lx *x, const char *csv)
         if (lx_split_csv(lines[l], f, 32) != nh) continue;
         double v[7];
         for (int k = 0; k < 7; k++) v[k] = strtod(f[col[k]], NULL);
-        lx_md(x, "| %s | %.2f %% | %.2f %% | %.3f %% | %.0f | %.1f | %.0f | %s |\n", f[1], 100 * v[0], 100 * v[1],
-              100 * v[2], v[3], v[4], v[5], v[6] > 0 ? "{{@yes|oui}}" : "");
+        char its[32] = "-"; /* the equation of state iterates nothing: "-", as docs/accuracy.md's table, not 0.0 */
+        if (v[4] > 0) snprintf(its, sizeof its, "%.1f", v[4]);
+        lx_md(x, "| %s | %.2f %% | %.2f %% | %.3f %% | %.0f | %s | %.0f | %s |\n", f[1], 100 * v[0], 100 * v[1],
+              100 * v[2], v[3], its, v[5], v[6] > 0 ? "{{@yes|oui}}" : "");
     }
     lx_md(x, "\n");
     free(text);
