@@ -35,6 +35,7 @@ layout(local_size_x = WG) in;
 uniform uint u_count;
 uniform float u_dt;
 uniform float u_value;
+uniform float u_bound; // [m^2/s^2] the most a warm start carries (1, 2: dfsph.c, warm)
 shared uint s_err[WG];
 shared float s_sum[WG];
 vec3 gr, gp, g1, vi, xs; // g1: G^p with the walls once (dfsph.c, factors)
@@ -122,9 +123,9 @@ void main()
         } else if (u == 4u) {
             rho_df_[i] = RHO_R;
         } else if (u == 1u) {
-            kappa_v_[i] *= u_value;
+            kappa_v_[i] = min(kappa_v_[i] * u_value, u_bound);
         } else if (u == 2u) {
-            kappa_[i] *= u_value;
+            kappa_[i] = min(kappa_[i] * u_value, u_bound);
         } else if (u == 7u) {
             kappa_best_[i] = kappa_[i];
         } else if (u == 8u) {
@@ -155,9 +156,9 @@ void main()
             precise float raw_v = dots_p + g1.x * gp.x + g1.y * gp.y + g1.z * gp.z; // the walls once in g1 (dfsph.c)
             alpha_v_[i] = RHO_R / max(raw_v, DEN_FULL_V);
         } else if (u == 1u) {
-            kappa_v_[i] *= u_value;
+            kappa_v_[i] = min(kappa_v_[i] * u_value, u_bound);
         } else if (u == 2u) {
-            kappa_[i] *= u_value;
+            kappa_[i] = min(kappa_[i] * u_value, u_bound);
         } else if (u == 4u) {
             xs = reached(i);
             sum = mass_[i] * kernel_w(KD, SIG_D, 0.0);

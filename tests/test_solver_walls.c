@@ -204,7 +204,7 @@ Test(solver_walls, describe_says_the_wall_pressure)
     const char *solvers[] = {"pcisph", "dfsph"};
     const sph_pass_id pass[] = {SPH_PASS_PCISPH, SPH_PASS_DFSPH};
     for (int k = 0; k < 2; k++) {
-        char ini[512], a[256], b[256], w[256];
+        char ini[512], a[512], b[512], w[512]; /* as check's buffer (cmd_check.c) */
         const char *fmt = "[scene]\neffects=gravity pressure walls\n[domain]\nmax=0.2 0.2\nwall_model=particles\n"
                           "[fluid a]\nmax=0.1 0.1\nspacing=0.01\n[physics]\npressure_solver=%s\n"
                           "solver_wall_pressure=%s\n[kernels]\nh=0.02\n";

@@ -54,7 +54,7 @@ enum {
 #define HELPER_BIT(name) (1u << H_##name)
 
 /* Uniforms the programs may have; looked up once per program. */
-#define GPU_UNIFORMS(X) X(dt) X(w) X(flip) X(count) X(value) X(point) X(rows) X(gscale) X(damp) X(g0) X(kick)
+#define GPU_UNIFORMS(X) X(dt) X(w) X(flip) X(count) X(value) X(point) X(rows) X(gscale) X(damp) X(g0) X(kick) X(bound)
 enum {
 #define GPU_U_ENUM(name) U_##name,
     GPU_UNIFORMS(GPU_U_ENUM)

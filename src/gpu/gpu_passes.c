@@ -430,6 +430,19 @@ static float dfsph_warm(const sph_sim *sim)
     return last > 0 ? (last / sim->dt) * (last / sim->dt) : 0.0f;
 }
 
+/* A warm start: kappa (or kappa_v) times the share, at most the bound (dfsph.c, warm; solver.h,
+ * sph_solver_warm_bound). */
+static void dfsph_warm_stage(gpu *g, sph_sim *sim, uint32_t stage)
+{
+    const int p = SPH_PASS_DFSPH;
+    use_walk(g, sim, p); /* as solver_stage, with the bound: uniforms go to the program in use */
+    gpu_set_u(g, p, U_count, stage);
+    gpu_set_f(g, p, U_dt, sim->dt);
+    gpu_set_f(g, p, U_value, dfsph_warm(sim));
+    gpu_set_f(g, p, U_bound, sph_solver_warm_bound(sim));
+    gpu_dispatch(g, g->n);
+}
+
 /* acc_df and dv_df from kappa_v (density: and kappa); startup: a = 0. */
 static void dfsph_force(gpu *g, sph_sim *sim, bool density, bool startup)
 {
@@ -451,7 +464,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
     const float dt2 = sim->dt * sim->dt;
     if (s->iteration == 0 && s->phase == 0) { /* the step's first call */
         solver_stage(g, sim, p, DF_FACTORS, 0.0f);
-        solver_stage(g, sim, p, DF_WARM_V, dfsph_warm(sim));
+        dfsph_warm_stage(g, sim, DF_WARM_V);
         dfsph_force(g, sim, false, false);
     }
     if (s->phase == 0) {
@@ -467,7 +480,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
         s->divergence_error = error;
         s->iteration = 0;
         s->phase = 1; /* and on to the density in this call */
-        solver_stage(g, sim, p, DF_WARM, dfsph_warm(sim));
+        dfsph_warm_stage(g, sim, DF_WARM);
         dfsph_force(g, sim, true, false);
     }
     /* reduce_[3]: the largest shortfall of a pushed particle, which the solve also holds (dfsph.c) */

@@ -105,6 +105,15 @@ static inline float sph_solver_walls_pred(const sph_sim *sim, int i, float grad[
     return sph_solver_walls(sim, x, grad);
 }
 
+/* The most pressure per unit density [m^2/s^2] a warm start may carry into a step (dfsph.c, warm): the
+ * kinetic energy per unit mass of the fastest the scene can make or has (speed_scale: a fall across the
+ * domain, the blocks, the forces; max_speed: the last step's fastest particle), Bernoulli's g H + v^2 / 2
+ * along a streamline from a free surface at rest, H the domain's height. */
+static inline float sph_solver_warm_bound(const sph_sim *sim)
+{
+    return 0.5f * (sim->speed_scale * sim->speed_scale + sim->max_speed * sim->max_speed);
+}
+
 /* The minimum image along periodic axes (a no-op elsewhere). */
 static inline float sph_solver_dx(const sph_sim *sim, float dx, int d)
 {
