@@ -493,8 +493,10 @@ Test(gl_solvers, every_acceleration_within_the_storage_blocks, .timeout = 300)
 /* DFSPH's warm start carries at most sph_solver_warm_bound, g H + v^2 / 2 per unit mass (dfsph.c, warm): a
  * capped solve's kappa, carried from step to step, grew in a 240,000-particle column (the corner's 52 m^2/s^2
  * where 7.8 was hydrostatic) until the watchdog stopped the run. Here every particle's kappa and kappa_v are
- * set far above the bound between two steps; after the next step's first DFSPH call (the warm start, then one
- * divergence iteration) none may be above ten times the bound, on the CPU and on GL alike. */
+ * set far above the bound between two steps; after the next step's first DFSPH call (kappa_v's warm start,
+ * then one divergence iteration) no kappa_v may be above ten times the bound, on the CPU and on GL alike.
+ * kappa's start, later in the step, goes through the same warm() on the CPU and the shader's other warm
+ * branch on GL; the lockstep runs above, where the bound bites from the first steps, hold the two equal. */
 static void check_warm_bound(bool gl)
 {
     if (gl) need_gl();

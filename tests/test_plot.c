@@ -419,10 +419,6 @@ Test(plot, series_of_stats_columns)
     test_remove_dir(dir);
 }
 
-/* Three stacked panels without --dim: the energy's and the density's axis
- * titles name both units and are longer than a panel is tall. Each must stay
- * beside its own panel: along the strip left of the tick labels, the titles'
- * ink makes three separate runs, not one title running into the next. */
 /* A y-axis up to 0.0103 (the hydrostatic chart's pressure error) is scaled, as one below 0.01 was: its ticks
  * -0.002 and 0.010 took six characters and the axis title stood on them. */
 Test(plot, small_axes_are_scaled_by_a_power_of_ten)
@@ -438,6 +434,10 @@ Test(plot, small_axes_are_scaled_by_a_power_of_ten)
     cr_assert_eq(plot_axis_exponent(NAN), 0);
 }
 
+/* Three stacked panels without --dim: the energy's and the density's axis
+ * titles name both units and are longer than a panel is tall. Each must stay
+ * beside its own panel: along the strip left of the tick labels, the titles'
+ * ink makes three separate runs, not one title running into the next. */
 Test(plot, series_axis_titles_stay_beside_their_panels)
 {
     const char *dir = test_temp_dir("plot"), *stats = synthetic_stats();

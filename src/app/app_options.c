@@ -75,7 +75,8 @@ const app_opt app_options[] = {
      "capped and stopped: running totals of the solves since step 0 that reached the iteration cap or were\n"
      "stopped rising; DFSPH's two solves count apart),\n"
      "then with [search] skin > 0: list_builds (the Verlet lists built so far, the start's included: rebuilt when a\n"
-     "particle has moved half the skin) and skin_moved [m] (the largest move since their last build, read at this step),\n"
+     "particle has moved half the skin) and skin_moved [m] (the largest move since their last build, read at this\n"
+     "step; 0 at a step that rebuilt them),\n"
      "then with a hash table, its health: hash_keys,hash_load,hash_occupied,hash_colliding,hash_longest_run,\n"
      "hash_candidates,hash_share (empty with --backend gl,\n"
      "which builds no neighbour lists to count)",

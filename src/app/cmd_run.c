@@ -307,13 +307,13 @@ int cmd_run(int argc, char **argv)
         /* on stderr, -q too: only --stats said it (capped, stopped), and a student took the run for converged */
         fprintf(stderr,
                 "sphlab run: warning: %llu pressure solve%s ended short of the tolerance (%llu capped at "
-                "solver_max_iterations = %d, %llu stopped where their error rose): those steps end above "
-                "solver_tolerance = %g%s; --stats gives each step's density_error\n",
+                "solver_max_iterations = %d, %llu stopped where their error rose): those solves end above their "
+                "tolerance (solver_tolerance = %g%s); --stats gives each step's errors\n",
                 (unsigned long long)(sim->solver.capped + sim->solver.stopped),
                 sim->solver.capped + sim->solver.stopped == 1 ? "" : "s", (unsigned long long)sim->solver.capped,
                 sim->def.solver_max_iterations, (unsigned long long)sim->solver.stopped,
                 (double)sim->def.solver_tolerance,
-                sim->def.pressure_solver == SPH_PSOLVER_DFSPH ? " (or divergence_tolerance: dfsph's two solves count)"
+                sim->def.pressure_solver == SPH_PSOLVER_DFSPH ? ", or divergence_tolerance for dfsph's divergence solve"
                                                               : "");
     if (dump.f) app_dump_write(dump.f, sim);
     bool stats_ok = app_out_commit(&stats), dump_ok = app_out_commit(&dump); /* both, even if one fails */

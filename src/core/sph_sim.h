@@ -106,7 +106,8 @@ typedef struct sph_search_data {
     bool lists_kept;      /* this step keeps them: no hash, sort, reorder, offsets, search */
     uint64_t kept_decided; /* sim->step + 1 of the step that decided lists_kept; 0: none yet */
     uint64_t builds;      /* [1] lists built so far (every step without a skin) */
-    float skin_moved;     /* [m] the largest move since the build, as this step's decision saw it */
+    float skin_moved;     /* [m] the largest move since the build, as this step's decision saw it; 0 after a
+                           * step that rebuilt them */
     /* [compute] packed_records: one record per particle (4 or 8 floats: positions [m], mass [kg] or volume
      * [m^3], velocity [m/s], p/rho^2 [m^5/(kg s^2)] or p [Pa]), rewritten by each pass that reads it. */
     float *rec;           /* [rec_cap], 32-byte aligned */

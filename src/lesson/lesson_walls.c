@@ -475,7 +475,7 @@ static void solvers_table(lx *x, const char *csv)
         double v[7];
         for (int k = 0; k < 7; k++) v[k] = strtod(f[col[k]], NULL);
         char its[32] = "-"; /* the equation of state iterates nothing: "-", as docs/accuracy.md's table, not 0.0 */
-        if (v[4] > 0) snprintf(its, sizeof its, "%.1f", v[4]);
+        if (v[4] > 0 || isnan(v[4])) snprintf(its, sizeof its, "%.1f", v[4]); /* a stopped run: nan, as its others */
         lx_md(x, "| %s | %.2f %% | %.2f %% | %.3f %% | %.0f | %s | %.0f | %s |\n", f[1], 100 * v[0], 100 * v[1],
               100 * v[2], v[3], its, v[5], v[6] > 0 ? "{{@yes|oui}}" : "");
     }

@@ -164,8 +164,8 @@ void plot_set_svg(bool on);
 /* Escapes PLplot's text escape character '#' in s (for file names in titles). */
 void plot_escape(char *dst, size_t cap, const char *s);
 /* The power of ten a y-axis of values up to mag (the largest |y|) is divided by, named in its title's unit
- * ("[10^e ...]"); 0: none. Values at or above 1e4 or below 0.1 are scaled, so a tick label takes at most
- * five characters beside the axis title. */
+ * ("[10^e ...]"); 0: none. Values at or above 1e4 or below 0.1 are scaled, so the tick labels stay short
+ * beside the axis title. */
 static inline int plot_axis_exponent(double mag)
 {
     /* below 0.1 too: ticks such as -0.002 and 0.010 took six characters, and the y-axis title stood on them

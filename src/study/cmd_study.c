@@ -428,13 +428,13 @@ int study_cmd_run(const study_cmd *cmd)
         same_time &= fabs(rows[c].r.t_end - rows[0].r.t_end) <= 0.01 * rows[0].r.t_end;
     }
     if (until < 0 && !same_time) { /* --steps at time steps that differ: unequal work on one time axis */
-        double lo = rows[0].r.t_end, hi = rows[0].r.t_end;
-        for (long c = 1; c < combos; c++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (long c = 0; c < combos; c++) {
             if (rows[c].r.stopped) continue; /* a watchdog stop ends early, and is said as such */
             lo = fmin(lo, rows[c].r.t_end);
             hi = fmax(hi, rows[c].r.t_end);
         }
-        if (hi > lo * 1.01)
+        if (isfinite(lo) && hi > lo * 1.01)
             fprintf(stderr,
                     "sphlab study: warning: the runs simulated from %.3g to %.3g s (%s at their own time steps), so "
                     "their wall times are for unequal work and the front compares them as equal; give --time T "
