@@ -168,6 +168,16 @@ Test(scene_write, only_the_keys_that_differ_are_written)
     free(text);
 }
 
+/* An unnamed scene gets no empty "name = " line (check --save-scene wrote one); its dimension is written always. */
+Test(scene_write, an_unnamed_scene_writes_no_name)
+{
+    sph_scene_def def = test_scene("[scene]\ndimension = 2\n[domain]\nmax = 1 1\n[fluid a]\nmax = 0.5 0.5\nspacing = 0.05\n");
+    char *text = write_text(&def);
+    cr_expect(!strstr(text, "name ="), "%s", text);
+    cr_expect(strstr(text, "[scene]\ndimension = 2\n"), "%s", text);
+    free(text);
+}
+
 Test(scene_write, a_name_a_file_could_not_hold_is_refused)
 {
     sph_scene_def def = test_scene(BASE2);

@@ -131,7 +131,8 @@ sph_error_code sph_scene_write(const sph_scene_def *def, FILE *f, sph_error *err
     sph_scene_block_defaults(&ref_block, "fluid");
     sph_scene_block_defaults(&ref_obstacle, "obstacle");
     char have[256], want[256];
-    fprintf(f, "# written by sphlab: the keys that differ from their defaults (sphlab keys lists them all)\n");
+    fprintf(f, "# written by sphlab: the keys that differ from their defaults (sphlab keys lists them all), and those\n"
+               "# a scene states anyway: its dimension and name, a block's min and max, an obstacle's shape and slip\n");
     for (int i = 0; i < sph_scene_key_count; i++) {
         if (!first_of_section(i) || is_block_key(&sph_scene_keys[i])) continue;
         const char *section = sph_scene_keys[i].section;
@@ -141,7 +142,9 @@ sph_error_code sph_scene_write(const sph_scene_def *def, FILE *f, sph_error *err
             if (strcmp(k->section, section) != 0) continue;
             sph_scene_value_text(k, def, have, sizeof have);
             sph_scene_value_text(k, &ref, want, sizeof want);
-            bool always = strcmp(section, "scene") == 0 && (strcmp(k->name, "name") == 0 || strcmp(k->name, "dimension") == 0);
+            /* the dimension always (the defaults of a 2D and a 3D scene differ); the name when there is one */
+            bool always = strcmp(section, "scene") == 0 &&
+                          ((strcmp(k->name, "name") == 0 && def->name[0]) || strcmp(k->name, "dimension") == 0);
             if (!always && strcmp(have, want) == 0) continue;
             if (!opened) fprintf(f, "\n[%s]\n", section);
             opened = true;
