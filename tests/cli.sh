@@ -306,6 +306,22 @@ grep -q "note: about 2.8e+10 kernel terms over the 1 combination .*expect minute
 sph estimate --jitter 0.4 --h 0.04 --n 100 -q > "$tmp/est.txt" 2>&1
 [ $? -eq 0 ] && grep -q "warning: --jitter 0.4 is read only with --samples jitter (now random)" "$tmp/est.txt" && ok ||
     { bad "estimate --jitter with random samples: want the warning"; cat "$tmp/est.txt"; }
+# a moving lid that cannot drag (free-slip) and a slip key on a periodic axis are said, as other unread keys are
+sph check scenes/validate/couette.ini --set domain.wall_slip_ymax=free > "$tmp/lid.txt" 2>&1
+grep -q "couette.ini:19: \[domain\] wall_velocity is set but this scene does not use it: a free-slip top wall drags nothing" "$tmp/lid.txt" &&
+    ok || { bad "check couette with a free-slip lid: want the warning"; cat "$tmp/lid.txt"; }
+sph check scenes/validate/couette.ini --set domain.wall_slip_xmin=free > "$tmp/lid.txt" 2>&1
+grep -q "wall_slip_xmin is set but this scene does not use it: a periodic axis has no walls" "$tmp/lid.txt" &&
+    ! grep -q "wall_velocity is set" "$tmp/lid.txt" && ok || { bad "check couette wall_slip_xmin: want the periodic warning"; cat "$tmp/lid.txt"; }
+# without viscosity the walls' slip is read by nothing: check says the walls are free-slip (it said no-slip)
+sph check lessons/10-boundaries/lesson.ini > "$tmp/ws.txt" 2>&1
+grep -q "wall_state *Adami et al. 2012: wall pressure from the fluid, free-slip walls (no viscosity reads the slip)" "$tmp/ws.txt" &&
+    ok || { bad "check lesson 10: wall_state's slip without viscosity"; grep wall_state "$tmp/ws.txt"; }
+# a damping period with a block's initial velocity: the damping removes it, said (a drop thrown at 1 m/s stood)
+printf '[scene]\ndimension=2\n[domain]\nmax=1 1\n[fluid drop]\nmin=0.4 0.4\nmax=0.5 0.5\nspacing=0.01\nvelocity=0 -1\n[physics]\ndamping_time=0.02\n[kernels]\nh=0.02\n' > "$tmp/dv.ini"
+sph check "$tmp/dv.ini" > "$tmp/dv.txt" 2>&1
+grep -q "dv.ini:11: \[physics\] damping_time = 0.02 s removes all motion at the start, so \[fluid drop\]'s velocity (0 -1 m/s) is damped away" "$tmp/dv.txt" &&
+    ok || { bad "check: damping_time with a block velocity: want the warning"; cat "$tmp/dv.txt"; }
 # check's headline counts the blocks' particles and the walls' apart (it said 192 particles in 1 block for 120)
 sph check scenes/validate/couette.ini > "$tmp/cc.txt" 2>&1
 grep -q "2D, 120 particles in 1 block and 72 wall particles, h = " "$tmp/cc.txt" && ok || { bad "check couette: headline counts"; head -2 "$tmp/cc.txt"; }

@@ -9,6 +9,7 @@
 
 #include "sph_sim.h"
 #include "sph_names.h"
+#include "../overlay/sph_overlay.h" /* the overlay names, for --overlay's help */
 
 /* The offset of a field of app_opts, and a compile-time check of its type:
  * comparing pointers to different types is an error, so a row cannot store
@@ -109,7 +110,11 @@ const app_opt app_options[] = {
      "(the window's default)",
      RENDER | VIEW, STRING(range)},
     {"--overlay", NULL, "NAME,...", "switch overlays on (repeatable; 'all', 'none'); default: hud,legend;\n"
-     "render's 'all' leaves out timings (wall-clock: frames would differ run to run)",
+     "render's 'all' leaves out timings (wall-clock: frames would differ run to run); the names:\n"
+#define APP_OVERLAY_NAME(id, name, about) " " name
+     SPH_OVERLAYS(APP_OVERLAY_NAME)
+#undef APP_OVERLAY_NAME
+     ,
      RENDER | VIEW, LIST(overlay)},
     {"--no-overlay", NULL, "NAME,...", "switch overlays off (repeatable)", RENDER | VIEW, LIST(no_overlay)},
     {"--select", NULL, "ID", "the particle the neighbours overlay and the index strip follow", RENDER | VIEW,

@@ -67,11 +67,17 @@ static void describe(const sph_scene_def *def, char *out, int n)
                  (def->wall_slip_side[k] == SPH_SIDE_SLIP_FREE) != (def->wall_slip == SPH_SLIP_FREE);
     for (int k = 0; k < def->n_obstacles; k++) mixed |= def->obstacles[k].slip != def->wall_slip;
     /* under a solver the walls' pressure is the solver's (solver_wall_pressure): this pass gives the velocity */
-    snprintf(out, (size_t)n, "Adami et al. 2012: %s, %s walls%s",
+    /* the slip acts through the viscous term only: without the effect the walls are free-slip, whatever is set
+     * (lesson 10's pipeline said "no-slip walls" for a scene without viscosity) */
+    const bool viscous = (def->effects & SPH_EFFECT(VISCOSITY)) != 0;
+    snprintf(out, (size_t)n, "Adami et al. 2012: %s, %s%s",
              def->pressure_solver != SPH_PSOLVER_EOS ? "wall velocity only (the walls' pressure is the "
                                                        "solver's: solver_wall_pressure)"
                                                      : "wall pressure from the fluid",
-             mixed ? "no-slip and free-slip" : def->wall_slip == SPH_SLIP_FREE ? "free-slip" : "no-slip",
+             !viscous ? "free-slip walls (no viscosity reads the slip)"
+             : mixed  ? "no-slip and free-slip walls"
+             : def->wall_slip == SPH_SLIP_FREE ? "free-slip walls"
+                                               : "no-slip walls",
              def->n_obstacles ? ", obstacles" : "");
 }
 
