@@ -465,7 +465,7 @@ else
     # the window (SDL's offscreen driver) on the GL backend: a pass stepped, its state drawn
     sphe "$sw SDL_VIDEODRIVER=offscreen" view "$scene" --backend gl --frames 3 --keys "." --overlay grid,neighbours \
         --select 50 --screenshot "$tmp/view.png" > "$tmp/gl.txt" 2>&1
-    [ $? -eq 0 ] && [ -s "$tmp/view.png" ] && grep -q "pass external wrote" "$tmp/gl.txt" && ok || { bad "view --backend gl"; cat "$tmp/gl.txt"; }
+    [ $? -eq 0 ] && [ -s "$tmp/view.png" ] && grep -q "pass external ran" "$tmp/gl.txt" && ok || { bad "view --backend gl"; cat "$tmp/gl.txt"; }
     # render on the GL backend: the renderer's context is the backend's, frames drawn from its buffers
     sphe "$sw" render "$scene" --backend gl --steps 4 --every 2 --size 160x120 --out "$tmp/glframes" > "$tmp/gl.txt" 2>&1
     [ $? -eq 0 ] && [ -s "$tmp/glframes/frame_00002.png" ] && grep -q "drawn from the GL backend's buffers" "$tmp/gl.txt" && ok ||

@@ -594,7 +594,8 @@ Test(render, window_keys_step_pass_by_pass_and_switch_overlays)
              d);
     int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
     cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
-    const char *want[] = {"pass external wrote vel pred", "pass hash wrote entries; colour: key; index strip on",
+    /* what a pass wrote is the HUD's "ran pass" row (on by default); the message says the rest */
+    const char *want[] = {"pass external ran; colour: speed", "pass hash ran; colour: key; index strip on",
                           "overlay grid on", "pass ", "saved"};
     const char *at = out;
     for (size_t k = 0; k < sizeof want / sizeof *want; k++) {
@@ -606,6 +607,41 @@ Test(render, window_keys_step_pass_by_pass_and_switch_overlays)
     snprintf(p1, sizeof p1, "%s/k.png", d);
     cr_expect_eq(access(p1, F_OK), 0);
     test_remove_dir(d);
+    remove(scene);
+}
+
+/* A pass chosen with n that a switch takes out of the pipeline (pressure_force, once s chose pcisph) is chosen no
+ * more: d said "pass pressure_force is not in this scene's pipeline" and the timings marked none. */
+Test(render, window_forgets_a_chosen_pass_a_switch_removes)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    char args[1024], out[8192];
+    snprintf(args, sizeof args, "view %s --paused --frames 13 --keys 'nnnnnnnnnsd' --size 240x180", scene);
+    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    const char *chose = strstr(out, "pass 9 pressure_force chosen");
+    cr_assert_not_null(chose, "%s", out);
+    cr_expect_not_null(strstr(chose, "no pass chosen: n chooses one"), "%s", out);
+    cr_expect_null(strstr(chose, "is not in this scene's pipeline"), "%s", out);
+    remove(scene);
+}
+
+/* With the HUD off the message lists what the pass wrote, only the fields this scene has: the reorder pass
+ * moves every field it may meet, and the list named obstacle, slip, p_pci and kappa in a scene with none. */
+Test(render, window_step_says_only_the_fields_the_scene_has)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    char args[1024], out[8192];
+    snprintf(args, sizeof args, "view %s --paused --no-overlay hud --frames 5 --keys '....' --size 240x180", scene);
+    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    const char *r = strstr(out, "pass reorder wrote pos vel");
+    cr_assert_not_null(r, "%s", out);
+    const char *end = strchr(r, '\n');
+    const size_t len = end ? (size_t)(end - r) : strlen(r);
+    char line[512];
+    snprintf(line, sizeof line, "%.*s", (int)len, r);
+    cr_expect(!strstr(line, "kappa") && !strstr(line, "obstacle") && !strstr(line, "p_pci"), "%s", line);
     remove(scene);
 }
 

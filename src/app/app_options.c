@@ -109,7 +109,8 @@ const app_opt app_options[] = {
      "run, found by simulating it once before drawing; 'frame': each frame's own min and max\n"
      "(the window's default)",
      RENDER | VIEW, STRING(range)},
-    {"--overlay", NULL, "NAME,...", "switch overlays on (repeatable; 'all', 'none'); default: hud,legend;\n"
+    {"--overlay", NULL, "NAME,...", "switch overlays on (repeatable; 'all', 'none'); default: hud,legend (the window\n"
+     "adds timings);\n"
      "render's 'all' leaves out timings (wall-clock: frames would differ run to run); the names:\n"
 #define APP_OVERLAY_NAME(id, name, about) " " name
      SPH_OVERLAYS(APP_OVERLAY_NAME)

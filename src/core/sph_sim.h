@@ -429,6 +429,9 @@ float sph_sim_pressure(const sph_sim *sim, uint32_t i);
 double sph_density_held(const sph_sim *sim, const char **name);
 /* A field of the particles; false if the scene does not allocate it. */
 bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out);
+/* m less the fields this scene does not allocate (a pass's writes, said to a user: the reorder pass moves
+ * every field it may meet, and listed them all in a scene without obstacles or solvers). */
+sph_mask sph_sim_mask_present(const sph_sim *sim, sph_mask m);
 /* The watchdog's report: step, pass, particle, its values and neighbours. */
 void sph_sim_alarm_report(const sph_sim *sim, char *out, size_t n);
 

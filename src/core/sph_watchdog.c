@@ -25,6 +25,13 @@ bool sph_sim_field(const sph_sim *sim, sph_field_id id, sph_field *out)
     return true;
 }
 
+sph_mask sph_sim_mask_present(const sph_sim *sim, sph_mask m)
+{
+    for (int f = 0; f < SPH_FIELD_COUNT; f++)
+        if ((m & SPH_FIELD_BIT(f)) && !sim->P.field[f][0]) m &= ~SPH_FIELD_BIT(f);
+    return m;
+}
+
 static void raise_alarm(sph_sim *sim, int pass, uint32_t i, int field, int comp, float value, const char *what)
 {
     sph_alarm *a = &sim->alarm;

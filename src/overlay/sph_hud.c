@@ -159,8 +159,13 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
     }
     if (info && info->last_pass >= 0 && info->last_pass < SPH_PASS_COUNT) {
         const sph_pass *p = sph_passes[info->last_pass];
-        char wrote[64]; /* a HUD line holds about this much */
-        sph_mask_names(p->writes, wrote, (int)sizeof wrote);
+        char wrote[256]; /* a HUD line holds about 64 characters: a longer list ends " ..." at a word */
+        sph_mask_names(sph_sim_mask_present(sim, p->writes), wrote, (int)sizeof wrote);
+        if (strlen(wrote) > 60) {
+            wrote[57] = '\0';
+            char *cut = strrchr(wrote, ' ');
+            memcpy(cut ? cut : wrote + 53, " ...", 5);
+        }
         HUD_LINE("ran pass %s: wrote %s; next: %s", p->name, wrote,
                  sim->next_pass == 0 ? "a new step" : sph_passes[sim->next_pass]->name);
     }

@@ -128,6 +128,13 @@ static bool key_refills(const char *assignment)
 
 /* A change from the parameter panel: parsed and checked as a --set option,
  * then applied to the running simulation, or as a new scene where it must. */
+/* A chosen pass (keys n, d) that a new pipeline lacks is chosen no more: d then named a pass that was not
+ * there, and the timings list marked none. */
+static void forget_missing_pass(viewer *w)
+{
+    if (w->pass_cursor >= 0 && !w->sim->in_pipeline[w->pass_cursor]) w->pass_cursor = -1;
+}
+
 void viewer_apply_change(viewer *w, const char *assignment)
 {
     sph_scene_def next = w->def;
@@ -141,6 +148,7 @@ void viewer_apply_change(viewer *w, const char *assignment)
         if (sph_sim_reconfigure(w->sim, &next, &err) == SPH_ERR_OK) {
             w->def = next;
             if (sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
+            forget_missing_pass(w);
             viewer_say(w, "%s", assignment);
             return;
         }
@@ -150,7 +158,10 @@ void viewer_apply_change(viewer *w, const char *assignment)
             return;
         }
     }
-    if (restart(w, &next, assignment)) viewer_say(w, "%s: the scene starts again from t = 0", assignment);
+    if (restart(w, &next, assignment)) {
+        forget_missing_pass(w);
+        viewer_say(w, "%s: the scene starts again from t = 0", assignment);
+    }
 }
 
 /* The keys k, o and m: the same path as the panel's changes. */
@@ -252,10 +263,16 @@ static void step_pass(viewer *w)
     /* the index passes write the arrays the strip shows */
     bool strip = (p == SPH_PASS_HASH || p == SPH_PASS_SORT || p == SPH_PASS_OFFSETS) && !(w->v.overlays & SPH_OV_BIT(INDEX));
     if (strip) w->v.overlays |= SPH_OV_BIT(INDEX);
-    char wrote[160];
-    sph_mask_names(sph_passes[p]->writes, wrote, (int)sizeof wrote);
-    viewer_say(w, "pass %s wrote %s%s%s%s", sph_passes[p]->name, wrote, f >= 0 ? "; colour: " : "",
-        f >= 0 ? sph_color_field_names[f] : "", strip ? "; index strip on" : "");
+    /* what it wrote is the HUD's "ran pass" row; with the HUD off, said here (both: one list twice, two ways) */
+    char wrote[256] = "";
+    if (!(w->v.overlays & SPH_OV_BIT(HUD)))
+        sph_mask_names(sph_sim_mask_present(w->sim, sph_passes[p]->writes), wrote, (int)sizeof wrote);
+    if (!*wrote && f < 0 && !strip) { /* the HUD's row says it all; a script's log still gets the line */
+        if (w->scripted) fprintf(stderr, "sphlab view: pass %s ran\n", sph_passes[p]->name);
+        return;
+    }
+    viewer_say(w, "pass %s %s%s%s%s%s", sph_passes[p]->name, *wrote ? "wrote " : "ran", wrote,
+               f >= 0 ? "; colour: " : "", f >= 0 ? sph_color_field_names[f] : "", strip ? "; index strip on" : "");
 }
 
 /* ---- the ladder, validate mode and N (keys l e u t b a ] [) ---- */
@@ -264,6 +281,7 @@ static void step_pass(viewer *w)
 static void switched(viewer *w, bool ok, const char *msg)
 {
     if (ok && sph_color_field_missing(w->sim, w->v.field)) w->v.field = sph_color_field_default(w->sim);
+    if (ok) forget_missing_pass(w);
     viewer_say(w, "%s", msg);
 }
 
@@ -401,10 +419,22 @@ void viewer_key_down(viewer *w, SDL_Keycode k, Uint16 mod)
                 sph_passes[w->pass_cursor]->name);
         w->v.overlays |= SPH_OV_BIT(TIMINGS); /* the numbered list */
         break;
-    case SDLK_d: viewer_toggle_pass(w, w->pass_cursor); break;
+    case SDLK_d:
+        if (w->pass_cursor < 0)
+            viewer_say(w, "no pass chosen: n chooses one (shift+n backwards), then d switches it");
+        else
+            viewer_toggle_pass(w, w->pass_cursor);
+        break;
     case SDLK_c: cycle_field(w, shift ? -1 : 1); break;
-    case SDLK_z: w->v.slice_z -= h; viewer_say(w, "slice z = %.4g m", w->v.slice_z); break;
-    case SDLK_x: w->v.slice_z += h; viewer_say(w, "slice z = %.4g m", w->v.slice_z); break;
+    case SDLK_z:
+    case SDLK_x:
+        if (w->sim->dim != 3) { /* a 2D scene has no slice: the keys moved a plane nothing draws */
+            viewer_say(w, "a 2D scene has no slice: z and x move the 3D views' plane");
+            break;
+        }
+        w->v.slice_z += k == SDLK_z ? -h : h;
+        viewer_say(w, "slice z = %.4g m", w->v.slice_z);
+        break;
     case SDLK_LEFT:
     case SDLK_RIGHT:
     case SDLK_UP:

@@ -134,7 +134,11 @@ int view_ladder_lines(const view_ladder *l, const sph_sim *sim, char lines[][128
         const int l0 = sph_levels[lv].name[0] == 'G' ? sph_level_find("L0") : 0;
         speedup_text(l, lv, level_below(lv), ms, below, sizeof below);
         speedup_text(l, lv, l0, ms, base, sizeof base);
-        LADDER_LINE("speed-up (live at N = %u): %.47s, %.47s", sim->n, below, base);
+        if (level_below(lv) == l0) { /* at L1 (or G0) the level below is the base: said once */
+            LADDER_LINE("speed-up (live at N = %u): %.47s", sim->n, below);
+        } else {
+            LADDER_LINE("speed-up (live at N = %u): %.47s, %.47s", sim->n, below, base);
+        }
     }
     if (ms > 0 && sim->n) {
         /* the cost per particle-step taken as constant: N_60 = (1000/60 ms) / (ms / N) */
