@@ -11,6 +11,7 @@
 #include "font.h"
 #include "layout.h"
 #include "sph_overlay.h"
+#include "test_util.h"
 #include "view_ladder.h"
 
 typedef struct box {
@@ -369,4 +370,35 @@ Test(render_layout, hud_density_row_says_before_the_pressure_under_a_solver, .ti
         }
         sph_sim_destroy(sim);
     }
+}
+
+/* A pass switched off in the window (key d): the step is not the level's, so its time is not recorded as the
+ * level's live figure (lesson 7 with reorder off fed L6's speed-ups), and the level row says so. */
+Test(render_layout, a_level_with_a_pass_off_is_not_timed_as_the_level)
+{
+    /* L4 (one thread, reorder on): a level whatever the machine's cores */
+    sph_scene_def def = test_scene("[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n[domain]\n"
+                                   "max=1 0.6\n[fluid a]\nmax=0.4 0.4\nspacing=0.02\n[kernels]\nh=0.04\n[time]\n"
+                                   "dt=0.0002\ncfl=0\n");
+    const sph_level *L4 = &sph_levels[sph_level_find("L4")];
+    sph_error err;
+    cr_assert_eq(sph_level_apply(L4, &def, &err), SPH_ERR_OK, "%s", err.msg);
+    sph_sim *sim;
+    cr_assert_eq(sph_sim_create(&def, L4->threads, &sim, &err), SPH_ERR_OK, "%s", err.msg);
+    for (int s = 0; s < VIEW_MEASURE_STEPS + 2; s++) sph_sim_step(sim);
+    const int lv = view_ladder_level(sim);
+    cr_assert_geq(lv, 0, "the scene is no level of the ladder");
+    view_ladder ladder;
+    memset(&ladder, 0, sizeof ladder);
+    sim->enabled[SPH_PASS_VISCOSITY] = false;
+    view_ladder_record(&ladder, sim);
+    cr_expect_eq(ladder.ms[lv], 0.0, "recorded %g ms for %s with a pass off", ladder.ms[lv], sph_levels[lv].name);
+    char extra[8][128];
+    const int n = view_ladder_lines(&ladder, sim, extra, 8);
+    cr_assert_gt(n, 0);
+    cr_expect(strstr(extra[0], "with passes off (viscosity)") != NULL, "%s", extra[0]);
+    sim->enabled[SPH_PASS_VISCOSITY] = true;
+    view_ladder_record(&ladder, sim);
+    cr_expect_gt(ladder.ms[lv], 0.0, "all passes on: the level's time is recorded");
+    sph_sim_destroy(sim);
 }

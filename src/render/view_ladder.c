@@ -23,12 +23,28 @@ int view_ladder_level(const sph_sim *sim)
     return sph_level_of(&sim->def, sim->threads, cores());
 }
 
+/* The pipeline's passes switched off in the window (key d), their names in names; their count. */
+static int passes_off(const sph_sim *sim, char *names, size_t n)
+{
+    int off = 0;
+    size_t used = 0;
+    if (n) names[0] = '\0';
+    for (int p = 0; p < SPH_PASS_COUNT; p++)
+        if (sim->in_pipeline[p] && !sim->enabled[p]) {
+            off++;
+            if (used < n) used += (size_t)snprintf(names + used, n - used, "%s%s", used ? " " : "", sph_passes[p]->name);
+        }
+    return off;
+}
+
 void view_ladder_record(view_ladder *l, const sph_sim *sim)
 {
     if (sim->n != l->n) { /* other particles: the times of other levels no longer compare */
         memset(l->ms, 0, sizeof l->ms);
         l->n = sim->n;
     }
+    char off[8];
+    if (passes_off(sim, off, sizeof off)) return; /* a pass switched off: not the level's step (its time was credited) */
     const int lv = view_ladder_level(sim);
     int window = 0;
     const double ms = sph_sim_step_ms(sim, &window);
@@ -119,9 +135,16 @@ int view_ladder_lines(const view_ladder *l, const sph_sim *sim, char lines[][128
         snprintf(threads, sizeof threads, "on the device");
     snprintf(ingredients, sizeof ingredients, "%s%s%s, reorder %s, vector %s, %s, %s", sph_search_names[d->search],
              d->search == SPH_SEARCH_BRUTE ? "" : " + ", d->search == SPH_SEARCH_BRUTE ? "" : sph_sort_names[d->sort],
-             sim->in_pipeline[SPH_PASS_REORDER] ? sph_onoff_names[d->reorder] : "-", sph_onoff_names[d->vector],
+             !sim->in_pipeline[SPH_PASS_REORDER] ? "-"
+             : !sim->enabled[SPH_PASS_REORDER]   ? "off (pass)"
+                                                  : sph_onoff_names[d->reorder],
+             sph_onoff_names[d->vector],
              threads, sph_backend_names[d->backend]);
-    if (lv >= 0) {
+    char off[96];
+    if (passes_off(sim, off, sizeof off)) {
+        LADDER_LINE("level %s with passes off (%.60s): not its pipeline, times not recorded",
+                    lv >= 0 ? sph_levels[lv].name : "none", off);
+    } else if (lv >= 0) {
         LADDER_LINE("level %s: %s", sph_levels[lv].name, sph_levels[lv].about);
     } else {
         LADDER_LINE("level: none of the ladder's (a mix of ingredients)");
