@@ -35,7 +35,7 @@
     X("t", "threads: 1 / one per core")                                       \
     X("b", "backend: cpu / gl (GL 4.3 compute)")                              \
     X("a / shift+a", "validate: run L0 (shift: L2) alongside, show the differences") \
-    X("] / [", "twice / half as many particles (the scene filled again)")     \
+    X("] / [", "about twice / half as many particles (filled again)")       \
     X("n / shift+n", "choose the next / previous pass (numbers as `sphlab check`)") \
     X("d", "switch the chosen pass on / off")                                 \
     X("1..9", "overlays: grid keys collisions neighbours forces index hud timings legend") \
