@@ -86,9 +86,9 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
                      so->div_iterations, so->iterations, 100 * so->density_error, 100 * sim->def.solver_tolerance,
                      (unsigned long long)so->capped, (unsigned long long)so->stopped);
         } else {
-            HUD_LINE("pcisph last step: %d iterations, density error %.3f %% (tol %.3g %%), %llu capped, %llu stopped "
+            HUD_LINE("pcisph last step: %d iteration%s, density error %.3f %% (tol %.3g %%), %llu capped, %llu stopped "
                      "rising",
-                     so->iterations, 100 * so->density_error, 100 * sim->def.solver_tolerance,
+                     so->iterations, so->iterations == 1 ? "" : "s", 100 * so->density_error, 100 * sim->def.solver_tolerance,
                      (unsigned long long)so->capped, (unsigned long long)so->stopped);
         }
         if (so->iteration > 0) {
