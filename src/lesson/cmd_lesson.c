@@ -499,7 +499,10 @@ int cmd_lesson(int argc, char **argv)
     const char *dir = opt.export_dir;
     bool quick = opt.quick, quiet = opt.quiet, dry = opt.dry_run;
     if (dir && opt.n_rest) {
-        fprintf(stderr, "sphlab lesson: unknown option '%s' with --export\n", opt.rest[0]);
+        fprintf(stderr,
+                "sphlab lesson: unknown option '%s' with --export (an export reads --quick, --quiet and --format; "
+                "the lesson's runs set the rest, as its figures were measured)\n",
+                opt.rest[0]);
         return 2;
     }
     if (opt.format && !dir) {
