@@ -769,3 +769,35 @@ Test(render, window_on_the_gl_backend_draws_from_its_buffers)
     test_remove_dir(d);
     remove(scene);
 }
+
+/* A field with one value everywhere (the speed at step 0) is labelled once in the legend, with "everywhere"
+ * under it: it read "0", "0" and "0" at the bar's top, middle and bottom. Counted as runs of bright rows of
+ * text right of the legend's bar (the legend ends at the image's right edge without the HUD), from an eighth of
+ * the height down (below the field's name and unit): one label block in the middle (the old legend's middle and
+ * bottom labels made two). */
+Test(render, legend_of_a_constant_field_says_its_value_once)
+{
+    const char *scene = test_write_temp(scene_2d, ".ini");
+    const char *d = test_temp_dir("render");
+    char args[1024], out[4096], path[256];
+    snprintf(args, sizeof args, "render %s --out %s --steps 0 --size 800x600 --overlay none --overlay legend "
+                                "--color speed --quiet", scene, d);
+    cr_assert_eq(test_sphlab(args, out, sizeof out), 0, "%s", out);
+    snprintf(path, sizeof path, "%s/frame_00000.png", d);
+    int w, h;
+    unsigned char *img = load_png(path, &w, &h);
+    int runs = 0, gap = 100; /* gap: rows since the last bright one; lines of one label are closer than 8 rows */
+    for (int y = h / 8; y < h - 2; y++) {
+        bool ink = false;
+        for (int x = w - 60; x < w - 2 && !ink; x++) {
+            const unsigned char *px = img + 3 * ((size_t)y * (size_t)w + (size_t)x);
+            ink = px[0] + px[1] + px[2] > 450;
+        }
+        if (ink && gap > 8) runs++;
+        gap = ink ? 0 : gap + 1;
+    }
+    stbi_image_free(img);
+    cr_expect_eq(runs, 1, "%d separated labels right of the bar, want 1 (the value and 'everywhere')", runs);
+    test_remove_dir(d);
+    remove(scene);
+}

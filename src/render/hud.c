@@ -188,6 +188,13 @@ void hud_legend(sph_renderer *r, const sph_sim *sim, sph_color_field f, float lo
         canvas_rect(r, bx0, y, bx1, fminf(y + 1.0f, bot), sph_colormap_viridis(t));
     }
     canvas_outline(r, bx0 - 1, top - 1, bx1 + 1, bot + 1, 1, grey);
+    if (!(hi > lo)) { /* one value everywhere (a speed at step 0): said once, not as "0 / 0 / 0" */
+        sph_legend_label(s, sizeof s, lo, lo, hi);
+        canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, 0.5f * (top + bot), SPH_ALIGN_LEFT, white, s, false);
+        canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, 0.5f * (top + bot) + 1.2f * fs, SPH_ALIGN_LEFT, grey, "everywhere",
+                       false);
+        return;
+    }
     sph_legend_label(s, sizeof s, hi, lo, hi);
     canvas_text_at(r, SPH_TEXT_SMALL, bx1 + 4, top + 0.5f * fs, SPH_ALIGN_LEFT, white, s, false);
     sph_legend_label(s, sizeof s, 0.5f * (lo + hi), lo, hi);
