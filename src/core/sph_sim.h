@@ -313,7 +313,7 @@ struct sph_sim {
     sph_pass_timing timing[SPH_PASS_COUNT];
     /* The last SPH_STEP_WINDOW complete steps' times, each the sum of its
      * passes' times (the watchdog's checks left out), in a ring: the HUD's
-     * ms per step is their mean (sph_sim_step_ms). */
+     * ms per step is their median (sph_sim_step_ms). */
     double step_ms_acc;                  /* [ms] passes of the step under way, so far */
     double step_ms[SPH_STEP_WINDOW];     /* [ms] step k is at k % SPH_STEP_WINDOW */
     uint64_t step_ms_count;              /* steps recorded since creation or sph_sim_reset_timings */
@@ -458,7 +458,7 @@ const char *sph_sim_work_done_by(const sph_sim *sim);
 void sph_sim_end_at(sph_sim *sim, double t_end);
 bool sph_sim_reached(const sph_sim *sim, double t_end);
 void sph_sim_reset_timings(sph_sim *sim);
-/* [ms] mean time per step over the last min(SPH_STEP_WINDOW, steps run)
+/* [ms] median time per step over the last min(SPH_STEP_WINDOW, steps run)
  * complete steps, NaN before the first; *steps (if not NULL) gets that count. */
 double sph_sim_step_ms(const sph_sim *sim, int *steps);
 /* A backend's device-measured times of one complete step [ms], per pass

@@ -137,7 +137,7 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
         char fps[32] = "";
         if (info->frames_per_s > 0) snprintf(fps, sizeof fps, "   %.0f frames/s", info->frames_per_s);
         if (ms == ms) {
-            HUD_LINE("%.3g ms/step (mean of %d)   %.0f steps/s%s", ms, window, info->steps_per_s, fps);
+            HUD_LINE("%.3g ms/step (median of %d)   %.0f steps/s%s", ms, window, info->steps_per_s, fps);
         } else {
             HUD_LINE("%.0f steps/s%s", info->steps_per_s, fps);
         }
