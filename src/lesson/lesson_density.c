@@ -113,7 +113,7 @@ int lx_lesson1(lx *x)
             if (n && h && hs && nb && err && bias) {
                 lx_md(x, "`sphlab estimate --dim %d --samples %s` (%s){{@: for each sample count, the error at each h "
                          "and the best h| : pour chaque nombre d'échantillons, l'erreur à chaque h et le meilleur h}}."
-                         "\n\n| n | h | {{@h / spacing|h / pas}} | {{@neighbours|voisins}} | {{@rms error|erreur rms}} "
+                         "\n\n| n | h | {{@h / spacing|h / espacement}} | {{@neighbours|voisins}} | {{@rms error|erreur rms}} "
                          "| {{@predicted bias|biais prédit}} |\n|---|---|---|---|---|---|\n",
                       est[e].dim, study_samples_names[est[e].samples], est[e].name);
                 for (size_t i = 0; i < t.nrows; i++) {
@@ -140,7 +140,7 @@ int lx_lesson1(lx *x)
     if (f) fprintf(f, "h_over_spacing,h,neighbours,interior_mean,interior_rms_percent,surface_mean,surface_deficit_percent\n");
     lx_val(x, "rho0", "%g", rho0);
     lx_block(x, "density_table");
-    lx_md(x, "| {{@h / spacing|h / pas}} | h [m] | {{@interior mean [kg/m^2]|moyenne intérieure [kg/m^2]}} | "
+    lx_md(x, "| {{@h / spacing|h / espacement}} | h [m] | {{@interior mean [kg/m^2]|moyenne intérieure [kg/m^2]}} | "
              "{{@interior rms error|erreur rms intérieure}} | {{@top row mean [kg/m^2]|moyenne de la rangée du haut "
              "[kg/m^2]}} | {{@top row deficit|déficit de la rangée du haut}} |\n"
              "|---|---|---|---|---|---|\n");
@@ -212,7 +212,7 @@ int lx_lesson1(lx *x)
                     * which the window shows zoomed in (the caption promised them) */
                    lx_fmt("{{@the slab coloured by density (600 to 1400 kg/m^2) with h = %g spacings, particle 625's "
                           "neighbours (their weights show when zoomed in, in the window)|la tranche colorée par la "
-                          "densité (600 à 1400 kg/m^2) avec h = %g pas, les voisins de la particule 625 (leurs poids "
+                          "densité (600 à 1400 kg/m^2) avec h = %g espacements, les voisins de la particule 625 (leurs poids "
                           "s'affichent en zoomant, dans la fenêtre)}}",
                           pics[k], pics[k]));
     }
@@ -289,7 +289,7 @@ int lx_lesson2(lx *x)
     lx_block(x, "points_table");
     lx_md(x, "| {{@particle|particule}} |");
     for (int m = 0; m < 2; m++)
-        for (int k = 0; k < nh; k++) lx_md(x, " %s, h = %g {{@spacings|pas}} |", models[m], hl[k]);
+        for (int k = 0; k < nh; k++) lx_md(x, " %s, h = %g {{@spacings|espacements}} |", models[m], hl[k]);
     lx_md(x, "\n|---|");
     for (int i = 0; i < 2 * nh; i++) lx_md(x, "---|");
     lx_md(x, "\n");
@@ -297,8 +297,8 @@ int lx_lesson2(lx *x)
     if (f) fprintf(f, "wall_model,h_over_spacing,particle,rho,error_percent\n");
     for (int q = 0; q < NSPOT + 2; q++) {
         lx_md(x, "| %s |", q < NSPOT    ? lx_fmt("{{@%s|%s}}", spot[q].name, spot[q].name_fr)
-                           : q == NSPOT ? "{{@lowest|la plus basse}}"
-                                        : "{{@highest|la plus haute}}");
+                           : q == NSPOT ? "{{@lowest density|densité la plus basse}}"
+                                        : "{{@highest density|densité la plus haute}}");
         for (int m = 0; m < 2; m++)
             for (int k = 0; k < nh; k++) {
                 if (!ok[m][k]) {

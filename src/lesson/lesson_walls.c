@@ -241,7 +241,7 @@ static void lesson10_tank(lx *x)
     const int rows = (int)sph_block_nodes(&def, 0, 1);
     const int nrow = rows < 64 ? rows : 64;
     const double t_end = x->quick ? 0.3 : def.duration;
-    static double py[NMODEL][128], pp[NMODEL][128], exact[64], ey[64]; /* [m], [Pa], [Pa], [m] */
+    static double py[NMODEL][128], pp[NMODEL][128], exact[64], ey[64]; /* [m], [N/m], [N/m], [m]: a 2D pressure */
     int np[NMODEL] = {0};
     /* [1] shares of rho0 g H; the largest speed over sqrt(g H) */
     double wall_err[NMODEL] = {NAN, NAN, NAN}, col_err[NMODEL] = {NAN, NAN, NAN}, vmax[NMODEL] = {NAN, NAN, NAN};
@@ -326,7 +326,7 @@ static void lesson10_tank(lx *x)
              H, s, t_end);
     snprintf(L.xlabel, sizeof L.xlabel, "height y [m]");
     L.np = 1;
-    snprintf(L.p[0].ylabel, sizeof L.p[0].ylabel, "pressure [Pa]");
+    snprintf(L.p[0].ylabel, sizeof L.p[0].ylabel, "pressure [N/m] (2D)");
     for (int m = 0; m < NMODEL; m++)
         if (ok[m]) {
             plot_series *ps = &L.p[0].s[L.p[0].n++];
