@@ -59,7 +59,9 @@ const app_opt app_options[] = {
      DOUBLE(time, 0, 1e6)},
     {"--threads", NULL, "N", "worker threads (default: one per core)", RUN | RENDER | VIEW | STUDY | VALIDATE,
      INT(threads, 1, SPH_MAX_THREADS)},
-    {"--threads", NULL, "N", "worker threads (default: one per core; bench pair: 1, each step's CPU time)", BENCH,
+    {"--threads", NULL, "N",
+     "worker threads of bench pair (default 1: each step's CPU time); the other benchmarks run each level or\n"
+     "setting with its own", BENCH,
      INT(threads, 1, SPH_MAX_THREADS)},
     {"--backend", NULL, "cpu|gl",
      "where the passes run (overrides [compute] backend): gl runs them as\n"

@@ -17,6 +17,10 @@ $(BUILD)/bench/%.o: src/bench/%.c src/bench/*.h src/plot/plot.h src/gpu/gpu.h sr
 $(BUILD)/bench:
 	mkdir -p $@
 
+# tests/test_bench.c calls bench.h's inline peak rule in-process.
+$(BUILD)/tests/test_bench.o: CORE_CFLAGS += -Isrc/bench
+$(BUILD)/tests/test_bench.o: src/bench/bench.h
+
 # `make bench`: the ladder and the scaling in 3D (and the machine's limits),
 # into build/bench/.
 BENCH_OUT ?= build/bench
