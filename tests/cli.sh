@@ -325,6 +325,11 @@ grep -q "dv.ini:11: \[physics\] damping_time = 0.02 s removes all motion at the 
 # check's headline counts the blocks' particles and the walls' apart (it said 192 particles in 1 block for 120)
 sph check scenes/validate/couette.ini > "$tmp/cc.txt" 2>&1
 grep -q "2D, 120 particles in 1 block and 72 wall particles, h = " "$tmp/cc.txt" && ok || { bad "check couette: headline counts"; head -2 "$tmp/cc.txt"; }
+# an empty item in a bench list is a typo, said (it was dropped unsaid: --levels L3,,L6; --solvers '' ran eos alone)
+sph bench levels --levels L3,,L6 > "$tmp/bl.txt" 2>&1
+[ $? -eq 2 ] && grep -q "levels 'L3,,L6': an empty item between commas" "$tmp/bl.txt" && ok || { bad "bench --levels L3,,L6: want exit 2"; cat "$tmp/bl.txt"; }
+sph bench solvers --solvers '' > "$tmp/bl.txt" 2>&1
+[ $? -eq 2 ] && grep -q "solvers '': an empty item" "$tmp/bl.txt" && ok || { bad "bench solvers --solvers '': want exit 2"; cat "$tmp/bl.txt"; }
 # a single-valued option given twice keeps the last and says so, as --set does (a teacher's --resolution 10
 # --resolution 12 ran 12 unsaid)
 sph run lessons/scenes/rest-2d.ini --steps 2 --steps 3 --quiet --stats "$tmp/twice.csv" > "$tmp/twice.txt" 2>&1

@@ -252,6 +252,12 @@ static bool parse_solvers(const char *list, bool want[SETTINGS])
     for (int s = 0; s < SETTINGS; s++) want[s] = list == NULL;
     want[SETTING_EOS] = true;
     if (!list) return true;
+    const size_t len = strlen(list); /* empty items ("", "pcisph,"): a typo, said (strtok dropped them unsaid) */
+    if (!len || list[0] == ',' || list[len - 1] == ',' || strstr(list, ",,")) {
+        fprintf(stderr, "sphlab bench solvers: --solvers '%s': an empty item (accepted: eos, pcisph, dfsph, pcisph+, "
+                        "dfsph+, comma-separated)\n", list);
+        return false;
+    }
     char buf[256];
     if (snprintf(buf, sizeof buf, "%s", list) >= (int)sizeof buf) {
         fprintf(stderr, "sphlab bench solvers: --solvers '%s': too long\n", list);

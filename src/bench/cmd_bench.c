@@ -54,6 +54,12 @@ static bool parse_levels(bench_opts *o)
         for (int i = 0; i < bench_level_count && i < BENCH_MAX_LEVELS; i++) o->sel[o->nsel++] = i;
         return true;
     }
+    /* an empty item ("L3,,L6", "L3,"): a typo, said (strtok dropped it unsaid) */
+    const size_t len = strlen(o->levels);
+    if (len && (o->levels[0] == ',' || o->levels[len - 1] == ',' || strstr(o->levels, ",,"))) {
+        fprintf(stderr, "sphlab bench: --levels '%s': an empty item between commas\n", o->levels);
+        return false;
+    }
     char buf[512];
     snprintf(buf, sizeof buf, "%s", o->levels);
     char *save = NULL;
