@@ -271,6 +271,9 @@ sphe "-u DISPLAY -u WAYLAND_DISPLAY" lesson 1 --exprot "$tmp/x" > "$tmp/lx.txt" 
 [ $? -eq 2 ] && grep -q "unknown option '--exprot' (did you mean --export?)" "$tmp/lx.txt" && ok ||
     { bad "lesson 1 --exprot: want exit 2 and --export suggested"; cat "$tmp/lx.txt"; }
 # the window's options and their aliases pass (--colour is --color's), a value that starts with '-' too
+# a repeatable one (--overlay adds) keeps the lesson's own: lesson 2's grid, neighbours and HUD stayed off
+sph lesson 2 --overlay timings --dry-run > "$tmp/lx.txt" 2>&1 && grep -q -- "--overlay grid,neighbours,hud,legend .*--overlay timings" "$tmp/lx.txt" &&
+    ok || { bad "lesson 2 --overlay timings: want the lesson's overlays kept"; cat "$tmp/lx.txt"; }
 # and replace the lesson's own (its --color density is left out: both given, the window warned of a repeat)
 sph lesson 1 --colour pressure --center -0.5:0 --dry-run > "$tmp/lx.txt" 2>&1 && grep -q -- "--colour pressure --center -0.5:0" "$tmp/lx.txt" &&
     ! grep -q -- "--color density" "$tmp/lx.txt" && grep -q -- "--select 625" "$tmp/lx.txt" &&
@@ -322,6 +325,12 @@ printf '[scene]\ndimension=2\n[domain]\nmax=1 1\n[fluid drop]\nmin=0.4 0.4\nmax=
 sph check "$tmp/dv.ini" > "$tmp/dv.txt" 2>&1
 grep -q "dv.ini:11: \[physics\] damping_time = 0.02 s removes all motion at the start, so \[fluid drop\]'s velocity (0 -1 m/s) is damped away" "$tmp/dv.txt" &&
     ok || { bad "check: damping_time with a block velocity: want the warning"; cat "$tmp/dv.txt"; }
+# the damping period stops a moving lid for good: said; a slip key on a periodic axis makes no wall 'mixed'
+sph check scenes/validate/couette.ini --set physics.damping_time=0.01 > "$tmp/lid.txt" 2>&1
+grep -q "damping_time = 0.01 s damps the moving top wall too" "$tmp/lid.txt" && ok || { bad "check couette with damping: want the lid warning"; cat "$tmp/lid.txt"; }
+sph check scenes/validate/couette.ini --set domain.wall_slip_xmin=free > "$tmp/lid.txt" 2>&1
+grep -q "wall_state *Adami et al. 2012: wall pressure from the fluid, no-slip walls" "$tmp/lid.txt" && ok ||
+    { bad "check couette wall_slip_xmin=free: want 'no-slip walls'"; grep wall_state "$tmp/lid.txt"; }
 # check's headline counts the blocks' particles and the walls' apart (it said 192 particles in 1 block for 120)
 sph check scenes/validate/couette.ini > "$tmp/cc.txt" 2>&1
 grep -q "2D, 120 particles in 1 block and 72 wall particles, h = " "$tmp/cc.txt" && ok || { bad "check couette: headline counts"; head -2 "$tmp/cc.txt"; }

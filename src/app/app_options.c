@@ -113,7 +113,8 @@ const app_opt app_options[] = {
      RENDER | VIEW, STRING(range)},
     {"--overlay", NULL, "NAME,...", "switch overlays on (repeatable; 'all', 'none'); default: hud,legend (the window\n"
      "adds timings);\n"
-     "render's 'all' leaves out timings (wall-clock: frames would differ run to run); the names:\n"
+     "render's 'all' leaves out timings (wall-clock: frames would differ run to run);\n"
+     "the names:"
 #define APP_OVERLAY_NAME(id, name, about) " " name
      SPH_OVERLAYS(APP_OVERLAY_NAME)
 #undef APP_OVERLAY_NAME

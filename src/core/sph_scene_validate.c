@@ -230,6 +230,19 @@ const char *sph_scene_warning(const sph_scene_def *def, char *buf, size_t n)
         add_warning(buf, n, one);
         break; /* one block said is enough */
     }
+    /* the damping multiplies every velocity, the moving lid's wall particles' too, and nothing restores it: a
+     * Couette flow with damping_time = 0.01 ended at 3.6e-4 m/s where its lid moves at 0.025 */
+    if (def->damping_time > 0 && (def->wall_velocity[0] != 0 || def->wall_velocity[2] != 0) &&
+        (def->effects & SPH_EFFECT(WALLS)) && (def->effects & SPH_EFFECT(PRESSURE)) &&
+        def->wall_model == SPH_WALL_PARTICLES) {
+        char at[300];
+        origin_text(def, def->origin[key_index("physics", "damping_time")].line, at, sizeof at);
+        snprintf(one, sizeof one,
+                 "%s: [physics] damping_time = %g s damps the moving top wall too ([domain] wall_velocity), and it "
+                 "does not start again: the lid stands still; to keep it moving, set damping_time = 0",
+                 at, (double)def->damping_time);
+        add_warning(buf, n, one);
+    }
     return buf[0] ? buf : NULL;
 }
 

@@ -201,13 +201,15 @@ static int open_window(const lesson *L, int argc, char **argv, bool dry_run)
     args[n++] = "sphlab";
     args[n++] = "view";
     args[n++] = scene;
-    /* the lesson's own view options, less those the user gives again (theirs win; both given, the window said
-     * "--color is given twice" to a student who had only asked for another colour) */
+    /* the lesson's own view options, less the single-valued ones the user gives again (theirs win; both given,
+     * the window said "--color is given twice" to a student who had only asked for another colour); a repeatable
+     * one (--overlay adds) stays, or the lesson's overlays went */
     const char *mine[100];
     int n_mine = 0;
     for (char *tok = strtok(opts, " "); tok && n_mine < 100; tok = strtok(NULL, " ")) mine[n_mine++] = tok;
     for (int k = 0; k < n_mine && n < 100; k++) {
         const app_opt *o = mine[k][0] == '-' ? app_opts_find(APP_CMD(view), mine[k]) : NULL;
+        if (o && o->kind == APP_OPT_LIST) o = NULL; /* repeatable: kept, and its value with it */
         bool again = false;
         for (int i = 0; o && i < argc && !again; i++) again = argv[i][0] == '-' && app_opts_find(APP_CMD(view), argv[i]) == o;
         const bool valued = o && o->kind != APP_OPT_FLAG && o->kind != APP_OPT_HELP && !strchr(mine[k], '=');

@@ -62,8 +62,8 @@ static const char *skip_reason(const sph_scene_def *def)
 static void describe(const sph_scene_def *def, char *out, int n)
 {
     bool mixed = false; /* do some walls slip otherwise than wall_slip says? */
-    for (int k = 0; k < 2 * def->dim; k++)
-        mixed |= def->wall_slip_side[k] != SPH_SIDE_SLIP_SAME &&
+    for (int k = 0; k < 2 * def->dim; k++) /* a periodic axis has no walls: its sides' keys count for nothing */
+        mixed |= !(def->periodic & (1u << (k / 2))) && def->wall_slip_side[k] != SPH_SIDE_SLIP_SAME &&
                  (def->wall_slip_side[k] == SPH_SIDE_SLIP_FREE) != (def->wall_slip == SPH_SLIP_FREE);
     for (int k = 0; k < def->n_obstacles; k++) mixed |= def->obstacles[k].slip != def->wall_slip;
     /* under a solver the walls' pressure is the solver's (solver_wall_pressure): this pass gives the velocity */

@@ -246,6 +246,9 @@ void viewer_toggle_pass(viewer *w, int p)
         return;
     }
     w->sim->enabled[p] = !w->sim->enabled[p];
+    /* the ms-per-step window starts again: its steps ran the other pipeline, and their median was filed as the
+     * level's live time once all passes were on again */
+    w->sim->step_ms_count = 0;
     viewer_say(w, "pass %d %s %s", view_pass_number(w->sim, p), sph_passes[p]->name, w->sim->enabled[p] ? "on" : "off");
 }
 
@@ -268,6 +271,8 @@ static void step_pass(viewer *w)
     if (!(w->v.overlays & SPH_OV_BIT(HUD)))
         sph_mask_names(sph_sim_mask_present(w->sim, sph_passes[p]->writes), wrote, (int)sizeof wrote);
     if (!*wrote && f < 0 && !strip) { /* the HUD's row says it all; a script's log still gets the line */
+        w->msg[0] = '\0'; /* and the last pass's message goes: it read as this one's */
+        w->msg_until = 0;
         if (w->scripted) fprintf(stderr, "sphlab view: pass %s ran\n", sph_passes[p]->name);
         return;
     }

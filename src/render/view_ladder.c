@@ -152,12 +152,12 @@ int view_ladder_lines(const view_ladder *l, const sph_sim *sim, char lines[][128
     LADDER_LINE("  %s", ingredients);
     int window = 0;
     const double ms = sph_sim_step_ms(sim, &window);
-    if (ms > 0 && lv >= 0) {
+    if (ms > 0 && lv >= 0 && !passes_off(sim, off, sizeof off)) { /* with passes off: no level's figure */
         char below[48], base[48];
         const int l0 = sph_levels[lv].name[0] == 'G' ? sph_level_find("L0") : 0;
         speedup_text(l, lv, level_below(lv), ms, below, sizeof below);
         speedup_text(l, lv, l0, ms, base, sizeof base);
-        if (level_below(lv) == l0) { /* at L1 (or G0) the level below is the base: said once */
+        if (level_below(lv) == l0) { /* at L1 the level below is the base: said once */
             LADDER_LINE("speed-up (live at N = %u): %.47s", sim->n, below);
         } else {
             LADDER_LINE("speed-up (live at N = %u): %.47s, %.47s", sim->n, below, base);
