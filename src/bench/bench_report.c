@@ -420,8 +420,9 @@ void bench_ladder_print(FILE *out, const bench_opts *o, const bench_ladder *lad)
                 meta.machine.fma_gflops[0], meta.machine.fma_gflops[1], meta.machine.cores);
         fprintf(out, "(GL levels build no lists: density and the forces walk the cells themselves, so no pair count)\n"
                "peak B/N: the process's peak resident size (getrusage) over N, after the level's timed steps: a\n"
-               "bound on the level's bytes per particle (it includes what earlier levels and checks touched: at a small\n"
-               "N it is the process's fixed size over N, the same for every level; run one level at a large --at)\n"
+               "bound on the level's bytes per particle (it includes what earlier levels and checks touched: at a\n"
+               "small N it is the process's fixed size over N, the same for every level; run one level at a large\n"
+               "--at)\n"
                "ms/step: the median of sph_sim_step's wall time (the passes, the watchdog's checks and what lies\n"
                "between them); the chart stacks each pass's own median, less on a busy machine\n");
         fprintf(out, "\nchecks: neighbour sets identical after 1 step (a pair within %g h of r = h is rounding's call and\n"

@@ -131,9 +131,9 @@ sph_error_code sph_scene_write(const sph_scene_def *def, FILE *f, sph_error *err
     sph_scene_block_defaults(&ref_block, "fluid");
     sph_scene_block_defaults(&ref_obstacle, "obstacle");
     char have[256], want[256];
-    fprintf(f, "# written by sphlab: the keys that differ from their defaults (sphlab keys lists them all), and those\n"
-               "# a scene states anyway: its dimension (and its name, if any), a block's min and max, an obstacle's shape\n"
-               "# and slip\n");
+    fprintf(f, "# written by sphlab: the keys that differ from their defaults (sphlab keys lists them all), and\n"
+               "# those a scene states anyway: its dimension (and its name, if any), a block's min and max, an\n"
+               "# obstacle's shape and slip\n");
     for (int i = 0; i < sph_scene_key_count; i++) {
         if (!first_of_section(i) || is_block_key(&sph_scene_keys[i])) continue;
         const char *section = sph_scene_keys[i].section;

@@ -211,7 +211,8 @@ static int open_window(const lesson *L, int argc, char **argv, bool dry_run)
         const app_opt *o = mine[k][0] == '-' ? app_opts_find(APP_CMD(view), mine[k]) : NULL;
         if (o && o->kind == APP_OPT_LIST) o = NULL; /* repeatable: kept, and its value with it */
         bool again = false;
-        for (int i = 0; o && i < argc && !again; i++) again = argv[i][0] == '-' && app_opts_find(APP_CMD(view), argv[i]) == o;
+        for (int i = 0; o && i < argc && !again; i++)
+            again = argv[i][0] == '-' && app_opts_find(APP_CMD(view), argv[i]) == o;
         const bool valued = o && o->kind != APP_OPT_FLAG && o->kind != APP_OPT_HELP && !strchr(mine[k], '=');
         if (again) {
             k += valued; /* and its value */

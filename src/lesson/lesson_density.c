@@ -113,8 +113,8 @@ int lx_lesson1(lx *x)
             if (n && h && hs && nb && err && bias) {
                 lx_md(x, "`sphlab estimate --dim %d --samples %s` (%s){{@: for each sample count, the error at each h "
                          "and the best h| : pour chaque nombre d'échantillons, l'erreur à chaque h et le meilleur h}}."
-                         "\n\n| n | h | {{@h / spacing|h / espacement}} | {{@neighbours|voisins}} | {{@rms error|erreur rms}} "
-                         "| {{@predicted bias|biais prédit}} |\n|---|---|---|---|---|---|\n",
+                         "\n\n| n | h | {{@h / spacing|h / espacement}} | {{@neighbours|voisins}} | "
+                         "{{@rms error|erreur rms}} | {{@predicted bias|biais prédit}} |\n|---|---|---|---|---|---|\n",
                       est[e].dim, study_samples_names[est[e].samples], est[e].name);
                 for (size_t i = 0; i < t.nrows; i++) {
                     bool best = true;
@@ -212,8 +212,8 @@ int lx_lesson1(lx *x)
                     * which the window shows zoomed in (the caption promised them) */
                    lx_fmt("{{@the slab coloured by density (600 to 1400 kg/m^2) with h = %g spacings, particle 625's "
                           "neighbours (their weights show when zoomed in, in the window)|la tranche colorée par la "
-                          "densité (600 à 1400 kg/m^2) avec h = %g espacements, les voisins de la particule 625 (leurs poids "
-                          "s'affichent en zoomant, dans la fenêtre)}}",
+                          "densité (600 à 1400 kg/m^2) avec h = %g espacements, les voisins de la particule 625 (leurs "
+                          "poids s'affichent en zoomant, dans la fenêtre)}}",
                           pics[k], pics[k]));
     }
     return 0;

@@ -353,8 +353,8 @@ int lx_lesson4(lx *x)
     lx_val(x, "length", "%g", L);
     lx_val(x, "rate", "%.4f", rate0);
     lx_block(x, "decay_table");
-    lx_md(x, "| {{@viscosity form|forme de la viscosité}} | {{@h / spacing|h / espacement}} | {{@steps|pas}} | {{@fitted "
-             "rate [1/s]|taux ajusté [1/s]}} | {{@analytic [1/s]|analytique [1/s]}} | {{@error|erreur}} "
+    lx_md(x, "| {{@viscosity form|forme de la viscosité}} | {{@h / spacing|h / espacement}} | {{@steps|pas}} | "
+             "{{@fitted rate [1/s]|taux ajusté [1/s]}} | {{@analytic [1/s]|analytique [1/s]}} | {{@error|erreur}} "
              "|\n|---|---|---|---|---|---|\n");
     FILE *f = lx_csv_open(x, "taylor-green.csv");
     if (f) fprintf(f, "run,t,ekin_over_ekin0,analytic\n");

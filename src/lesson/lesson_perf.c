@@ -397,8 +397,8 @@ int lx_lesson9(lx *x)
         } st[2] = {
             {"accuracy", "error against wall time of every combination of spacing and h / spacing (log-log), the "
                          "Pareto front marked",
-             "l'erreur contre le temps de calcul de chaque combinaison de l'espacement et de h / espacement (log-log), le front de "
-             "Pareto marqué",
+             "l'erreur contre le temps de calcul de chaque combinaison de l'espacement et de h / espacement "
+             "(log-log), le front de Pareto marqué",
              {"--vary", "fluid.spacing=0.04,0.02", "--vary", "h_over_spacing=2,3", "--repeats", "1", NULL},
              {"--vary", "fluid.spacing=0.04,0.025,0.02,0.0125", "--vary", "h_over_spacing=1.5,2,3", "--repeats", "3",
               NULL}},

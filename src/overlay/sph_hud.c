@@ -88,7 +88,8 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
         } else {
             HUD_LINE("pcisph last step: %d iteration%s, density error %.3f %% (tol %.3g %%), %llu capped, %llu stopped "
                      "rising",
-                     so->iterations, so->iterations == 1 ? "" : "s", 100 * so->density_error, 100 * sim->def.solver_tolerance,
+                     so->iterations, so->iterations == 1 ? "" : "s", 100 * so->density_error,
+                     100 * sim->def.solver_tolerance,
                      (unsigned long long)so->capped, (unsigned long long)so->stopped);
         }
         if (so->iteration > 0) {

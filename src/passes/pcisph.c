@@ -66,7 +66,8 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
-    snprintf(out, (size_t)n, "predict-correct until the largest (rho - rho_rest) / rho_rest <= %g (at most %d iterations%s%s)%s",
+    snprintf(out, (size_t)n,
+             "predict-correct until the largest (rho - rho_rest) / rho_rest <= %g (at most %d iterations%s%s)%s",
              def->solver_tolerance, def->solver_max_iterations,
              def->solver_warm_start == SPH_ON ? ", warm start" : "",
              def->pcisph_local_delta == SPH_ON ? ", delta per particle" : "",

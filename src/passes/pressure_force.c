@@ -23,7 +23,8 @@
 static const char *skip_reason(const sph_scene_def *def)
 {
     if (!(def->effects & SPH_EFFECT(PRESSURE))) return "effects do not list pressure";
-    return def->pressure_solver != SPH_PSOLVER_EOS ? "pressure_solver is not eos: its own pass makes the pressure" : NULL;
+    return def->pressure_solver != SPH_PSOLVER_EOS ? "pressure_solver is not eos: its own pass makes the pressure"
+                                                   : NULL;
 }
 
 static void describe(const sph_scene_def *def, char *out, int n)

@@ -32,7 +32,8 @@ static int passes_off(const sph_sim *sim, char *names, size_t n)
     for (int p = 0; p < SPH_PASS_COUNT; p++)
         if (sim->in_pipeline[p] && !sim->enabled[p]) {
             off++;
-            if (used < n) used += (size_t)snprintf(names + used, n - used, "%s%s", used ? " " : "", sph_passes[p]->name);
+            if (used < n)
+                used += (size_t)snprintf(names + used, n - used, "%s%s", used ? " " : "", sph_passes[p]->name);
         }
     return off;
 }
@@ -44,7 +45,7 @@ void view_ladder_record(view_ladder *l, const sph_sim *sim)
         l->n = sim->n;
     }
     char off[8];
-    if (passes_off(sim, off, sizeof off)) return; /* a pass switched off: not the level's step (its time was credited) */
+    if (passes_off(sim, off, sizeof off)) return; /* a pass off: not the level's step (its time was credited to it) */
     const int lv = view_ladder_level(sim);
     int window = 0;
     const double ms = sph_sim_step_ms(sim, &window);
