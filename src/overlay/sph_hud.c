@@ -167,7 +167,7 @@ int sph_hud_lines(const sph_sim *sim, const sph_hud_info *info, char lines[][128
             char *cut = strrchr(wrote, ' ');
             memcpy(cut ? cut : wrote + 53, " ...", 5);
         }
-        HUD_LINE("ran pass %s: wrote %s; next: %s", p->name, wrote,
+        HUD_LINE("ran pass %s: wrote %.60s; next: %s", p->name, wrote, /* wrote: cut at 60 above */
                  sim->next_pass == 0 ? "a new step" : sph_passes[sim->next_pass]->name);
     }
     if (info && info->message && *info->message) HUD_LINE("%s", info->message);
