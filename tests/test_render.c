@@ -612,29 +612,34 @@ Test(render, window_keys_step_pass_by_pass_and_switch_overlays)
 
 /* A pass chosen with n that a switch takes out of the pipeline (pressure_force, once s chose pcisph) is chosen no
  * more: d said "pass pressure_force is not in this scene's pipeline" and the timings marked none. */
-Test(render, window_forgets_a_chosen_pass_a_switch_removes)
+/* The window on scene_2d through SDL's offscreen driver with opts (frames, keys, overlays), which must exit 0;
+ * its messages in out. */
+static void scripted_view(const char *opts, char *out, size_t n)
 {
     const char *scene = test_write_temp(scene_2d, ".ini");
-    char args[1024], out[8192];
-    snprintf(args, sizeof args, "view %s --paused --frames 13 --keys 'nnnnnnnnnsd' --size 240x180", scene);
-    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
+    char args[1024];
+    snprintf(args, sizeof args, "view %s --paused --size 240x180 %s", scene, opts);
+    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, n);
+    remove(scene);
     cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+}
+
+Test(render, window_forgets_a_chosen_pass_a_switch_removes)
+{
+    char out[8192];
+    scripted_view("--frames 13 --keys 'nnnnnnnnnsd'", out, sizeof out);
     const char *chose = strstr(out, "pass 9 pressure_force chosen");
     cr_assert_not_null(chose, "%s", out);
     cr_expect_not_null(strstr(chose, "no pass chosen: n chooses one"), "%s", out);
     cr_expect_null(strstr(chose, "is not in this scene's pipeline"), "%s", out);
-    remove(scene);
 }
 
 /* With the HUD off the message lists what the pass wrote, only the fields this scene has: the reorder pass
  * moves every field it may meet, and the list named obstacle, slip, p_pci and kappa in a scene with none. */
 Test(render, window_step_says_only_the_fields_the_scene_has)
 {
-    const char *scene = test_write_temp(scene_2d, ".ini");
-    char args[1024], out[8192];
-    snprintf(args, sizeof args, "view %s --paused --no-overlay hud --frames 5 --keys '....' --size 240x180", scene);
-    int rc = test_sphlab_env("SDL_VIDEODRIVER=offscreen", args, out, sizeof out);
-    cr_assert_eq(rc, 0, "view exit %d: %s", rc, out);
+    char out[8192];
+    scripted_view("--no-overlay hud --frames 5 --keys '....'", out, sizeof out);
     const char *r = strstr(out, "pass reorder wrote pos vel");
     cr_assert_not_null(r, "%s", out);
     const char *end = strchr(r, '\n');
@@ -642,7 +647,6 @@ Test(render, window_step_says_only_the_fields_the_scene_has)
     char line[512];
     snprintf(line, sizeof line, "%.*s", (int)len, r);
     cr_expect(!strstr(line, "kappa") && !strstr(line, "obstacle") && !strstr(line, "p_pci"), "%s", line);
-    remove(scene);
 }
 
 /* The parameter panel open (--panel) in a scripted run: m switches the
