@@ -130,6 +130,18 @@ grep -q "dfsph *divergence-free solve until the mean max(dt D rho/Dt, 0) / rho_r
 sph check lessons/11-incompressible/lesson.ini --set physics.pressure_solver=pcisph --set physics.pcisph_local_delta=on > "$tmp/cd.txt" 2>&1
 grep -q "pcisph *predict-correct until the largest (rho - rho_rest) / rho_rest <= 0.001 (at most 100 iterations, delta per particle)" "$tmp/cd.txt" &&
     ok || { bad "check pcisph: its local delta"; grep pcisph "$tmp/cd.txt"; }
+# solver_chebyshev: check says the density solve is accelerated and from when; rho = 1 (no contraction) is refused;
+# with the equation of state it is warned of as unread
+sph check lessons/11-incompressible/lesson.ini --set physics.pressure_solver=pcisph --set physics.solver_chebyshev=0.9 > "$tmp/cd.txt" 2>&1
+grep -q "pcisph *predict-correct until .*(at most 100 iterations, Chebyshev-accelerated after 10 plain corrections (rho 0.9))" "$tmp/cd.txt" &&
+    ok || { bad "check pcisph: its Chebyshev acceleration"; grep pcisph "$tmp/cd.txt"; }
+sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pressure_solver=dfsph \
+    --set physics.solver_chebyshev=1 > "$tmp/ch.txt" 2>&1
+[ $? -eq 2 ] && grep -q "solver_chebyshev = '1': out of range (accepted: from 0 and below 1)" "$tmp/ch.txt" && ok ||
+    { bad "solver_chebyshev = 1: want it refused"; cat "$tmp/ch.txt"; }
+sph check lessons/11-incompressible/lesson.ini --set physics.pressure_solver=eos --set physics.solver_chebyshev=0.9 > "$tmp/ch.txt" 2>&1
+grep -q "solver_chebyshev is set but this scene does not use it" "$tmp/ch.txt" && ok ||
+    { bad "solver_chebyshev with eos: want the unread warning"; cat "$tmp/ch.txt"; }
 # a solver chosen without the effect pressure is said (no pressure acts), check gives that reason, and --stats has
 # no solver columns of zeros
 sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pressure_solver=pcisph \

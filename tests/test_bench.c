@@ -513,9 +513,10 @@ Test(bench, tiny_solvers_ratios, .timeout = 300)
     cr_assert(strstr(g_out, "window: 0 to 0.006 s simulated"), "no window line:\n%s", g_out);
     cr_assert(strstr(g_out, "the least that holds it"), "no stiffness found:\n%s", g_out);
     cr_assert(strstr(g_out, "at equal error (step max <= 0.1 % for every row): yes"), "not at equal error:\n%s", g_out);
-    /* pcisph+ and dfsph+: the solvers with solver_warm_start (and pcisph_local_delta) on */
-    const char *names[] = {"\neos ", "\npcisph ", "\ndfsph ", "\npcisph+ ", "\ndfsph+ "};
-    for (int s = 0; s < 5; s++) {
+    /* pcisph+ and dfsph+: the solvers with solver_warm_start (and pcisph_local_delta) on; pcisph* and dfsph*:
+     * those with solver_chebyshev = 0.9 */
+    const char *names[] = {"\neos ", "\npcisph ", "\ndfsph ", "\npcisph+ ", "\ndfsph+ ", "\npcisph* ", "\ndfsph* "};
+    for (int s = 0; s < 7; s++) {
         const char *row = strstr(g_out, names[s]);
         cr_assert(row, "no row for%s\n%s", names[s], g_out);
         double v[9], lo, hi;
@@ -540,6 +541,12 @@ Test(bench, tiny_solvers_ratios, .timeout = 300)
                         &r[2], &r[3], &r[4], &r[5]),
                  6, "warm ratio line: %.160s", sum);
     for (int i = 0; i < 6; i++) cr_assert(isfinite(r[i]) && r[i] > 0, "warm ratio line: %.160s", sum);
+    sum = strstr(g_out, "Chebyshev (*): eos / pcisph* ");
+    cr_assert(sum, "no Chebyshev ratio line:\n%s", g_out);
+    cr_assert_eq(sscanf(sum, "Chebyshev (*): eos / pcisph* %lf (%lf-%lf), eos / dfsph* %lf (%lf-%lf)", &r[0], &r[1],
+                        &r[2], &r[3], &r[4], &r[5]),
+                 6, "Chebyshev ratio line: %.160s", sum);
+    for (int i = 0; i < 6; i++) cr_assert(isfinite(r[i]) && r[i] > 0, "Chebyshev ratio line: %.160s", sum);
 }
 
 /* Two levels stepped in turn: the CPU times, their ratio, and, for L12 and

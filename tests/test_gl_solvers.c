@@ -297,6 +297,14 @@ Test(gl_solvers, pcisph_local_delta_dam_break_3d, .timeout = 300)
 }
 Test(gl_solvers, dfsph_warm_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "volume", WARM, 20); }
 
+/* solver_chebyshev = 0.9: the density solve's corrections blended with the iterate before (solver.h; on GL the
+ * blend is gpu_solver_blend.comp, a stage before the correction): the same whole runs, and (below) the same
+ * iterations pass by pass. */
+#define CHEB "physics.solver_chebyshev=0.9"
+Test(gl_solvers, pcisph_chebyshev_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "pcisph", "volume", CHEB, 40); }
+Test(gl_solvers, dfsph_chebyshev_dam_break_2d, .timeout = 300) { compare_runs(dam_2d, "dfsph", "volume", CHEB, 40); }
+Test(gl_solvers, dfsph_chebyshev_dam_break_3d, .timeout = 300) { compare_runs(dam_3d, "dfsph", "volume", CHEB, 20); }
+
 /* As TOL_SOLVER in tests/test_gl_backend.c: a few roundings of rho* over the
  * tolerance's excess (1e-3 rho_r). */
 #define TOL_SOLVER (16 * FLT_EPSILON / 1e-3)
@@ -405,6 +413,15 @@ Test(gl_solvers, pcisph_local_delta_passes_match_cpu, .timeout = 300)
 Test(gl_solvers, dfsph_warm_passes_match_cpu, .timeout = 300)
 {
     lockstep_keys(dam_2d, "dfsph", WARM " physics.divergence_tolerance=1e-5", 20, 10);
+}
+
+/* a step of 2 ms, so that the solves go past their 10 plain corrections and blend */
+#define CHEB_TIGHT CHEB " time.dt=0.002"
+Test(gl_solvers, chebyshev_passes_match_cpu, .timeout = 300)
+{
+    lockstep_keys(dam_2d, "pcisph", CHEB_TIGHT " " LOCAL, 20, 10);
+    lockstep_keys(dam_2d, "dfsph", CHEB_TIGHT, 20, 10);
+    lockstep(dam_2d_obstacle, "dfsph", "particles", CHEB_TIGHT " physics.solver_wall_pressure=extrapolated", 20, 5);
 }
 
 /* Wall particles and an obstacle, pass by pass: each solver iteration's fields (the wall particles' zero

@@ -364,6 +364,70 @@ Test(solvers, dfsph_warm_holds_reached_3d, .timeout = 240)
     check_warm(REACHED_3D, "dfsph", "solver_warm_start = on\n", 100);
 }
 
+/* solver_chebyshev = 0.9: the Chebyshev acceleration of the density solve (solver.h) still ends every converged
+ * step within the tolerance at the positions reached, in fewer iterations than the plain Jacobi steps (measured:
+ * docs/accuracy.md, section 8). Iteration counts, not times. */
+static void check_chebyshev(const char *scene, const char *solver, int steps)
+{
+    char ini[1400];
+    const double plain = check_reached_with(scene, solver, steps);
+    snprintf(ini, sizeof ini, "%s[physics]\npressure_solver = %s\nsolver_chebyshev = 0.9\n", scene, solver);
+    const double fast = check_reached(ini, steps);
+    cr_log_info("%s: %.1f iterations per step accelerated, %.1f plain", solver, fast, plain);
+    cr_assert_lt(fast, 0.8 * plain, "%s: %.1f iterations per step accelerated, %.1f plain", solver, fast, plain);
+}
+
+Test(solvers, pcisph_chebyshev_holds_reached_2d, .timeout = 240) { check_chebyshev(REACHED_2D, "pcisph", 260); }
+Test(solvers, pcisph_chebyshev_holds_reached_3d, .timeout = 240) { check_chebyshev(REACHED_3D, "pcisph", 100); }
+Test(solvers, dfsph_chebyshev_holds_reached_2d, .timeout = 240) { check_chebyshev(REACHED_2D, "dfsph", 260); }
+Test(solvers, dfsph_chebyshev_holds_reached_3d, .timeout = 240) { check_chebyshev(REACHED_3D, "dfsph", 100); }
+
+/* The weights of solver_chebyshev = rho (solver.h, Wang 2015): 1 for the first 10 corrections, then 2 / (2 - rho^2),
+ * then 4 / (4 - rho^2 w), which rises to 2 / (1 + sqrt(1 - rho^2)). Values written by hand for rho = 0.9. */
+Test(solvers, chebyshev_weights)
+{
+    sph_sim *sim = test_sim(REACHED_2D "[physics]\npressure_solver = dfsph\nsolver_chebyshev = 0.9\n", 1);
+    for (int k = 1; k < SPH_SOLVER_CHEBYSHEV_DELAY; k++) {
+        sim->solver.iteration = k;
+        cr_expect_eq(sph_solver_chebyshev_weight(sim), 1.0f, "correction %d", k);
+    }
+    sim->solver.iteration = SPH_SOLVER_CHEBYSHEV_DELAY;
+    cr_expect_float_eq(sph_solver_chebyshev_weight(sim), 1.680672f, 1e-6f); /* 2 / 1.19 */
+    sim->solver.iteration++;
+    cr_expect_float_eq(sph_solver_chebyshev_weight(sim), 1.515924f, 1e-6f); /* 4 / (4 - 0.81 * 1.680672) */
+    float w = 0;
+    for (int k = 0; k < 200; k++, sim->solver.iteration++) w = sph_solver_chebyshev_weight(sim);
+    cr_expect_float_eq(w, 1.392864f, 1e-5f); /* 2 / (1 + sqrt(0.19)) */
+    sim->def.solver_chebyshev = 0.0f; /* none: every correction plain */
+    cr_expect_eq(sph_solver_chebyshev_weight(sim), 1.0f);
+    sph_sim_destroy(sim);
+}
+
+/* A solve that ends before its 10th correction takes only plain steps: the run is the plain one to the bit (the
+ * accelerated correction's q_last and its divisor dt^2 / w change nothing where w = 1). */
+static void check_chebyshev_plain_first(const char *solver)
+{
+    char ini[1400];
+    snprintf(ini, sizeof ini, DAM_2D "[physics]\npressure_solver = %s\nsolver_max_iterations = 9\n", solver);
+    sph_sim *a = test_sim(ini, 2);
+    snprintf(ini, sizeof ini, DAM_2D "[physics]\npressure_solver = %s\nsolver_max_iterations = 9\n"
+             "solver_chebyshev = 0.9\n", solver);
+    sph_sim *b = test_sim(ini, 2);
+    for (int s = 0; s < 30; s++) {
+        sph_sim_step(a);
+        sph_sim_step(b);
+    }
+    for (uint32_t i = 0; i < a->n; i++)
+        for (int d = 0; d < 2; d++)
+            cr_assert_eq(a->P.pos[d][i], b->P.pos[d][i], "%s: particle %u differs", solver, i);
+    cr_assert_gt(a->solver.capped, 0, "%s: no solve reached its 9 iterations: nothing was tested", solver);
+    sph_sim_destroy(a);
+    sph_sim_destroy(b);
+}
+
+Test(solvers, pcisph_chebyshev_plain_first, .timeout = 60) { check_chebyshev_plain_first("pcisph"); }
+Test(solvers, dfsph_chebyshev_plain_first, .timeout = 60) { check_chebyshev_plain_first("dfsph"); }
+
 /* pcisph_local_delta = on: delta_i from the particle's own neighbourhood.
  * Inside the block it is the prototype's (the full lattice, eq. 8 of
  * Solenthaler & Pajarola 2009); in a corner of the box, where a particle has

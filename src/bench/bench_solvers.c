@@ -10,7 +10,9 @@
  *   pcisph  and dfsph at solver_tolerance = the target, from p = 0 each step,
  *   pcisph+ and dfsph+ the same with solver_warm_start = on (pcisph+ also
  *           pcisph_local_delta = on),
- * in R interleaved rounds (--repeats; eos, pcisph+, dfsph+, pcisph, dfsph, eos, ...) so that
+ *   pcisph* and dfsph* the + rows with solver_chebyshev = 0.9 (the density
+ *           solve's Chebyshev acceleration, src/passes/solver.h),
+ * in R interleaved rounds (--repeats; eos, pcisph*, dfsph*, pcisph+, dfsph+, pcisph, dfsph, eos, ...) so that
  * a change of the machine's load hits all three alike; each setting's
  * figures are the medians over the rounds, each ratio the median of the
  * rounds' own ratios with the least and the largest. The error is measured
@@ -55,12 +57,28 @@
 #define SOLVERS_ITER_CAP 2000
 
 /* pcisph+ and dfsph+: the same solvers with solver_warm_start = on (and for
- * PCISPH pcisph_local_delta = on), beside the cold ones in the same rounds */
-enum { SETTING_EOS, SETTING_PCISPH, SETTING_DFSPH, SETTING_PCISPH_WARM, SETTING_DFSPH_WARM, SETTINGS };
-static const char *const setting_names[SETTINGS] = {"eos", "pcisph", "dfsph", "pcisph+", "dfsph+"};
-static const char *const setting_solver[SETTINGS] = {"eos", "pcisph", "dfsph", "pcisph", "dfsph"};
-static const char *const setting_keys[SETTINGS] = {
-    "", "", "", "solver_warm_start = on\npcisph_local_delta = on\n", "solver_warm_start = on\n"};
+ * PCISPH pcisph_local_delta = on), beside the cold ones in the same rounds;
+ * pcisph* and dfsph*: those with solver_chebyshev = 0.9 */
+enum {
+    SETTING_EOS,
+    SETTING_PCISPH,
+    SETTING_DFSPH,
+    SETTING_PCISPH_WARM,
+    SETTING_DFSPH_WARM,
+    SETTING_PCISPH_CHEB,
+    SETTING_DFSPH_CHEB,
+    SETTINGS
+};
+static const char *const setting_names[SETTINGS] = {"eos", "pcisph", "dfsph", "pcisph+", "dfsph+", "pcisph*", "dfsph*"};
+static const char *const setting_solver[SETTINGS] = {"eos", "pcisph", "dfsph", "pcisph", "dfsph", "pcisph", "dfsph"};
+#define SOLVERS_CHEB "solver_chebyshev = 0.9\n"
+static const char *const setting_keys[SETTINGS] = {"",
+                                                   "",
+                                                   "",
+                                                   "solver_warm_start = on\npcisph_local_delta = on\n",
+                                                   "solver_warm_start = on\n",
+                                                   "solver_warm_start = on\npcisph_local_delta = on\n" SOLVERS_CHEB,
+                                                   "solver_warm_start = on\n" SOLVERS_CHEB};
 
 typedef struct solver_run {
     bool ok;            /* ran to the end, the watchdog quiet */
@@ -255,7 +273,7 @@ static bool parse_solvers(const char *list, bool want[SETTINGS])
     const size_t len = strlen(list); /* empty items ("", "pcisph,"): a typo, said (strtok dropped them unsaid) */
     if (!len || list[0] == ',' || list[len - 1] == ',' || strstr(list, ",,")) {
         fprintf(stderr, "sphlab bench solvers: --solvers '%s': an empty item (accepted: eos, pcisph, dfsph, pcisph+, "
-                        "dfsph+, comma-separated)\n", list);
+                        "dfsph+, pcisph*, dfsph*, comma-separated)\n", list);
         return false;
     }
     char buf[256];
@@ -269,7 +287,7 @@ static bool parse_solvers(const char *list, bool want[SETTINGS])
             if (strcmp(t, setting_names[s]) == 0) found = s;
         if (found < 0) {
             fprintf(stderr, "sphlab bench solvers: --solvers: no solver row '%s' (accepted: eos, pcisph, dfsph, "
-                    "pcisph+, dfsph+)\n", t);
+                    "pcisph+, dfsph+, pcisph*, dfsph*)\n", t);
             return false;
         }
         want[found] = true;
@@ -336,8 +354,8 @@ int bench_cmd_solvers(bench_opts *o)
     static solver_run runs[SETTINGS][SOLVERS_ROUNDS_MAX];
     /* each round: eos, the warm solvers, then the cold ones (at 50,000 particles a cold solve could run to
      * its cap for minutes: --trace has the warm rows' figures before) */
-    static const int order[SETTINGS] = {SETTING_EOS, SETTING_PCISPH_WARM, SETTING_DFSPH_WARM, SETTING_PCISPH,
-                                        SETTING_DFSPH};
+    static const int order[SETTINGS] = {SETTING_EOS,         SETTING_PCISPH_CHEB, SETTING_DFSPH_CHEB, SETTING_PCISPH_WARM,
+                                        SETTING_DFSPH_WARM, SETTING_PCISPH,      SETTING_DFSPH};
     for (int rep = 0; rep < repeats; rep++)
         for (int o_ = 0; o_ < SETTINGS; o_++) {
             const int s = order[o_];
@@ -397,6 +415,8 @@ int bench_cmd_solvers(bench_opts *o)
         printf("warm start (+): eos / pcisph+ %s, eos / dfsph+ %s; pcisph+: solver_warm_start and pcisph_local_delta "
                "on, dfsph+: solver_warm_start on\n",
                r[SETTING_PCISPH_WARM], r[SETTING_DFSPH_WARM]);
+        printf("Chebyshev (*): eos / pcisph* %s, eos / dfsph* %s; the + rows with solver_chebyshev = 0.9\n",
+               r[SETTING_PCISPH_CHEB], r[SETTING_DFSPH_CHEB]);
         printf("load %.2f at the start, %.2f at the end (1-minute averages); %.0f s in all\n", load0[0], load1[0],
                1e-3 * (sph_now_ms() - t_start));
     }

@@ -92,6 +92,8 @@
       "PCISPH's predicted density at the predicted positions, this iteration")                                  \
     X(P_PCI_BEST, p_pci_best, 1, "Pa", "N/m", DERIVED, PCISPH, NONE, "", "",                                     \
       "PCISPH's pressure at this solve's least density error so far (a solve that starts to rise takes it back)") \
+    X(P_PCI_PREV, p_pci_prev, 1, "Pa", "N/m", DERIVED, PCISPH, NONE, "", "",                                     \
+      "PCISPH's pressure one iteration back, which the Chebyshev acceleration blends (solver_chebyshev > 0)")    \
     X(DELTA_PCI, delta_pci, 1, "m^2", "m^2", DERIVED, PCISPH, NONE, "", "delta pcisph",                         \
       "PCISPH's delta at dt = 1 s from this particle's neighbourhood (pcisph_local_delta = on)")               \
     X(ACC_PCI, acc_pci, V, "m/s^2", "m/s^2", ACCELERATION, PCISPH, NONE, "pcisph-acc", "a pcisph",               \
@@ -106,6 +108,8 @@
       "DFSPH's divergence-free stiffness (times dt) of the last step (warm start)")                             \
     X(KAPPA_BEST, kappa_best, 1, "m^2/s^2", "m^2/s^2", DERIVED, DFSPH, NONE, "", "",                             \
       "DFSPH's kappa at this density solve's least error so far (a solve that starts to rise takes it back)")   \
+    X(KAPPA_PREV, kappa_prev, 1, "m^2/s^2", "m^2/s^2", DERIVED, DFSPH, NONE, "", "",                             \
+      "DFSPH's kappa one iteration back, which the Chebyshev acceleration blends (solver_chebyshev > 0)")        \
     X(RHO_DF, rho_df, 1, "kg/m^3", "kg/m^2", DERIVED, DFSPH, NONE, "dfsph-density", "rho dfsph",               \
       "DFSPH's predicted density (constant-density solve) or D rho/Dt times dt (divergence solve)")             \
     X(DV_DF, dv_df, V, "m/s", "m/s", DERIVED, DFSPH, NONE, "", "",                                               \

@@ -245,6 +245,8 @@ typedef struct sph_scene_def {
     float divergence_tolerance; /* [1] dfsph: largest dt |D rho/Dt| / rho_rest the divergence solve may leave */
     sph_onoff solver_warm_start; /* pcisph, dfsph: each solve starts from the last step's pressure, not from 0 */
     sph_onoff pcisph_local_delta; /* pcisph: delta from each particle's own neighbourhood, not the full lattice's */
+    float solver_chebyshev;     /* [1] pcisph, dfsph: the spectral radius the density solve's Chebyshev acceleration
+                                   assumes (Wang 2015); 0: plain Jacobi steps */
     sph_solver_wall_pressure solver_wall_pressure; /* pcisph, dfsph with wall particles: none (they push with the
                                                       fluid particle's own) or extrapolated from the fluid (Adami) */
     sph_surface_tension surface_tension; /* none; akinci: Akinci 2013 (passes cohesion, normals, curvature); csf: a

@@ -192,6 +192,12 @@ const sph_key sph_scene_keys[] = {
      "DFSPH's alpha and IISPH's a_ii are, instead of the full lattice's (Solenthaler & Pajarola 2009's prototype "
      "particle): a corner or wall particle with fewer neighbours is corrected at its own rate; on the GL "
      "backend too"},
+    {"physics", "solver_chebyshev", SPH_KEY_FLOAT, S(solver_chebyshev), 0, 1, 0, 1, NULL, 0, "", "0",
+     "pcisph, dfsph: rho, the spectral radius the density solve's Chebyshev semi-iterative acceleration assumes "
+     "(Wang 2015, ACM Trans. Graph. 34(6):246): after 10 plain steps each correction is blended with the one "
+     "before, p_next = w (p + dp) + (1 - w) p_last, w_(k+1) = 4 / (4 - rho^2 w_k); fewer iterations on deep "
+     "columns (docs/accuracy.md, section 8: 0.9 takes lesson 11's dam break from 61 to 32 per step; 0.95 "
+     "overshoots); 0: plain (relaxed) Jacobi steps; on the GL backend too"},
     {"physics", "solver_wall_pressure", SPH_KEY_CHOICE, S(solver_wall_pressure), 0, 0, 0, 0,
      CH(sph_solver_wall_pressure_names), "", "none",
      "pcisph, dfsph with wall particles: none (the default): the wall particles hold no pressure and push back "

@@ -131,6 +131,7 @@ static void unread_keys(const sph_scene_def *def, char *buf, size_t n)
          "only pressure_solver = dfsph reads it, with the effect pressure"},
         {"physics", "pcisph_local_delta", !solver || def->pressure_solver != SPH_PSOLVER_PCISPH,
          "only pressure_solver = pcisph reads it, with the effect pressure"},
+        {"physics", "solver_chebyshev", !solver, by_solver},
         {"physics", "solver_wall_pressure", !solver || !particles,
          "only pressure_solver = pcisph or dfsph with wall_model = particles reads it"},
         /* the walls' keys: each model reads its own */

@@ -275,6 +275,9 @@ typedef struct sph_solver_state {
     float den_full;          /* [kg^2/m^(2 dim + 2)] dfsph: alpha's least denominator, a full neighbourhood's */
     float den_full_v;        /* [kg^2/m^(2 dim + 2)] dfsph: alpha_v's least denominator, a full neighbourhood's */
     float dt_last;           /* [s] the step the kept pressures were solved for (solver_warm_start); 0: none */
+    float chebyshev_w;       /* [1] the weight of the density solve's latest correction (solver_chebyshev; 1: none) */
+    int chebyshev_from;      /* the iteration the density solve's plain corrections last started from (0, or after a
+                                rise under the acceleration, sph_solver_chebyshev_restart) */
     float *x_df;             /* [m] dfsph: x* of the density iteration, x y z per particle (scratch) */
     uint32_t x_df_cap;       /* [1] particles x_df has room for */
     /* The walls as the lattice continued behind them (src/passes/solver.h):

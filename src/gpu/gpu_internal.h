@@ -42,7 +42,7 @@ extern const char *const gpu_other_binding_names[B_TOTAL - SPH_FIELD_COUNT]; /* 
 #define GPU_HELPERS(X) \
     X(bitonic) X(fill) X(histogram) X(scan_block) X(scan_add) X(scatter) X(rank) X(gather) X(reindex) X(range) \
     X(bitonic_local) X(stats) X(stats_sum) X(dfsph_force) X(forces) X(health) X(csf_force) \
-    X(pcisph_force) X(wall_extrapolate)
+    X(pcisph_force) X(wall_extrapolate) X(solver_blend)
 enum {
 #define GPU_H_ENUM(name) H_##name,
     GPU_HELPERS(GPU_H_ENUM)

@@ -356,6 +356,27 @@ static unsigned wall_extrapolate_helper(const sph_scene_def *def)
     return wall_extrapolated(def) ? HELPER_BIT(wall_extrapolate) : 0u;
 }
 
+/* solver_chebyshev > 0: before a density correction, q (the solver's field f) = w q + (1 - w) q_last and q_last
+ * (field last) = q (gpu_solver_blend.comp), w of this correction as the CPU's correct() computes it
+ * (sph_solver_chebyshev_weight, solver.h); returns w, 1 with no acceleration. */
+static float solver_blend(gpu *g, sph_sim *sim, int f, int last)
+{
+    if (!(sim->def.solver_chebyshev > 0.0f)) return 1.0f;
+    const float w = sph_solver_chebyshev_weight(sim);
+    const int p = PROG_H(solver_blend);
+    gpu_use(g, p);
+    gpu_set_f(g, p, U_value, w);
+    gpu_bind(g, B_DST, g->buf[f]);
+    gpu_bind(g, B_SRC, g->buf[last]);
+    gpu_dispatch(g, g->n);
+    return w;
+}
+
+static unsigned solver_blend_helper(const sph_scene_def *def)
+{
+    return def->solver_chebyshev > 0.0f ? HELPER_BIT(solver_blend) : 0u;
+}
+
 /* shaders/gpu_pcisph.comp's stages, and gpu_pcisph_force.comp's (the force and x*: a program of its own, as
  * DFSPH's, for the storage blocks) */
 enum { PCI_PREDICT = 2, PCI_CORRECT, PCI_DELTA = 5, PCI_CORRECT_LOCAL, PCI_KEEP, PCI_TAKE_BACK, PCI_DELTA_ONE };
@@ -390,6 +411,10 @@ static void run_pcisph(gpu *g, sph_sim *sim)
     if (least == SPH_SOLVER_TAKE_BACK) { /* rising: back to the least, as pcisph.c */
         solver_stage(g, sim, p, PCI_TAKE_BACK, 0.0f);
         pcisph_force(g, sim, PCI_FORCE);
+        if (sph_solver_chebyshev_restart(sim)) { /* on from the least, plain (solver.h) */
+            sim->pass_again = true;
+            return;
+        }
         sph_solver_stopped(sim, solver_measure(g, sim, p, PCI_PREDICT));
         return;
     }
@@ -400,10 +425,11 @@ static void run_pcisph(gpu *g, sph_sim *sim)
         s->dt_last = sim->dt;
         return;
     }
+    const float w = solver_blend(g, sim, SPH_FIELD_P_PCI, SPH_FIELD_P_PCI_PREV); /* and w times the step */
     if (local)
-        solver_stage(g, sim, p, PCI_CORRECT_LOCAL, sim->dt * sim->dt);
+        solver_stage(g, sim, p, PCI_CORRECT_LOCAL, sim->dt * sim->dt / w);
     else
-        solver_stage(g, sim, p, PCI_CORRECT, s->delta / (sim->dt * sim->dt));
+        solver_stage(g, sim, p, PCI_CORRECT, w * (s->delta / (sim->dt * sim->dt)));
     wall_extrapolate(g, sim, SPH_FIELD_P_PCI, s->rho_rest, sim->def.negative_pressure == SPH_NEGP_CLAMP);
     pcisph_force(g, sim, PCI_FORCE);
     sim->pass_again = true;
@@ -411,7 +437,7 @@ static void run_pcisph(gpu *g, sph_sim *sim)
 
 static unsigned pcisph_helpers(const sph_scene_def *def)
 {
-    return HELPER_BIT(pcisph_force) | wall_extrapolate_helper(def);
+    return HELPER_BIT(pcisph_force) | wall_extrapolate_helper(def) | solver_blend_helper(def);
 }
 
 /* shaders/gpu_dfsph.comp's stages */
@@ -497,6 +523,10 @@ static void run_dfsph(gpu *g, sph_sim *sim)
     if (least & SPH_SOLVER_TAKE_BACK) { /* rising: back to the best kappa kept, as dfsph.c */
         solver_stage(g, sim, p, DF_TAKE_BACK, 0.0f);
         dfsph_force(g, sim, true, false);
+        if (sph_solver_chebyshev_restart(sim)) { /* on from the best, plain (solver.h) */
+            sim->pass_again = true;
+            return;
+        }
         sph_solver_stopped(sim, solver_measure(g, sim, p, DF_MEASURE));
         s->phase = 0;
         return;
@@ -504,7 +534,8 @@ static void run_dfsph(gpu *g, sph_sim *sim)
     const bool done = sph_solver_done(sim, stop, sim->def.solver_tolerance);
     s->error = error;
     if (!done) {
-        solver_stage(g, sim, p, DF_CORRECT, dt2);
+        const float w = solver_blend(g, sim, SPH_FIELD_KAPPA, SPH_FIELD_KAPPA_PREV); /* and w times the step */
+        solver_stage(g, sim, p, DF_CORRECT, dt2 / w);
         wall_extrapolate(g, sim, SPH_FIELD_KAPPA, 1.0f, true); /* kappa = p / rho_r (dfsph.c) */
         dfsph_force(g, sim, true, false);
         sim->pass_again = true;
@@ -519,7 +550,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
 
 static unsigned dfsph_helpers(const sph_scene_def *def)
 {
-    return HELPER_BIT(dfsph_force) | wall_extrapolate_helper(def);
+    return HELPER_BIT(dfsph_force) | wall_extrapolate_helper(def) | solver_blend_helper(def);
 }
 
 /* [compute] fuse_forces = on: the pressure force and the viscosity in one

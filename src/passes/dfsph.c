@@ -121,11 +121,15 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
+    char cheb[112] = "";
+    if (def->solver_chebyshev > 0.0f)
+        snprintf(cheb, sizeof cheb, ", the density solve Chebyshev-accelerated after 10 plain corrections (rho %g)",
+                 def->solver_chebyshev);
     snprintf(out, (size_t)n,
              "divergence-free solve until the mean max(dt D rho/Dt, 0) / rho_rest <= %g, then constant density "
-             "until the largest (rho - rho_rest) / rho_rest <= %g (at most %d iterations each%s)%s",
+             "until the largest (rho - rho_rest) / rho_rest <= %g (at most %d iterations each%s%s)%s",
              def->divergence_tolerance, def->solver_tolerance, def->solver_max_iterations,
-             def->solver_warm_start == SPH_ON ? ", warm start" : "",
+             def->solver_warm_start == SPH_ON ? ", warm start" : "", cheb,
              sph_scene_wall_volume(def)     ? ", walls count and push back"
              : !sph_scene_wall_particles(def) ? ""
              : def->solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED
@@ -364,13 +368,21 @@ static void correct(sph_sim *sim, bool density)
     const int n = (int)sim->n;
     const float dt = sim->dt, rho_r = sim->solver.rho_rest;
     float *restrict k = density ? P->kappa : P->kappa_v;
+    /* solver_chebyshev: the blend with the iterate before and w times the step (solver.h) */
+    float *restrict last = density && sim->def.solver_chebyshev > 0.0f ? P->kappa_prev : NULL;
+    const float w = last ? sph_solver_chebyshev_weight(sim) : 1.0f;
+    const float step2 = dt * dt / w; /* as the GL host's u_value, bit for bit; dt^2 where w = 1 */
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         if (sph_is_wall(P, i)) continue; /* kappa stays 0: the walls push with K_i alone (see the top) */
-        if (density)
-            k[i] = fmaxf(k[i] + SPH_DFSPH_OMEGA * (P->rho_df[i] - rho_r) * fabsf(P->alpha[i]) / (dt * dt),
-                         -P->kappa_v[i]);
-        else
+        if (density) {
+            float b = k[i];
+            if (last) {
+                b = sph_solver_chebyshev_blend(w, k[i], last[i]);
+                last[i] = k[i];
+            }
+            k[i] = fmaxf(b + SPH_DFSPH_OMEGA * (P->rho_df[i] - rho_r) * fabsf(P->alpha[i]) / step2, -P->kappa_v[i]);
+        } else
             k[i] += fmaxf(P->rho_df[i], 0.0f) * P->alpha_v[i] / (dt * dt); /* rho_df: dt D */
     }
     if (sim->def.solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED && sph_scene_wall_particles(&sim->def))
@@ -438,6 +450,10 @@ static void run(sph_sim *sim)
     if (least & SPH_SOLVER_TAKE_BACK) {
         memcpy(P->kappa, P->kappa_best, sim->n * sizeof *P->kappa);
         force(sim, true);
+        if (sph_solver_chebyshev_restart(sim)) { /* on from the best, plain (solver.h) */
+            sim->pass_again = true;
+            return;
+        }
         sph_solver_stopped(sim, measure(sim, true, &over));
         s->phase = 0;
         return;
@@ -463,7 +479,7 @@ const sph_pass sph_pass_dfsph = {
     .summary = "DFSPH: one iteration of the divergence-free or the constant-density solve",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VEL) | SPH_BIT(RHO) | SPH_MASK_ACCELERATIONS |
              SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_RES_LISTS,
-    .writes = SPH_BIT(ALPHA) | SPH_BIT(ALPHA_V) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(KAPPA_BEST) |
+    .writes = SPH_BIT(ALPHA) | SPH_BIT(ALPHA_V) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(KAPPA_BEST) | SPH_BIT(KAPPA_PREV) |
               SPH_BIT(RHO_DF) | SPH_BIT(DV_DF) | SPH_BIT(ACC_DF),
     .group = SPH_GROUP_FORCES,
     .highlight = "dfsph-density",

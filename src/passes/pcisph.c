@@ -66,11 +66,14 @@ static const char *skip_reason(const sph_scene_def *def)
 
 static void describe(const sph_scene_def *def, char *out, int n)
 {
+    char cheb[96] = "";
+    if (def->solver_chebyshev > 0.0f)
+        snprintf(cheb, sizeof cheb, ", Chebyshev-accelerated after 10 plain corrections (rho %g)", def->solver_chebyshev);
     snprintf(out, (size_t)n,
-             "predict-correct until the largest (rho - rho_rest) / rho_rest <= %g (at most %d iterations%s%s)%s",
+             "predict-correct until the largest (rho - rho_rest) / rho_rest <= %g (at most %d iterations%s%s%s)%s",
              def->solver_tolerance, def->solver_max_iterations,
              def->solver_warm_start == SPH_ON ? ", warm start" : "",
-             def->pcisph_local_delta == SPH_ON ? ", delta per particle" : "",
+             def->pcisph_local_delta == SPH_ON ? ", delta per particle" : "", cheb,
              sph_scene_wall_volume(def)     ? ", walls count and push back"
              : !sph_scene_wall_particles(def) ? ""
              : def->solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED
@@ -248,15 +251,24 @@ static void correct(sph_sim *sim)
 {
     sph_particles *P = &sim->P;
     const int n = (int)sim->n;
-    const float delta = sim->solver.delta / (sim->dt * sim->dt); /* as the GL host's u_value, bit for bit */
+    /* solver_chebyshev: the blend with the iterate before and w times the step (solver.h) */
+    float *restrict last = sim->def.solver_chebyshev > 0.0f ? P->p_pci_prev : NULL;
+    const float w = last ? sph_solver_chebyshev_weight(sim) : 1.0f;
+    /* as the GL host's u_value, bit for bit (w = 1: delta / dt^2 and dt^2) */
+    const float delta = w * (sim->solver.delta / (sim->dt * sim->dt)), step2 = sim->dt * sim->dt / w;
     const float rho_r = sim->solver.rho_rest;
     const float floor = sim->def.negative_pressure == SPH_NEGP_CLAMP ? 0.0f : -INFINITY;
     const float *restrict local = sim->def.pcisph_local_delta == SPH_ON ? P->delta_pci : NULL;
 #pragma omp parallel for schedule(static) if (n > SPH_PARALLEL_MIN)
     for (int i = 0; i < n; i++) {
         if (sph_is_wall(P, i)) continue; /* p stays 0: the walls push with p_i alone (see the top) */
-        const float d_i = local ? local[i] / (sim->dt * sim->dt) : delta;
-        P->p_pci[i] = fmaxf(floor, P->p_pci[i] + d_i * (P->rho_pci[i] - rho_r));
+        float b = P->p_pci[i];
+        if (last) {
+            b = sph_solver_chebyshev_blend(w, P->p_pci[i], last[i]);
+            last[i] = P->p_pci[i];
+        }
+        const float d_i = local ? local[i] / step2 : delta;
+        P->p_pci[i] = fmaxf(floor, b + d_i * (P->rho_pci[i] - rho_r));
     }
     if (sim->def.solver_wall_pressure == SPH_SWALLP_EXTRAPOLATED && sph_scene_wall_particles(&sim->def))
         sph_solver_wall_extrapolate(sim, P->p_pci, rho_r, floor); /* or from the fluid's (solver_walls.c) */
@@ -294,6 +306,10 @@ static void run(sph_sim *sim)
     if (least == SPH_SOLVER_TAKE_BACK) { /* rising: back to the least (see the top) */
         memcpy(P->p_pci, P->p_pci_best, sim->n * sizeof *P->p_pci);
         force(sim);
+        if (sph_solver_chebyshev_restart(sim)) { /* on from the least, plain (solver.h) */
+            sim->pass_again = true;
+            return;
+        }
         sph_solver_stopped(sim, predict(sim));
         return;
     }
@@ -313,7 +329,7 @@ const sph_pass sph_pass_pcisph = {
     .name = "pcisph",
     .summary = "PCISPH: one predict-correct iteration of the pressure",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VEL) | SPH_MASK_ACCELERATIONS | SPH_BIT(P_PCI) | SPH_RES_LISTS,
-    .writes = SPH_BIT(P_PCI) | SPH_BIT(P_PCI_BEST) | SPH_BIT(DELTA_PCI) | SPH_BIT(X_PCI) | SPH_BIT(RHO_PCI) |
+    .writes = SPH_BIT(P_PCI) | SPH_BIT(P_PCI_BEST) | SPH_BIT(P_PCI_PREV) | SPH_BIT(DELTA_PCI) | SPH_BIT(X_PCI) | SPH_BIT(RHO_PCI) |
               SPH_BIT(ACC_PCI),
     .group = SPH_GROUP_FORCES,
     .highlight = "pcisph-density",

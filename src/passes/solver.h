@@ -197,6 +197,58 @@ static inline void sph_solver_stopped(sph_sim *sim, double error)
     s->dt_last = sim->dt;
 }
 
+/* solver_chebyshev = rho > 0: the Chebyshev semi-iterative acceleration of the density solve's Jacobi steps (Wang
+ * 2015, ACM Trans. Graph. 34(6):246, who applies it to the Jacobi iterations of projective and position-based
+ * dynamics, nonlinear as these solves are). Correction k (the solve's iteration count, 1 at the first) weighs w_k:
+ * 1 for the first SPH_SOLVER_CHEBYSHEV_DELAY, then 2 / (2 - rho^2), then 4 / (4 - rho^2 w_(k-1)), rising towards
+ * 2 / (1 + sqrt(1 - rho^2)); the correction makes q = w (q + dq) + (1 - w) q_last, q_last the iterate before. It is
+ * written as a blend b = w q + (1 - w) q_last (sph_solver_chebyshev_blend; on the GL backend a stage of its own,
+ * gpu_solver_blend.comp) and the Jacobi step from b with w dq (the solvers pass w in the step's divisor, as the
+ * GL host's u_value), then the solver's clamp. Why: a Jacobi step corrects each particle from its own error, so
+ * an error spread over a deep column falls slowly, the smooth part by 0.99 to 0.999 an iteration on the 2D dam
+ * break of lessons/scenes/dam-break-2d.ini (a probe of the density error's ratio from iteration to iteration,
+ * docs/accuracy.md, section 8); the blend carries each step on in the direction the last one took. The first
+ * plain steps make q_last and start the solve where a Jacobi step is best, on the error's rough part; rho is the
+ * contraction the acceleration is tuned to (a key, measured there: 0.9 halved the iterations). */
+#define SPH_SOLVER_CHEBYSHEV_DELAY 10
+
+static inline float sph_solver_chebyshev_weight(sph_sim *sim)
+{
+    sph_solver_state *s = &sim->solver;
+    const float rho = sim->def.solver_chebyshev;
+    if (s->iteration <= s->chebyshev_from) s->chebyshev_from = 0; /* a new solve */
+    const int k = s->iteration - s->chebyshev_from;
+    if (!(rho > 0.0f) || k < SPH_SOLVER_CHEBYSHEV_DELAY)
+        s->chebyshev_w = 1.0f;
+    else if (k == SPH_SOLVER_CHEBYSHEV_DELAY)
+        s->chebyshev_w = 2.0f / (2.0f - rho * rho);
+    else
+        s->chebyshev_w = 4.0f / (4.0f - rho * rho * s->chebyshev_w);
+    return s->chebyshev_w;
+}
+
+/* A solve whose error rose (sph_solver_least, _held: SPH_SOLVER_TAKE_BACK), its best iterate taken back: under
+ * the acceleration (the latest correction's w > 1) it goes on from there with plain corrections, the acceleration
+ * starting again after SPH_SOLVER_CHEBYSHEV_DELAY of them, and this returns true; a rise under plain corrections
+ * ends the solve as without the acceleration (false). Why: the blend carries each step on in the direction of the
+ * last, and where the error's shape changes (a particle's neighbourhood, the clamp) it overshoots; ended there, the
+ * 240,000-particle dam break of docs/accuracy.md (section 8) stopped 6 of its density solves, at up to 1.6 %. */
+static inline bool sph_solver_chebyshev_restart(sph_sim *sim)
+{
+    sph_solver_state *s = &sim->solver;
+    if (!(s->chebyshev_w > 1.0f)) return false;
+    s->chebyshev_w = 1.0f;
+    s->chebyshev_from = s->iteration;
+    return true;
+}
+
+/* The blend before a correction: w q + (1 - w) q_last; q itself where w = 1 (q_last is then not read: in a solve's
+ * first steps it holds the last solve's). As gpu_solver_blend.comp computes it, bit for bit (-ffp-contract=off). */
+static inline float sph_solver_chebyshev_blend(float w, float q, float last)
+{
+    return w == 1.0f ? q : w * q + (1.0f - w) * last;
+}
+
 /* A solve's iteration ends: another call of the pass, or the step's record. */
 static inline bool sph_solver_done(sph_sim *sim, double error, double tolerance)
 {
