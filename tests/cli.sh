@@ -131,9 +131,9 @@ sph check lessons/11-incompressible/lesson.ini --set physics.pressure_solver=pci
 grep -q "pcisph *predict-correct until the largest (rho - rho_rest) / rho_rest <= 0.001 (at most 100 iterations, delta per particle)" "$tmp/cd.txt" &&
     ok || { bad "check pcisph: its local delta"; grep pcisph "$tmp/cd.txt"; }
 # solver_chebyshev: check says the density solve is accelerated and from when; rho = 1 (no contraction) is refused;
-# with the equation of state it is warned of as unread
+# with the equation of state it is warned of as unread, and so with solver_max_iterations <= 10 (no 10th correction)
 sph check lessons/11-incompressible/lesson.ini --set physics.pressure_solver=pcisph --set physics.solver_chebyshev=0.9 > "$tmp/cd.txt" 2>&1
-grep -q "pcisph *predict-correct until .*(at most 100 iterations, Chebyshev-accelerated after 10 plain corrections (rho 0.9))" "$tmp/cd.txt" &&
+grep -q "pcisph *predict-correct until .*(at most 100 iterations, Chebyshev-accelerated from the 10th correction (solver_chebyshev = 0.9))" "$tmp/cd.txt" &&
     ok || { bad "check pcisph: its Chebyshev acceleration"; grep pcisph "$tmp/cd.txt"; }
 sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pressure_solver=dfsph \
     --set physics.solver_chebyshev=1 > "$tmp/ch.txt" 2>&1
@@ -142,6 +142,16 @@ sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pre
 sph check lessons/11-incompressible/lesson.ini --set physics.pressure_solver=eos --set physics.solver_chebyshev=0.9 > "$tmp/ch.txt" 2>&1
 grep -q "solver_chebyshev is set but this scene does not use it" "$tmp/ch.txt" && ok ||
     { bad "solver_chebyshev with eos: want the unread warning"; cat "$tmp/ch.txt"; }
+sph check lessons/11-incompressible/lesson.ini --set physics.pressure_solver=dfsph --set physics.solver_chebyshev=0.9 \
+    --set physics.solver_max_iterations=10 > "$tmp/ch.txt" 2>&1
+grep -q "solver_chebyshev is set but this scene does not use it: the acceleration starts at a solve's 10th correction" "$tmp/ch.txt" &&
+    ok || { bad "solver_chebyshev with solver_max_iterations = 10: want the unread warning"; cat "$tmp/ch.txt"; }
+# run's summary counts the solves that went on plain after a rise under the blend (rho = 0.99 at 3 ms: three, in
+# tests/test_solvers.c's chebyshev_restart_goes_on)
+printf '[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n[domain]\nmin=0 0\nmax=0.8 0.5\nwall_damping=0.3\n[fluid column]\nmin=0 0\nmax=0.3 0.3\nspacing=0.02\n[physics]\nviscosity=0.002\npressure_solver=dfsph\nsolver_chebyshev=0.99\n[kernels]\nh=0.04\n[time]\ndt=0.003\ncfl=0\n[search]\nvector=off\n' > "$tmp/cheb.ini"
+sph run "$tmp/cheb.ini" --steps 100 --threads 2 > "$tmp/ch.txt" 2>&1
+grep -q "^pressure solves 0 capped at solver_max_iterations = 100, 0 stopped where their error rose, [1-9][0-9]* went on plain after a rise under the Chebyshev blend;" "$tmp/ch.txt" &&
+    ok || { bad "run's summary: want the count of solves that went on plain"; cat "$tmp/ch.txt"; }
 # a solver chosen without the effect pressure is said (no pressure acts), check gives that reason, and --stats has
 # no solver columns of zeros
 sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pressure_solver=pcisph \

@@ -218,14 +218,16 @@ const app_opt app_options[] = {
      BENCH, INT(at, 8, 20000000L)},
     {"--time", NULL, "T", "solvers: simulated seconds each run covers, the window the error is measured over "
      "(default 0.02; --quick 0.01)", BENCH, DOUBLE(time, 1e-4, 10)},
-    {"--repeats", NULL, "R", "solvers: interleaved rounds of eos, pcisph, dfsph (default 5; --quick 1); pair: "
+    {"--repeats", NULL, "R", "solvers: interleaved rounds of eos and the solver rows (default 5; --quick 1); pair: "
      "rounds (default 15; --quick 3)", BENCH, INT(repeats, 1, 50)},
     {"--quick", NULL, NULL, "small sizes, few repeats (for CI and the tests: the ladder about a minute, scaling about 30 s on 2 cores)", BENCH,
      FLAG(quick)},
     {"--out", NULL, "DIR", "where the CSV, JSON and charts go (made if missing; default .)", BENCH, PATH(out)},
     {"--levels", NULL, "L0,L3,...", "only these levels (default: all)", BENCH, STRING(levels)},
     {"--solvers", NULL, "S,S,...",
-     "solvers: only these rows besides eos (pcisph, dfsph, pcisph+, dfsph+; default: all)", BENCH, STRING(solvers)},
+     "solvers: only these rows besides eos (pcisph, dfsph, pcisph+, dfsph+, pcisph*, dfsph*; default: all; quote "
+     "a list with * from the shell)",
+     BENCH, STRING(solvers)},
     {"--watchdog", NULL, NULL, "keep the watchdog's checks on while timing (default off: a debugging aid)", BENCH,
      FLAG(watchdog)},
     {"--trace", NULL, NULL, "one line per measurement on stderr (size, steps/s, repeats, others)", BENCH,

@@ -172,13 +172,18 @@ void app_run_report(FILE *out, const sph_sim *sim, double wall_ms)
     else
         fprintf(out, "density         not computed (no effect needs it)\n");
     fprintf(out, "max speed       %.6g m/s\n", s.max_speed);
-    if (sph_scene_pressure_solver(&sim->def)) /* the solves that ended short, said where a reader looks */
+    if (sph_scene_pressure_solver(&sim->def)) { /* the solves that ended short, said where a reader looks */
+        char restarts[96] = ""; /* solver_chebyshev: how often the guard sent a solve back to plain corrections */
+        if (sim->def.solver_chebyshev > 0)
+            snprintf(restarts, sizeof restarts, ", %llu went on plain after a rise under the Chebyshev blend",
+                     (unsigned long long)sim->solver.restarts);
         fprintf(out,
-                "pressure solves %llu capped at solver_max_iterations = %d, %llu stopped where their error rose; the "
+                "pressure solves %llu capped at solver_max_iterations = %d, %llu stopped where their error rose%s; the "
                 "last step's density error %.3g %% (tolerance %.3g %%)\n",
                 (unsigned long long)sim->solver.capped, sim->def.solver_max_iterations,
-                (unsigned long long)sim->solver.stopped, 100.0 * sim->solver.density_error,
+                (unsigned long long)sim->solver.stopped, restarts, 100.0 * sim->solver.density_error,
                 100.0 * sim->def.solver_tolerance);
+    }
     fprintf(out, "wall time       %.3f s: %.1f steps/s, %.3g particle-steps/s\n", wall_ms / 1e3,
            sim->step / (wall_ms / 1e3), (double)s.n * sim->step / (wall_ms / 1e3));
 }

@@ -16,7 +16,7 @@
  * a change of the machine's load hits all three alike; each setting's
  * figures are the medians over the rounds, each ratio the median of the
  * rounds' own ratios with the least and the largest. The error is measured
- * the same way for all three over the same window 0 to T: after every step
+ * the same way for every row over the same window 0 to T: after every step
  * the compression sph_sim_compression_lattice gives (summed at the positions
  * after the step, against the lattice's rest density rho_rest = rho0 (1 + e),
  * e = +1.2 % in 3D at h = 2 spacings, the walls as the solvers count them);
@@ -330,7 +330,7 @@ int bench_cmd_solvers(bench_opts *o)
         printf("sphlab bench solvers: %s, load %.2f; 3D dam break, %.0f particles (%d x %d x %d, spacing %g m), "
                "%d threads\nwindow: 0 to %g s simulated, the same initial state for all; a step's error: the largest "
                "compression over the particles\ntarget: the time mean of the steps' errors <= %g %% (pcisph, dfsph: "
-               "solver_tolerance = %g %%, each step); the same rest density rho_rest for all three (eos: eos_rest = "
+               "solver_tolerance = %g %%, each step); the same rest density rho_rest for every row (eos: eos_rest = "
                "lattice)\n",
                date, load0[0], count, side[0], side[1], side[2], SOLVERS_SPACING, threads, duration,
                100 * SOLVERS_TARGET, 100 * SOLVERS_TARGET);

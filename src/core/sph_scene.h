@@ -195,6 +195,11 @@ typedef struct sph_obstacle_def {
     sph_origin origin[SPH_GROUP_KEYS_MAX];
 } sph_obstacle_def;
 
+/* solver_chebyshev: the correction of a density solve the acceleration starts at (src/passes/solver.h); corrections
+ * 1 to 9 are plain, so a solve needs solver_max_iterations >= 11 (N iterations make N - 1 corrections) to be
+ * accelerated at all (sph_scene_validate.c warns) */
+#define SPH_CHEBYSHEV_FIRST 10
+
 typedef struct sph_scene_def {
     char file[256];    /* scene file it was read from, for messages */
     char name[64];     /* title shown in tables and windows */

@@ -194,10 +194,12 @@ const sph_key sph_scene_keys[] = {
      "backend too"},
     {"physics", "solver_chebyshev", SPH_KEY_FLOAT, S(solver_chebyshev), 0, 1, 0, 1, NULL, 0, "", "0",
      "pcisph, dfsph: rho, the spectral radius the density solve's Chebyshev semi-iterative acceleration assumes "
-     "(Wang 2015, ACM Trans. Graph. 34(6):246): after 10 plain steps each correction is blended with the one "
-     "before, p_next = w (p + dp) + (1 - w) p_last, w_(k+1) = 4 / (4 - rho^2 w_k); fewer iterations on deep "
-     "columns (docs/accuracy.md, section 8: 0.9 takes lesson 11's dam break from 61 to 32 per step; 0.95 "
-     "overshoots); 0: plain (relaxed) Jacobi steps; on the GL backend too"},
+     "(Wang 2015, ACM Trans. Graph. 34(6):246): from a solve's 10th correction on (the first 9 plain) each is "
+     "blended with the iterate before, q_next = w (q + dq) + (1 - w) q_last (q: PCISPH's p, DFSPH's kappa), "
+     "w_(k+1) = 4 / (4 - rho^2 w_k); a rise under it goes on plain from the best iterate. Fewer iterations on deep "
+     "columns (docs/accuracy.md, section 8: 0.9 takes lesson 11's dam break from 60.5 to 30.6 per step; larger "
+     "rho fewer still but moves the answer more within the tolerance); 0: plain (relaxed) Jacobi steps; on the GL "
+     "backend too"},
     {"physics", "solver_wall_pressure", SPH_KEY_CHOICE, S(solver_wall_pressure), 0, 0, 0, 0,
      CH(sph_solver_wall_pressure_names), "", "none",
      "pcisph, dfsph with wall particles: none (the default): the wall particles hold no pressure and push back "

@@ -411,7 +411,7 @@ static void run_pcisph(gpu *g, sph_sim *sim)
     if (least == SPH_SOLVER_TAKE_BACK) { /* rising: back to the least, as pcisph.c */
         solver_stage(g, sim, p, PCI_TAKE_BACK, 0.0f);
         pcisph_force(g, sim, PCI_FORCE);
-        if (sph_solver_chebyshev_restart(sim)) { /* on from the least, plain (solver.h) */
+        if (sph_solver_chebyshev_restart(sim, false)) { /* on from the least, plain (solver.h) */
             sim->pass_again = true;
             return;
         }
@@ -523,7 +523,7 @@ static void run_dfsph(gpu *g, sph_sim *sim)
     if (least & SPH_SOLVER_TAKE_BACK) { /* rising: back to the best kappa kept, as dfsph.c */
         solver_stage(g, sim, p, DF_TAKE_BACK, 0.0f);
         dfsph_force(g, sim, true, false);
-        if (sph_solver_chebyshev_restart(sim)) { /* on from the best, plain (solver.h) */
+        if (sph_solver_chebyshev_restart(sim, s->held)) { /* on from the best, plain (solver.h) */
             sim->pass_again = true;
             return;
         }

@@ -123,7 +123,8 @@ static void describe(const sph_scene_def *def, char *out, int n)
 {
     char cheb[112] = "";
     if (def->solver_chebyshev > 0.0f)
-        snprintf(cheb, sizeof cheb, ", the density solve Chebyshev-accelerated after 10 plain corrections (rho %g)",
+        snprintf(cheb, sizeof cheb,
+                 ", the density solve Chebyshev-accelerated from the 10th correction (solver_chebyshev = %g)",
                  def->solver_chebyshev);
     snprintf(out, (size_t)n,
              "divergence-free solve until the mean max(dt D rho/Dt, 0) / rho_rest <= %g, then constant density "
@@ -450,7 +451,7 @@ static void run(sph_sim *sim)
     if (least & SPH_SOLVER_TAKE_BACK) {
         memcpy(P->kappa, P->kappa_best, sim->n * sizeof *P->kappa);
         force(sim, true);
-        if (sph_solver_chebyshev_restart(sim)) { /* on from the best, plain (solver.h) */
+        if (sph_solver_chebyshev_restart(sim, s->held)) { /* on from the best, plain (solver.h) */
             sim->pass_again = true;
             return;
         }

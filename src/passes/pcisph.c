@@ -68,7 +68,8 @@ static void describe(const sph_scene_def *def, char *out, int n)
 {
     char cheb[96] = "";
     if (def->solver_chebyshev > 0.0f)
-        snprintf(cheb, sizeof cheb, ", Chebyshev-accelerated after 10 plain corrections (rho %g)", def->solver_chebyshev);
+        snprintf(cheb, sizeof cheb, ", Chebyshev-accelerated from the 10th correction (solver_chebyshev = %g)",
+                 def->solver_chebyshev);
     snprintf(out, (size_t)n,
              "predict-correct until the largest (rho - rho_rest) / rho_rest <= %g (at most %d iterations%s%s%s)%s",
              def->solver_tolerance, def->solver_max_iterations,
@@ -306,7 +307,7 @@ static void run(sph_sim *sim)
     if (least == SPH_SOLVER_TAKE_BACK) { /* rising: back to the least (see the top) */
         memcpy(P->p_pci, P->p_pci_best, sim->n * sizeof *P->p_pci);
         force(sim);
-        if (sph_solver_chebyshev_restart(sim)) { /* on from the least, plain (solver.h) */
+        if (sph_solver_chebyshev_restart(sim, false)) { /* on from the least, plain (solver.h) */
             sim->pass_again = true;
             return;
         }

@@ -200,8 +200,8 @@ static inline void sph_solver_stopped(sph_sim *sim, double error)
 /* solver_chebyshev = rho > 0: the Chebyshev semi-iterative acceleration of the density solve's Jacobi steps (Wang
  * 2015, ACM Trans. Graph. 34(6):246, who applies it to the Jacobi iterations of projective and position-based
  * dynamics, nonlinear as these solves are). Correction k (the solve's iteration count, 1 at the first) weighs w_k:
- * 1 for the first SPH_SOLVER_CHEBYSHEV_DELAY, then 2 / (2 - rho^2), then 4 / (4 - rho^2 w_(k-1)), rising towards
- * 2 / (1 + sqrt(1 - rho^2)); the correction makes q = w (q + dq) + (1 - w) q_last, q_last the iterate before. It is
+ * 1 before SPH_CHEBYSHEV_FIRST (sph_scene.h: corrections 1 to 9 are plain), 2 / (2 - rho^2) at it, then
+ * 4 / (4 - rho^2 w_(k-1)), falling towards 2 / (1 + sqrt(1 - rho^2)); the correction makes q = w (q + dq) + (1 - w) q_last, q_last the iterate before. It is
  * written as a blend b = w q + (1 - w) q_last (sph_solver_chebyshev_blend; on the GL backend a stage of its own,
  * gpu_solver_blend.comp) and the Jacobi step from b with w dq (the solvers pass w in the step's divisor, as the
  * GL host's u_value), then the solver's clamp. Why: a Jacobi step corrects each particle from its own error, so
@@ -210,17 +210,15 @@ static inline void sph_solver_stopped(sph_sim *sim, double error)
  * docs/accuracy.md, section 8); the blend carries each step on in the direction the last one took. The first
  * plain steps make q_last and start the solve where a Jacobi step is best, on the error's rough part; rho is the
  * contraction the acceleration is tuned to (a key, measured there: 0.9 halved the iterations). */
-#define SPH_SOLVER_CHEBYSHEV_DELAY 10
-
 static inline float sph_solver_chebyshev_weight(sph_sim *sim)
 {
     sph_solver_state *s = &sim->solver;
     const float rho = sim->def.solver_chebyshev;
     if (s->iteration <= s->chebyshev_from) s->chebyshev_from = 0; /* a new solve */
     const int k = s->iteration - s->chebyshev_from;
-    if (!(rho > 0.0f) || k < SPH_SOLVER_CHEBYSHEV_DELAY)
+    if (!(rho > 0.0f) || k < SPH_CHEBYSHEV_FIRST)
         s->chebyshev_w = 1.0f;
-    else if (k == SPH_SOLVER_CHEBYSHEV_DELAY)
+    else if (k == SPH_CHEBYSHEV_FIRST)
         s->chebyshev_w = 2.0f / (2.0f - rho * rho);
     else
         s->chebyshev_w = 4.0f / (4.0f - rho * rho * s->chebyshev_w);
@@ -229,15 +227,20 @@ static inline float sph_solver_chebyshev_weight(sph_sim *sim)
 
 /* A solve whose error rose (sph_solver_least, _held: SPH_SOLVER_TAKE_BACK), its best iterate taken back: under
  * the acceleration (the latest correction's w > 1) it goes on from there with plain corrections, the acceleration
- * starting again after SPH_SOLVER_CHEBYSHEV_DELAY of them, and this returns true; a rise under plain corrections
- * ends the solve as without the acceleration (false). Why: the blend carries each step on in the direction of the
- * last, and where the error's shape changes (a particle's neighbourhood, the clamp) it overshoots; ended there, the
- * 240,000-particle dam break of docs/accuracy.md (section 8) stopped 6 of its density solves, at up to 1.6 %. */
-static inline bool sph_solver_chebyshev_restart(sph_sim *sim)
+ * starting again at the 10th after it, and this returns true; the call counts as an iteration (it measured and
+ * took back, as sph_solver_stopped counts it). A rise under plain corrections ends the solve as without the
+ * acceleration (false), and so does DFSPH's where an iterate already held the compression (held: that iterate is
+ * taken back and ends the solve within the tolerance, as before). Why: the blend carries each step on in the
+ * direction of the last, and where the error's shape changes (a particle's neighbourhood, the clamp) it
+ * overshoots; ended there, the 240,000-particle dam break of docs/accuracy.md (section 8) stopped 6 of its density
+ * solves, at up to 1.6 %. */
+static inline bool sph_solver_chebyshev_restart(sph_sim *sim, bool held)
 {
     sph_solver_state *s = &sim->solver;
-    if (!(s->chebyshev_w > 1.0f)) return false;
+    if (!(s->chebyshev_w > 1.0f) || held) return false;
     s->chebyshev_w = 1.0f;
+    s->restarts++;
+    s->iteration++;
     s->chebyshev_from = s->iteration;
     return true;
 }
