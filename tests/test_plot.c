@@ -434,6 +434,22 @@ Test(plot, small_axes_are_scaled_by_a_power_of_ten)
     cr_assert_eq(plot_axis_exponent(NAN), 0);
 }
 
+/* A log axis keeps its points off its ends: a study's errors all at 0.000997 (log10 -3.0013) sat on the top of a
+ * 1e-4..1e-3 frame, their row numbers outside it; now the axis runs to 1e-2. Points at a decade itself get one
+ * more decade on that side; points well inside a decade keep it. */
+Test(plot, log_axis_keeps_points_off_its_ends)
+{
+    double a, b;
+    plot_log_axis_ends(log10(0.000997), log10(0.000997), &a, &b);
+    cr_expect(a == -4 && b == -2, "0.000997: %g..%g", a, b);
+    plot_log_axis_ends(-3.0, -3.0, &a, &b);
+    cr_expect(a == -4 && b == -2, "1e-3: %g..%g", a, b);
+    plot_log_axis_ends(-2.5, -1.3, &a, &b);
+    cr_expect(a == -3 && b == -1, "-2.5..-1.3: %g..%g", a, b);
+    plot_log_axis_ends(-0.98, 2.97, &a, &b);
+    cr_expect(a == -2 && b == 4, "-0.98..2.97: %g..%g", a, b);
+}
+
 /* Three stacked panels without --dim: the energy's and the density's axis
  * titles name both units and are longer than a panel is tall. Each must stay
  * beside its own panel: along the strip left of the tick labels, the titles'

@@ -174,6 +174,19 @@ static inline int plot_axis_exponent(double mag)
     return (int)floor(log10(mag));
 }
 
+/* The ends of a log axis, as log10: whole decades around the points' log10 values lo..hi, and a decade more
+ * where a point would sit within 0.05 of a decade (12 %) of an end: a study whose errors all read 0.000997 put
+ * its markers on the top of the frame, and their row numbers outside it (a user's review). */
+static inline void plot_log_axis_ends(double lo, double hi, double *end_lo, double *end_hi)
+{
+    double a = floor(lo + 1e-9), b = ceil(hi - 1e-9);
+    if (b <= a) b = a + 1;
+    if (hi > b - 0.05) b += 1;
+    if (lo < a + 0.05) a -= 1;
+    *end_lo = a;
+    *end_hi = b;
+}
+
 /* ---- drawing kit: for a chart that none of the kinds above draws ---------- */
 
 /* Colour map 0, as every page sets it: curve colours at PLOT_CURVE + style % 8,

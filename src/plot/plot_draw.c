@@ -655,7 +655,7 @@ static bool point_ok(const plot_curve *s, int i)
     return s->x[i] > 0 && s->y[i] > 0 && isfinite(s->x[i]) && isfinite(s->y[i]);
 }
 
-/* log10 of the axis ends: whole decades around the points (and the levels, on y). */
+/* log10 of the axis ends: whole decades around the points (and the levels, on y), plot_log_axis_ends. */
 static range decades(const plot_loglog *c, bool x)
 {
     range r = range_empty();
@@ -665,9 +665,9 @@ static range decades(const plot_loglog *c, bool x)
     for (int g = 0; g < c->ng && !x; g++)
         if (c->g[g].slope == 0 && c->g[g].y0 > 0) range_add(&r, log10(c->g[g].y0));
     if (!(r.lo <= r.hi)) return (range){0, 1};
-    r = (range){floor(r.lo + 1e-9), ceil(r.hi - 1e-9)};
-    if (r.hi <= r.lo) r.hi = r.lo + 1;
-    return r;
+    range d;
+    plot_log_axis_ends(r.lo, r.hi, &d.lo, &d.hi);
+    return d;
 }
 
 /* The numbers written beside points, so that one is not written over

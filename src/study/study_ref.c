@@ -507,7 +507,8 @@ bool study_run(const sph_scene_def *def, study_metric m, long steps, double unti
             study_result_timed(m, out);
             if (sim->solver.capped || sim->solver.stopped)
                 snprintf(out->note, sizeof out->note,
-                         "%llu pressure solve%s stopped at solver_max_iterations, %llu as the error rose",
+                         "%llu pressure solve%s capped at solver_max_iterations, %llu stopped where their error "
+                         "rose",
                          (unsigned long long)sim->solver.capped, sim->solver.capped == 1 ? "" : "s",
                          (unsigned long long)sim->solver.stopped);
         } else {
