@@ -152,6 +152,14 @@ printf '[scene]\ndimension=2\neffects=gravity pressure viscosity walls\n[domain]
 sph run "$tmp/cheb.ini" --steps 100 --threads 2 > "$tmp/ch.txt" 2>&1
 grep -q "^pressure solves 0 capped at solver_max_iterations = 100, 0 stopped where their error rose, [1-9][0-9]* went on plain after a rise under the Chebyshev blend;" "$tmp/ch.txt" &&
     ok || { bad "run's summary: want the count of solves that went on plain"; cat "$tmp/ch.txt"; }
+# run's summary gives the density iterations per step, the mean of --stats' iterations column (a student compared
+# settings by adding up that column)
+sph run lessons/11-incompressible/lesson.ini --time 0.1 --threads 1 --set physics.pressure_solver=pcisph \
+    --set physics.solver_tolerance=0.001 --stats "$tmp/it.csv" > "$tmp/it.txt" 2>&1
+want=$(awk -F, 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next } { s += $col["iterations"]; n++ }
+                END { if (n) printf "%.1f", s / n }' "$tmp/it.csv")
+[ -n "$want" ] && grep -q "; $want density iterations per step$" "$tmp/it.txt" && ok ||
+    { bad "run's summary: want $want density iterations per step"; grep "pressure solves" "$tmp/it.txt"; }
 # a solver chosen without the effect pressure is said (no pressure acts), check gives that reason, and --stats has
 # no solver columns of zeros
 sph run lessons/11-incompressible/lesson.ini --steps 2 --quiet --set physics.pressure_solver=pcisph \

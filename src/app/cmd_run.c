@@ -179,10 +179,11 @@ void app_run_report(FILE *out, const sph_sim *sim, double wall_ms)
                      (unsigned long long)sim->solver.restarts);
         fprintf(out,
                 "pressure solves %llu capped at solver_max_iterations = %d, %llu stopped where their error rose%s; the "
-                "last step's density error %.3g %% (tolerance %.3g %%)\n",
+                "last step's density error %.3g %% (tolerance %.3g %%); %.1f density iterations per step\n",
                 (unsigned long long)sim->solver.capped, sim->def.solver_max_iterations,
                 (unsigned long long)sim->solver.stopped, restarts, 100.0 * sim->solver.density_error,
-                100.0 * sim->def.solver_tolerance);
+                100.0 * sim->def.solver_tolerance,
+                sim->step ? (double)sim->solver.iterations_run / (double)sim->step : 0.0);
     }
     fprintf(out, "wall time       %.3f s: %.1f steps/s, %.3g particle-steps/s\n", wall_ms / 1e3,
            sim->step / (wall_ms / 1e3), (double)s.n * sim->step / (wall_ms / 1e3));

@@ -703,6 +703,7 @@ sph_pass_id sph_sim_step_pass(sph_sim *sim)
     if (next >= SPH_PASS_COUNT) { /* that was the step's last pass */
         advance_time(sim);
         sim->step++;
+        if (sph_scene_pressure_solver(&sim->def)) sim->solver.iterations_run += (uint64_t)sim->solver.iterations;
         next = 0;
         if (!device_times) sim->step_ms[sim->step_ms_count++ % SPH_STEP_WINDOW] = sim->step_ms_acc;
         sim->step_ms_acc = 0;

@@ -279,6 +279,7 @@ typedef struct sph_solver_state {
     int chebyshev_from;      /* the iteration the density solve's plain corrections last started from (0, or after a
                                 rise under the acceleration, sph_solver_chebyshev_restart) */
     uint64_t restarts;       /* [1] density solves' restarts after a rise under the acceleration, since the start */
+    uint64_t iterations_run; /* [1] the density solves' iterations summed over the steps, since the start */
     float *x_df;             /* [m] dfsph: x* of the density iteration, x y z per particle (scratch) */
     uint32_t x_df_cap;       /* [1] particles x_df has room for */
     /* The walls as the lattice continued behind them (src/passes/solver.h):
