@@ -354,8 +354,9 @@ int bench_cmd_solvers(bench_opts *o)
     static solver_run runs[SETTINGS][SOLVERS_ROUNDS_MAX];
     /* each round: eos, the warm solvers, then the cold ones (at 50,000 particles a cold solve could run to
      * its cap for minutes: --trace has the warm rows' figures before) */
-    static const int order[SETTINGS] = {SETTING_EOS,         SETTING_PCISPH_CHEB, SETTING_DFSPH_CHEB, SETTING_PCISPH_WARM,
-                                        SETTING_DFSPH_WARM, SETTING_PCISPH,      SETTING_DFSPH};
+    static const int order[SETTINGS] = {SETTING_EOS,         SETTING_PCISPH_CHEB, SETTING_DFSPH_CHEB,
+                                        SETTING_PCISPH_WARM, SETTING_DFSPH_WARM, SETTING_PCISPH,
+                                        SETTING_DFSPH};
     for (int rep = 0; rep < repeats; rep++)
         for (int o_ = 0; o_ < SETTINGS; o_++) {
             const int s = order[o_];

@@ -480,8 +480,8 @@ const sph_pass sph_pass_dfsph = {
     .summary = "DFSPH: one iteration of the divergence-free or the constant-density solve",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VEL) | SPH_BIT(RHO) | SPH_MASK_ACCELERATIONS |
              SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_RES_LISTS,
-    .writes = SPH_BIT(ALPHA) | SPH_BIT(ALPHA_V) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(KAPPA_BEST) | SPH_BIT(KAPPA_PREV) |
-              SPH_BIT(RHO_DF) | SPH_BIT(DV_DF) | SPH_BIT(ACC_DF),
+    .writes = SPH_BIT(ALPHA) | SPH_BIT(ALPHA_V) | SPH_BIT(KAPPA) | SPH_BIT(KAPPA_V) | SPH_BIT(KAPPA_BEST) |
+              SPH_BIT(KAPPA_PREV) | SPH_BIT(RHO_DF) | SPH_BIT(DV_DF) | SPH_BIT(ACC_DF),
     .group = SPH_GROUP_FORCES,
     .highlight = "dfsph-density",
     .skip_reason = skip_reason,

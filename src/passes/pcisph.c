@@ -330,8 +330,8 @@ const sph_pass sph_pass_pcisph = {
     .name = "pcisph",
     .summary = "PCISPH: one predict-correct iteration of the pressure",
     .reads = SPH_BIT(PRED) | SPH_BIT(MASS) | SPH_BIT(VEL) | SPH_MASK_ACCELERATIONS | SPH_BIT(P_PCI) | SPH_RES_LISTS,
-    .writes = SPH_BIT(P_PCI) | SPH_BIT(P_PCI_BEST) | SPH_BIT(P_PCI_PREV) | SPH_BIT(DELTA_PCI) | SPH_BIT(X_PCI) | SPH_BIT(RHO_PCI) |
-              SPH_BIT(ACC_PCI),
+    .writes = SPH_BIT(P_PCI) | SPH_BIT(P_PCI_BEST) | SPH_BIT(P_PCI_PREV) | SPH_BIT(DELTA_PCI) | SPH_BIT(X_PCI) |
+              SPH_BIT(RHO_PCI) | SPH_BIT(ACC_PCI),
     .group = SPH_GROUP_FORCES,
     .highlight = "pcisph-density",
     .skip_reason = skip_reason,

@@ -201,9 +201,10 @@ static inline void sph_solver_stopped(sph_sim *sim, double error)
  * 2015, ACM Trans. Graph. 34(6):246, who applies it to the Jacobi iterations of projective and position-based
  * dynamics, nonlinear as these solves are). Correction k (the solve's iteration count, 1 at the first) weighs w_k:
  * 1 before SPH_CHEBYSHEV_FIRST (sph_scene.h: corrections 1 to 9 are plain), 2 / (2 - rho^2) at it, then
- * 4 / (4 - rho^2 w_(k-1)), falling towards 2 / (1 + sqrt(1 - rho^2)); the correction makes q = w (q + dq) + (1 - w) q_last, q_last the iterate before. It is
- * written as a blend b = w q + (1 - w) q_last (sph_solver_chebyshev_blend; on the GL backend a stage of its own,
- * gpu_solver_blend.comp) and the Jacobi step from b with w dq (the solvers pass w in the step's divisor, as the
+ * 4 / (4 - rho^2 w_(k-1)), falling towards 2 / (1 + sqrt(1 - rho^2)); the correction makes
+ * q = w (q + dq) + (1 - w) q_last, q_last the iterate before. It is written as a blend b = w q + (1 - w) q_last
+ * (sph_solver_chebyshev_blend; on the GL backend a stage of its own, gpu_solver_blend.comp) and the Jacobi step
+ * from b with w dq (the solvers pass w in the step's divisor, as the
  * GL host's u_value), then the solver's clamp. Why: a Jacobi step corrects each particle from its own error, so
  * an error spread over a deep column falls slowly, the smooth part by 0.99 to 0.999 an iteration on the 2D dam
  * break of lessons/scenes/dam-break-2d.ini (a probe of the density error's ratio from iteration to iteration,
