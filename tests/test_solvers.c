@@ -268,7 +268,7 @@ static double check_reached_slack(const char *ini, int steps, double slack)
     long iterations = 0;
     double worst = 0;
     for (int s = 0; s < steps && !sim->alarm.raised; s++) {
-        uint64_t capped = sim->solver.capped;
+        uint64_t capped = sim->solver.capped, stopped = sim->solver.stopped;
         sph_sim_step(sim);
         if (sim->step < 2) continue;
         const double full = reached_compression(sim);
@@ -281,7 +281,11 @@ static double check_reached_slack(const char *ini, int steps, double slack)
             cr_assert_float_eq(lists, full, 2e-5, "step %d: compression over the lists %g, over all pairs %g", s,
                                lists, full);
         cr_assert_geq(mean, 0.0);
-        if (sim->solver.capped != capped) continue;
+        /* a solve that reached its cap, or stopped where its error rose (at its least, which it reports), did not
+         * converge: with solver_chebyshev = 0.9 and the scalar loops (the sanitizer build) PCISPH's step 256 of
+         * the 2D scene restarted after a rise under the blend, rose again under plain corrections and stopped at
+         * 0.244 %, its own error and the positions' alike; this loop had counted it as converged */
+        if (sim->solver.capped != capped || sim->solver.stopped != stopped) continue;
         converged++;
         iterations += sim->solver.iterations + sim->solver.div_iterations;
         /* the lists' sum: within 1 % of tol more than the solver's own, which sums at pred + dt dv where the step
