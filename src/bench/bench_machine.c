@@ -229,7 +229,6 @@ void bench_machine_measure(bench_machine *m, bool quick)
     measure_stream(m, quick);
 }
 
-
 void bench_machine_print(FILE *f, const bench_machine *m)
 {
     fprintf(f, "cores            %d\n", m->cores);
