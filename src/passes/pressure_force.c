@@ -332,11 +332,7 @@ SPH_INLINE void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, const s
         if (dim == 3) az = _mm256_fnmadd_ps(f, dz, az);
     }
     float a[3] = {sph_simd8_sum(ax), sph_simd8_sum(ay), sph_simd8_sum(az)};
-    if (sph_sim_wall_volume(sim)) {
-        float grad[3];
-        sph_wall_hidden(sim, &sim->k_density, i, grad);
-        for (int d = 0; d < dim; d++) a[d] -= sim->def.rest_density * P->p_rho2[i] * grad[d];
-    }
+    if (sph_sim_wall_volume(sim)) sph_wall_ghost_accel(sim, i, a); /* the push wall_force names, as the other loops */
     for (int d = 0; d < dim; d++) P->acc_p[d][i] = a[d];
     if (!fused) return;
     const float c = kv->sigma * kv->inv_h * kv->inv_h * (dim == 3 ? 6.0f : 1.0f); /* viscosity_one_avx512's scale */
