@@ -320,7 +320,11 @@ SPH_INLINE void forces_one_avx2(const sph_sim *sim, const sph_kernel *k, const s
         __m256 t = _mm256_max_ps(_mm256_sub_ps(h, r), zero);
         __m256 dw_over_r = _mm256_div_ps(_mm256_mul_ps(m3s, _mm256_mul_ps(t, t)), r);
         const __m256 pj = packed ? g[3] : sph_simd8_gather(live, idx, symmetric ? P->p_rho2 : P->p);
-        const __m256 mj = one_mass ? mall : symmetric ? sph_simd8_gather(live, idx, P->mass) : zero;
+        /* by offset there is no index vector (idx is 0): unequal masses are gathered by the row's indices */
+        const __m256 mj = one_mass    ? mall
+                          : !symmetric ? zero
+                                       : sph_simd8_gather(live, by_offset ? sph_simd8_nbr(&row, e, end, live) : idx,
+                                                          P->mass);
         __m256 coef = symmetric ? _mm256_mul_ps(mj, _mm256_add_ps(pi_over, pj))
                                 : _mm256_mul_ps(_mm256_mul_ps(vol, half_over_rho), _mm256_add_ps(pi, pj));
         if (any_close) /* a coincident pair only repels */
