@@ -123,8 +123,10 @@ check-tests:
 asan: deps
 	$(MAKE) asan-run
 
+# -O2 without -march=native: the scalar loops (no AVX), as a CPU without AVX2 runs them; -O2 rather than -O1 runs
+# the suite about 1.2 times faster under the sanitizers, with the same sums (no contraction, no reassociation).
 asan-run:
-	$(MAKE) BUILD=build-asan OPT="-O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
+	$(MAKE) BUILD=build-asan OPT="-O2 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
 	    sphlab-asan build-asan/sphlab-tests
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
 	    $(MAKE) BUILD=build-asan SPHLAB_BIN=./sphlab-asan check-tests-asan
